@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// TriangleMesh: the scene's surface as an OpenMesh triangle mesh whose faces carry the
+// CAD face they came from (an OpenMesh face property), plus the flat arrays the
+// collision queries read.
+//
+// Frame and units: the scene's local frame, metres (see HapticScene).
+// Built once, before the servo loop; immutable afterwards. Accessors are cheap and
+// safe on the servo tick.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+// vector_traits must be declared before the Eigen specialisation that lets OpenMesh
+// store Eigen vectors directly
+#include <OpenMesh/Core/Utils/vector_traits.hh>
+#include <OpenMesh/Core/Geometry/EigenVectorT.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+#include "hapticad/core/vec3.h"
+
+namespace hapticad {
+
+struct OpenMeshTraits : OpenMesh::DefaultTraits {
+  using Point = Eigen::Vector3d;
+  // OpenMesh cannot vector_cast between Eigen double and float vectors: doubles.
+  using Normal = Eigen::Vector3d;
+};
+using OpenMeshTriMesh = OpenMesh::TriMesh_ArrayKernelT<OpenMeshTraits>;
+
+class TriangleMesh {
+ public:
+  // Builds the mesh. `vertices_l` in the local frame (metres); `triangles`, `cad_faces`
+  // and `corner_normals` as in TriangleSoup. Throws std::invalid_argument naming the
+  // first offending triangle or vertex (index out of range, non-finite coordinate,
+  // negative CAD face id, a face OpenMesh cannot insert without a non-manifold edge).
+  static std::unique_ptr<TriangleMesh> Build(const std::vector<Vec3>& vertices_l,
+                            const std::vector<std::array<std::int32_t, 3>>& triangles,
+                            const std::vector<std::int32_t>& cad_faces,
+                            const std::vector<std::array<Vec3, 3>>& corner_normals);
+
+  std::size_t num_triangles() const { return triangles_.size(); }
+  std::size_t num_vertices() const { return mesh_.n_vertices(); }
+
+  const Vec3& vertex(std::uint32_t v) const { return mesh_.points()[v]; }
+  const Vec3* points() const { return mesh_.points(); }
+  const std::array<std::uint32_t, 3>& triangle(std::uint32_t t) const { return triangles_[t]; }
+  const std::array<std::uint32_t, 3>* triangles() const { return triangles_.data(); }
+  std::int32_t cad_face(std::uint32_t t) const { return cad_faces_[t]; }
+  std::int32_t num_cad_faces() const { return num_cad_faces_; }
+
+  // Unit normal from the winding (v1 - v0) x (v2 - v0); zero for a degenerate triangle.
+  Vec3 face_normal(std::uint32_t t) const;
+
+  bool has_corner_normals() const { return has_corner_normals_; }
+  // Unit normal at corner `corner` (0..2) of triangle `t`. Precondition: has_corner_normals().
+  Vec3 corner_normal(std::uint32_t t, int corner) const;
+
+  const OpenMeshTriMesh& openmesh() const { return mesh_; }
+
+  // Bytes held by the mesh (OpenMesh arrays and properties plus the flat arrays).
+  std::size_t CalcMemoryBytes() const;
+
+  // Not movable: cad_faces_ views the OpenMesh property's storage.
+  TriangleMesh(const TriangleMesh&) = delete;
+  TriangleMesh& operator=(const TriangleMesh&) = delete;
+  ~TriangleMesh();
+
+ private:
+  TriangleMesh();
+
+  OpenMeshTriMesh mesh_;
+  OpenMesh::FPropHandleT<std::int32_t> cad_face_prop_;
+  // A view into the face property's storage: face i is triangle i, since faces are
+  // added in input order and none is skipped.
+  const std::int32_t* cad_faces_ = nullptr;
+  // Vertex triples per triangle, so queries read them without circulating halfedges.
+  std::vector<std::array<std::uint32_t, 3>> triangles_;
+  bool has_corner_normals_ = false;
+  std::int32_t num_cad_faces_ = 0;
+};
+
+}  // namespace hapticad

@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// TriangleTree: CGAL's AABB tree over a TriangleMesh, built completely before use.
+//
+// CGAL builds its tree and its distance-query kd-tree lazily on the first query; a
+// servo tick must never pay for that, so Build() does both. The CGAL types stay inside
+// triangle_tree.cc (licence and compile time walled off, as libigl does).
+//
+// Frame and units: those of the mesh (the scene's local frame, metres).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+
+#include "hapticad/core/geometry/triangle_mesh.h"
+#include "hapticad/core/vec3.h"
+
+namespace hapticad {
+
+// First hit of a segment: triangle, parameter s in [0, 1] along a -> b, the point.
+struct SegmentHit {
+  std::uint32_t triangle;
+  double s;
+  Vec3 point;
+};
+
+// Closest point on the surface to a query point.
+struct SurfacePoint {
+  std::uint32_t triangle;
+  Vec3 point;
+  double distance;
+};
+
+class TriangleTree {
+ public:
+  // Builds the tree and the distance acceleration. `mesh` must outlive the tree.
+  // `pad` (model units) grows every node box so a segment grazing a box edge is not
+  // lost to rounding; the scene passes a small fraction of its size.
+  static std::unique_ptr<TriangleTree> Build(const TriangleMesh& mesh, double pad);
+
+  // First triangle hit along a -> b. Servo-tick safe: no allocation, no lock.
+  // `bary_tol` as in IntersectSegmentTriangle.
+  bool FirstHit(const Vec3& a, const Vec3& b, double bary_tol, SegmentHit* hit) const;
+
+  // Closest surface point to `p`. Uses CGAL's accelerated distance query: not for the
+  // servo tick (CGAL's kd-tree search allocates).
+  SurfacePoint CalcClosestPoint(const Vec3& p) const;
+
+  std::size_t num_triangles() const;
+  // Bytes of the node array and the primitive array (not the kd-tree).
+  std::size_t CalcMemoryBytes() const;
+
+  ~TriangleTree();
+  TriangleTree(const TriangleTree&) = delete;
+  TriangleTree& operator=(const TriangleTree&) = delete;
+
+ private:
+  struct Impl;
+  explicit TriangleTree(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace hapticad

@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// ForceRenderer: one servo tick of haptic rendering — device state in, force out.
+//
+//   proxy   god-object point proxy on the scene (GodObjectProxy)
+//   F_n     k (proxy - device), k = the touched face's stiffness, capped at the
+//           device's maximum stable stiffness
+//   F_t     seed 000 §2.1 friction, f_t = -mu_eq(|v_t|) |F_n| v_hat_t, with the
+//           touched face's own mu_s and mu_d, v_t the device velocity in the tangent
+//           plane (isotropic for now)
+//   F       F_n + F_t, scaled down to the device's maximum force
+// The touched face is the one whose triangle first constrained the proxy this tick.
+//
+// Frames and units: world frame, SI (m, m/s, N, N/m). Render() is servo-tick safe: no
+// allocation, no lock, no I/O. Non-finite device input yields zero force and the
+// kInputFault flag; it never reaches the proxy.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "hapticad/core/contact/god_object_proxy.h"
+#include "hapticad/core/rendering/haptic_scene.h"
+#include "hapticad/core/surfaces/surface_properties.h"
+#include "hapticad/core/vec3.h"
+
+namespace hapticad {
+
+struct RenderLimits {
+  double max_force_n = 3.3;              // > 0
+  double max_stiffness_n_per_m = 400.0;  // > 0
+};
+
+struct RenderInput {
+  Vec3 position_w = Vec3::Zero();  // device tip, m
+  Vec3 velocity_w = Vec3::Zero();  // device tip, m/s (filtered by the device layer)
+};
+
+enum RenderFlags : std::uint32_t {
+  kContact = 1u << 0,
+  kForceClamped = 1u << 1,
+  kStiffnessClamped = 1u << 2,
+  kInputFault = 1u << 3,
+};
+
+struct RenderOutput {
+  Vec3 force_w = Vec3::Zero();  // N, to send to the device
+  Vec3 proxy_w = Vec3::Zero();  // m
+  double normal_force_n = 0.0;      // component of force_w along the contact normal
+  double tangential_force_n = 0.0;  // magnitude of the rest
+  std::int32_t cad_face = -1;       // touched CAD face, -1 when free
+  std::uint32_t flags = 0;          // RenderFlags
+};
+
+class ForceRenderer {
+ public:
+  // Throws std::invalid_argument for null inputs or non-positive limits.
+  ForceRenderer(std::shared_ptr<const HapticScene> scene,
+                std::shared_ptr<const SurfaceTable> surfaces, RenderLimits limits);
+
+  // Puts the proxy at the device position; the next Render() starts from there.
+  void Reset(const Vec3& device_w);
+
+  void Render(const RenderInput& input, RenderOutput* output);
+
+  const HapticScene& scene() const { return *scene_; }
+  const RenderLimits& limits() const { return limits_; }
+
+ private:
+  std::shared_ptr<const HapticScene> scene_;
+  std::shared_ptr<const SurfaceTable> surfaces_;
+  RenderLimits limits_;
+  GodObjectProxy proxy_;
+  bool started_ = false;
+};
+
+}  // namespace hapticad

@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "hapticad/core/rendering/haptic_scene.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace hapticad {
+
+std::shared_ptr<const HapticScene> HapticScene::Build(const TriangleSoup& soup,
+                                                      double metres_per_unit) {
+  if (!(std::isfinite(metres_per_unit) && metres_per_unit > 0.0)) {
+    throw std::invalid_argument("haptic scene: metres per unit must be finite and > 0, got " +
+                                std::to_string(metres_per_unit));
+  }
+  if (soup.vertices.empty()) throw std::invalid_argument("haptic scene: no vertices");
+  // the local origin is taken in model units, before scaling, so far-away parts keep
+  // their digits
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = -lo;
+  for (std::size_t v = 0; v < soup.vertices.size(); ++v) {
+    const Vec3& p = soup.vertices[v];
+    if (!p.allFinite()) {
+      throw std::invalid_argument("haptic scene: vertex " + std::to_string(v) + " is not finite");
+    }
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Vec3 origin_model = 0.5 * (lo + hi);
+  std::vector<Vec3> local(soup.vertices.size());
+  for (std::size_t v = 0; v < local.size(); ++v) {
+    local[v] = (soup.vertices[v] - origin_model) * metres_per_unit;
+  }
+  std::shared_ptr<HapticScene> scene(new HapticScene());
+  scene->metres_per_unit_ = metres_per_unit;
+  scene->origin_w_ = origin_model * metres_per_unit;
+  scene->size_m_ = (hi - lo).norm() * metres_per_unit;
+  if (!(scene->size_m_ > 0.0)) throw std::invalid_argument("haptic scene: all vertices coincide");
+  scene->mesh_ = TriangleMesh::Build(local, soup.triangles, soup.cad_faces, soup.corner_normals);
+  // node boxes grow by a hair so a segment along a box face is not lost to rounding
+  scene->tree_ = TriangleTree::Build(*scene->mesh_, 1e-9 * scene->size_m_);
+  return scene;
+}
+
+SurfaceSample HapticScene::CalcClosestPoint(const Vec3& p_w) const {
+  const SurfacePoint closest = tree_->CalcClosestPoint(ToLocal(p_w));
+  SurfaceSample out;
+  out.point_w = ToWorld(closest.point);
+  out.triangle = closest.triangle;
+  out.cad_face = mesh_->cad_face(closest.triangle);
+  out.distance_m = closest.distance;
+  out.normal_w = mesh_->face_normal(closest.triangle);
+  if (mesh_->has_corner_normals()) {
+    // barycentric blend of the corner normals at the closest point
+    const auto& t = mesh_->triangle(closest.triangle);
+    const Vec3 a = mesh_->vertex(t[0]);
+    const Vec3 e1 = mesh_->vertex(t[1]) - a;
+    const Vec3 e2 = mesh_->vertex(t[2]) - a;
+    const Vec3 r = closest.point - a;
+    const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
+    const double det = d11 * d22 - d12 * d12;
+    if (det > 0.0) {
+      const double u = (d22 * e1.dot(r) - d12 * e2.dot(r)) / det;
+      const double w = (d11 * e2.dot(r) - d12 * e1.dot(r)) / det;
+      const Vec3 n = (1.0 - u - w) * mesh_->corner_normal(closest.triangle, 0) +
+                     u * mesh_->corner_normal(closest.triangle, 1) +
+                     w * mesh_->corner_normal(closest.triangle, 2);
+      if (n.norm() > 0.0) out.normal_w = n.normalized();
+    }
+  }
+  return out;
+}
+
+}  // namespace hapticad

@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "hapticad/core/contact/god_object_proxy.h"
+
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "test_meshes.h"
+
+namespace hapticad {
+namespace {
+
+class ProxyOnBox : public ::testing::Test {
+ protected:
+  void Make(const TriangleSoup& s) {
+    mesh_ = TriangleMesh::Build(s.vertices, s.triangles, s.cad_faces, s.corner_normals);
+    tree_ = TriangleTree::Build(*mesh_, 1e-12);
+    ProxyConfig config;
+    config.surface_offset_m = kOffset;
+    proxy_ = std::make_unique<GodObjectProxy>(*mesh_, *tree_, config);
+  }
+  static constexpr double kOffset = 1e-8;
+  std::unique_ptr<TriangleMesh> mesh_;
+  std::unique_ptr<TriangleTree> tree_;
+  std::unique_ptr<GodObjectProxy> proxy_;
+};
+
+TEST_F(ProxyOnBox, FollowsTheDeviceInFreeSpace) {
+  Make(testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05)));
+  proxy_->Reset(Vec3(0, 0, 0.2));
+  proxy_->Update(Vec3(0.01, 0.02, 0.1));
+  EXPECT_FALSE(proxy_->in_contact());
+  EXPECT_EQ(proxy_->position(), Vec3(0.01, 0.02, 0.1));
+}
+
+TEST_F(ProxyOnBox, StaysOnTheSurfaceWhileTheDevicePressesAndSlides) {
+  Make(testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05)));
+  proxy_->Reset(Vec3(0, 0, 0.06));
+  // press 2 mm into the top, then slide across it in 1 ms steps at 50 mm/s
+  for (int i = 0; i <= 20; ++i) proxy_->Update(Vec3(0, 0, 0.05 - 0.0001 * i));
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 goal(-0.04 + 0.00005 * i, 0.01, 0.048);
+    proxy_->Update(goal);
+    ASSERT_TRUE(proxy_->in_contact()) << i;
+    EXPECT_NEAR(proxy_->position().z(), 0.05 + kOffset, 1e-12) << i;
+    EXPECT_NEAR(proxy_->position().x(), goal.x(), 1e-12) << i;
+    EXPECT_NEAR(proxy_->position().y(), goal.y(), 1e-12) << i;
+  }
+}
+
+TEST_F(ProxyOnBox, ReleasesWhenTheDeviceLeaves) {
+  Make(testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05)));
+  proxy_->Reset(Vec3(0, 0, 0.06));
+  proxy_->Update(Vec3(0, 0, 0.04));
+  ASSERT_TRUE(proxy_->in_contact());
+  proxy_->Update(Vec3(0, 0, 0.07));
+  EXPECT_FALSE(proxy_->in_contact());
+  EXPECT_EQ(proxy_->position(), Vec3(0, 0, 0.07));
+}
+
+TEST_F(ProxyOnBox, NeverEntersTheBoxUnderRandomMotion) {
+  Make(testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05)));
+  std::mt19937 rng(1234);
+  std::normal_distribution<double> step(0.0, 0.004);
+  proxy_->Reset(Vec3(0, 0, 0.08));
+  Vec3 goal(0, 0, 0.08);
+  for (int i = 0; i < 20000; ++i) {
+    goal += Vec3(step(rng), step(rng), step(rng));
+    goal = goal.cwiseMax(Vec3::Constant(-0.09)).cwiseMin(Vec3::Constant(0.09));
+    proxy_->Update(goal);
+    const Vec3& p = proxy_->position();
+    const bool inside = (p.array().abs() < 0.05).all();
+    ASSERT_FALSE(inside) << "step " << i << " proxy " << p.transpose();
+  }
+}
+
+TEST_F(ProxyOnBox, ResolvesAConcaveCornerWithThreePlanes) {
+  // inside a box every wall faces the proxy: pushing past a corner binds three walls
+  Make(testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05)));
+  proxy_->Reset(Vec3(0, 0, 0));
+  proxy_->Update(Vec3(0.06, 0.07, 0.08));
+  EXPECT_EQ(proxy_->constraints().count(), 3);
+  EXPECT_NEAR((proxy_->position() - Vec3::Constant(0.05 - kOffset)).norm(), 0.0, 1e-12);
+  // two walls: along the edge
+  proxy_->Update(Vec3(0.06, 0.07, 0.01));
+  EXPECT_NEAR((proxy_->position() - Vec3(0.05 - kOffset, 0.05 - kOffset, 0.01)).norm(), 0.0, 1e-12);
+}
+
+TEST_F(ProxyOnBox, FeelsAZeroThicknessSheetFromBothSides) {
+  Make(testing::MakeSheetSoup(0.05, 0.0));
+  proxy_->Reset(Vec3(0, 0, 0.01));
+  proxy_->Update(Vec3(0.001, 0, -0.003));
+  EXPECT_NEAR(proxy_->position().z(), kOffset, 1e-15);
+  proxy_->Reset(Vec3(0, 0, -0.01));
+  proxy_->Update(Vec3(0.001, 0, 0.003));
+  EXPECT_NEAR(proxy_->position().z(), -kOffset, 1e-15);
+}
+
+}  // namespace
+}  // namespace hapticad

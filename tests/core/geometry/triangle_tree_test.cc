@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "hapticad/core/geometry/triangle_tree.h"
+
+#include "hapticad/core/geometry/segment_triangle.h"
+
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "alloc_counter.h"
+#include "test_meshes.h"
+
+namespace hapticad {
+namespace {
+
+class BoxTree : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const TriangleSoup s = testing::MakeBoxSoup(Vec3(-1, -1, -1), Vec3(1, 1, 1));
+    mesh_ = TriangleMesh::Build(s.vertices, s.triangles, s.cad_faces, s.corner_normals);
+    tree_ = TriangleTree::Build(*mesh_, 1e-12);
+  }
+  std::unique_ptr<TriangleMesh> mesh_;
+  std::unique_ptr<TriangleTree> tree_;
+};
+
+TEST_F(BoxTree, FirstHitIsTheNearestTriangle) {
+  SegmentHit hit;
+  ASSERT_TRUE(tree_->FirstHit(Vec3(0.2, 0.3, 3), Vec3(0.2, 0.3, -3), 1e-9, &hit));
+  EXPECT_EQ(mesh_->cad_face(hit.triangle), 5);  // +z, not -z behind it
+  EXPECT_NEAR((hit.point - Vec3(0.2, 0.3, 1)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(hit.s, 2.0 / 6.0, 1e-12);
+}
+
+TEST_F(BoxTree, MissesWhenTheSegmentStopsShortOrPassesBeside) {
+  SegmentHit hit;
+  EXPECT_FALSE(tree_->FirstHit(Vec3(0, 0, 3), Vec3(0, 0, 1.001), 1e-9, &hit));
+  EXPECT_FALSE(tree_->FirstHit(Vec3(1.5, 0, 3), Vec3(1.5, 0, -3), 1e-9, &hit));
+}
+
+TEST_F(BoxTree, ASegmentThroughASharedEdgeStillHits) {
+  // the top face's diagonal from (-1,-1) to (1,1) is shared by its two triangles
+  SegmentHit hit;
+  ASSERT_TRUE(tree_->FirstHit(Vec3(0.25, 0.25, 2), Vec3(0.25, 0.25, 0), 1e-9, &hit));
+  EXPECT_EQ(mesh_->cad_face(hit.triangle), 5);
+}
+
+TEST_F(BoxTree, RandomSegmentsAgreeWithBruteForce) {
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 a(u(rng), u(rng), u(rng));
+    const Vec3 b(u(rng), u(rng), u(rng));
+    double best = 2.0;
+    for (std::uint32_t t = 0; t < mesh_->num_triangles(); ++t) {
+      SegmentTriangleHit h;
+      const auto& tri = mesh_->triangle(t);
+      if (IntersectSegmentTriangle(a, b - a, 1.0, mesh_->vertex(tri[0]), mesh_->vertex(tri[1]),
+                                   mesh_->vertex(tri[2]), 1e-9, &h)) {
+        best = std::min(best, h.s);
+      }
+    }
+    SegmentHit hit;
+    const bool found = tree_->FirstHit(a, b, 1e-9, &hit);
+    ASSERT_EQ(found, best <= 1.0) << i;
+    if (found) {
+      EXPECT_NEAR(hit.s, best, 1e-12) << i;
+    }
+  }
+}
+
+TEST_F(BoxTree, FirstHitDoesNotAllocate) {
+  SegmentHit hit;
+  tree_->FirstHit(Vec3(0, 0, 3), Vec3(0, 0, -3), 1e-9, &hit);  // warm
+  testing::AllocationCounter counter;
+  for (int i = 0; i < 100; ++i) tree_->FirstHit(Vec3(0.01 * i, 0, 3), Vec3(0, 0.01 * i, -3), 1e-9, &hit);
+  EXPECT_EQ(counter.count(), 0u);
+}
+
+TEST_F(BoxTree, ClosestPointIsOnTheNearestFace) {
+  const SurfacePoint p = tree_->CalcClosestPoint(Vec3(3, 0.5, 0.25));
+  EXPECT_EQ(mesh_->cad_face(p.triangle), 1);
+  EXPECT_NEAR((p.point - Vec3(1, 0.5, 0.25)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(p.distance, 2.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace hapticad

@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "hapticad/core/rendering/haptic_scene.h"
+
+#include <limits>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include "test_meshes.h"
+
+namespace hapticad {
+namespace {
+
+TEST(HapticScene, StoresMetresAroundALocalOrigin) {
+  // a 20 x 40 x 60 mm box modelled in mm, 1 km from the world origin
+  const Vec3 lo(1e6, 1e6, 1e6);
+  const auto scene = HapticScene::Build(testing::MakeBoxSoup(lo, lo + Vec3(20, 40, 60)), 1e-3);
+  EXPECT_NEAR((scene->origin_w() - Vec3(1000.010, 1000.020, 1000.030)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(scene->size_m(), std::sqrt(0.02 * 0.02 + 0.04 * 0.04 + 0.06 * 0.06), 1e-15);
+  EXPECT_NEAR((scene->mesh().vertex(7) - Vec3(0.010, 0.020, 0.030)).norm(), 0.0, 1e-15);
+}
+
+TEST(HapticScene, ClosestPointGivesFaceAndOutwardNormalInWorld) {
+  const auto scene = HapticScene::Build(testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(20, 40, 60)), 1e-3);
+  const SurfaceSample s = scene->CalcClosestPoint(Vec3(0.010, 0.020, 0.100));
+  EXPECT_EQ(s.cad_face, 5);
+  EXPECT_NEAR((s.point_w - Vec3(0.010, 0.020, 0.060)).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((s.normal_w - Vec3::UnitZ()).norm(), 0.0, 1e-15);
+  EXPECT_NEAR(s.distance_m, 0.040, 1e-15);
+}
+
+TEST(HapticScene, RejectsBadUnitsAndNonFiniteVertices) {
+  const TriangleSoup box = testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(1, 1, 1));
+  EXPECT_THROW(HapticScene::Build(box, 0.0), std::invalid_argument);
+  EXPECT_THROW(HapticScene::Build(box, std::numeric_limits<double>::infinity()),
+               std::invalid_argument);
+  TriangleSoup nan_box = box;
+  nan_box.vertices[2].x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(HapticScene::Build(nan_box, 1.0), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace hapticad
