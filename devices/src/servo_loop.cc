@@ -100,13 +100,16 @@ void ServoLoop::Run(double stop_at_s) {
   const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / config_.rate_hz));
   const std::int64_t t0 = MonotonicNs();
   std::int64_t deadline = t0;
+  // compare in integer nanoseconds: 300 * 1e6 * 1e-9 is 0.30000000000000004 > 0.3
+  const std::int64_t stop_at_ns = stop_at_s >= 9e9 ? std::numeric_limits<std::int64_t>::max()
+                                                   : std::llround(stop_at_s * 1e9);
   std::uint64_t tick = 0;
   while (!stop_requested_.load(std::memory_order_relaxed)) {
     // the loop clock is the tick's scheduled time, so a late tick does not skew a
     // simulated device's path
-    const double loop_time_s = static_cast<double>(tick) * period_ns * 1e-9;
-    if (loop_time_s > stop_at_s) break;
-    Tick(loop_time_s);
+    const std::int64_t loop_time_ns = static_cast<std::int64_t>(tick) * period_ns;
+    if (loop_time_ns > stop_at_ns) break;
+    Tick(static_cast<double>(loop_time_ns) * 1e-9);
     ++tick;
     deadline += period_ns;
     const std::int64_t now = MonotonicNs();

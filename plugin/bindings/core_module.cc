@@ -141,6 +141,7 @@ void DefineDevices(py::module_& m) {
       .def_readwrite("max_stiffness_n_per_m", &DeviceLimits::max_stiffness_n_per_m)
       .def_readwrite("workspace_min_w", &DeviceLimits::workspace_min_w)
       .def_readwrite("workspace_max_w", &DeviceLimits::workspace_max_w);
+  m.def("simulated_probe_limits", &SimulatedProbeLimits);
   py::class_<DeviceInfo>(m, "DeviceInfo")
       .def_readonly("kind", &DeviceInfo::kind)
       .def_readonly("name", &DeviceInfo::name)
@@ -181,6 +182,7 @@ void DefineDevices(py::module_& m) {
   py::class_<ServoStats>(m, "ServoStats")
       .def_readonly("ticks", &ServoStats::ticks)
       .def_readonly("overruns", &ServoStats::overruns)
+      .def_readonly("skipped_ticks", &ServoStats::skipped_ticks)
       .def_readonly("trace_dropped", &ServoStats::trace_dropped)
       .def_readonly("elapsed_s", &ServoStats::elapsed_s);
   py::class_<ServoLoop>(m, "ServoLoop")

@@ -36,12 +36,13 @@ class ServoOnBox : public ::testing::Test {
 
 TEST_F(ServoOnBox, RunsAtItsRateAndRecordsEveryTick) {
   ServoLoop loop(*device_, *renderer_, ServoConfig{1000.0, 4096});
-  const auto trace = loop.RunFor(0.4);
+  const auto trace = loop.RunFor(0.3);
   const ServoStats stats = loop.stats();
   EXPECT_EQ(trace.size(), stats.ticks);
   EXPECT_EQ(stats.trace_dropped, 0u);
-  // ticks at 0, 1, ..., 400 ms: every one either ran or was skipped after an overrun
-  EXPECT_EQ(trace.size() + stats.skipped_ticks, 401u);
+  // ticks at 0, 1, ..., 300 ms (0.3 is not a multiple of 1e-3 in binary: the loop
+  // must still include 300 ms): every one either ran or was skipped after an overrun
+  EXPECT_EQ(trace.size() + stats.skipped_ticks, 301u);
   EXPECT_LE(stats.skipped_ticks, 20u);
   // the loop clock advances one period per tick (plus skipped ones)
   for (std::size_t i = 1; i < trace.size(); ++i) EXPECT_GT(trace[i].time_s, trace[i - 1].time_s);
@@ -56,6 +57,7 @@ TEST_F(ServoOnBox, RunsAtItsRateAndRecordsEveryTick) {
     }
   }
   EXPECT_GT(contact, 200);
+  EXPECT_NEAR(trace.back().time_s, 0.3, 1e-12);
   EXPECT_FALSE(loop.running());
   EXPECT_EQ(device_->last_force_w(), Vec3::Zero());  // Stop() leaves the device at zero force
 }

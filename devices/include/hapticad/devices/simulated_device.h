@@ -25,6 +25,18 @@ struct ScriptedPath {
   double duration_s() const { return times_s.empty() ? 0.0 : times_s.back(); }
 };
 
+// A simulated probe has no motors: by default it takes the limits of a capable desktop
+// device (Novint Falcon class: 8.9 N, 3 N/mm, about 0.1 m of travel; field notes), so
+// what a designer tunes on it is renderable on real hardware of that class.
+inline DeviceLimits SimulatedProbeLimits() {
+  DeviceLimits limits;
+  limits.max_force_n = 8.9;
+  limits.max_stiffness_n_per_m = 3000.0;
+  limits.workspace_min_w = Vec3::Constant(-0.05);
+  limits.workspace_max_w = Vec3::Constant(0.05);
+  return limits;
+}
+
 class SimulatedDevice final : public Device {
  public:
   SimulatedDevice(ScriptedPath path, DeviceLimits limits);

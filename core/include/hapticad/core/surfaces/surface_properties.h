@@ -2,9 +2,10 @@
 // SurfaceProperties: what a designer put on one CAD face, in SI units, ready for the
 // servo tick; SurfaceTable: those properties by CAD face id.
 //
-// Untagged faces get kUntaggedSurface: mu_s 0.5, mu_d 0.4 (a hard plastic against a
-// dry fingertip, ABS in resources/materials) and 0.4 N/mm, the largest stiffness the
-// most common desktop device (3D Systems Touch) renders stably.
+// Untagged faces get kUntaggedSurface: mu_s 0.5, mu_d 0.4 (the low end of hard
+// plastics and metals against a dry fingertip, resources/materials/materials.csv) and
+// 0.4 N/mm, the largest stiffness the most common desktop device (3D Systems Touch)
+// renders stably.
 //
 // The table is immutable once built; the renderer reads it on every tick (cheap, safe).
 #pragma once

@@ -1,0 +1,14 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""HaptiCAD's scripting API, in FreeCAD's style.
+
+    import HaptiCAD
+    surface = HaptiCAD.make_surface(doc, [(box, "Face6")], material="ABS",
+                                    roughness_category=3)
+"""
+from hapticad.surface_object import (  # noqa: F401
+    PATTERNS,
+    is_haptic_surface,
+    make_surface,
+    reference_pairs,
+    surfaces_of,
+)

@@ -1,0 +1,25 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# FreeCAD runs this file at GUI start-up (exec'd: no __file__, no module globals).
+
+
+class HaptiCADWorkbench(Workbench):  # noqa: F821 (FreeCAD injects Workbench)
+    MenuText = "HaptiCAD"
+    ToolTip = "Tag faces with physical surface properties and feel them through a haptic device"
+
+    def __init__(self):
+        import hapticad
+
+        self.__class__.Icon = hapticad.icon("HaptiCAD")
+
+    def Initialize(self):
+        # commands are imported on activation only, as freecad.gears does
+        from hapticad.gui import commands
+
+        self.appendToolbar("HaptiCAD", commands.TOOLBAR)
+        self.appendMenu("&HaptiCAD", commands.MENU)
+
+    def GetClassName(self):
+        return "Gui::PythonWorkbench"
+
+
+Gui.addWorkbench(HaptiCADWorkbench())  # noqa: F821

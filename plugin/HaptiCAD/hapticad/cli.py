@@ -1,0 +1,97 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The ``hapticad`` command line. Prints JSON on stdout; errors go to stderr with
+exit status 2 (bad input) or 1 (failure)."""
+import argparse
+import json
+import os
+import sys
+
+from .freecad_env import ensure_freecad
+
+
+def _point(text):
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        values = []
+    if len(values) != 3:
+        raise argparse.ArgumentTypeError(f"{text!r} is not X,Y,Z")
+    return tuple(values)
+
+
+def _stroke(text):
+    parts = text.split(":")
+    if len(parts) != 2:
+        raise argparse.ArgumentTypeError(f"{text!r} is not X0,Y0,Z0:X1,Y1,Z1")
+    return _point(parts[0]), _point(parts[1])
+
+
+def cmd_feel(args):
+    App = ensure_freecad()
+    from .document_scene import build_document_scene
+    from .feel import Stroke, feel_document
+
+    if not os.path.exists(args.file):
+        raise ValueError(f"{args.file}: no such file")
+    doc = App.openDocument(os.path.abspath(args.file))
+    try:
+        doc_scene = build_document_scene(doc)
+        p0, p1 = args.stroke
+        stroke = Stroke(p0, p1, args.speed, args.depth, args.rate)
+        return feel_document(doc_scene, stroke, args.out)
+    finally:
+        App.closeDocument(doc.Name)
+
+
+def cmd_demo(args):
+    from . import demo
+
+    headless = args.headless or not os.environ.get("DISPLAY")
+    if not headless:
+        return demo.launch_gui()
+    ensure_freecad()
+    result = demo.run_headless(args.out)
+    print(f"HaptiCAD demo: traces and plots of {len(result['strokes'])} strokes are in "
+          f"{result['out_dir']}", file=sys.stderr)
+    return result
+
+
+def build_parser():
+    parser = argparse.ArgumentParser(prog="hapticad", description="Feel CAD parts: HaptiCAD's command line")
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    feel = sub.add_parser("feel", help="feel a stroke over a document's tagged faces")
+    feel.add_argument("file", help="FreeCAD document (.FCStd) with HapticSurface objects")
+    feel.add_argument("--stroke", type=_stroke, required=True, metavar="X0,Y0,Z0:X1,Y1,Z1",
+                      help="stroke from P0 to P1 on the surface, mm")
+    feel.add_argument("--speed", type=float, default=50.0, metavar="MM_PER_S", help="sliding speed (50)")
+    feel.add_argument("--depth", type=float, default=1.0, metavar="MM", help="depth below the surface (1)")
+    feel.add_argument("--rate", type=float, default=1000.0, metavar="HZ", help="servo rate (1000)")
+    feel.add_argument("--out", required=True, metavar="DIR", help="folder for trace.csv and trace.png")
+    feel.set_defaults(run=cmd_feel)
+
+    demo = sub.add_parser("demo", help="open the example toothbrush and feel it")
+    demo.add_argument("--headless", action="store_true", help="stroke every tagged face, even with a display")
+    demo.add_argument("--out", default="hapticad-demo", metavar="DIR", help="output folder (hapticad-demo)")
+    demo.set_defaults(run=cmd_demo)
+    return parser
+
+
+def main(argv=None):
+    args = build_parser().parse_args(argv)
+    try:
+        result = args.run(args)
+    except (ValueError, KeyError, OSError) as exc:
+        message = exc.args[0] if isinstance(exc, KeyError) and exc.args else exc
+        print(f"hapticad {args.command}: {message}", file=sys.stderr)
+        return 2
+    except RuntimeError as exc:
+        print(f"hapticad {args.command}: {exc}", file=sys.stderr)
+        return 1
+    json.dump(result, sys.stdout, indent=2)
+    sys.stdout.write("\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

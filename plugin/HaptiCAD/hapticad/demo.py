@@ -1,0 +1,56 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""``hapticad demo``: open the example toothbrush and feel it.
+
+With a display, FreeCAD opens with the HaptiCAD workbench and the document. Headless,
+the simulated probe strokes every tagged face and the traces and plots are written to
+an output folder, whose location is printed.
+"""
+import os
+import shutil
+import subprocess
+
+from . import EXAMPLES_DIR
+
+EXAMPLE = os.path.join(EXAMPLES_DIR, "toothbrush.FCStd")
+GUI_STARTUP = os.path.join(os.path.dirname(os.path.abspath(__file__)), "gui", "demo_startup.py")
+
+
+def launch_gui(document=EXAMPLE):
+    freecad = shutil.which("freecad")
+    if freecad is None:
+        raise RuntimeError("FreeCAD's GUI ('freecad') is not installed")
+    env = dict(os.environ)
+    if os.geteuid() == 0:
+        env.setdefault("QTWEBENGINE_DISABLE_SANDBOX", "1")  # else the Start page kills FreeCAD
+    subprocess.Popen([freecad, document, GUI_STARTUP], env=env, start_new_session=True)
+    return {"gui": True, "document": document}
+
+
+def run_headless(out_dir, document=EXAMPLE, speed_mm_s=50.0, depth_mm=1.0):
+    import FreeCAD as App
+
+    from .document_scene import build_document_scene
+    from .face_strokes import plan_face_stroke, vector_tuple
+    from .feel import Stroke, feel_document
+    from .surface_object import reference_pairs, surfaces_of
+
+    doc = App.openDocument(document)
+    try:
+        doc_scene = build_document_scene(doc)
+        strokes = []
+        for surface in surfaces_of(doc):
+            for obj, sub in reference_pairs(surface):
+                name = f"{obj.Name}.{sub}"
+                ends = plan_face_stroke(doc_scene.face_shape(name))
+                if ends is None:
+                    strokes.append({"face": name, "skipped": "no straight stroke fits on this face"})
+                    continue
+                stroke = Stroke(vector_tuple(ends[0]), vector_tuple(ends[1]), speed_mm_s, depth_mm)
+                title = (f"{surface.Label} on {name}: {surface.Material}, roughness category "
+                         f"{surface.RoughnessCategory}")
+                summary = feel_document(doc_scene, stroke, os.path.join(out_dir, name), title)
+                summary["face"] = name
+                strokes.append(summary)
+    finally:
+        App.closeDocument(doc.Name)
+    return {"gui": False, "document": document, "out_dir": os.path.abspath(out_dir), "strokes": strokes}

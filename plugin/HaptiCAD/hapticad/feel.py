@@ -1,0 +1,250 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Feel a stroke over a document's tagged faces with the simulated probe.
+
+A stroke is a segment P0 -> P1 on the part's surface (mm, global coordinates). The
+probe starts ``clearance_mm`` above P0 along the outward normal, descends to ``depth_mm``
+below the surface, dwells, slides to P1 at ``speed_mm_s`` (the segment shifted into
+the part along the inward normal at P0), dwells and retreats. The C++ servo loop runs
+it in real time at ``rate_hz`` and returns the trace. No GUI.
+"""
+import csv
+import os
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _core
+
+MM = 1e-3
+APPROACH_SPEED_MM_S = 25.0  # descent and retreat: slow enough to meet the surface gently
+DWELL_S = 0.1  # at depth before sliding, so the slide starts from rest
+MAX_START_DISTANCE_MM = 1.0  # P0 must lie on (or this close to) the surface
+
+
+@dataclass
+class Stroke:
+    p0_mm: tuple
+    p1_mm: tuple
+    speed_mm_s: float = 50.0
+    depth_mm: float = 1.0
+    rate_hz: float = 1000.0
+    clearance_mm: float = 5.0
+
+    def validate(self):
+        p0, p1 = np.asarray(self.p0_mm, float), np.asarray(self.p1_mm, float)
+        if p0.shape != (3,) or p1.shape != (3,) or not (np.isfinite(p0).all() and np.isfinite(p1).all()):
+            raise ValueError("stroke: P0 and P1 must be three finite coordinates each")
+        if np.linalg.norm(p1 - p0) <= 0:
+            raise ValueError("stroke: P0 and P1 coincide")
+        if not (0 < self.speed_mm_s <= 2000):
+            raise ValueError(f"stroke: speed {self.speed_mm_s} mm/s is outside 0..2000")
+        if not (0 < self.depth_mm <= 20):
+            raise ValueError(f"stroke: depth {self.depth_mm} mm is outside 0..20")
+        if not (1 <= self.rate_hz <= 10000):
+            raise ValueError(f"stroke: rate {self.rate_hz} Hz is outside 1..10000")
+
+
+@dataclass
+class StrokePlan:
+    times_s: np.ndarray
+    positions_m: np.ndarray  # waypoints, world metres
+    outward_normal: np.ndarray
+    start_face: int
+    slide_start_s: float
+    slide_end_s: float
+    p0_m: np.ndarray
+    p1_m: np.ndarray
+
+
+def plan_stroke(doc_scene, stroke):
+    """Waypoints of the scripted probe for a stroke. Raises ValueError if P0 is off the
+    surface."""
+    stroke.validate()
+    p0 = np.asarray(stroke.p0_mm, float) * MM
+    p1 = np.asarray(stroke.p1_mm, float) * MM
+    start = doc_scene.scene.calc_closest_point(p0)
+    if start.distance_m > MAX_START_DISTANCE_MM * MM:
+        raise ValueError(
+            f"stroke: P0 is {start.distance_m / MM:.3f} mm from the nearest surface of the "
+            f"tagged parts (closest point {np.round(np.asarray(start.point_w) / MM, 3).tolist()} mm "
+            f"on {doc_scene.face_names[start.cad_face]}); start the stroke on the surface"
+        )
+    n = np.asarray(start.normal_w, float)
+    clearance = stroke.clearance_mm * MM
+    depth = stroke.depth_mm * MM
+    approach = (clearance + depth) / (min(stroke.speed_mm_s, APPROACH_SPEED_MM_S) * MM)
+    slide = np.linalg.norm(p1 - p0) / (stroke.speed_mm_s * MM)
+    times = np.cumsum([0.0, 0.05, approach, DWELL_S, slide, 0.05, approach])
+    positions = np.array([
+        p0 + clearance * n,
+        p0 + clearance * n,
+        p0 - depth * n,
+        p0 - depth * n,
+        p1 - depth * n,
+        p1 - depth * n,
+        p1 + clearance * n,
+    ])
+    return StrokePlan(times, positions, n, start.cad_face, times[3], times[4], p0, p1)
+
+
+@dataclass
+class FeelResult:
+    trace: np.ndarray  # structured: _core TraceSample fields
+    plan: StrokePlan
+    stroke: Stroke
+    stats: object  # _core.ServoStats
+    limits: object  # _core.DeviceLimits
+
+
+def run_stroke(doc_scene, stroke, limits=None):
+    """Runs a stroke through the real servo loop with the simulated probe."""
+    plan = plan_stroke(doc_scene, stroke)
+    limits = limits or _core.simulated_probe_limits()
+    device = _core.SimulatedDevice(list(plan.times_s), plan.positions_m, limits)
+    render_limits = _core.RenderLimits()
+    render_limits.max_force_n = limits.max_force_n
+    render_limits.max_stiffness_n_per_m = limits.max_stiffness_n_per_m
+    renderer = _core.ForceRenderer(doc_scene.scene, doc_scene.surfaces, render_limits)
+    loop = _core.ServoLoop(device, renderer, stroke.rate_hz,
+                           trace_capacity=int(stroke.rate_hz * (plan.times_s[-1] + 1)) + 1024)
+    trace = loop.run_for(float(plan.times_s[-1]))
+    return FeelResult(trace, plan, stroke, loop.stats, limits)
+
+
+def _contact(trace):
+    return (trace["flags"] & _core.FLAG_CONTACT) != 0
+
+
+def sliding_mask(result, doc_scene):
+    """Contact ticks of the slide phase where the tangential speed is past the face's
+    static band and transition (friction is mu_d there)."""
+    trace = result.trace
+    contact = _contact(trace)
+    normal = np.asarray(trace["proxy_m"]) - np.asarray(trace["device_m"])
+    length = np.linalg.norm(normal, axis=1, keepdims=True)
+    normal = np.divide(normal, length, out=np.zeros_like(normal), where=length > 0)
+    velocity = np.asarray(trace["velocity_mps"])
+    v_t = velocity - (velocity * normal).sum(axis=1, keepdims=True) * normal
+    speed = np.linalg.norm(v_t, axis=1)
+    threshold = np.array([
+        _dynamic_speed(doc_scene, face) if face >= 0 else np.inf for face in trace["cad_face"]
+    ])
+    in_slide = (trace["time_s"] > result.plan.slide_start_s) & (trace["time_s"] < result.plan.slide_end_s)
+    return contact & in_slide & (speed >= threshold)
+
+
+def _dynamic_speed(doc_scene, face):
+    f = doc_scene.surface_properties(face).friction
+    return f.stick_speed_mps + f.transition_speed_mps
+
+
+def effective_stiffness_n_per_mm(doc_scene, face, limits):
+    k = min(doc_scene.surface_properties(face).stiffness_n_per_m, limits.max_stiffness_n_per_m)
+    return k * MM
+
+
+def summarize(result, doc_scene):
+    """The JSON-ready summary of a stroke."""
+    trace = result.trace
+    contact = _contact(trace)
+    sliding = sliding_mask(result, doc_scene)
+    faces = {}
+    for face in sorted(set(int(f) for f in trace["cad_face"][contact])):
+        name = doc_scene.face_names[face]
+        on_face = trace["cad_face"] == face
+        slide = sliding & on_face
+        props = doc_scene.surface_properties(face)
+        fn = trace["normal_force_n"][slide]
+        ft = trace["tangential_force_n"][slide]
+        faces[name] = {
+            "surface": doc_scene.face_surface.get(name),
+            "material": doc_scene.face_material.get(name),
+            "mu_static": props.friction.static_coefficient,
+            "mu_dynamic": props.friction.dynamic_coefficient,
+            "stiffness_n_per_mm": effective_stiffness_n_per_mm(doc_scene, face, result.limits),
+            "contact_ticks": int((contact & on_face).sum()),
+            "sliding_ticks": int(slide.sum()),
+            "mean_normal_force_n": float(fn.mean()) if len(fn) else None,
+            "mean_ft_over_fn": float((ft / fn).mean()) if len(fn) else None,
+        }
+    tick_us = trace["tick_us"]
+    contact_us = tick_us[contact]
+    start_face = result.plan.start_face
+    return {
+        "ticks": int(len(trace)),
+        "contact_ticks": int(contact.sum()),
+        "max_normal_force_n": float(trace["normal_force_n"].max()) if len(trace) else 0.0,
+        "expected_normal_force_n": effective_stiffness_n_per_mm(doc_scene, start_face, result.limits)
+        * result.stroke.depth_mm,
+        "faces": faces,
+        "tick_us": _percentiles(tick_us),
+        "contact_tick_us": _percentiles(contact_us),
+        "rate_hz": result.stroke.rate_hz,
+        "overruns": int(result.stats.overruns),
+        "skipped_ticks": int(result.stats.skipped_ticks),
+        "stroke": {
+            "p0_mm": list(map(float, result.stroke.p0_mm)),
+            "p1_mm": list(map(float, result.stroke.p1_mm)),
+            "speed_mm_s": result.stroke.speed_mm_s,
+            "depth_mm": result.stroke.depth_mm,
+            "start_face": doc_scene.face_names[start_face],
+        },
+    }
+
+
+def _percentiles(values):
+    if len(values) == 0:
+        return {"p50": None, "p99": None, "max": None}
+    return {
+        "p50": float(np.percentile(values, 50)),
+        "p99": float(np.percentile(values, 99)),
+        "max": float(np.max(values)),
+    }
+
+
+def write_trace_csv(path, result, doc_scene):
+    """One row per tick: time, device, proxy (mm), force (N), face, flags."""
+    trace = result.trace
+    with open(path, "w", newline="") as handle:
+        out = csv.writer(handle)
+        out.writerow([
+            "time_s", "device_x_mm", "device_y_mm", "device_z_mm", "proxy_x_mm", "proxy_y_mm",
+            "proxy_z_mm", "force_x_n", "force_y_n", "force_z_n", "normal_force_n",
+            "tangential_force_n", "face", "contact",
+        ])
+        contact = _contact(trace)
+        for i, s in enumerate(trace):
+            face = int(s["cad_face"])
+            out.writerow([
+                f"{s['time_s']:.6f}",
+                *(f"{x / MM:.6f}" for x in s["device_m"]),
+                *(f"{x / MM:.6f}" for x in s["proxy_m"]),
+                *(f"{x:.6f}" for x in s["force_n"]),
+                f"{s['normal_force_n']:.6f}",
+                f"{s['tangential_force_n']:.6f}",
+                doc_scene.face_names[face] if face >= 0 else "",
+                int(contact[i]),
+            ])
+
+
+def distance_along_stroke_mm(result):
+    """Device position projected on P0 -> P1, mm from P0."""
+    direction = result.plan.p1_m - result.plan.p0_m
+    direction /= np.linalg.norm(direction)
+    return (np.asarray(result.trace["device_m"]) - result.plan.p0_m) @ direction / MM
+
+
+def feel_document(doc_scene, stroke, out_dir, title=""):
+    """Runs a stroke, writes out_dir/trace.csv and out_dir/trace.png, returns the summary."""
+    from .trace_plot import plot_trace
+
+    os.makedirs(out_dir, exist_ok=True)
+    result = run_stroke(doc_scene, stroke)
+    summary = summarize(result, doc_scene)
+    csv_path = os.path.join(out_dir, "trace.csv")
+    png_path = os.path.join(out_dir, "trace.png")
+    write_trace_csv(csv_path, result, doc_scene)
+    plot_trace(png_path, result, doc_scene, summary, title)
+    summary["trace_csv"] = os.path.abspath(csv_path)
+    summary["trace_png"] = os.path.abspath(png_path)
+    return summary
