@@ -1,13 +1,16 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Builds resources/examples/toothbrush.FCStd: a manual toothbrush with tagged faces.
 
-Run with FreeCAD and the HaptiCAD Mod folder on the module path:
-    freecadcmd resources/examples/make_toothbrush.py -M build/Mod/HaptiCAD
+Run in FreeCAD's GUI (so the document keeps its view: colours, visibility, camera),
+with the HaptiCAD workbench installed, e.g. from the build tree:
+    XDG_DATA_HOME=build/test-home/data xvfb-run -a freecad \
+        resources/examples/make_toothbrush.py
 Dimensions in mm; x runs along the brush, z is up (bristles on +z of the head).
 """
 import os
 
 import FreeCAD as App
+import FreeCADGui as Gui
 import Part
 
 import HaptiCAD
@@ -45,6 +48,7 @@ def build():
     doc = App.newDocument("Toothbrush")
     body = doc.addObject("Part::Feature", "Toothbrush")
     body.Shape = shape
+    body.ViewObject.ShapeColor = (0.36, 0.62, 0.85)  # a blue handle
     doc.recompute()
 
     up, down = V(0, 0, 1), V(0, 0, -1)
@@ -58,9 +62,15 @@ def build():
     HaptiCAD.make_surface(doc, [(body, face_at(shape, V(165, 0, 3), down))],
                           material="Rubber", roughness_category=6, name="TongueCleaner")
     doc.recompute()
+    view = Gui.getDocument(doc.Name).ActiveView
+    view.viewIsometric()
+    view.fitAll()
     doc.saveAs(OUT)
     App.closeDocument(doc.Name)
     print(f"wrote {OUT}")
 
 
-build()
+try:
+    build()
+finally:
+    os._exit(0)

@@ -101,6 +101,9 @@ class HapticSurface:
 
     def onDocumentRestored(self, obj):
         self.setup(obj)
+        # a document written without the GUI (freecadcmd, the CLI) has no view-provider
+        # proxy to restore: give the surface its own
+        attach_view_provider(obj)
         # re-applying constraints is not an edit: the object stays up to date
         obj.purgeTouched()
 
@@ -215,8 +218,14 @@ def make_surface(doc, references, material="ABS", roughness_category=3, pattern=
         obj.DynamicFriction = float(dynamic_friction)
     if stiffness_n_per_mm is not None:
         obj.Stiffness = float(stiffness_n_per_mm)
-    if App.GuiUp:
-        from .gui.view_provider_surface import ViewProviderHapticSurface
-
-        ViewProviderHapticSurface(obj.ViewObject)
+    attach_view_provider(obj)
     return obj
+
+
+def attach_view_provider(obj):
+    """Gives a surface its view provider when the GUI is up and it has none yet."""
+    if not App.GuiUp or obj.ViewObject is None or obj.ViewObject.Proxy:
+        return
+    from .gui.view_provider_surface import ViewProviderHapticSurface
+
+    ViewProviderHapticSurface(obj.ViewObject)

@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Runs every test against the build that setup.sh made: C++ (GoogleTest), FreeCAD
+# headless (freecadcmd), the GUI under Xvfb, the CLI; then the installed `hapticad`
+# command end to end (headless demo).
+set -euo pipefail
+
+top=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build="$top/build"
+[ -f "$build/CMakeCache.txt" ] || { echo "run packaging/setup.sh first" >&2; exit 2; }
+
+cmake --build "$build" -j "$(nproc)"
+ctest --test-dir "$build" -j "$(nproc)" --output-on-failure
+
+# the installed command, as a user runs it
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+hapticad demo --headless --out "$out" > "$out/demo.json"
+/usr/bin/python3 - "$out/demo.json" <<'PY'
+import json, sys
+result = json.load(open(sys.argv[1]))
+felt = [s for s in result["strokes"] if "contact_ticks" in s and s["contact_ticks"] > 0]
+assert len(felt) >= 4, result
+print(f"installed hapticad: demo felt {len(felt)} faces")
+PY

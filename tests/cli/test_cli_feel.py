@@ -1,0 +1,98 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""`hapticad feel` end to end: a stroke across a tagged box face feels k * depth
+normal force and Ft/Fn = mu_d (within 5%); bad input gets a clear error (exit 2).
+
+Environment: HAPTICAD_CLI (the launcher), HAPTICAD_MOD (the staged Mod folder).
+Runs under /usr/bin/python3 (FreeCAD's interpreter)."""
+import csv
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+CLI = os.environ["HAPTICAD_CLI"]
+sys.path.insert(0, os.environ["HAPTICAD_MOD"])
+
+from hapticad.freecad_env import ensure_freecad  # noqa: E402
+
+App = ensure_freecad()
+import HaptiCAD  # noqa: E402
+
+K_N_PER_MM = 0.5
+MU_D = 0.45
+
+
+def run_cli(*args):
+    return subprocess.run([CLI, *args], capture_output=True, text=True, timeout=120)
+
+
+class FeelCommandTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.doc_path = os.path.join(cls.tmp.name, "box.FCStd")
+        doc = App.newDocument("CliBox")
+        box = doc.addObject("Part::Box", "Box")
+        box.Length, box.Width, box.Height = 80, 40, 20
+        doc.recompute()
+        HaptiCAD.make_surface(doc, [(box, "Face6")], material="PMMA", static_friction=0.6,
+                              dynamic_friction=MU_D, stiffness_n_per_mm=K_N_PER_MM)
+        doc.saveAs(cls.doc_path)
+        App.closeDocument(doc.Name)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def test_stroke_across_a_tagged_face_feels_k_depth_and_mu_d(self):
+        out = os.path.join(self.tmp.name, "stroke")
+        depth = 1.2
+        proc = run_cli("feel", self.doc_path, "--stroke", "10,20,20:70,20,20", "--speed", "60",
+                       "--depth", str(depth), "--out", out)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        summary = json.loads(proc.stdout)
+        for key in ("ticks", "contact_ticks", "max_normal_force_n", "faces", "tick_us"):
+            self.assertIn(key, summary)
+        self.assertIn("p50", summary["tick_us"])
+        self.assertIn("p99", summary["tick_us"])
+        self.assertGreater(summary["contact_ticks"], 1000)
+        self.assertLessEqual(summary["contact_ticks"], summary["ticks"])
+        face = summary["faces"]["Box.Face6"]
+        expected_fn = K_N_PER_MM * depth
+        self.assertAlmostEqual(face["mean_normal_force_n"], expected_fn, delta=0.05 * expected_fn)
+        self.assertAlmostEqual(summary["max_normal_force_n"], expected_fn, delta=0.05 * expected_fn)
+        self.assertAlmostEqual(face["mean_ft_over_fn"], MU_D, delta=0.05 * MU_D)
+        self.assertEqual(face["material"], "PMMA")
+
+        with open(os.path.join(out, "trace.csv")) as handle:
+            rows = list(csv.DictReader(handle))
+        self.assertEqual(len(rows), summary["ticks"])
+        for column in ("time_s", "device_x_mm", "proxy_z_mm", "force_z_n", "face"):
+            self.assertIn(column, rows[0])
+        in_contact = [r for r in rows if r["contact"] == "1"]
+        self.assertTrue(all(r["face"] == "Box.Face6" for r in in_contact))
+        # the proxy stays on the surface while the device is below it
+        self.assertTrue(all(abs(float(r["proxy_z_mm"]) - 20.0) < 1e-6 for r in in_contact))
+        with open(os.path.join(out, "trace.png"), "rb") as handle:
+            self.assertEqual(handle.read(8), b"\x89PNG\r\n\x1a\n")
+
+    def test_bad_input_gets_a_clear_error(self):
+        out = os.path.join(self.tmp.name, "bad")
+        cases = [
+            (("feel", self.doc_path + "x", "--stroke", "1,1,20:2,2,20", "--out", out), "no such file"),
+            (("feel", self.doc_path, "--stroke", "10,20,50:70,20,50", "--out", out), "from the nearest surface"),
+            (("feel", self.doc_path, "--stroke", "10,20:70,20,20", "--out", out), "is not X,Y,Z"),
+            (("feel", self.doc_path, "--stroke", "10,20,20:70,20,20", "--speed", "-3", "--out", out), "speed"),
+        ]
+        for args, message in cases:
+            with self.subTest(message=message):
+                proc = run_cli(*args)
+                self.assertEqual(proc.returncode, 2, proc.stderr)
+                self.assertIn(message, proc.stderr)
+                self.assertEqual(proc.stdout, "")
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,88 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The workbench in FreeCAD's real GUI: it loads from the user's Mod folder, the
+"Haptic surface" command tags a face picked with Gui.Selection as one undoable step,
+and the 3D view shows the part. Run through gui_test_runner.py under Xvfb."""
+import os
+import unittest
+
+import FreeCAD as App
+import FreeCADGui as Gui
+from PySide2 import QtGui, QtWidgets
+
+import HaptiCAD
+
+SHOTS = os.environ.get("HAPTICAD_SCREENSHOT_DIR", "/tmp")
+
+
+def non_white_fraction(image, x0=0.0, y0=0.0, x1=1.0, y1=1.0):
+    """Share of pixels in a region (fractions of the image) that are not white."""
+    w, h = image.width(), image.height()
+    count = total = 0
+    for y in range(int(y0 * h), int(y1 * h), 2):
+        for x in range(int(x0 * w), int(x1 * w), 2):
+            c = QtGui.QColor(image.pixel(x, y))
+            total += 1
+            count += (c.red() + c.green() + c.blue()) < 720
+    return count / max(total, 1)
+
+
+class WorkbenchGuiTest(unittest.TestCase):
+    def setUp(self):
+        self.doc = App.newDocument("GuiTest")
+        self.box = self.doc.addObject("Part::Box", "Box")
+        self.box.Length, self.box.Width, self.box.Height = 40, 30, 20
+        self.doc.recompute()
+        Gui.activateWorkbench("HaptiCADWorkbench")
+        Gui.Selection.clearSelection()
+
+    def tearDown(self):
+        Gui.Selection.clearSelection()
+        App.closeDocument(self.doc.Name)
+
+    def test_workbench_loads_from_the_user_mod_folder(self):
+        self.assertIn("HaptiCADWorkbench", Gui.listWorkbenches())
+        self.assertEqual(Gui.activeWorkbench().name(), "HaptiCADWorkbench")
+        self.assertTrue(HaptiCAD.__file__.startswith(os.path.join(App.getUserAppDataDir(), "Mod")),
+                        HaptiCAD.__file__)
+        toolbars = [t.windowTitle() for t in Gui.getMainWindow().findChildren(QtWidgets.QToolBar)]
+        self.assertIn("HaptiCAD", toolbars)
+
+    def test_command_is_enabled_only_with_faces_selected(self):
+        from hapticad.gui.command_surface import CommandHapticSurface
+
+        command = CommandHapticSurface()
+        self.assertFalse(command.IsActive())
+        Gui.Selection.addSelection(self.box, "Edge1")
+        self.assertFalse(command.IsActive())
+        Gui.Selection.addSelection(self.box, "Face6")
+        self.assertTrue(command.IsActive())
+
+    def test_command_tags_the_selected_face_in_one_undoable_step(self):
+        Gui.Selection.addSelection(self.box, "Face6")
+        Gui.runCommand("HaptiCAD_Surface")
+        surfaces = HaptiCAD.surfaces_of(self.doc)
+        self.assertEqual(len(surfaces), 1)
+        self.assertEqual(HaptiCAD.reference_pairs(surfaces[0]), [(self.box, "Face6")])
+        self.assertEqual(type(surfaces[0].ViewObject.Proxy).__name__, "ViewProviderHapticSurface")
+        self.doc.undo()
+        self.assertEqual(HaptiCAD.surfaces_of(self.doc), [])
+
+    def test_the_3d_view_shows_the_part(self):
+        Gui.Selection.addSelection(self.box, "Face6")
+        Gui.runCommand("HaptiCAD_Surface")
+        Gui.Selection.clearSelection()
+        view = Gui.ActiveDocument.ActiveView
+        view.viewIsometric()
+        view.fitAll()
+        path = os.path.join(SHOTS, "gui_workbench_box.png")
+        view.saveImage(path, 480, 360, "White")
+        image = QtGui.QImage(path)
+        self.assertFalse(image.isNull())
+        # not blank, and the part sits in the middle of the view
+        self.assertGreater(non_white_fraction(image), 0.10)
+        self.assertGreater(non_white_fraction(image, 0.4, 0.4, 0.6, 0.6), 0.9)
+        self.assertLess(non_white_fraction(image, 0.0, 0.0, 0.1, 0.1), 0.05)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,112 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Scenes built from documents: every face of every referenced solid, face ids that
+match FreeCAD's face names, per-face properties, global placement."""
+import unittest
+
+import FreeCAD as App
+import Part
+
+import HaptiCAD
+from hapticad import _core
+from hapticad.document_scene import MM, build_document_scene
+
+
+def point_on(face):
+    """(u, v) of a point on the face (not in a hole), as central as a 9x9 grid allows."""
+    u0, u1, v0, v1 = face.ParameterRange
+    grid = sorted(((i, j) for i in range(1, 10) for j in range(1, 10)),
+                  key=lambda ij: abs(ij[0] - 5) + abs(ij[1] - 5))
+    for i, j in grid:
+        u, v = u0 + (u1 - u0) * i / 10, v0 + (v1 - v0) * j / 10
+        if face.isInside(face.valueAt(u, v), 1e-6, True):
+            return u, v
+    raise AssertionError("no point found on the face")
+
+
+def probe_face(doc_scene, face, offset_mm=0.01):
+    """The scene's face name at a point just off a B-rep face."""
+    u, v = point_on(face)
+    p = face.valueAt(u, v) + face.normalAt(u, v) * offset_mm
+    sample = doc_scene.scene.calc_closest_point([p.x * MM, p.y * MM, p.z * MM])
+    return doc_scene.face_names[sample.cad_face], sample
+
+
+class DocumentSceneTest(unittest.TestCase):
+    def setUp(self):
+        self.doc = App.newDocument("SceneTest")
+        box = Part.makeBox(40, 30, 20)
+        hole = Part.makeCylinder(5, 40, App.Vector(20, 15, -10))
+        self.part = self.doc.addObject("Part::Feature", "Part")
+        self.part.Shape = box.cut(hole)
+        self.other = self.doc.addObject("Part::Sphere", "Ball")
+        self.other.Radius = 8
+        self.other.Placement.Base = App.Vector(100, 0, 0)
+        self.doc.recompute()
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def top_face(self):
+        for i, f in enumerate(self.part.Shape.Faces):
+            if abs(f.CenterOfMass.z - 20) < 1e-9 and f.Surface.__class__.__name__ == "Plane":
+                return f"Face{i + 1}"
+        raise AssertionError("no top face")
+
+    def test_all_faces_of_referenced_solids_with_matching_ids(self):
+        top = self.top_face()
+        HaptiCAD.make_surface(self.doc, [(self.part, top)], material="Rubber")
+        ds = build_document_scene(self.doc)
+        shape = self.part.Shape
+        self.assertEqual(ds.scene.num_cad_faces, len(shape.Faces))
+        self.assertEqual(ds.face_names, [f"Part.Face{i + 1}" for i in range(len(shape.Faces))])
+        # the untagged sphere is not part of the scene
+        self.assertNotIn("Ball.Face1", ds.face_names)
+        for i, face in enumerate(shape.Faces):
+            name, sample = probe_face(ds, face)
+            self.assertEqual(name, f"Part.Face{i + 1}")
+            self.assertLess(sample.distance_m, 0.2 * MM)
+
+    def test_tagged_faces_get_their_properties_and_others_the_default(self):
+        top = self.top_face()
+        HaptiCAD.make_surface(self.doc, [(self.part, top)], material="Rubber", stiffness_n_per_mm=0.25)
+        ds = build_document_scene(self.doc)
+        tagged = ds.surface_properties(ds.face_id(f"Part.{top}"))
+        self.assertEqual(tagged.friction.dynamic_coefficient, 1.0)
+        self.assertAlmostEqual(tagged.stiffness_n_per_m, 250.0)
+        untagged = ds.surface_properties(ds.face_id("Part.Face1" if top != "Face1" else "Part.Face2"))
+        self.assertEqual(untagged.friction.dynamic_coefficient, _core.UNTAGGED_SURFACE.friction.dynamic_coefficient)
+        self.assertEqual(ds.face_material, {f"Part.{top}": "Rubber"})
+
+    def test_objects_inside_a_placed_container_use_their_global_placement(self):
+        container = self.doc.addObject("App::Part", "Assembly")
+        container.Placement.Base = App.Vector(0, 0, 500)
+        container.addObject(self.other)
+        self.doc.recompute()
+        HaptiCAD.make_surface(self.doc, [(self.other, "Face1")])
+        ds = build_document_scene(self.doc)
+        sample = ds.scene.calc_closest_point([0.1, 0.0, 0.6])
+        self.assertAlmostEqual(sample.point_w[2], 0.5 + 0.008, delta=1e-4)
+        self.assertEqual(ds.face_names[sample.cad_face], "Ball.Face1")
+
+    def test_two_objects_share_one_scene(self):
+        HaptiCAD.make_surface(self.doc, [(self.part, "Face1")])
+        HaptiCAD.make_surface(self.doc, [(self.other, "Face1")], material="Steel")
+        ds = build_document_scene(self.doc)
+        self.assertEqual(len(ds.face_names), len(self.part.Shape.Faces) + 1)
+        name, _ = probe_face(ds, self.other.Shape.Faces[0])
+        self.assertEqual(name, "Ball.Face1")
+
+    def test_errors_name_the_problem(self):
+        with self.assertRaises(ValueError) as caught:
+            build_document_scene(self.doc)
+        self.assertIn("no HapticSurface", str(caught.exception))
+        a = HaptiCAD.make_surface(self.doc, [(self.part, "Face1")])
+        HaptiCAD.make_surface(self.doc, [(self.part, "Face1")], name="Again")
+        with self.assertRaises(ValueError) as caught:
+            build_document_scene(self.doc)
+        self.assertIn("Part.Face1 is tagged by both", str(caught.exception))
+        self.assertTrue(a.isValid())
+
+
+if __name__ == "__main__":
+    unittest.main()

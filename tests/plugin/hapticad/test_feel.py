@@ -1,0 +1,65 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Strokes: planning (approach, depth, slide, retreat) and clear errors."""
+import unittest
+
+import numpy as np
+
+import FreeCAD as App
+
+import HaptiCAD
+from hapticad.document_scene import build_document_scene
+from hapticad.feel import Stroke, plan_stroke, run_stroke, summarize
+
+
+class FeelTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.doc = App.newDocument("FeelTest")
+        box = cls.doc.addObject("Part::Box", "Box")
+        box.Length, box.Width, box.Height = 60, 40, 20
+        cls.doc.recompute()
+        HaptiCAD.make_surface(cls.doc, [(box, "Face6")], material="Rubber", stiffness_n_per_mm=0.5)
+        cls.scene = build_document_scene(cls.doc)
+
+    @classmethod
+    def tearDownClass(cls):
+        App.closeDocument(cls.doc.Name)
+
+    def test_plan_goes_depth_below_the_surface_along_the_inward_normal(self):
+        plan = plan_stroke(self.scene, Stroke((10, 20, 20), (50, 20, 20), speed_mm_s=40, depth_mm=2))
+        np.testing.assert_allclose(plan.outward_normal, [0, 0, 1], atol=1e-12)
+        np.testing.assert_allclose(plan.positions_m[0], [0.010, 0.020, 0.025], atol=1e-12)
+        np.testing.assert_allclose(plan.positions_m[3], [0.010, 0.020, 0.018], atol=1e-12)
+        np.testing.assert_allclose(plan.positions_m[4], [0.050, 0.020, 0.018], atol=1e-12)
+        self.assertAlmostEqual(plan.slide_end_s - plan.slide_start_s, 1.0)  # 40 mm at 40 mm/s
+        self.assertEqual(self.scene.face_names[plan.start_face], "Box.Face6")
+        self.assertTrue((np.diff(plan.times_s) > 0).all())
+
+    def test_bad_strokes_are_refused_with_a_reason(self):
+        cases = [
+            (Stroke((10, 20, 35), (50, 20, 35)), "from the nearest surface"),
+            (Stroke((10, 20, 20), (10, 20, 20)), "coincide"),
+            (Stroke((10, 20, 20), (50, 20, 20), speed_mm_s=0), "speed"),
+            (Stroke((10, 20, 20), (50, 20, 20), depth_mm=-1), "depth"),
+            (Stroke((10, 20, 20), (50, 20, 20), rate_hz=1e6), "rate"),
+            (Stroke((10, float("nan"), 20), (50, 20, 20)), "finite"),
+        ]
+        for stroke, message in cases:
+            with self.subTest(message=message):
+                with self.assertRaises(ValueError) as caught:
+                    plan_stroke(self.scene, stroke)
+                self.assertIn(message, str(caught.exception))
+
+    def test_a_stroke_feels_k_depth_and_mu_d(self):
+        result = run_stroke(self.scene, Stroke((10, 20, 20), (50, 20, 20), speed_mm_s=80, depth_mm=1.5))
+        summary = summarize(result, self.scene)
+        face = summary["faces"]["Box.Face6"]
+        self.assertGreater(face["sliding_ticks"], 300)
+        self.assertAlmostEqual(face["mean_normal_force_n"], 0.5 * 1.5, delta=1e-5)
+        self.assertAlmostEqual(face["mean_ft_over_fn"], 1.0, delta=1e-6)
+        self.assertEqual(summary["ticks"] + summary["skipped_ticks"],
+                         int(round(result.plan.times_s[-1] * 1000)) + 1)
+
+
+if __name__ == "__main__":
+    unittest.main()

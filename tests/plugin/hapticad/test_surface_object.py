@@ -1,0 +1,149 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""HapticSurface objects: creation through the API, validation, save and reopen.
+Run by freecadcmd (see tests/plugin/CMakeLists.txt)."""
+import os
+import tempfile
+import unittest
+
+import FreeCAD as App
+
+import HaptiCAD
+from hapticad import materials, surface_object
+
+
+class MakeSurfaceTest(unittest.TestCase):
+    def setUp(self):
+        self.doc = App.newDocument("MakeSurfaceTest")
+        self.box = self.doc.addObject("Part::Box", "Box")
+        self.doc.recompute()
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def test_creates_a_surface_with_the_materials_values(self):
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS", roughness_category=3)
+        abs_ = materials.default_database().get("ABS")
+        self.assertTrue(HaptiCAD.is_haptic_surface(s))
+        self.assertEqual(HaptiCAD.reference_pairs(s), [(self.box, "Face6")])
+        self.assertEqual(s.References[0][0], self.box)
+        self.assertEqual(s.Material, "ABS")
+        self.assertEqual(s.RoughnessCategory, 3)
+        self.assertEqual(s.Pattern, "None")
+        self.assertAlmostEqual(s.StaticFriction, abs_.static_friction)
+        self.assertAlmostEqual(s.DynamicFriction, abs_.dynamic_friction)
+        self.assertAlmostEqual(s.Stiffness, abs_.stiffness_n_per_mm)
+        self.assertEqual(s.TypeId, "App::FeaturePython")
+        self.assertIn("PropertyLinkSubListGlobal", s.getTypeIdOfProperty("References"))
+        self.assertEqual(HaptiCAD.surfaces_of(self.doc), [s])
+
+    def test_groups_faces_of_one_object_and_accepts_names(self):
+        s = HaptiCAD.make_surface(self.doc, [("Box", "Face1"), (self.box, "Face2"), (self.box, "Face1")])
+        self.assertEqual(s.References, [(self.box, ("Face1", "Face2"))])
+
+    def test_overrides_take_precedence_over_the_material(self):
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="Steel",
+                                  static_friction=0.9, dynamic_friction=0.7, stiffness_n_per_mm=0.25)
+        self.assertEqual((s.StaticFriction, s.DynamicFriction, s.Stiffness), (0.9, 0.7, 0.25))
+
+    def test_choosing_another_material_sets_its_values(self):
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="Steel")
+        s.Material = "Rubber"
+        rubber = materials.default_database().get("Rubber")
+        self.assertEqual((s.StaticFriction, s.DynamicFriction), (rubber.static_friction, rubber.dynamic_friction))
+
+    def test_constraints_keep_values_in_range(self):
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])
+        s.RoughnessCategory = 9
+        self.assertEqual(s.RoughnessCategory, 7)
+        s.RoughnessCategory = 0
+        self.assertEqual(s.RoughnessCategory, 1)
+        s.DynamicFriction = -1.0
+        self.assertEqual(s.DynamicFriction, 0.0)
+        s.Stiffness = 0.0
+        self.assertGreater(s.Stiffness, 0.0)
+
+    def test_bad_input_raises_a_clear_error_and_adds_nothing(self):
+        cases = [
+            ([], {}, "no faces"),
+            ([(self.box, "Face7")], {}, "no face 'Face7'"),
+            ([(self.box, "Edge1")], {}, "no face 'Edge1'"),
+            ([("Nothing", "Face1")], {}, "no object 'Nothing'"),
+            ([self.box], {}, "not an (object, 'FaceN') pair"),
+            ([(self.box, "Face1")], {"material": "Unobtainium"}, "unknown material"),
+            ([(self.box, "Face1")], {"roughness_category": 8}, "roughness_category"),
+            ([(self.box, "Face1")], {"roughness_category": 2.5}, "roughness_category"),
+            ([(self.box, "Face1")], {"pattern": "Spiral"}, "pattern"),
+            ([(self.box, "Face1")], {"static_friction": -0.1}, "static_friction"),
+            ([(self.box, "Face1")], {"stiffness_n_per_mm": 0}, "stiffness_n_per_mm"),
+        ]
+        for refs, kwargs, message in cases:
+            with self.subTest(message=message):
+                with self.assertRaises(ValueError) as caught:
+                    HaptiCAD.make_surface(self.doc, refs, **kwargs)
+                self.assertIn(message, str(caught.exception))
+        self.assertEqual([o.Name for o in self.doc.Objects], ["Box"])
+
+    def test_a_face_from_another_document_is_refused(self):
+        other = App.newDocument("Other")
+        try:
+            cyl = other.addObject("Part::Cylinder", "Cylinder")
+            other.recompute()
+            with self.assertRaises(ValueError):
+                HaptiCAD.make_surface(self.doc, [(cyl, "Face1")])
+        finally:
+            App.closeDocument(other.Name)
+
+
+class PersistenceTest(unittest.TestCase):
+    """Every property survives save and reopen, twice, without touching the object."""
+
+    PROPERTIES = ("Material", "RoughnessCategory", "Pattern", "PatternAngle", "PatternCenter",
+                  "StaticFriction", "DynamicFriction", "Stiffness")
+
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.path = os.path.join(self.dir.name, "persist.FCStd")
+
+    def tearDown(self):
+        for name in list(App.listDocuments()):
+            if name.startswith("persist"):
+                App.closeDocument(name)
+        self.dir.cleanup()
+
+    def snapshot(self, s):
+        values = {p: getattr(s, p) for p in self.PROPERTIES}
+        values["PatternAngle"] = float(values["PatternAngle"])
+        values["PatternCenter"] = tuple(values["PatternCenter"])
+        values["References"] = [(o.Name, tuple(subs)) for o, subs in s.References]
+        values["MaterialChoices"] = s.getEnumerationsOfProperty("Material")
+        return values
+
+    def test_round_trip_of_every_property(self):
+        doc = App.newDocument("persist")
+        doc.addObject("Part::Box", "Box")
+        doc.addObject("Part::Cylinder", "Cylinder")
+        doc.recompute()
+        s = HaptiCAD.make_surface(doc, [(doc.Box, "Face6"), (doc.Box, "Face2"), (doc.Cylinder, "Face1")],
+                                  material="TPE soft-touch", roughness_category=6, pattern="Circular",
+                                  pattern_angle_deg=37.5, pattern_center_mm=(1.5, -2.0, 30.0),
+                                  static_friction=1.7, dynamic_friction=1.3, stiffness_n_per_mm=0.35)
+        doc.recompute()
+        before = self.snapshot(s)
+        doc.saveAs(self.path)
+        App.closeDocument(doc.Name)
+        for _ in range(2):
+            doc = App.openDocument(self.path)
+            s = doc.getObject("HapticSurface")
+            self.assertIsInstance(s.Proxy, surface_object.HapticSurface)
+            self.assertEqual(self.snapshot(s), before)
+            self.assertNotIn("Touched", s.State)
+            # constraints are back after reopening
+            s.RoughnessCategory = 42
+            self.assertEqual(s.RoughnessCategory, 7)
+            s.RoughnessCategory = 6
+            doc.save()
+            App.closeDocument(doc.Name)
+
+
+if __name__ == "__main__":
+    unittest.main()
