@@ -101,8 +101,8 @@ void ServoLoop::Run(double stop_at_s) {
   const std::int64_t t0 = MonotonicNs();
   std::int64_t deadline = t0;
   // compare in integer nanoseconds: 300 * 1e6 * 1e-9 is 0.30000000000000004 > 0.3
-  const std::int64_t stop_at_ns = stop_at_s >= 9e9 ? std::numeric_limits<std::int64_t>::max()
-                                                   : std::llround(stop_at_s * 1e9);
+  const std::int64_t stop_at_ns =
+      stop_at_s >= 9e9 ? std::numeric_limits<std::int64_t>::max() : std::llround(stop_at_s * 1e9);
   std::uint64_t tick = 0;
   while (!stop_requested_.load(std::memory_order_relaxed)) {
     // the loop clock is the tick's scheduled time, so a late tick does not skew a

@@ -16,7 +16,8 @@ void ScriptedPath::Validate() const {
   }
   for (std::size_t i = 0; i < times_s.size(); ++i) {
     if (!std::isfinite(times_s[i]) || !positions_w[i].allFinite()) {
-      throw std::invalid_argument("scripted path: waypoint " + std::to_string(i) + " is not finite");
+      throw std::invalid_argument("scripted path: waypoint " + std::to_string(i) +
+                                  " is not finite");
     }
     if (i > 0 && !(times_s[i] > times_s[i - 1])) {
       throw std::invalid_argument("scripted path: time of waypoint " + std::to_string(i) +

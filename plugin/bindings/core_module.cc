@@ -88,13 +88,17 @@ void DefineSurfaces(py::module_& m) {
 
   py::class_<RoughnessCategory>(m, "RoughnessCategory")
       .def_readonly("category", &RoughnessCategory::category)
-      .def_property_readonly("ra_min_um", [](const RoughnessCategory& r) { return NanToNone(r.ra_min_um); })
-      .def_property_readonly("ra_max_um", [](const RoughnessCategory& r) { return NanToNone(r.ra_max_um); })
-      .def_property_readonly("n_grades", [](const RoughnessCategory& r) {
-        std::vector<std::string> grades;
-        for (const char* g : r.n_grades) if (g) grades.emplace_back(g);
-        return grades;
-      })
+      .def_property_readonly("ra_min_um",
+                             [](const RoughnessCategory& r) { return NanToNone(r.ra_min_um); })
+      .def_property_readonly("ra_max_um",
+                             [](const RoughnessCategory& r) { return NanToNone(r.ra_max_um); })
+      .def_property_readonly("n_grades",
+                             [](const RoughnessCategory& r) {
+                               std::vector<std::string> grades;
+                               for (const char* g : r.n_grades)
+                                 if (g) grades.emplace_back(g);
+                               return grades;
+                             })
       .def_readonly("grid_size_mm", &RoughnessCategory::grid_size_mm);
   m.def("roughness_table", [] {
     const auto& t = RoughnessTable();
@@ -126,8 +130,10 @@ void DefineScene(py::module_& m) {
       .def_property_readonly("origin_w", &HapticScene::origin_w)
       .def_property_readonly("size_m", &HapticScene::size_m)
       .def_property_readonly("metres_per_unit", &HapticScene::metres_per_unit)
-      .def_property_readonly("num_triangles", [](const HapticScene& s) { return s.mesh().num_triangles(); })
-      .def_property_readonly("num_cad_faces", [](const HapticScene& s) { return s.mesh().num_cad_faces(); })
+      .def_property_readonly("num_triangles",
+                             [](const HapticScene& s) { return s.mesh().num_triangles(); })
+      .def_property_readonly("num_cad_faces",
+                             [](const HapticScene& s) { return s.mesh().num_cad_faces(); })
       .def("calc_memory_bytes", &HapticScene::CalcMemoryBytes)
       .def("calc_closest_point", &HapticScene::CalcClosestPoint, py::arg("p_w"));
 }
@@ -155,11 +161,13 @@ void DefineDevices(py::module_& m) {
              ScriptedPath path;
              path.times_s = std::move(times_s);
              auto p = positions_w.unchecked<2>();
-             for (py::ssize_t i = 0; i < p.shape(0); ++i) path.positions_w.emplace_back(p(i, 0), p(i, 1), p(i, 2));
+             for (py::ssize_t i = 0; i < p.shape(0); ++i)
+               path.positions_w.emplace_back(p(i, 0), p(i, 1), p(i, 2));
              return std::make_unique<SimulatedDevice>(std::move(path), limits);
            }),
            py::arg("times_s"), py::arg("positions_w"), py::arg("limits"))
-      .def_property_readonly("duration_s", [](const SimulatedDevice& d) { return d.path().duration_s(); })
+      .def_property_readonly("duration_s",
+                             [](const SimulatedDevice& d) { return d.path().duration_s(); })
       .def_property_readonly("last_force_w", &SimulatedDevice::last_force_w);
 
   py::class_<RenderLimits>(m, "RenderLimits")
@@ -188,23 +196,25 @@ void DefineDevices(py::module_& m) {
   py::class_<ServoLoop>(m, "ServoLoop")
       .def(py::init([](Device& device, ForceRenderer& renderer, double rate_hz,
                        std::size_t trace_capacity) {
-             return std::make_unique<ServoLoop>(device, renderer, ServoConfig{rate_hz, trace_capacity});
+             return std::make_unique<ServoLoop>(device, renderer,
+                                                ServoConfig{rate_hz, trace_capacity});
            }),
            py::arg("device"), py::arg("renderer"), py::arg("rate_hz") = 1000.0,
-           py::arg("trace_capacity") = std::size_t{1} << 16,
-           py::keep_alive<1, 2>(), py::keep_alive<1, 3>())
-      .def("run_for",
-           [](ServoLoop& loop, double duration_s) {
-             std::vector<TraceSample> samples;
-             {
-               py::gil_scoped_release release;
-               samples = loop.RunFor(duration_s);
-             }
-             py::array_t<TraceSample> out(static_cast<py::ssize_t>(samples.size()));
-             std::copy(samples.begin(), samples.end(), out.mutable_data());
-             return out;
-           },
-           py::arg("duration_s"))
+           py::arg("trace_capacity") = std::size_t{1} << 16, py::keep_alive<1, 2>(),
+           py::keep_alive<1, 3>())
+      .def(
+          "run_for",
+          [](ServoLoop& loop, double duration_s) {
+            std::vector<TraceSample> samples;
+            {
+              py::gil_scoped_release release;
+              samples = loop.RunFor(duration_s);
+            }
+            py::array_t<TraceSample> out(static_cast<py::ssize_t>(samples.size()));
+            std::copy(samples.begin(), samples.end(), out.mutable_data());
+            return out;
+          },
+          py::arg("duration_s"))
       .def_property_readonly("stats", &ServoLoop::stats);
 }
 

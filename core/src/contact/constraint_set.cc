@@ -66,7 +66,8 @@ Vec3 ConstraintSet::Project(const Vec3& goal, const Vec3& fallback, double toler
     n.row(1) = planes_[1].normal.transpose();
     n.row(2) = planes_[2].normal.transpose();
     if (std::abs(n.determinant()) > 1e-9) {
-      consider(n.partialPivLu().solve(Vec3(planes_[0].offset, planes_[1].offset, planes_[2].offset)));
+      consider(
+          n.partialPivLu().solve(Vec3(planes_[0].offset, planes_[1].offset, planes_[2].offset)));
     }
   }
   return best;

@@ -15,7 +15,9 @@ std::string Describe(const char* what, std::size_t index, const std::string& pro
   return out.str();
 }
 
-bool IsFinite(const Vec3& p) { return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z()); }
+bool IsFinite(const Vec3& p) {
+  return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.z());
+}
 
 }  // namespace
 
@@ -35,8 +37,8 @@ std::unique_ptr<TriangleMesh> TriangleMesh::Build(
   }
   if (!corner_normals.empty() && corner_normals.size() != triangles.size()) {
     throw std::invalid_argument("triangle mesh: " + std::to_string(corner_normals.size()) +
-                                " corner-normal triples for " +
-                                std::to_string(triangles.size()) + " triangles");
+                                " corner-normal triples for " + std::to_string(triangles.size()) +
+                                " triangles");
   }
   for (std::size_t v = 0; v < vertices_l.size(); ++v) {
     if (!IsFinite(vertices_l[v])) throw std::invalid_argument(Describe("vertex", v, "not finite"));
@@ -50,7 +52,8 @@ std::unique_ptr<TriangleMesh> TriangleMesh::Build(
             Describe("triangle", t, "vertex index " + std::to_string(v) + " out of range"));
       }
     }
-    if (cad_faces[t] < 0) throw std::invalid_argument(Describe("triangle", t, "negative CAD face id"));
+    if (cad_faces[t] < 0)
+      throw std::invalid_argument(Describe("triangle", t, "negative CAD face id"));
     max_face = std::max(max_face, cad_faces[t]);
     if (!corner_normals.empty()) {
       for (const Vec3& n : corner_normals[t]) {
@@ -80,16 +83,18 @@ std::unique_ptr<TriangleMesh> TriangleMesh::Build(
     }
     const OpenMeshTriMesh::FaceHandle fh = om.add_face(vh[0], vh[1], vh[2]);
     if (!fh.is_valid()) {
-      throw std::invalid_argument(
-          Describe("triangle", t, "would make a non-manifold edge or vertex (repair the mesh first)"));
+      throw std::invalid_argument(Describe(
+          "triangle", t, "would make a non-manifold edge or vertex (repair the mesh first)"));
     }
     om.property(mesh->cad_face_prop_, fh) = cad_faces[t];
-    mesh->triangles_.push_back({static_cast<std::uint32_t>(tri[0]), static_cast<std::uint32_t>(tri[1]),
+    mesh->triangles_.push_back({static_cast<std::uint32_t>(tri[0]),
+                                static_cast<std::uint32_t>(tri[1]),
                                 static_cast<std::uint32_t>(tri[2])});
     if (mesh->has_corner_normals_) {
       // the halfedge of this face that points to a corner's vertex carries that corner's normal
       for (auto he : om.fh_range(fh)) {
-        const int corner = om.to_vertex_handle(he) == vh[0] ? 0 : (om.to_vertex_handle(he) == vh[1] ? 1 : 2);
+        const int corner =
+            om.to_vertex_handle(he) == vh[0] ? 0 : (om.to_vertex_handle(he) == vh[1] ? 1 : 2);
         om.set_normal(he, corner_normals[t][corner].normalized());
       }
     }

@@ -38,7 +38,9 @@ class TrianglePrimitive {
     return Datum(ToPoint(mesh->vertex(t[0])), ToPoint(mesh->vertex(t[1])),
                  ToPoint(mesh->vertex(t[2])));
   }
-  Point reference_point(Shared_data mesh) const { return ToPoint(mesh->vertex(mesh->triangle(id_)[0])); }
+  Point reference_point(Shared_data mesh) const {
+    return ToPoint(mesh->vertex(mesh->triangle(id_)[0]));
+  }
 
  private:
   static Point ToPoint(const Vec3& p) { return Point(p.x(), p.y(), p.z()); }

@@ -19,7 +19,8 @@ TEST(ConstraintSet, AFeasibleGoalIsItsOwnProjection) {
 TEST(ConstraintSet, OnePlaneProjectsAlongItsNormal) {
   ConstraintSet set;
   set.Add(Plane(Vec3::UnitZ(), 0.5), 1e-12);
-  EXPECT_NEAR((set.Project(Vec3(1, 2, -3), Vec3::Zero(), 1e-12) - Vec3(1, 2, 0.5)).norm(), 0, 1e-15);
+  EXPECT_NEAR((set.Project(Vec3(1, 2, -3), Vec3::Zero(), 1e-12) - Vec3(1, 2, 0.5)).norm(), 0,
+              1e-15);
 }
 
 TEST(ConstraintSet, TwoPlanesMakeAnEdgeOnlyWhenBothBind) {

@@ -42,7 +42,7 @@ TEST(TriangleMesh, KeepsTheCadFaceOfEveryTriangleAsAnOpenMeshProperty) {
 
 TEST(TriangleMesh, FaceNormalsPointOutOfTheBox) {
   const auto mesh = BuildSoup(testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(1, 1, 1)));
-  const Vec3 expected[6] = {-Vec3::UnitX(), Vec3::UnitX(), -Vec3::UnitY(),
+  const Vec3 expected[6] = {-Vec3::UnitX(), Vec3::UnitX(),  -Vec3::UnitY(),
                             Vec3::UnitY(),  -Vec3::UnitZ(), Vec3::UnitZ()};
   for (std::uint32_t t = 0; t < 12; ++t) {
     EXPECT_NEAR((mesh->face_normal(t) - expected[t / 2]).norm(), 0.0, 1e-15) << t;

@@ -73,7 +73,8 @@ TEST_F(BoxTree, FirstHitDoesNotAllocate) {
   SegmentHit hit;
   tree_->FirstHit(Vec3(0, 0, 3), Vec3(0, 0, -3), 1e-9, &hit);  // warm
   testing::AllocationCounter counter;
-  for (int i = 0; i < 100; ++i) tree_->FirstHit(Vec3(0.01 * i, 0, 3), Vec3(0, 0.01 * i, -3), 1e-9, &hit);
+  for (int i = 0; i < 100; ++i)
+    tree_->FirstHit(Vec3(0.01 * i, 0, 3), Vec3(0, 0.01 * i, -3), 1e-9, &hit);
   EXPECT_EQ(counter.count(), 0u);
 }
 

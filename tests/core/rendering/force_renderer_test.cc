@@ -66,7 +66,8 @@ TEST_F(RendererOnBox, UsesEachFacesOwnProperties) {
 TEST_F(RendererOnBox, ClampsForceToTheDeviceMaximum) {
   limits_.max_force_n = 1.0;
   ForceRenderer r(scene_, surfaces_, limits_);
-  const RenderOutput out = Press(r, 0.010, Vec3(0.05, 0.0, 0.0));  // 3 N normal + 3 N friction asked
+  const RenderOutput out =
+      Press(r, 0.010, Vec3(0.05, 0.0, 0.0));  // 3 N normal + 3 N friction asked
   EXPECT_TRUE(out.flags & kForceClamped);
   EXPECT_NEAR(out.force_w.norm(), 1.0, 1e-12);
   EXPECT_NEAR(out.tangential_force_n / out.normal_force_n, 1.0, 1e-9);  // direction kept

@@ -21,7 +21,8 @@ TEST(HapticScene, StoresMetresAroundALocalOrigin) {
 }
 
 TEST(HapticScene, ClosestPointGivesFaceAndOutwardNormalInWorld) {
-  const auto scene = HapticScene::Build(testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(20, 40, 60)), 1e-3);
+  const auto scene =
+      HapticScene::Build(testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(20, 40, 60)), 1e-3);
   const SurfaceSample s = scene->CalcClosestPoint(Vec3(0.010, 0.020, 0.100));
   EXPECT_EQ(s.cad_face, 5);
   EXPECT_NEAR((s.point_w - Vec3(0.010, 0.020, 0.060)).norm(), 0.0, 1e-15);

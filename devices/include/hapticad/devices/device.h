@@ -14,8 +14,8 @@
 namespace hapticad {
 
 struct DeviceLimits {
-  double max_force_n = 3.3;              // peak force the device can render, N
-  double max_stiffness_n_per_m = 400.0;  // largest stable contact stiffness, N/m
+  double max_force_n = 3.3;                      // peak force the device can render, N
+  double max_stiffness_n_per_m = 400.0;          // largest stable contact stiffness, N/m
   Vec3 workspace_min_w = Vec3::Constant(-0.08);  // reachable box, m
   Vec3 workspace_max_w = Vec3::Constant(0.08);
 };

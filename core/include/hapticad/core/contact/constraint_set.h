@@ -17,9 +17,9 @@
 namespace hapticad {
 
 struct ConstraintPlane {
-  Vec3 normal;               // unit, pointing to the free side
-  double offset;             // the plane is normal . x = offset
-  std::uint32_t triangle;    // the triangle that made it
+  Vec3 normal;             // unit, pointing to the free side
+  double offset;           // the plane is normal . x = offset
+  std::uint32_t triangle;  // the triangle that made it
 };
 
 class ConstraintSet {

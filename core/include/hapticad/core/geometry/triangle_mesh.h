@@ -15,9 +15,11 @@
 #include <vector>
 
 // vector_traits must be declared before the Eigen specialisation that lets OpenMesh
-// store Eigen vectors directly
+// store Eigen vectors directly: three blocks, in this order.
 #include <OpenMesh/Core/Utils/vector_traits.hh>
+
 #include <OpenMesh/Core/Geometry/EigenVectorT.hh>
+
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include "hapticad/core/vec3.h"
@@ -37,10 +39,11 @@ class TriangleMesh {
   // and `corner_normals` as in TriangleSoup. Throws std::invalid_argument naming the
   // first offending triangle or vertex (index out of range, non-finite coordinate,
   // negative CAD face id, a face OpenMesh cannot insert without a non-manifold edge).
-  static std::unique_ptr<TriangleMesh> Build(const std::vector<Vec3>& vertices_l,
-                            const std::vector<std::array<std::int32_t, 3>>& triangles,
-                            const std::vector<std::int32_t>& cad_faces,
-                            const std::vector<std::array<Vec3, 3>>& corner_normals);
+  static std::unique_ptr<TriangleMesh> Build(
+      const std::vector<Vec3>& vertices_l,
+      const std::vector<std::array<std::int32_t, 3>>& triangles,
+      const std::vector<std::int32_t>& cad_faces,
+      const std::vector<std::array<Vec3, 3>>& corner_normals);
 
   std::size_t num_triangles() const { return triangles_.size(); }
   std::size_t num_vertices() const { return mesh_.n_vertices(); }

@@ -43,8 +43,8 @@ enum RenderFlags : std::uint32_t {
 };
 
 struct RenderOutput {
-  Vec3 force_w = Vec3::Zero();  // N, to send to the device
-  Vec3 proxy_w = Vec3::Zero();  // m
+  Vec3 force_w = Vec3::Zero();      // N, to send to the device
+  Vec3 proxy_w = Vec3::Zero();      // m
   double normal_force_n = 0.0;      // component of force_w along the contact normal
   double tangential_force_n = 0.0;  // magnitude of the rest
   std::int32_t cad_face = -1;       // touched CAD face, -1 when free

@@ -36,8 +36,7 @@ class HapticScene {
  public:
   // `metres_per_unit` > 0 converts the soup's units (1e-3 for mm). Throws
   // std::invalid_argument with a message naming what is wrong with the input.
-  static std::shared_ptr<const HapticScene> Build(const TriangleSoup& soup,
-                                                  double metres_per_unit);
+  static std::shared_ptr<const HapticScene> Build(const TriangleSoup& soup, double metres_per_unit);
 
   const TriangleMesh& mesh() const { return *mesh_; }
   const TriangleTree& tree() const { return *tree_; }
@@ -58,7 +57,9 @@ class HapticScene {
   Vec3 ToLocal(const Vec3& p_w) const { return p_w - origin_w_; }
   Vec3 ToWorld(const Vec3& p_l) const { return p_l + origin_w_; }
 
-  std::size_t CalcMemoryBytes() const { return mesh_->CalcMemoryBytes() + tree_->CalcMemoryBytes(); }
+  std::size_t CalcMemoryBytes() const {
+    return mesh_->CalcMemoryBytes() + tree_->CalcMemoryBytes();
+  }
 
  private:
   HapticScene() = default;

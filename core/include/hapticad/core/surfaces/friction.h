@@ -22,9 +22,9 @@
 namespace hapticad {
 
 struct FrictionParams {
-  double static_coefficient = 0.5;    // mu_s, dimensionless, >= 0
-  double dynamic_coefficient = 0.4;   // mu_d, dimensionless, >= 0
-  double stick_speed_mps = 0.002;     // eps, m/s, > 0
+  double static_coefficient = 0.5;      // mu_s, dimensionless, >= 0
+  double dynamic_coefficient = 0.4;     // mu_d, dimensionless, >= 0
+  double stick_speed_mps = 0.002;       // eps, m/s, > 0
   double transition_speed_mps = 0.002;  // w, m/s, >= 0
 };
 

@@ -12,9 +12,9 @@
 namespace hapticad {
 
 struct RoughnessCategory {
-  int category;               // 1..7
-  double ra_min_um;           // NaN for category 1
-  double ra_max_um;           // NaN for category 7
+  int category;                         // 1..7
+  double ra_min_um;                     // NaN for category 1
+  double ra_max_um;                     // NaN for category 7
   std::array<const char*, 2> n_grades;  // nullptr where absent
   double grid_size_mm;
 };

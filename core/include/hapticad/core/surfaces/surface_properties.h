@@ -36,7 +36,7 @@ class SurfaceTable {
 
   const SurfaceProperties& surface(std::int32_t face) const {
     return face >= 0 && static_cast<std::size_t>(face) < by_face_.size() ? by_face_[face]
-                                                                          : kUntaggedSurface;
+                                                                         : kUntaggedSurface;
   }
   std::size_t size() const { return by_face_.size(); }
 
