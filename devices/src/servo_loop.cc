@@ -75,6 +75,7 @@ void ServoLoop::Tick(double loop_time_s) {
     RenderInput input;
     input.position_w = state.position_w;
     input.velocity_w = state.velocity_w;
+    input.time_s = loop_time_s;
     renderer_.Render(input, &out);
     CopyVec(state.position_w, sample.device_m);
     CopyVec(state.velocity_w, sample.velocity_mps);
@@ -88,6 +89,9 @@ void ServoLoop::Tick(double loop_time_s) {
   CopyVec(out.force_w, sample.force_n);
   sample.normal_force_n = out.normal_force_n;
   sample.tangential_force_n = out.tangential_force_n;
+  sample.friction_force_n = out.friction_force_n;
+  sample.texture_force_n = out.texture_force_n;
+  sample.vibration_force_n = out.vibration_force_n;
   sample.cad_face = out.cad_face;
   sample.flags = out.flags;
   sample.tick_us = std::chrono::duration<double, std::micro>(end - start).count();

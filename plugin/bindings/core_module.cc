@@ -15,9 +15,16 @@
 
 #include "hapticad/core/rendering/force_renderer.h"
 #include "hapticad/core/rendering/haptic_scene.h"
+#include "hapticad/core/surfaces/anisotropy.h"
+#include "hapticad/core/surfaces/curve_pattern.h"
 #include "hapticad/core/surfaces/friction.h"
+#include "hapticad/core/surfaces/nurbs_curve.h"
 #include "hapticad/core/surfaces/roughness.h"
+#include "hapticad/core/surfaces/roughness_texture.h"
+#include "hapticad/core/surfaces/stripe_pattern.h"
 #include "hapticad/core/surfaces/surface_properties.h"
+#include "hapticad/core/surfaces/vibration.h"
+#include "hapticad/core/surfaces/viscous_texture.h"
 #include "hapticad/devices/servo_loop.h"
 #include "hapticad/devices/simulated_device.h"
 
@@ -64,28 +71,95 @@ TriangleSoup MakeSoup(const RowsD& vertices, const RowsI& triangles, const RowsI
 
 py::object NanToNone(double x) { return std::isnan(x) ? py::none() : py::object(py::float_(x)); }
 
-void DefineSurfaces(py::module_& m) {
+void DefineFriction(py::module_& m) {
   py::class_<FrictionParams>(m, "FrictionParams")
       .def(py::init<>())
       .def_readwrite("static_coefficient", &FrictionParams::static_coefficient)
       .def_readwrite("dynamic_coefficient", &FrictionParams::dynamic_coefficient)
       .def_readwrite("stick_speed_mps", &FrictionParams::stick_speed_mps)
-      .def_readwrite("transition_speed_mps", &FrictionParams::transition_speed_mps);
+      .def_readwrite("transition_speed_mps", &FrictionParams::transition_speed_mps)
+      .def_readwrite("stribeck_speed_mps", &FrictionParams::stribeck_speed_mps);
   m.def("equivalent_friction", &EquivalentFriction, py::arg("params"), py::arg("speed_mps"));
   m.def("calc_friction_force", &CalcFrictionForce, py::arg("params"), py::arg("normal_force_n"),
         py::arg("v_t_mps"));
 
-  py::class_<SurfaceProperties>(m, "SurfaceProperties")
+  py::enum_<AnisotropyInterpolation>(m, "AnisotropyInterpolation")
+      .value("LINEAR", AnisotropyInterpolation::kLinear)
+      .value("ELLIPSE", AnisotropyInterpolation::kEllipse);
+  m.def("fold_angle", &FoldAngle, py::arg("theta"));
+  m.def("interpolate_friction", &InterpolateFriction, py::arg("mu_along"), py::arg("mu_across"),
+        py::arg("theta"), py::arg("interpolation"));
+  py::class_<AnisotropicFriction>(m, "AnisotropicFriction")
       .def(py::init<>())
-      .def_readwrite("friction", &SurfaceProperties::friction)
-      .def_readwrite("stiffness_n_per_m", &SurfaceProperties::stiffness_n_per_m);
-  m.attr("UNTAGGED_SURFACE") = kUntaggedSurface;
-  m.def("validate_surface_properties", &ValidateSurfaceProperties, py::arg("surface"));
-  py::class_<SurfaceTable, std::shared_ptr<SurfaceTable>>(m, "SurfaceTable")
-      .def(py::init<std::vector<SurfaceProperties>>(), py::arg("by_face"))
-      .def("surface", &SurfaceTable::surface, py::arg("face"), py::return_value_policy::copy)
-      .def("__len__", &SurfaceTable::size);
+      .def_readwrite("across_factor", &AnisotropicFriction::across_factor)
+      .def_readwrite("backward_factor", &AnisotropicFriction::backward_factor)
+      .def_readwrite("interpolation", &AnisotropicFriction::interpolation);
+  py::enum_<FrictionMode>(m, "FrictionMode")
+      .value("VELOCITY", FrictionMode::kVelocity)
+      .value("CONE", FrictionMode::kCone);
+}
 
+void DefinePatterns(py::module_& m) {
+  py::class_<SurfaceFrame>(m, "SurfaceFrame")
+      .def(py::init<>())
+      .def(py::init([](const Vec3& o, const Vec3& e1, const Vec3& e2) {
+             return SurfaceFrame{o, e1, e2};
+           }),
+           py::arg("origin_w"), py::arg("e1_w"), py::arg("e2_w"))
+      .def_readwrite("origin_w", &SurfaceFrame::origin_w)
+      .def_readwrite("e1_w", &SurfaceFrame::e1_w)
+      .def_readwrite("e2_w", &SurfaceFrame::e2_w);
+  py::class_<StripeFrame>(m, "StripeFrame")
+      .def_readonly("stripe", &StripeFrame::stripe)
+      .def_readonly("weight", &StripeFrame::weight);
+  py::class_<LinearPattern>(m, "LinearPattern")
+      .def(py::init([](const Vec3& d) { return LinearPattern{d}; }), py::arg("direction_w"))
+      .def_readwrite("direction_w", &LinearPattern::direction_w);
+  m.def("evaluate_linear", &EvaluateLinear, py::arg("pattern"), py::arg("normal"));
+  py::class_<CircularPattern>(m, "CircularPattern")
+      .def(py::init([](const Vec3& c, const Vec3& a, double r) {
+             return CircularPattern{c, a, r};
+           }),
+           py::arg("centre_w"), py::arg("axis_w"), py::arg("blend_radius_m"))
+      .def_readwrite("centre_w", &CircularPattern::centre_w)
+      .def_readwrite("axis_w", &CircularPattern::axis_w)
+      .def_readwrite("blend_radius_m", &CircularPattern::blend_radius_m);
+  m.def("evaluate_circular", &EvaluateCircular, py::arg("pattern"), py::arg("point_w"),
+        py::arg("normal"));
+
+  py::class_<PatternPlane>(m, "PatternPlane")
+      .def(py::init([](const Vec3& o, const Vec3& x, const Vec3& y) {
+             return PatternPlane{o, x, y};
+           }),
+           py::arg("origin_w"), py::arg("x_w"), py::arg("y_w"));
+  py::enum_<CurvePattern::Evaluation>(m, "CurveEvaluation")
+      .value("LOOKUP_TABLE", CurvePattern::Evaluation::kLookupTable)
+      .value("EXACT", CurvePattern::Evaluation::kExact);
+  py::class_<CurvePattern, std::shared_ptr<CurvePattern>>(m, "CurvePattern")
+      .def_static(
+          "build",
+          [](const PatternPlane& plane, int degree, std::vector<double> knots, const RowsD& poles,
+             std::vector<double> weights, int lut_size, CurvePattern::Evaluation evaluation) {
+            RequireShape(poles, 2, "poles");
+            std::vector<Vec2> p;
+            auto a = poles.unchecked<2>();
+            for (py::ssize_t i = 0; i < a.shape(0); ++i) p.emplace_back(a(i, 0), a(i, 1));
+            return std::make_shared<CurvePattern>(CurvePattern::Build(
+                plane, NurbsCurve2(degree, std::move(knots), std::move(p), std::move(weights)),
+                lut_size, evaluation));
+          },
+          py::arg("plane"), py::arg("degree"), py::arg("knots"), py::arg("poles"),
+          py::arg("weights"), py::arg("lut_size"), py::arg("evaluation"))
+      .def("evaluate", &CurvePattern::Evaluate, py::arg("point_w"), py::arg("normal"))
+      .def("lookup_angle", &CurvePattern::LookupAngle, py::arg("y"))
+      .def("exact_angle", &CurvePattern::ExactAngle, py::arg("y"))
+      .def("member_offset", &CurvePattern::MemberOffset, py::arg("point_w"))
+      .def_property_readonly("y_min", &CurvePattern::y_min)
+      .def_property_readonly("y_max", &CurvePattern::y_max)
+      .def_property_readonly("lut_size", &CurvePattern::lut_size);
+}
+
+void DefineTextures(py::module_& m) {
   py::class_<RoughnessCategory>(m, "RoughnessCategory")
       .def_readonly("category", &RoughnessCategory::category)
       .def_property_readonly("ra_min_um",
@@ -95,8 +169,9 @@ void DefineSurfaces(py::module_& m) {
       .def_property_readonly("n_grades",
                              [](const RoughnessCategory& r) {
                                std::vector<std::string> grades;
-                               for (const char* g : r.n_grades)
+                               for (const char* g : r.n_grades) {
                                  if (g) grades.emplace_back(g);
+                               }
                                return grades;
                              })
       .def_readonly("grid_size_mm", &RoughnessCategory::grid_size_mm);
@@ -106,6 +181,105 @@ void DefineSurfaces(py::module_& m) {
   });
   m.def("roughness_category", &GetRoughnessCategory, py::arg("category"),
         py::return_value_policy::copy);
+  py::class_<RoughnessGrid>(m, "RoughnessGrid")
+      .def(py::init<>())
+      .def_readwrite("frame", &RoughnessGrid::frame)
+      .def_readwrite("spacing_m", &RoughnessGrid::spacing_m)
+      .def_readwrite("amplitude_m", &RoughnessGrid::amplitude_m)
+      .def_readwrite("friction_modulation", &RoughnessGrid::friction_modulation);
+  m.attr("DEFAULT_ROUGHNESS_AMPLITUDE_RATIO") = kDefaultRoughnessAmplitudeRatio;
+  m.def("make_roughness_grid", &MakeRoughnessGrid, py::arg("category"), py::arg("frame"),
+        py::arg("amplitude_ratio") = kDefaultRoughnessAmplitudeRatio,
+        py::arg("friction_modulation") = 0.15);
+
+  py::class_<ViscousTextureParams>(m, "ViscousTextureParams")
+      .def(py::init<>())
+      .def_readwrite("f_dc", &ViscousTextureParams::f_dc)
+      .def_readwrite("f_vis", &ViscousTextureParams::f_vis)
+      .def_readwrite("beta_h", &ViscousTextureParams::beta_h)
+      .def_readwrite("beta_vis", &ViscousTextureParams::beta_vis)
+      .def_readwrite("alpha_h", &ViscousTextureParams::alpha_h)
+      .def_readwrite("alpha_vis", &ViscousTextureParams::alpha_vis)
+      .def_readwrite("period_m", &ViscousTextureParams::period_m);
+  m.attr("VISCOUS_SPEED_UNIT_MPS") = kViscousSpeedUnitMps;
+  m.attr("PAPER_DC_LEVELS") = kPaperDcLevels;
+  m.attr("PAPER_VISCOSITIES") = kPaperViscosities;
+  m.def("paper_preset", &PaperPreset, py::arg("dc"), py::arg("vis"));
+  m.def("viscous_texture_level", &ViscousTextureLevel, py::arg("params"), py::arg("x_m"),
+        py::arg("speed_mps"));
+  py::class_<ViscousGrating>(m, "ViscousGrating")
+      .def(py::init([](const ViscousTextureParams& p, const SurfaceFrame& f) {
+             return ViscousGrating{p, f};
+           }),
+           py::arg("params"), py::arg("frame"))
+      .def_readwrite("params", &ViscousGrating::params)
+      .def_readwrite("frame", &ViscousGrating::frame);
+
+  py::class_<Vibration>(m, "Vibration")
+      .def(py::init([](double f, double a, const Vec3& axis, bool powered) {
+             return Vibration{f, a, axis, powered};
+           }),
+           py::arg("frequency_hz"), py::arg("amplitude_n"), py::arg("axis_w"), py::arg("powered"))
+      .def_readwrite("frequency_hz", &Vibration::frequency_hz)
+      .def_readwrite("amplitude_n", &Vibration::amplitude_n)
+      .def_readwrite("axis_w", &Vibration::axis_w)
+      .def_readwrite("powered", &Vibration::powered);
+}
+
+void DefineSurfaces(py::module_& m) {
+  py::class_<SurfaceProperties>(m, "SurfaceProperties")
+      .def(py::init<>())
+      .def_readwrite("friction", &SurfaceProperties::friction)
+      .def_readwrite("stiffness_n_per_m", &SurfaceProperties::stiffness_n_per_m)
+      .def_readwrite("friction_mode", &SurfaceProperties::friction_mode)
+      .def_readwrite("anisotropy", &SurfaceProperties::anisotropy)
+      .def_readwrite("roughness", &SurfaceProperties::roughness)
+      .def_readwrite("texture", &SurfaceProperties::texture)
+      .def_readwrite("vibration", &SurfaceProperties::vibration)
+      // the pattern is one of None, LinearPattern, CircularPattern, CurvePattern
+      .def_property(
+          "pattern",
+          [](const SurfaceProperties& s) -> py::object {
+            switch (s.pattern.index()) {
+              case 1:
+                return py::cast(std::get<LinearPattern>(s.pattern));
+              case 2:
+                return py::cast(std::get<CircularPattern>(s.pattern));
+              case 3:
+                return py::cast(std::const_pointer_cast<CurvePattern>(
+                    std::get<std::shared_ptr<const CurvePattern>>(s.pattern)));
+              default:
+                return py::none();
+            }
+          },
+          [](SurfaceProperties& s, const py::object& p) {
+            if (p.is_none()) {
+              s.pattern = std::monostate{};
+            } else if (py::isinstance<LinearPattern>(p)) {
+              s.pattern = p.cast<LinearPattern>();
+            } else if (py::isinstance<CircularPattern>(p)) {
+              s.pattern = p.cast<CircularPattern>();
+            } else if (py::isinstance<CurvePattern>(p)) {
+              s.pattern =
+                  std::shared_ptr<const CurvePattern>(p.cast<std::shared_ptr<CurvePattern>>());
+            } else {
+              throw py::type_error(
+                  "pattern must be None, LinearPattern, CircularPattern or CurvePattern");
+            }
+          });
+  m.attr("UNTAGGED_SURFACE") = kUntaggedSurface;
+  m.def("validate_surface_properties", &ValidateSurfaceProperties, py::arg("surface"));
+  py::class_<SurfaceTable, std::shared_ptr<SurfaceTable>>(m, "SurfaceTable")
+      .def(py::init<std::vector<SurfaceProperties>, std::vector<Vibration>>(), py::arg("by_face"),
+           py::arg("vibrations") = std::vector<Vibration>{})
+      .def("surface", &SurfaceTable::surface, py::arg("face"), py::return_value_policy::copy)
+      .def("effects", &SurfaceTable::effects, py::arg("face"))
+      .def("__len__", &SurfaceTable::size);
+  m.attr("EFFECT_PATTERN") = static_cast<std::uint32_t>(kEffectPattern);
+  m.attr("EFFECT_ROUGHNESS") = static_cast<std::uint32_t>(kEffectRoughness);
+  m.attr("EFFECT_TEXTURE") = static_cast<std::uint32_t>(kEffectTexture);
+  m.attr("EFFECT_VIBRATION") = static_cast<std::uint32_t>(kEffectVibration);
+  m.attr("EFFECT_CONE") = static_cast<std::uint32_t>(kEffectCone);
 }
 
 void DefineScene(py::module_& m) {
@@ -140,7 +314,8 @@ void DefineScene(py::module_& m) {
 
 void DefineDevices(py::module_& m) {
   PYBIND11_NUMPY_DTYPE(TraceSample, time_s, device_m, velocity_mps, proxy_m, force_n,
-                       normal_force_n, tangential_force_n, cad_face, flags, tick_us);
+                       normal_force_n, tangential_force_n, friction_force_n, texture_force_n,
+                       vibration_force_n, cad_face, flags, tick_us);
   py::class_<DeviceLimits>(m, "DeviceLimits")
       .def(py::init<>())
       .def_readwrite("max_force_n", &DeviceLimits::max_force_n)
@@ -178,6 +353,7 @@ void DefineDevices(py::module_& m) {
   m.attr("FLAG_FORCE_CLAMPED") = static_cast<std::uint32_t>(kForceClamped);
   m.attr("FLAG_STIFFNESS_CLAMPED") = static_cast<std::uint32_t>(kStiffnessClamped);
   m.attr("FLAG_INPUT_FAULT") = static_cast<std::uint32_t>(kInputFault);
+  m.attr("FLAG_STICKING") = static_cast<std::uint32_t>(kSticking);
   m.attr("FLAG_DEVICE_FAULT") = kDeviceFault;
 
   py::class_<ForceRenderer>(m, "ForceRenderer")
@@ -222,6 +398,10 @@ void DefineDevices(py::module_& m) {
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "HaptiCAD core and device layer (C++), bound without logic.";
+  // classes before the functions that take them, so signatures show Python names
+  DefineFriction(m);
+  DefinePatterns(m);
+  DefineTextures(m);
   DefineSurfaces(m);
   DefineScene(m);
   DefineDevices(m);

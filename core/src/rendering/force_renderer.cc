@@ -1,4 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+// HOT PATH: ForceRenderer::Render runs on the servo thread every tick. No allocation,
+// no lock, no I/O (see force_renderer.h).
 #include "hapticad/core/rendering/force_renderer.h"
 
 #include <algorithm>
@@ -22,6 +24,10 @@ ProxyConfig MakeProxyConfig(const HapticScene& scene) {
   return config;
 }
 
+// Cone re-entry: a sliding proxy sticks again once the device is back inside this
+// share of the dynamic cone (CHAI3D uses 0.6 of the dynamic angle).
+constexpr double kStickReentry = 0.6;
+
 }  // namespace
 
 ForceRenderer::ForceRenderer(std::shared_ptr<const HapticScene> scene,
@@ -38,12 +44,50 @@ ForceRenderer::ForceRenderer(std::shared_ptr<const HapticScene> scene,
 
 void ForceRenderer::Reset(const Vec3& device_w) {
   proxy_.Reset(scene_->ToLocal(device_w));
+  anchored_ = false;
   started_ = true;
+}
+
+Vec3 ForceRenderer::ApplyFrictionCone(const SurfaceProperties& surface, double friction_scale,
+                                      const Vec3& normal, double depth_m, const StripeFrame& stripe,
+                                      RenderOutput* out) {
+  const Vec3& proxy = proxy_.position();
+  // the cone lives on one plane: edges, corners and a new face restart it
+  if (proxy_.constraints().count() != 1 || !anchored_ || anchor_face_ != out->cad_face) {
+    anchored_ = true;
+    sticking_ = true;
+    anchor_face_ = out->cad_face;
+    anchor_l_ = proxy;
+  }
+  const ConstraintPlane& plane = proxy_.constraints().plane(0);
+  anchor_l_ -= (plane.normal.dot(anchor_l_) - plane.offset) * plane.normal;  // onto the plane
+  Vec3 offset = anchor_l_ - proxy;  // where the anchor holds the proxy back
+  offset -= offset.dot(normal) * normal;
+  const double lag = offset.norm();
+  // mu in the direction the proxy is dragged (anchor to proxy), anisotropic on a pattern
+  FrictionParams mu = surface.friction;
+  if (!std::holds_alternative<std::monostate>(surface.pattern)) {
+    mu = DirectionalFriction(mu, surface.anisotropy, stripe.stripe, stripe.weight, -offset);
+  }
+  const double static_radius = friction_scale * mu.static_coefficient * depth_m;
+  const double dynamic_radius = friction_scale * mu.dynamic_coefficient * depth_m;
+  if (sticking_ && lag > static_radius) sticking_ = false;
+  if (!sticking_ && lag < kStickReentry * dynamic_radius) sticking_ = true;
+  if (!sticking_ && lag > dynamic_radius) {
+    // slide: the anchor trails the proxy on the dynamic cone
+    anchor_l_ = proxy + offset * (dynamic_radius / lag);
+  }
+  // never pull the spring's end through geometry between the proxy and the anchor
+  SegmentHit hit;
+  if (scene_->tree().FirstHit(proxy, anchor_l_, 1e-9, &hit)) anchor_l_ = proxy;
+  if (sticking_) out->flags |= kSticking;
+  return anchor_l_;
 }
 
 void ForceRenderer::Render(const RenderInput& input, RenderOutput* out) {
   *out = RenderOutput{};
-  if (!input.position_w.allFinite() || !input.velocity_w.allFinite()) {
+  if (!input.position_w.allFinite() || !input.velocity_w.allFinite() ||
+      !std::isfinite(input.time_s)) {
     out->flags = kInputFault;
     out->proxy_w = scene_->ToWorld(proxy_.position());
     return;
@@ -53,11 +97,15 @@ void ForceRenderer::Render(const RenderInput& input, RenderOutput* out) {
   const Vec3 goal_l = scene_->ToLocal(input.position_w);
   proxy_.Update(goal_l);
   out->proxy_w = scene_->ToWorld(proxy_.position());
-  if (!proxy_.in_contact()) return;
+  if (!proxy_.in_contact()) {
+    anchored_ = false;
+    return;
+  }
 
   const std::uint32_t triangle = proxy_.constraints().plane(0).triangle;
   out->cad_face = scene_->mesh().cad_face(triangle);
   const SurfaceProperties& surface = surfaces_->surface(out->cad_face);
+  const std::uint32_t effects = surfaces_->effects(out->cad_face);
   out->flags |= kContact;
 
   double k = surface.stiffness_n_per_m;
@@ -67,10 +115,80 @@ void ForceRenderer::Render(const RenderInput& input, RenderOutput* out) {
   }
   // spring from the device to the proxy; its direction is the contact normal
   const Vec3 spring = k * (proxy_.position() - goal_l);
-  const double f_n = spring.norm();
-  const Vec3 normal = f_n > 0.0 ? Vec3(spring / f_n) : proxy_.constraints().plane(0).normal;
+  const double spring_n = spring.norm();
+  const Vec3 normal =
+      spring_n > 0.0 ? Vec3(spring / spring_n) : proxy_.constraints().plane(0).normal;
+  const double depth = spring_n / k;
   const Vec3 v_t = input.velocity_w - input.velocity_w.dot(normal) * normal;
-  Vec3 force = spring + CalcFrictionForce(surface.friction, f_n, v_t);
+
+  // plain faces stop here: normal spring plus seed 000 friction
+  if (effects == 0u) {
+    Vec3 force = spring;
+    const Vec3 friction = CalcFrictionForce(surface.friction, spring_n, v_t);
+    out->friction_force_n = friction.norm();
+    force += friction;
+    const double magnitude = force.norm();
+    if (magnitude > limits_.max_force_n) {
+      force *= limits_.max_force_n / magnitude;
+      out->flags |= kForceClamped;
+    }
+    out->force_w = force;
+    out->normal_force_n = force.dot(normal);
+    out->tangential_force_n = (force - out->normal_force_n * normal).norm();
+    anchored_ = false;
+    return;
+  }
+
+  const Vec3 contact_w = out->proxy_w;
+  // roughness: deeper on a ball, normal tilted by its slope, mu scaled
+  double normal_force = spring_n;
+  Vec3 normal_direction = normal;
+  double friction_scale = 1.0;
+  if (effects & kEffectRoughness) {
+    const RoughnessSample r = SampleRoughness(*surface.roughness, contact_w);
+    normal_force = k * std::max(depth + r.height_m, 0.0);
+    const Vec3 slope = r.gradient_w - r.gradient_w.dot(normal) * normal;
+    normal_direction = (normal - slope).normalized();
+    friction_scale = r.friction_scale;
+  }
+
+  // the friction coefficients at this point and in the direction of sliding
+  FrictionParams mu = surface.friction;
+  StripeFrame stripe{Vec3::Zero(), 0.0};
+  if (effects & kEffectPattern) {
+    stripe = EvaluateStripe(surface, contact_w, normal);
+    mu = DirectionalFriction(mu, surface.anisotropy, stripe.stripe, stripe.weight, v_t);
+  }
+  mu.static_coefficient *= friction_scale;
+  mu.dynamic_coefficient *= friction_scale;
+
+  Vec3 force = normal_force * normal_direction;
+  if (effects & kEffectTexture) {
+    const Vec3 texture = CalcViscousTextureForce(surface.texture->params, limits_.max_force_n,
+                                                 GratingCoordinate(surface, contact_w), v_t,
+                                                 surface.friction.stick_speed_mps);
+    out->texture_force_n = texture.norm();
+    force += texture;
+    anchored_ = false;
+  } else if (effects & kEffectCone) {
+    const Vec3 anchor =
+        ApplyFrictionCone(surface, friction_scale, normal, normal_force / k, stripe, out);
+    const Vec3 pull = k * (anchor - proxy_.position());
+    out->friction_force_n = pull.norm();
+    force += pull;
+  } else {
+    const Vec3 friction = CalcFrictionForce(mu, normal_force, v_t);
+    out->friction_force_n = friction.norm();
+    force += friction;
+    anchored_ = false;
+  }
+
+  if (effects & kEffectVibration) {
+    const Vibration& vibration = surfaces_->vibration(surface.vibration);
+    const Vec3 shake = CalcVibrationForce(vibration, input.time_s);
+    out->vibration_force_n = shake.dot(vibration.axis_w);
+    force += shake;
+  }
 
   const double magnitude = force.norm();
   if (magnitude > limits_.max_force_n) {

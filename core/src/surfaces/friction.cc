@@ -9,6 +9,10 @@ double EquivalentFriction(const FrictionParams& p, double s) {
   if (!(s > 0.0)) return 0.0;  // also catches NaN
   const double eps = p.stick_speed_mps;
   if (s <= eps) return p.static_coefficient * (s / eps);
+  if (p.stribeck_speed_mps > 0.0) {
+    return p.dynamic_coefficient + (p.static_coefficient - p.dynamic_coefficient) *
+                                       std::exp(-(s - eps) / p.stribeck_speed_mps);
+  }
   const double w = p.transition_speed_mps;
   if (!(s < eps + w)) return p.dynamic_coefficient;
   // smoothstep from mu_s at eps to mu_d at eps + w

@@ -110,3 +110,236 @@ TEST_F(RendererOnBox, RenderDoesNotAllocate) {
 
 }  // namespace
 }  // namespace hapticad
+
+namespace hapticad {
+namespace {
+
+// The 100 mm box with one tagged top face, configured per test, pressed 2 mm deep and
+// stroked across at constant velocity.
+class EffectsOnBox : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    scene_ = HapticScene::Build(testing::MakeBoxSoup(Vec3(-50, -50, -50), Vec3(50, 50, 50)), 1e-3);
+    top_.friction.static_coefficient = 0.4;
+    top_.friction.dynamic_coefficient = 0.3;
+    top_.stiffness_n_per_m = 500.0;
+    limits_.max_force_n = 8.0;
+    limits_.max_stiffness_n_per_m = 3000.0;
+  }
+  ForceRenderer Make(std::vector<Vibration> vibrations = {}) {
+    std::vector<SurfaceProperties> faces(6, kUntaggedSurface);
+    faces[5] = top_;
+    return ForceRenderer(scene_, std::make_shared<SurfaceTable>(faces, std::move(vibrations)),
+                         limits_);
+  }
+  // Strokes from x0 along `direction` at `speed` (m/s) for `ticks` at `rate` Hz, 2 mm deep.
+  std::vector<RenderOutput> Stroke(ForceRenderer& r, const Vec3& direction, double speed, int ticks,
+                                   double rate = 1000.0, double x0 = -0.03) {
+    RenderOutput out;
+    r.Render({Vec3(x0, 0.0, 0.06), Vec3::Zero(), 0.0}, &out);
+    std::vector<RenderOutput> trace;
+    for (int i = 0; i < ticks; ++i) {
+      const double t = i / rate;
+      const Vec3 p = Vec3(x0, 0.0, 0.048) + direction.normalized() * speed * t;
+      r.Render({p, direction.normalized() * speed, t}, &out);
+      trace.push_back(out);
+    }
+    return trace;
+  }
+  std::shared_ptr<const HapticScene> scene_;
+  SurfaceProperties top_;
+  RenderLimits limits_;
+};
+
+TEST_F(EffectsOnBox, LinearPatternGivesMuAlongAcrossAndEq3Between) {
+  top_.pattern = LinearPattern{Vec3::UnitX()};
+  top_.anisotropy.across_factor = 3.0;  // mu_n = 0.9
+  auto r = Make();
+  const struct {
+    Vec3 direction;
+    double mu;
+  } cases[] = {
+      {Vec3(1, 0, 0), 0.3}, {Vec3(0, 1, 0), 0.9}, {Vec3(1, 1, 0), 0.6}, {Vec3(-1, 1, 0), 0.6}};
+  for (const auto& c : cases) {
+    const RenderOutput out = Stroke(r, c.direction, 0.05, 100).back();
+    EXPECT_NEAR(out.tangential_force_n / out.normal_force_n, c.mu, 1e-9) << c.direction.transpose();
+    EXPECT_NEAR(out.normal_force_n, 1.0, 1e-6);
+  }
+}
+
+TEST_F(EffectsOnBox, CircularPatternIsIsotropicAtItsCentre) {
+  top_.pattern = CircularPattern{Vec3(0, 0, 0.05), Vec3::UnitZ(), 1e-3};
+  top_.anisotropy.across_factor = 3.0;
+  auto r = Make();
+  // crossing the centre along x: radial motion (across the circles) away from it,
+  // isotropic mean right at it; never a jump or NaN
+  const auto trace = Stroke(r, Vec3::UnitX(), 0.01, 6001, 1000.0, -0.03);
+  double worst_step = 0.0;
+  for (std::size_t i = 1; i < trace.size(); ++i) {
+    ASSERT_TRUE(trace[i].force_w.allFinite());
+    worst_step = std::max(worst_step, (trace[i].force_w - trace[i - 1].force_w).norm());
+  }
+  const RenderOutput& at_centre = trace[3000];  // x = 0
+  EXPECT_NEAR(at_centre.tangential_force_n / at_centre.normal_force_n, 0.6, 1e-6);
+  EXPECT_NEAR(trace[1000].tangential_force_n / trace[1000].normal_force_n, 0.9, 1e-9);
+  EXPECT_LT(worst_step, 0.05);  // 10 um per tick: 0.3 N of friction change over 1 mm
+}
+
+TEST_F(EffectsOnBox, RoughnessShowsTheGridPeriodInTheForceSpectrum) {
+  for (int category : {2, 4, 6}) {
+    top_.roughness =
+        MakeRoughnessGrid(category, SurfaceFrame{Vec3(0, 0, 0.05), Vec3::UnitX(), Vec3::UnitY()});
+    auto r = Make();
+    const auto trace = Stroke(r, Vec3::UnitX(), 0.05, 1200, 5000.0);  // 12 mm at 5 kHz
+    const double g = top_.roughness->spacing_m;
+    // amplitude of the normal force at spatial frequency f (1/m): detrended and
+    // Hann-windowed projection, as seed 001 analyses its traces
+    double mean = 0.0;
+    for (const auto& o : trace) mean += o.normal_force_n / trace.size();
+    auto amplitude = [&](double f) {
+      double c = 0.0, s = 0.0, weight = 0.0;
+      for (std::size_t i = 0; i < trace.size(); ++i) {
+        const double x = -0.03 + 0.05 * i / 5000.0;
+        const double w = 0.5 - 0.5 * std::cos(2 * M_PI * i / (trace.size() - 1));
+        c += w * (trace[i].normal_force_n - mean) * std::cos(2 * M_PI * f * x);
+        s += w * (trace[i].normal_force_n - mean) * std::sin(2 * M_PI * f * x);
+        weight += w;
+      }
+      return std::hypot(c, s) * 2.0 / weight;
+    };
+    const double at_grid = amplitude(1.0 / g);
+    EXPECT_NEAR(at_grid, 500.0 * top_.roughness->amplitude_m / 2.0, 0.2 * at_grid) << category;
+    EXPECT_GT(at_grid, 10.0 * amplitude(1.37 / g)) << category;
+    EXPECT_GT(at_grid, 10.0 * amplitude(0.61 / g)) << category;
+  }
+}
+
+TEST_F(EffectsOnBox, ViscousGratingReplacesFrictionWithEq2InNewtons) {
+  ViscousGrating grating{PaperPreset(1, 2),
+                         SurfaceFrame{Vec3(0, 0, 0.05), Vec3::UnitX(), Vec3::UnitY()}};
+  top_.texture = grating;
+  auto r = Make();
+  // across the ridges (along e2 = y) at 80 mm/s
+  const auto trace = Stroke(r, Vec3::UnitY(), 0.08, 200, 1000.0, 0.0);
+  for (std::size_t i = 50; i < trace.size(); i += 37) {
+    const double y = 0.08 * i / 1000.0;
+    const double level = ViscousTextureLevel(grating.params, y, 0.08);
+    EXPECT_NEAR(trace[i].texture_force_n, level * 8.0, 1e-9) << i;
+    EXPECT_NEAR(trace[i].tangential_force_n, level * 8.0 > 8.0 ? 0 : trace[i].texture_force_n,
+                trace[i].normal_force_n + 1e-6);
+    EXPECT_EQ(trace[i].friction_force_n, 0.0);
+  }
+}
+
+TEST_F(EffectsOnBox, VibrationShakesOnlyWhileTouched) {
+  top_.vibration = 0;
+  auto r = Make({Vibration{100.0, 0.25, Vec3::UnitZ(), true}});
+  const auto trace = Stroke(r, Vec3::UnitX(), 0.0, 40, 1000.0);
+  EXPECT_NEAR(trace[2].vibration_force_n, 0.25 * std::sin(2 * M_PI * 100 * 0.002),
+              1e-9);  // t = 2 ms
+  EXPECT_NEAR(trace[2].force_w.z(), 1.0 + 0.25 * std::sin(2 * M_PI * 100 * 0.002), 1e-6);
+  RenderOutput out;
+  r.Render({Vec3(0, 0, 0.07), Vec3::Zero(), 0.0025}, &out);  // lifted off
+  EXPECT_EQ(out.force_w, Vec3::Zero());
+}
+
+TEST_F(EffectsOnBox, FrictionConeSticksThenSlips) {
+  top_.friction_mode = FrictionMode::kCone;
+  auto r = Make();
+  RenderOutput out;
+  r.Render({Vec3(0, 0, 0.06), Vec3::Zero(), 0}, &out);
+  r.Render({Vec3(0, 0, 0.048), Vec3::Zero(), 0}, &out);  // 2 mm deep: F_n = 1 N
+  ASSERT_TRUE(out.flags & kSticking);
+  // drag 0.5 mm: still inside the static cone (0.4 * 2 mm = 0.8 mm): spring k dx
+  r.Render({Vec3(0.0005, 0, 0.048), Vec3(0.01, 0, 0), 0}, &out);
+  EXPECT_TRUE(out.flags & kSticking);
+  EXPECT_NEAR(out.force_w.x(), -500.0 * 0.0005, 1e-9);
+  // past 0.8 mm it slips and the friction drops to mu_d F_n
+  for (int i = 1; i <= 20; ++i)
+    r.Render({Vec3(0.0005 + 0.0002 * i, 0, 0.048), Vec3(0.2, 0, 0), 0}, &out);
+  EXPECT_FALSE(out.flags & kSticking);
+  EXPECT_NEAR(-out.force_w.x() / out.force_w.z(), 0.3, 1e-6);
+  // stopping: the device falls back inside the cone and sticks again
+  for (int i = 0; i < 3; ++i)
+    r.Render({Vec3(0.0045 - 0.0003 * i, 0, 0.048), Vec3(-0.3, 0, 0), 0}, &out);
+  EXPECT_TRUE(out.flags & kSticking);
+}
+
+TEST_F(EffectsOnBox, VelocitySignFlipsEveryTickStayBoundedAndFinite) {
+  auto r = Make();
+  RenderOutput out;
+  r.Render({Vec3(0, 0, 0.06), Vec3::Zero(), 0}, &out);
+  for (int i = 0; i < 2000; ++i) {
+    const double v =
+        (i % 2 ? 1.0 : -1.0) * (i % 7 == 0 ? 1e-300 : 0.002);  // exactly eps, then tiny
+    r.Render({Vec3(1e-9 * (i % 2), 0, 0.048), Vec3(v, 0, 0), i * 1e-3}, &out);
+    ASSERT_TRUE(out.force_w.allFinite());
+    ASSERT_LE(out.tangential_force_n, 0.4 * out.normal_force_n * (1 + 1e-9));
+  }
+}
+
+TEST_F(EffectsOnBox, ExtremeCoefficientsAreClampedNotNaN) {
+  top_.friction.static_coefficient = 1e3;
+  top_.friction.dynamic_coefficient = 2e3;  // mu_d > mu_s
+  top_.pattern = LinearPattern{Vec3::UnitX()};
+  auto r = Make();
+  const RenderOutput out = Stroke(r, Vec3(1, 1, 0), 0.05, 50).back();
+  EXPECT_TRUE(out.force_w.allFinite());
+  EXPECT_NEAR(out.force_w.norm(), 8.0, 1e-9);
+  EXPECT_TRUE(out.flags & kForceClamped);
+  top_.friction.static_coefficient = 0.0;
+  top_.friction.dynamic_coefficient = 0.0;
+  auto frictionless = Make();
+  EXPECT_NEAR(Stroke(frictionless, Vec3(1, 1, 0), 0.05, 50).back().tangential_force_n, 0.0, 1e-12);
+}
+
+TEST_F(EffectsOnBox, NonFiniteInputWithEveryEffectGivesZeroForceAndAFault) {
+  top_.pattern = CircularPattern{Vec3(0, 0, 0.05), Vec3::UnitZ(), 1e-3};
+  top_.roughness =
+      MakeRoughnessGrid(5, SurfaceFrame{Vec3(0, 0, 0.05), Vec3::UnitX(), Vec3::UnitY()});
+  top_.vibration = 0;
+  auto r = Make({Vibration{150.0, 0.3, Vec3::UnitX(), true}});
+  Stroke(r, Vec3::UnitX(), 0.05, 10);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const RenderInput& bad : {RenderInput{Vec3(nan, 0, 0.048), Vec3::Zero(), 0.01},
+                                 RenderInput{Vec3(0, 0, 0.048), Vec3(0, inf, 0), 0.01},
+                                 RenderInput{Vec3(0, 0, 0.048), Vec3::Zero(), nan}}) {
+    RenderOutput out;
+    r.Render(bad, &out);
+    EXPECT_EQ(out.force_w, Vec3::Zero());
+    EXPECT_TRUE(out.flags & kInputFault);
+  }
+}
+
+TEST_F(EffectsOnBox, EveryEffectRendersWithoutAllocating) {
+  std::vector<Vec2> poles = {Vec2(0, -0.05), Vec2(0.01, 0.0), Vec2(0.0, 0.05)};
+  top_.pattern = std::make_shared<const CurvePattern>(CurvePattern::Build(
+      PatternPlane{Vec3(0, 0, 0.05), Vec3::UnitX(), Vec3::UnitY()},
+      NurbsCurve2(2, {0, 0, 0, 1, 1, 1}, poles, {}), 64, CurvePattern::Evaluation::kExact));
+  top_.roughness =
+      MakeRoughnessGrid(5, SurfaceFrame{Vec3(0, 0, 0.05), Vec3::UnitX(), Vec3::UnitY()});
+  top_.texture = ViscousGrating{PaperPreset(2, 0),
+                                SurfaceFrame{Vec3(0, 0, 0.05), Vec3::UnitX(), Vec3::UnitY()}};
+  top_.vibration = 0;
+  auto r = Make({Vibration{150.0, 0.3, Vec3::UnitX(), true}});
+  Stroke(r, Vec3::UnitX(), 0.05, 5);
+  testing::AllocationCounter counter;
+  const auto before = counter.count();
+  RenderOutput out;
+  for (int i = 0; i < 1000; ++i)
+    r.Render({Vec3(-0.02 + 4e-5 * i, 0.001, 0.048), Vec3(0.04, 0.01, 0), i * 1e-3}, &out);
+  EXPECT_EQ(counter.count(), before);
+  EXPECT_TRUE(out.flags & kContact);
+  top_.texture.reset();
+  top_.friction_mode = FrictionMode::kCone;
+  auto cone = Make({Vibration{150.0, 0.3, Vec3::UnitX(), true}});
+  Stroke(cone, Vec3::UnitX(), 0.05, 5);
+  testing::AllocationCounter cone_counter;
+  for (int i = 0; i < 1000; ++i)
+    cone.Render({Vec3(-0.02 + 4e-5 * i, 0.001, 0.048), Vec3(0.04, 0.01, 0), i * 1e-3}, &out);
+  EXPECT_EQ(cone_counter.count(), 0u);
+}
+
+}  // namespace
+}  // namespace hapticad

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hapticad/core/surfaces/friction.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -103,6 +104,42 @@ TEST(CalcFrictionForce, NonFiniteInputsGiveZero) {
   EXPECT_EQ(CalcFrictionForce(p, 1.0, Vec3(nan, 0, 0)), Vec3::Zero());
   EXPECT_EQ(CalcFrictionForce(p, 1.0, Vec3(inf, 0, 0)), Vec3::Zero());
   EXPECT_EQ(CalcFrictionForce(p, -1.0, Vec3(0.1, 0, 0)), Vec3::Zero());
+}
+
+}  // namespace
+}  // namespace hapticad
+
+namespace hapticad {
+namespace {
+
+TEST(StribeckFriction, DecaysContinuouslyFromMuStaticTowardMuDynamic) {
+  FrictionParams p;
+  p.static_coefficient = 0.8;
+  p.dynamic_coefficient = 0.4;
+  p.stick_speed_mps = 0.002;
+  p.stribeck_speed_mps = 0.01;
+  const double eps = p.stick_speed_mps;
+  EXPECT_EQ(EquivalentFriction(p, eps), 0.8);
+  EXPECT_NEAR(EquivalentFriction(p, eps * (1 + 1e-12)), 0.8, 1e-12);
+  EXPECT_NEAR(EquivalentFriction(p, eps + 0.01), 0.4 + 0.4 * std::exp(-1.0), 1e-15);
+  EXPECT_NEAR(EquivalentFriction(p, 10.0), 0.4, 1e-15);
+  EXPECT_GT(EquivalentFriction(p, 0.05), 0.4);  // approaches, never reaches
+}
+
+TEST(FrictionExtremes, ZeroHugeAndInvertedCoefficientsStayFinite) {
+  for (double mu_s : {0.0, 0.3, 1e3}) {
+    for (double mu_d : {0.0, 0.6, 1e3}) {  // includes mu_d > mu_s
+      FrictionParams p;
+      p.static_coefficient = mu_s;
+      p.dynamic_coefficient = mu_d;
+      for (double v : {0.0, 1e-300, 0.002, 0.003, 0.05, 1e3}) {
+        const Vec3 f = CalcFrictionForce(p, 2.0, Vec3(v, -v, 0));
+        ASSERT_TRUE(f.allFinite()) << mu_s << " " << mu_d << " " << v;
+        EXPECT_LE(f.norm(), 2.0 * std::max(mu_s, mu_d) * (1 + 1e-12) + 1e-300);
+      }
+      EXPECT_EQ(CalcFrictionForce(p, 2.0, Vec3(0.05, 0, 0)).norm(), 0.0 * mu_d + 2.0 * mu_d);
+    }
+  }
 }
 
 }  // namespace

@@ -15,6 +15,9 @@ struct TraceSample {
   double force_n[3];       // force sent to the device
   double normal_force_n;   // along the contact normal
   double tangential_force_n;
+  double friction_force_n;  // parts of the force, before clamping (RenderOutput)
+  double texture_force_n;
+  double vibration_force_n;
   std::int32_t cad_face;  // touched face, -1 when free
   std::uint32_t flags;    // RenderFlags, plus kDeviceFault below
   double tick_us;         // compute time of this tick: read, render, write

@@ -1,17 +1,24 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // ForceRenderer: one servo tick of haptic rendering — device state in, force out.
 //
-//   proxy   god-object point proxy on the scene (GodObjectProxy)
-//   F_n     k (proxy - device), k = the touched face's stiffness, capped at the
-//           device's maximum stable stiffness
-//   F_t     seed 000 §2.1 friction, f_t = -mu_eq(|v_t|) |F_n| v_hat_t, with the
-//           touched face's own mu_s and mu_d, v_t the device velocity in the tangent
-//           plane (isotropic for now)
-//   F       F_n + F_t, scaled down to the device's maximum force
+//   proxy      god-object point proxy on the scene (GodObjectProxy)
+//   normal     k (proxy - device), k = the touched face's stiffness capped at the
+//              device's maximum stable stiffness; with roughness, k (depth + h) along
+//              the bump-tilted normal (roughness_texture.h)
+//   lateral    one of
+//                seed 000 §2.1 friction, f_t = -mu_eq(|v_t|) F_n v_hat_t, with the
+//                face's mu (anisotropic along a pattern, scaled by roughness);
+//                the friction cone (FrictionMode::kCone): the proxy sticks to an anchor
+//                until the device leaves the static cone, then slides on the dynamic
+//                one (stick-slip, which the paper's model cannot render);
+//                a viscous grating (seed 001 eq. 2) in place of Coulomb friction
+//   vibration  the touched part's, while powered
+//   total      scaled down to the device's maximum force
 // The touched face is the one whose triangle first constrained the proxy this tick.
+// A face runs only the effects it compiled into (SurfaceTable::effects).
 //
-// Frames and units: world frame, SI (m, m/s, N, N/m). Render() is servo-tick safe: no
-// allocation, no lock, no I/O. Non-finite device input yields zero force and the
+// Frames and units: world frame, SI (m, m/s, N, N/m, s). Render() is servo-tick safe:
+// no allocation, no lock, no I/O. Non-finite device input yields zero force and the
 // kInputFault flag; it never reaches the proxy.
 #pragma once
 
@@ -26,13 +33,14 @@
 namespace hapticad {
 
 struct RenderLimits {
-  double max_force_n = 3.3;              // > 0
+  double max_force_n = 3.3;              // > 0; also the full range of viscous textures
   double max_stiffness_n_per_m = 400.0;  // > 0
 };
 
 struct RenderInput {
   Vec3 position_w = Vec3::Zero();  // device tip, m
   Vec3 velocity_w = Vec3::Zero();  // device tip, m/s (filtered by the device layer)
+  double time_s = 0.0;             // session clock, for vibrations
 };
 
 enum RenderFlags : std::uint32_t {
@@ -40,6 +48,7 @@ enum RenderFlags : std::uint32_t {
   kForceClamped = 1u << 1,
   kStiffnessClamped = 1u << 2,
   kInputFault = 1u << 3,
+  kSticking = 1u << 4,  // friction cone: the proxy is stuck to its anchor
 };
 
 struct RenderOutput {
@@ -47,6 +56,9 @@ struct RenderOutput {
   Vec3 proxy_w = Vec3::Zero();      // m
   double normal_force_n = 0.0;      // component of force_w along the contact normal
   double tangential_force_n = 0.0;  // magnitude of the rest
+  double friction_force_n = 0.0;    // magnitude of the friction (or cone) part, before clamping
+  double texture_force_n = 0.0;     // magnitude of the viscous grating part, before clamping
+  double vibration_force_n = 0.0;   // signed vibration along its axis, before clamping
   std::int32_t cad_face = -1;       // touched CAD face, -1 when free
   std::uint32_t flags = 0;          // RenderFlags
 };
@@ -66,11 +78,21 @@ class ForceRenderer {
   const RenderLimits& limits() const { return limits_; }
 
  private:
+  // Friction cone: returns the point the spring pulls toward (the anchor while sticking).
+  Vec3 ApplyFrictionCone(const SurfaceProperties& surface, double friction_scale,
+                         const Vec3& normal, double depth_m, const StripeFrame& stripe,
+                         RenderOutput* out);
+
   std::shared_ptr<const HapticScene> scene_;
   std::shared_ptr<const SurfaceTable> surfaces_;
   RenderLimits limits_;
   GodObjectProxy proxy_;
   bool started_ = false;
+  // friction cone state, local frame
+  bool anchored_ = false;
+  bool sticking_ = false;
+  std::int32_t anchor_face_ = -1;
+  Vec3 anchor_l_ = Vec3::Zero();
 };
 
 }  // namespace hapticad

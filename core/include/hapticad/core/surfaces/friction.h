@@ -12,6 +12,13 @@
 // of mu_s - mu_d at eps; the default w = eps keeps it continuous. With mu_s == mu_d the
 // transition is flat and the model is the one the paper draws.
 //
+// Stribeck option (stribeck_speed_mps = v_s > 0): above eps the decay is exponential,
+//   mu_d + (mu_s - mu_d) exp(-(s - eps) / v_s),
+// continuous at eps and approaching mu_d without reaching it (w is then unused).
+//
+// The paper's 1-D model may take different parameters for positive and negative
+// velocity along a direction: see AnisotropicFriction (anisotropy.h).
+//
 // Because mu_eq is linear in the band, f_t = -(mu_s / eps) f_n v there: the unit
 // vector v_hat is never formed from a tiny |v|, so v = 0, 1e-300 or a denormal give a
 // finite force. All functions are pure and safe on the servo tick.
@@ -26,6 +33,7 @@ struct FrictionParams {
   double dynamic_coefficient = 0.4;     // mu_d, dimensionless, >= 0
   double stick_speed_mps = 0.002;       // eps, m/s, > 0
   double transition_speed_mps = 0.002;  // w, m/s, >= 0
+  double stribeck_speed_mps = 0.0;      // v_s, m/s, >= 0; 0 = smoothstep transition
 };
 
 // mu_eq(s) for a sliding speed s >= 0 (m/s). Negative or NaN s returns 0.

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "hapticad/core/surfaces/viscous_texture.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace hapticad {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}  // namespace
+
+double ViscousTextureLevel(const ViscousTextureParams& p, double x, double speed) {
+  if (!std::isfinite(x) || !std::isfinite(speed)) return 0.0;
+  const double v = speed / kViscousSpeedUnitMps;
+  const double alpha = p.alpha_h + v * p.alpha_vis;
+  const double phase = 2.0 * kPi * std::fmod(x, p.period_m) / p.period_m;
+  double harmonics = 0.0;
+  for (int i = 1; i <= kViscousHarmonics; ++i) {
+    harmonics += std::pow(static_cast<double>(i), -alpha) * std::sin(i * phase);
+  }
+  return p.f_dc + v * p.f_vis + (p.beta_h + v * p.beta_vis) * harmonics;
+}
+
+ViscousTextureParams PaperPreset(int dc, int vis) {
+  if (dc < 0 || dc > 2 || vis < 0 || vis > 2)
+    throw std::out_of_range("paper preset index outside 0..2");
+  ViscousTextureParams p;
+  p.f_dc = kPaperDcLevels[dc];
+  p.f_vis = kPaperViscosities[vis];
+  return p;
+}
+
+Vec3 CalcViscousTextureForce(const ViscousTextureParams& params, double full_range_n, double x_m,
+                             const Vec3& v_t, double stick_speed_mps) {
+  const double s = v_t.norm();
+  if (!std::isfinite(s) || !(s > 0.0)) return Vec3::Zero();
+  const double level = std::clamp(ViscousTextureLevel(params, x_m, s), 0.0, 1.0);
+  // magnitude level * range, ramped over the static band; divide by max(s, eps) once
+  const double per_speed = level * full_range_n / std::max(s, stick_speed_mps);
+  return -per_speed * v_t;
+}
+
+}  // namespace hapticad

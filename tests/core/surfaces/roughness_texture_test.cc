@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "hapticad/core/surfaces/roughness_texture.h"
+
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+namespace hapticad {
+namespace {
+
+RoughnessGrid Grid(int category) {
+  SurfaceFrame frame;
+  frame.origin_w = Vec3(0.1, 0.2, 0.3);
+  return MakeRoughnessGrid(category, frame);
+}
+
+TEST(RoughnessGrid, SpacingIsTheTable2BallSize) {
+  const double expected_mm[] = {0.1, 0.3, 0.6, 0.9, 1.2, 1.5, 3.0};
+  for (int c = 1; c <= 7; ++c) {
+    const RoughnessGrid g = Grid(c);
+    EXPECT_DOUBLE_EQ(g.spacing_m, expected_mm[c - 1] * 1e-3);
+    EXPECT_DOUBLE_EQ(g.amplitude_m, 0.05 * g.spacing_m);
+  }
+}
+
+TEST(RoughnessGrid, BallsOnTheNodesFlatBetween) {
+  const RoughnessGrid g = Grid(6);  // 1.5 mm, 75 um
+  const Vec3 o = g.frame.origin_w;
+  const RoughnessSample node = SampleRoughness(g, o + Vec3(3 * 1.5e-3, -2 * 1.5e-3, 0));
+  EXPECT_NEAR(node.height_m, 75e-6, 1e-15);
+  EXPECT_NEAR(node.gradient_w.norm(), 0.0, 1e-12);
+  EXPECT_NEAR(node.friction_scale, 1.15, 1e-12);
+  const RoughnessSample between = SampleRoughness(g, o + Vec3(0.75e-3, 0.3e-3, 0));
+  EXPECT_NEAR(between.height_m, 0.0, 1e-18);
+  EXPECT_NEAR(between.friction_scale, 0.85, 1e-12);
+  // halfway along x on a node row: h = A/2, slope dh/dx = -A pi / g (hand computed)
+  const RoughnessSample half = SampleRoughness(g, o + Vec3(0.375e-3, 0, 0));
+  EXPECT_NEAR(half.height_m, 37.5e-6, 1e-15);
+  EXPECT_NEAR(half.gradient_w.x(), -75e-6 * 3.14159265358979323846 / 1.5e-3, 1e-12);
+}
+
+TEST(RoughnessGrid, GradientMatchesFiniteDifferences) {
+  const RoughnessGrid g = Grid(4);
+  for (double x = 0.0; x < 2e-3; x += 1.7e-4) {
+    const Vec3 p = g.frame.origin_w + Vec3(x, 0.31 * x + 1e-4, 0);
+    const double h = 1e-9;
+    const double dx = (SampleRoughness(g, p + Vec3(h, 0, 0)).height_m -
+                       SampleRoughness(g, p - Vec3(h, 0, 0)).height_m) /
+                      (2 * h);
+    const double dy = (SampleRoughness(g, p + Vec3(0, h, 0)).height_m -
+                       SampleRoughness(g, p - Vec3(0, h, 0)).height_m) /
+                      (2 * h);
+    const Vec3 grad = SampleRoughness(g, p).gradient_w;
+    EXPECT_NEAR(grad.x(), dx, 1e-6);
+    EXPECT_NEAR(grad.y(), dy, 1e-6);
+  }
+}
+
+TEST(RoughnessGrid, IsPeriodicFarFromTheFrameOrigin) {
+  const RoughnessGrid g = Grid(3);
+  const Vec3 near = g.frame.origin_w + Vec3(1.23e-4, 4.5e-5, 0);
+  const Vec3 far = near + Vec3(1000 * 0.6e-3, -2000 * 0.6e-3, 0);
+  EXPECT_NEAR(SampleRoughness(g, near).height_m, SampleRoughness(g, far).height_m, 1e-15);
+}
+
+TEST(RoughnessGrid, NonFinitePointsAreFlat) {
+  const RoughnessSample s =
+      SampleRoughness(Grid(2), Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0));
+  EXPECT_EQ(s.height_m, 0.0);
+  EXPECT_EQ(s.gradient_w, Vec3::Zero());
+  EXPECT_EQ(s.friction_scale, 1.0);
+}
+
+}  // namespace
+}  // namespace hapticad
