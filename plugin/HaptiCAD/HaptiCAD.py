@@ -12,3 +12,4 @@ from hapticad.surface_object import (  # noqa: F401
     reference_pairs,
     surfaces_of,
 )
+from hapticad.vibration_object import is_haptic_vibration, make_vibration, vibrations_of  # noqa: F401

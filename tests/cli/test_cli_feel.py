@@ -38,7 +38,8 @@ class FeelCommandTest(unittest.TestCase):
         box.Length, box.Width, box.Height = 80, 40, 20
         doc.recompute()
         HaptiCAD.make_surface(doc, [(box, "Face6")], material="PMMA", static_friction=0.6,
-                              dynamic_friction=MU_D, stiffness_n_per_mm=K_N_PER_MM)
+                              dynamic_friction=MU_D, stiffness_n_per_mm=K_N_PER_MM,
+                              FeelRoughness=False)
         doc.saveAs(cls.doc_path)
         App.closeDocument(doc.Name)
 

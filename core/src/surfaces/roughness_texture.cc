@@ -35,11 +35,11 @@ RoughnessSample SampleRoughness(const RoughnessGrid& grid, const Vec3& point_w) 
   const double by = 0.5 * (1.0 + cy);
   const double a = grid.amplitude_m;
   RoughnessSample s;
-  s.height_m = a * bx * by;
+  s.height_m = a * (bx * by - 0.25);
   const double dhdx = -0.5 * a * k * sx * by;
   const double dhdy = -0.5 * a * k * sy * bx;
   s.gradient_w = dhdx * grid.frame.e1_w + dhdy * grid.frame.e2_w;
-  s.friction_scale = 1.0 + grid.friction_modulation * (2.0 * bx * by - 1.0);
+  s.friction_scale = 1.0 + grid.friction_modulation * (bx * by - 0.25) * (4.0 / 3.0);
   return s;
 }
 

@@ -4,6 +4,7 @@ exit status 2 (bad input) or 1 (failure)."""
 import argparse
 import json
 import os
+import signal
 import sys
 
 from .freecad_env import ensure_freecad
@@ -56,6 +57,46 @@ def cmd_demo(args):
     return result
 
 
+def cmd_materials(args):
+    from . import materials
+
+    if args.export_fcmat and not os.path.isdir(args.export_fcmat):
+        raise ValueError(f"{args.export_fcmat}: no such folder")
+    database = materials.load_database(include_user=not args.shipped_only)
+    for error in database.errors:
+        print(f"hapticad materials: rejected {error}", file=sys.stderr)
+    if args.export_fcmat:
+        for material in database:
+            safe = "".join(c if c.isalnum() or c in "-_" else "-" for c in material.name)
+            materials.write_fcmat(material, os.path.join(args.export_fcmat, f"HaptiCAD-{safe}.FCMat"))
+    rows = [m.as_dict() for m in database]
+    if args.json:
+        return rows
+    for row in rows:
+        print(f"{row['name']:<16} mu_s {row['mu_static']:<5} mu_d {row['mu_dynamic']:<5} "
+              f"range {row['mu_range'][0]}-{row['mu_range'][1]:<5} E {row['youngs_modulus_gpa']:g} GPa  "
+              f"k {row['stiffness_n_per_mm']} N/mm")
+    return None
+
+
+def cmd_roughness_table(args):
+    from . import _core
+
+    rows = [{
+        "category": r.category,
+        "ra_min_um": r.ra_min_um,
+        "ra_max_um": r.ra_max_um,
+        "n_grades": list(r.n_grades),
+        "grid_size_mm": r.grid_size_mm,
+    } for r in _core.roughness_table()]
+    if args.json:
+        return rows
+    for r in rows:
+        ra = f"{r['ra_min_um'] if r['ra_min_um'] is not None else ''}~{r['ra_max_um'] if r['ra_max_um'] is not None else ''}"
+        print(f"{r['category']}  Ra {ra:<10} um  {', '.join(r['n_grades']) or 'Unclassified':<10}  grid {r['grid_size_mm']} mm")
+    return None
+
+
 def build_parser():
     parser = argparse.ArgumentParser(prog="hapticad", description="Feel CAD parts: HaptiCAD's command line")
     sub = parser.add_subparsers(dest="command", required=True)
@@ -70,6 +111,16 @@ def build_parser():
     feel.add_argument("--out", required=True, metavar="DIR", help="folder for trace.csv and trace.png")
     feel.set_defaults(run=cmd_feel)
 
+    mats = sub.add_parser("materials", help="list the haptic materials (shipped and the user's)")
+    mats.add_argument("--json", action="store_true", help="print JSON")
+    mats.add_argument("--shipped-only", action="store_true", help="ignore the user's own materials")
+    mats.add_argument("--export-fcmat", metavar="DIR", help="also write each as a FreeCAD .FCMat card into DIR")
+    mats.set_defaults(run=cmd_materials)
+
+    rough = sub.add_parser("roughness-table", help="the seven roughness categories (seed 000, Table 2)")
+    rough.add_argument("--json", action="store_true", help="print JSON")
+    rough.set_defaults(run=cmd_roughness_table)
+
     demo = sub.add_parser("demo", help="open the example toothbrush and feel it")
     demo.add_argument("--headless", action="store_true", help="stroke every tagged face, even with a display")
     demo.add_argument("--out", default="hapticad-demo", metavar="DIR", help="output folder (hapticad-demo)")
@@ -78,6 +129,8 @@ def build_parser():
 
 
 def main(argv=None):
+    # a closed pipe (`hapticad materials | head`) ends the program quietly
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)
     args = build_parser().parse_args(argv)
     try:
         result = args.run(args)
@@ -88,8 +141,9 @@ def main(argv=None):
     except RuntimeError as exc:
         print(f"hapticad {args.command}: {exc}", file=sys.stderr)
         return 1
-    json.dump(result, sys.stdout, indent=2)
-    sys.stdout.write("\n")
+    if result is not None:
+        json.dump(result, sys.stdout, indent=2)
+        sys.stdout.write("\n")
     return 0
 
 

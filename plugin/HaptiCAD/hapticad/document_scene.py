@@ -15,7 +15,9 @@ import FreeCAD as App
 import MeshPart
 
 from . import _core
+from .surface_compile import compile_surface, compile_vibration
 from .surface_object import reference_pairs, surfaces_of
+from .vibration_object import vibrations_of
 
 MM = 1e-3  # metres per FreeCAD length unit
 
@@ -83,22 +85,13 @@ def tessellate(shape, settings):
     return vertices, triangles, face_of
 
 
-def surface_properties_of(surface):
-    """_core.SurfaceProperties of a HapticSurface object (N/mm -> N/m)."""
-    props = _core.SurfaceProperties()
-    friction = props.friction
-    friction.static_coefficient = surface.StaticFriction
-    friction.dynamic_coefficient = surface.DynamicFriction
-    props.friction = friction
-    props.stiffness_n_per_m = surface.Stiffness / MM
-    return props
-
-
 def build_document_scene(doc, settings=Tessellation()):
-    """The haptic scene of every HapticSurface in ``doc``. Raises ValueError when there
-    is nothing to feel or a face is tagged by two surfaces."""
+    """The haptic scene of every HapticSurface and HapticVibration in ``doc``. Raises
+    ValueError when there is nothing to feel, a face is tagged by two surfaces, or a
+    surface's values cannot be compiled (the message names the surface)."""
     surfaces = surfaces_of(doc)
-    if not surfaces:
+    vibrating = [v for v in vibrations_of(doc) if v.Part is not None]
+    if not surfaces and not vibrating:
         raise ValueError(f"document {doc.Label} has no HapticSurface: tag faces first")
     tagged = {}  # "Object.FaceN" -> surface
     objects = []
@@ -110,6 +103,9 @@ def build_document_scene(doc, settings=Tessellation()):
             tagged[name] = surface
             if obj not in objects:
                 objects.append(obj)
+    for vibration in vibrating:
+        if vibration.Part not in objects:
+            objects.append(vibration.Part)
 
     all_vertices, all_triangles, all_faces, face_names = [], [], [], []
     shapes = {}
@@ -131,15 +127,21 @@ def build_document_scene(doc, settings=Tessellation()):
         face_names.extend(f"{obj.Name}.Face{i + 1}" for i in range(len(shape.Faces)))
         offset += len(vertices)
 
-    table = [_core.UNTAGGED_SURFACE] * len(face_names)
+    table = [_core.SurfaceProperties() for _ in face_names]
     for name, surface in tagged.items():
-        table[face_names.index(name)] = surface_properties_of(surface)
+        obj_name, sub = name.split(".", 1)
+        table[face_names.index(name)] = compile_surface(surface, shapes[obj_name].getElement(sub))
+    for index, vibration in enumerate(vibrating):
+        prefix = vibration.Part.Name + "."
+        for face_id, name in enumerate(face_names):
+            if name.startswith(prefix):
+                table[face_id].vibration = index
     scene = _core.HapticScene.build(
         np.vstack(all_vertices), np.vstack(all_triangles), np.concatenate(all_faces), MM
     )
     return DocumentScene(
         scene=scene,
-        surfaces=_core.SurfaceTable(table),
+        surfaces=_core.SurfaceTable(table, [compile_vibration(v) for v in vibrating]),
         face_names=face_names,
         face_surface={name: s.Name for name, s in tagged.items()},
         face_material={name: s.Material for name, s in tagged.items()},

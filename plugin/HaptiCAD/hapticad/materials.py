@@ -1,17 +1,27 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""The haptic material database (resources/materials/materials.csv).
+"""The haptic material database.
 
-One material per CSV row: friction against a dry fingertip (mu_s, mu_d and the
-plausible range of mu_d), Young's modulus, density, the contact stiffness to render,
-and the source of each value. A bad row is rejected with ``file:line: problem`` and
-every other row still loads. No FreeCAD import: usable headless and from the CLI.
+Shipped: resources/materials/materials.csv, one material per row: friction against a
+dry fingertip (mu_s, mu_d and the plausible range of mu_d), Young's modulus, density,
+the contact stiffness to render, and the source of each value.
+
+User additions and overrides live in the user's FreeCAD folder, never in the
+installation: FreeCAD 0.20 material cards (.FCMat) in <UserAppData>/Material, beside
+FreeCAD's own cards, carrying the haptic values under keys prefixed ``HaptiCAD_``
+(cards without them are FreeCAD's and are left alone), and an optional
+<UserAppData>/HaptiCAD/materials.csv. Later sources override earlier ones by name.
+
+A bad row or card is rejected with ``file:line: problem`` and every other material
+still loads. No FreeCAD import: usable headless and from the CLI.
 """
 import csv
+import glob
 import math
 import os
+import re
 from dataclasses import dataclass
 
-from . import MATERIALS_FILE
+from . import MATERIALS_FILE, __version__
 
 COLUMNS = (
     "name",
@@ -159,12 +169,151 @@ def _parse_row(row, origin):
     )
 
 
-def load_database(extra_files=()):
-    """The shipped database, then each extra file (later files override by name)."""
+FCMAT_PREFIX = "HaptiCAD_"
+# card key -> (Material field, unit parser)
+FCMAT_KEYS = {
+    "HaptiCAD_StaticFriction": "static_friction",
+    "HaptiCAD_DynamicFriction": "dynamic_friction",
+    "HaptiCAD_FrictionMin": "friction_min",
+    "HaptiCAD_FrictionMax": "friction_max",
+    "HaptiCAD_ContactStiffness": "stiffness_n_per_mm",
+    "HaptiCAD_FrictionSource": "friction_source",
+    "HaptiCAD_BulkSource": "bulk_source",
+}
+_QUANTITY = re.compile(r"^\s*([-+0-9.eEinfatINFATN]+)\s*(.*?)\s*$")
+# unit -> how many of it make one of ours (dividing keeps 2300 MPa exactly 2.3 GPa)
+_PRESSURE_IN_GPA = {"": 1e9, "pa": 1e9, "kpa": 1e6, "mpa": 1e3, "gpa": 1.0}
+_DENSITY_IN_KG_M3 = {"": 1.0, "kg/m^3": 1.0, "kg/m3": 1.0, "g/cm^3": 1e-3, "g/cm3": 1e-3}
+_STIFFNESS_IN_N_PER_MM = {"": 1.0, "n/mm": 1.0, "n/m": 1e3, "kn/m": 1.0}
+
+
+def _quantity(text, units, key):
+    """Number and unit, converted by the `units` table; ValueError names the key."""
+    match = _QUANTITY.match(text)
+    if not match:
+        raise ValueError(f"{key} = {text!r} is not a number")
+    try:
+        number = float(match.group(1))
+    except ValueError:
+        raise ValueError(f"{key} = {text!r} is not a number") from None
+    unit = match.group(2).replace(" ", "").lower()
+    if unit not in units:
+        raise ValueError(f"{key} = {text!r}: unknown unit {match.group(2)!r}")
+    return number / units[unit]
+
+
+def read_fcmat(path):
+    """(Material or None, errors) of a FreeCAD material card. None, without errors, for a
+    card that carries no HaptiCAD values (one of FreeCAD's own)."""
+    try:
+        with open(path, encoding="utf-8") as handle:
+            lines = list(enumerate(handle, start=1))
+    except (OSError, UnicodeDecodeError) as exc:
+        return None, [f"{path}: cannot read: {exc}"]
+    values, where = {}, {}
+    for number, raw in lines:
+        line = raw.strip()
+        if not line or line[0] in ";#[":
+            continue
+        if "=" not in line:
+            return None, [f"{path}:{number}: expected 'key = value', got {line!r}"]
+        key, value = (part.strip() for part in line.split("=", 1))
+        values[key], where[key] = value, number
+    if not any(k.startswith(FCMAT_PREFIX) for k in values):
+        return None, []
+    first = min(where[k] for k in values if k.startswith(FCMAT_PREFIX))
+    missing = [k for k in ("Name", *FCMAT_KEYS) if k not in values]
+    if missing:
+        return None, [f"{path}:{first}: the card lacks {', '.join(missing)}"]
+    row = {"name": values["Name"], "mu_source": values["HaptiCAD_FrictionSource"],
+           "bulk_source": values["HaptiCAD_BulkSource"]}
+    try:
+        for key, column in (("HaptiCAD_StaticFriction", "mu_static"), ("HaptiCAD_DynamicFriction", "mu_dynamic"),
+                            ("HaptiCAD_FrictionMin", "mu_min"), ("HaptiCAD_FrictionMax", "mu_max")):
+            row[column] = values[key]
+        row["stiffness_n_per_mm"] = str(_quantity(values["HaptiCAD_ContactStiffness"], _STIFFNESS_IN_N_PER_MM,
+                                                  "HaptiCAD_ContactStiffness"))
+        row["youngs_modulus_gpa"] = str(_quantity(values.get("YoungsModulus", ""), _PRESSURE_IN_GPA,
+                                                  "YoungsModulus"))
+        row["density_kg_m3"] = str(_quantity(values.get("Density", ""), _DENSITY_IN_KG_M3, "Density"))
+    except ValueError as exc:
+        key = str(exc).split(" ", 1)[0]
+        return None, [f"{path}:{where.get(key, first)}: {exc}"]
+    try:
+        return _parse_row(row, f"{path}:{first}"), []
+    except ValueError as exc:
+        column = str(exc).split(" ", 1)[0]
+        card_key = {"mu_static": "HaptiCAD_StaticFriction", "mu_dynamic": "HaptiCAD_DynamicFriction",
+                    "mu_min": "HaptiCAD_FrictionMin", "mu_max": "HaptiCAD_FrictionMax",
+                    "youngs_modulus_gpa": "YoungsModulus", "density_kg_m3": "Density",
+                    "stiffness_n_per_mm": "HaptiCAD_ContactStiffness"}.get(column, "Name")
+        return None, [f"{path}:{where.get(card_key, first)}: {exc}"]
+
+
+def write_fcmat(material, path):
+    """Writes a FreeCAD 0.20 material card FreeCAD's own reader and editor accept."""
+    card = os.path.splitext(os.path.basename(path))[0]
+    lines = [
+        f"; {card}",
+        "; HaptiCAD haptic material (GPL-3.0-or-later)",
+        "; information about the content of such cards can be found on the wiki:",
+        "; https://www.freecadweb.org/wiki/Material",
+        f"; file written by HaptiCAD {__version__}",
+        "",
+        "[General]",
+        f"Name = {material.name}",
+        f"Description = Haptic material: friction against a dry fingertip ({material.friction_source})",
+        "",
+        "[Mechanical]",
+        f"Density = {material.density_kg_m3:g} kg/m^3",
+        f"YoungsModulus = {material.youngs_modulus_gpa * 1000:g} MPa",
+        "",
+        "[HaptiCAD]",
+        f"HaptiCAD_StaticFriction = {material.static_friction:g}",
+        f"HaptiCAD_DynamicFriction = {material.dynamic_friction:g}",
+        f"HaptiCAD_FrictionMin = {material.friction_min:g}",
+        f"HaptiCAD_FrictionMax = {material.friction_max:g}",
+        f"HaptiCAD_ContactStiffness = {material.stiffness_n_per_mm:g} N/mm",
+        f"HaptiCAD_FrictionSource = {material.friction_source}",
+        f"HaptiCAD_BulkSource = {material.bulk_source}",
+        "",
+    ]
+    with open(path, "w", encoding="utf-8") as handle:
+        handle.write("\n".join(lines))
+
+
+def user_data_dir():
+    """FreeCAD's user data folder (<UserAppData>), from FreeCAD when it is loaded."""
+    try:
+        import FreeCAD
+
+        return FreeCAD.getUserAppDataDir()
+    except ImportError:
+        base = os.environ.get("XDG_DATA_HOME") or os.path.join(os.path.expanduser("~"), ".local", "share")
+        return os.path.join(base, "FreeCAD")
+
+
+def user_sources(data_dir=None):
+    """The user's material files, in the order they apply: CSV, then cards by name."""
+    data_dir = data_dir or user_data_dir()
+    csv_path = os.path.join(data_dir, "HaptiCAD", "materials.csv")
+    cards = sorted(glob.glob(os.path.join(data_dir, "Material", "*.FCMat")))
+    return ([csv_path] if os.path.exists(csv_path) else []) + cards
+
+
+def load_database(extra_files=(), include_user=True, data_dir=None):
+    """The shipped database, then the user's files, then each extra file; a later
+    source overrides an earlier one by name."""
     database = MaterialDatabase()
     database.load_csv(MATERIALS_FILE)
-    for path in extra_files:
-        if os.path.exists(path):
+    sources = (user_sources(data_dir) if include_user else []) + list(extra_files)
+    for path in sources:
+        if path.lower().endswith(".fcmat"):
+            material, errors = read_fcmat(path)
+            database.errors.extend(errors)
+            if material is not None:
+                database.add(material)
+        else:
             database.load_csv(path)
     return database
 
@@ -173,8 +322,15 @@ _DEFAULT = None
 
 
 def default_database():
-    """The shipped database, loaded once."""
+    """The shipped database with the user's additions, loaded once per session."""
     global _DEFAULT
     if _DEFAULT is None:
         _DEFAULT = load_database()
     return _DEFAULT
+
+
+def reload_default_database():
+    """Reads the files again (after the user added a card)."""
+    global _DEFAULT
+    _DEFAULT = None
+    return default_database()

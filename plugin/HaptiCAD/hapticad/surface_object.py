@@ -3,41 +3,103 @@
 
 A HapticSurface is an ``App::FeaturePython`` whose ``References`` (an
 ``App::PropertyLinkSubListGlobal``) name the faces it applies to, and whose other
-properties say how those faces feel. Units follow FreeCAD's: lengths in mm, the
-contact stiffness in N/mm. Created with :func:`make_surface`; App-only (no GUI
-import), so it works in ``freecadcmd`` and from the ``hapticad`` CLI.
+properties say how those faces feel (seed 000 §2, seed 001 eq. 2). Units follow
+FreeCAD's: lengths in mm, speeds in mm/s, the contact stiffness in N/mm; texture
+parameters in the paper's normalised units. Created with :func:`make_surface`;
+App-only (no GUI import), so it works in ``freecadcmd`` and from the ``hapticad`` CLI.
 """
 import FreeCAD as App
 
-from . import materials
+from . import materials, textures
 
 TYPE = "HaptiCAD::HapticSurface"
-SCHEMA_VERSION = 1
+SCHEMA_VERSION = 2
 PATTERNS = ["None", "Linear", "Circular", "Curve"]
+FRICTION_MODELS = ["Velocity (seed 000)", "Friction cone (stick-slip)"]
+INTERPOLATIONS = ["Linear (seed 000 eq. 3)", "Friction ellipse"]
+CURVE_EVALUATIONS = ["Lookup table", "Exact"]
 ROUGHNESS_MIN, ROUGHNESS_MAX = 1, 7
 # keeps a typed-in zero from making a face infinitely soft; the device caps the top
 STIFFNESS_MIN_N_PER_MM = 1e-3
 STIFFNESS_MAX_N_PER_MM = 1e3
 FRICTION_MAX = 1e3
+# the lookup-table size BENCHMARKS.md justifies: below 0.1 degree on smooth sketch curves
+DEFAULT_CURVE_TABLE_SIZE = 256
 
-
-def _add(obj, kind, name, group, doc):
-    if name not in obj.PropertiesList:
-        obj.addProperty(kind, name, group, doc)
-
-
-def _apply_constraints(obj):
-    # constraint ranges are not saved with the document: set them on creation and on
-    # every restore
-    obj.RoughnessCategory = (obj.RoughnessCategory or 3, ROUGHNESS_MIN, ROUGHNESS_MAX, 1)
-    obj.StaticFriction = (obj.StaticFriction, 0.0, FRICTION_MAX, 0.05)
-    obj.DynamicFriction = (obj.DynamicFriction, 0.0, FRICTION_MAX, 0.05)
-    obj.Stiffness = (
-        max(obj.Stiffness, STIFFNESS_MIN_N_PER_MM),
-        STIFFNESS_MIN_N_PER_MM,
-        STIFFNESS_MAX_N_PER_MM,
-        0.05,
-    )
+# name, type, group, tooltip, default, constraint (min, max, step) for numbers
+PROPERTIES = [
+    ("References", "App::PropertyLinkSubListGlobal", "Surface", "The faces this surface applies to", None, None),
+    ("Material", "App::PropertyEnumeration", "Surface",
+     "Material from the haptic database: sets the friction and stiffness below", None, None),
+    ("RoughnessCategory", "App::PropertyIntegerConstraint", "Roughness",
+     "Surface category 1-7 of seed 000 Table 2 (Ra range, ISO N-grades, grid size)", 3, (1, 7, 1)),
+    ("FeelRoughness", "App::PropertyBool", "Roughness",
+     "Render the category as a grid texture whose spacing is its ball size", True, None),
+    ("RoughnessHeight", "App::PropertyFloatConstraint", "Roughness",
+     "Height of the grid's balls as a share of their spacing", 0.05, (0.0, 0.5, 0.01)),
+    ("RoughnessFrictionModulation", "App::PropertyFloatConstraint", "Roughness",
+     "How much friction rises on the balls and falls between them (0-1)", 0.15, (0.0, 1.0, 0.05)),
+    ("StaticFriction", "App::PropertyFloatConstraint", "Friction",
+     "Static friction coefficient mu_s against a dry fingertip (along the stripes with a pattern)",
+     0.6, (0.0, FRICTION_MAX, 0.05)),
+    ("DynamicFriction", "App::PropertyFloatConstraint", "Friction",
+     "Dynamic friction coefficient mu_d against a dry fingertip (along the stripes with a pattern)",
+     0.5, (0.0, FRICTION_MAX, 0.05)),
+    ("Stiffness", "App::PropertyFloatConstraint", "Friction",
+     "Contact stiffness to render, N/mm (the device caps it at its own limit)",
+     0.8, (STIFFNESS_MIN_N_PER_MM, STIFFNESS_MAX_N_PER_MM, 0.05)),
+    ("FrictionModel", "App::PropertyEnumeration", "Friction",
+     "Velocity model of seed 000 (smooth, no stick-slip) or a friction cone on the proxy (stick-slip)",
+     None, None),
+    ("StickSpeed", "App::PropertyFloatConstraint", "Friction",
+     "Below this sliding speed (mm/s) contact counts as static (Baraff's epsilon)", 2.0, (1e-3, 1e3, 0.5)),
+    ("TransitionSpeed", "App::PropertyFloatConstraint", "Friction",
+     "Width (mm/s) of the smooth step from static to dynamic friction", 2.0, (0.0, 1e3, 0.5)),
+    ("StribeckSpeed", "App::PropertyFloatConstraint", "Friction",
+     "Stribeck decay speed (mm/s) toward dynamic friction; 0 uses the smooth step", 0.0, (0.0, 1e3, 0.5)),
+    ("Pattern", "App::PropertyEnumeration", "Pattern",
+     "Anisotropic friction pattern: None, Linear, Circular or Curve", None, None),
+    ("PatternAngle", "App::PropertyAngle", "Pattern",
+     "Stripe direction: from the face's u direction (at its centre), counter-clockwise about its normal",
+     0.0, None),
+    ("PatternCenter", "App::PropertyVectorDistance", "Pattern",
+     "Circular pattern: centre (mm, global coordinates)", None, None),
+    ("PatternAxis", "App::PropertyVector", "Pattern",
+     "Circular pattern: axis of the circles; zero uses the face's normal", None, None),
+    ("PatternBlendRadius", "App::PropertyFloatConstraint", "Pattern",
+     "Circular pattern: within this radius (mm) of the centre friction fades to isotropic",
+     1.0, (1e-3, 1e3, 0.5)),
+    ("PatternCurve", "App::PropertyLinkSubGlobal", "Pattern",
+     "Curve pattern: the sketch or edge whose parallel copies the stripes follow", None, None),
+    ("CurveEvaluation", "App::PropertyEnumeration", "Pattern",
+     "Curve pattern: the paper's lookup table, or the exact curve (slower)", None, None),
+    ("CurveTableSize", "App::PropertyIntegerConstraint", "Pattern",
+     "Curve pattern: entries of the lookup table", DEFAULT_CURVE_TABLE_SIZE, (2, 100000, 16)),
+    ("Interpolation", "App::PropertyEnumeration", "Pattern",
+     "How friction varies between along and across the stripes", None, None),
+    ("AcrossFriction", "App::PropertyFloatConstraint", "Pattern",
+     "Friction across the stripes as a multiple of friction along them (mu_n / mu_a)", 1.5, (0.0, 100.0, 0.1)),
+    ("BackwardFriction", "App::PropertyFloatConstraint", "Pattern",
+     "Friction against the stripe direction as a multiple of friction with it", 1.0, (0.0, 100.0, 0.1)),
+    ("Texture", "App::PropertyEnumeration", "Texture",
+     "Viscous grating of seed 001 (replaces Coulomb friction): None, a paper preset, or Custom", None, None),
+    ("TextureDC", "App::PropertyFloat", "Texture", "f_DC: DC friction level (1 = device's full range)", 0.5, None),
+    ("TextureViscosity", "App::PropertyFloat", "Texture", "f_vis: viscous level per 400 mm/s", 0.0, None),
+    ("TextureBeta", "App::PropertyFloat", "Texture", "beta_h: harmonic amplitude", 0.125, None),
+    ("TextureAlpha", "App::PropertyFloat", "Texture", "alpha_h: harmonic decay exponent", 2.5, None),
+    ("TextureBetaViscosity", "App::PropertyFloat", "Texture", "beta_vis: amplitude change per 400 mm/s", 0.0, None),
+    ("TextureAlphaViscosity", "App::PropertyFloat", "Texture", "alpha_vis: decay change per 400 mm/s", 0.0, None),
+    ("TexturePeriod", "App::PropertyFloatConstraint", "Texture", "Grating period lambda (mm)", 2.5, (1e-3, 1e3, 0.1)),
+]
+ENUMERATIONS = {
+    "Pattern": PATTERNS,
+    "FrictionModel": FRICTION_MODELS,
+    "Interpolation": INTERPOLATIONS,
+    "CurveEvaluation": CURVE_EVALUATIONS,
+    "Texture": textures.CHOICES,
+}
+TEXTURE_VALUES = ("TextureDC", "TextureViscosity", "TextureBeta", "TextureAlpha",
+                  "TextureBetaViscosity", "TextureAlphaViscosity")
 
 
 def _is_restoring(obj):
@@ -49,35 +111,28 @@ class HapticSurface:
 
     def __init__(self, obj):
         obj.Proxy = self
-        self.setup(obj)
+        self.setup(obj, new=True)
 
-    def setup(self, obj):
-        _add(obj, "App::PropertyString", "HaptiCADType", "Base", "Type tag of HaptiCAD objects")
+    def setup(self, obj, new=False):
+        if "HaptiCADType" not in obj.PropertiesList:
+            obj.addProperty("App::PropertyString", "HaptiCADType", "Base", "Type tag of HaptiCAD objects")
+            obj.setEditorMode("HaptiCADType", 2)  # hidden
         obj.HaptiCADType = TYPE
-        obj.setEditorMode("HaptiCADType", 2)  # hidden
-        _add(obj, "App::PropertyLinkSubListGlobal", "References", "Surface",
-             "The faces this surface applies to")
-        _add(obj, "App::PropertyEnumeration", "Material", "Surface",
-             "Material from the haptic database: sets the friction and stiffness below")
-        _add(obj, "App::PropertyIntegerConstraint", "RoughnessCategory", "Surface",
-             "Surface category 1-7 of seed 000 Table 2 (Ra range, ISO N-grades, grid size)")
-        _add(obj, "App::PropertyEnumeration", "Pattern", "Pattern",
-             "Anisotropic friction pattern: None, Linear, Circular or Curve")
-        _add(obj, "App::PropertyAngle", "PatternAngle", "Pattern",
-             "Linear pattern: stripe direction, measured in the face's frame")
-        _add(obj, "App::PropertyVectorDistance", "PatternCenter", "Pattern",
-             "Circular pattern: centre (mm, global coordinates)")
-        _add(obj, "App::PropertyFloatConstraint", "StaticFriction", "Friction",
-             "Static friction coefficient mu_s against a dry fingertip")
-        _add(obj, "App::PropertyFloatConstraint", "DynamicFriction", "Friction",
-             "Dynamic friction coefficient mu_d against a dry fingertip")
-        _add(obj, "App::PropertyFloatConstraint", "Stiffness", "Friction",
-             "Contact stiffness to render, N/mm (the device caps it at its own limit)")
-        if not obj.Pattern:
-            obj.Pattern = PATTERNS
-            obj.Pattern = "None"
+        for name, kind, group, tip, default, constraint in PROPERTIES:
+            added = name not in obj.PropertiesList
+            if added:
+                obj.addProperty(kind, name, group, tip)
+            if name in ENUMERATIONS:
+                current = getattr(obj, name) if not added else None
+                setattr(obj, name, ENUMERATIONS[name])
+                setattr(obj, name, current if current in ENUMERATIONS[name] else ENUMERATIONS[name][0])
+            elif constraint is not None:
+                # constraint ranges are not saved with the document: set on every restore
+                value = default if added else getattr(obj, name)
+                setattr(obj, name, (value, *constraint))
+            elif added and default is not None:
+                setattr(obj, name, default)
         self.refresh_material_list(obj)
-        _apply_constraints(obj)
 
     @staticmethod
     def refresh_material_list(obj):
@@ -91,13 +146,24 @@ class HapticSurface:
             obj.Material = current
 
     def onChanged(self, obj, prop):
-        if prop == "Material" and not _is_restoring(obj) and obj.Material:
-            database = materials.default_database()
-            if obj.Material in database:
-                material = database.get(obj.Material)
+        if _is_restoring(obj) or getattr(self, "_applying", False):
+            return
+        self._applying = True
+        try:
+            if prop == "Material" and obj.Material in materials.default_database():
+                material = materials.default_database().get(obj.Material)
                 obj.StaticFriction = material.static_friction
                 obj.DynamicFriction = material.dynamic_friction
                 obj.Stiffness = material.stiffness_n_per_mm
+            elif prop == "Texture" and obj.Texture in textures.PRESETS:
+                for name, value in zip(TEXTURE_VALUES, textures.PRESETS[obj.Texture]):
+                    setattr(obj, name, value)
+            elif prop in TEXTURE_VALUES and obj.Texture in textures.PRESETS:
+                # an edited preset is a custom texture
+                if tuple(getattr(obj, n) for n in TEXTURE_VALUES) != textures.PRESETS[obj.Texture]:
+                    obj.Texture = "Custom"
+        finally:
+            self._applying = False
 
     def onDocumentRestored(self, obj):
         self.setup(obj)
@@ -108,9 +174,9 @@ class HapticSurface:
         obj.purgeTouched()
 
     def execute(self, obj):
-        broken = [f"{o.Name}.{sub}" for o, sub in reference_pairs(obj) if not _has_subshape(o, sub)]
-        if broken:
-            App.Console.PrintWarning(f"{obj.Label}: face(s) no longer exist: {', '.join(broken)}\n")
+        problems = validate(obj)
+        if problems:
+            App.Console.PrintError(f"{obj.Label}: {'; '.join(problems)}\n")
 
     # FreeCAD 0.20 with Python 3.11 pickles proxies through both protocols
     def dumps(self):
@@ -124,6 +190,21 @@ class HapticSurface:
 
     def __setstate__(self, state):
         self.loads(state)
+
+
+def validate(obj):
+    """Problems with a surface's current values, as sentences (empty when fine)."""
+    problems = []
+    broken = [f"{o.Name}.{sub}" for o, sub in reference_pairs(obj) if not _has_subshape(o, sub)]
+    if broken:
+        problems.append(f"face(s) no longer exist: {', '.join(broken)}")
+    if obj.Pattern == "Curve" and obj.PatternCurve is None:
+        problems.append("the Curve pattern needs a sketch or edge in PatternCurve")
+    if obj.Texture != "None":
+        values = [getattr(obj, n) for n in TEXTURE_VALUES]
+        if any(v != v or abs(v) == float("inf") for v in values):
+            problems.append("texture parameters must be finite")
+    return problems
 
 
 def is_haptic_surface(obj):
@@ -178,15 +259,28 @@ def _normalise_references(doc, references):
     return [(obj, tuple(subs)) for obj, subs in grouped.items()]
 
 
+def _check_range(label, value, low, high):
+    if value is None:
+        return
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"make_surface: {label} = {value!r} is not a number") from None
+    if not (low <= number <= high):
+        raise ValueError(f"make_surface: {label} = {value} is outside {low}..{high}")
+
+
 def make_surface(doc, references, material="ABS", roughness_category=3, pattern="None",
                  pattern_angle_deg=0.0, pattern_center_mm=(0.0, 0.0, 0.0), static_friction=None,
-                 dynamic_friction=None, stiffness_n_per_mm=None, name="HapticSurface"):
+                 dynamic_friction=None, stiffness_n_per_mm=None, name="HapticSurface", **properties):
     """Creates a HapticSurface on the given faces and returns it.
 
     ``references`` is ``[(object_or_name, "FaceN"), ...]``. ``material`` names a row of
     the material database and sets friction and stiffness; ``static_friction``,
-    ``dynamic_friction`` and ``stiffness_n_per_mm`` override them. Raises ValueError
-    with a clear message on bad input, before anything is added to the document.
+    ``dynamic_friction`` and ``stiffness_n_per_mm`` override them. Any other property
+    can be given by its name, e.g. ``AcrossFriction=2.0, Texture="Custom"``. Raises
+    ValueError with a clear message on bad input, before anything is added to the
+    document.
     """
     links = _normalise_references(doc, references)
     database = materials.default_database()
@@ -196,13 +290,17 @@ def make_surface(doc, references, material="ABS", roughness_category=3, pattern=
         raise ValueError(f"make_surface: roughness_category must be an integer 1..7, got {roughness_category!r}")
     if pattern not in PATTERNS:
         raise ValueError(f"make_surface: pattern must be one of {PATTERNS}, got {pattern!r}")
-    for label, value, low, high in (
-        ("static_friction", static_friction, 0.0, FRICTION_MAX),
-        ("dynamic_friction", dynamic_friction, 0.0, FRICTION_MAX),
-        ("stiffness_n_per_mm", stiffness_n_per_mm, STIFFNESS_MIN_N_PER_MM, STIFFNESS_MAX_N_PER_MM),
-    ):
-        if value is not None and not (low <= float(value) <= high):
-            raise ValueError(f"make_surface: {label} = {value} is outside {low}..{high}")
+    _check_range("static_friction", static_friction, 0.0, FRICTION_MAX)
+    _check_range("dynamic_friction", dynamic_friction, 0.0, FRICTION_MAX)
+    _check_range("stiffness_n_per_mm", stiffness_n_per_mm, STIFFNESS_MIN_N_PER_MM, STIFFNESS_MAX_N_PER_MM)
+    known = {p[0]: p for p in PROPERTIES}
+    for key, value in properties.items():
+        if key not in known or key in ("References", "Material"):
+            raise ValueError(f"make_surface: unknown property {key!r}")
+        if key in ENUMERATIONS and value not in ENUMERATIONS[key]:
+            raise ValueError(f"make_surface: {key} must be one of {ENUMERATIONS[key]}, got {value!r}")
+        if known[key][5] is not None:
+            _check_range(key, value, known[key][5][0], known[key][5][1])
 
     obj = doc.addObject("App::FeaturePython", name)
     HapticSurface(obj)
@@ -218,12 +316,18 @@ def make_surface(doc, references, material="ABS", roughness_category=3, pattern=
         obj.DynamicFriction = float(dynamic_friction)
     if stiffness_n_per_mm is not None:
         obj.Stiffness = float(stiffness_n_per_mm)
+    # presets first, so explicit texture values given with them win
+    if "Texture" in properties:
+        obj.Texture = properties["Texture"]
+    for key, value in properties.items():
+        if key != "Texture":
+            setattr(obj, key, value)
     attach_view_provider(obj)
     return obj
 
 
 def attach_view_provider(obj):
-    """Gives a surface its view provider when the GUI is up and it has none yet."""
+    """Gives a HaptiCAD object its view provider when the GUI is up and it has none yet."""
     if not App.GuiUp or obj.ViewObject is None or obj.ViewObject.Proxy:
         return
     from .gui.view_provider_surface import ViewProviderHapticSurface

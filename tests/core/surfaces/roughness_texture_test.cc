@@ -28,15 +28,15 @@ TEST(RoughnessGrid, BallsOnTheNodesFlatBetween) {
   const RoughnessGrid g = Grid(6);  // 1.5 mm, 75 um
   const Vec3 o = g.frame.origin_w;
   const RoughnessSample node = SampleRoughness(g, o + Vec3(3 * 1.5e-3, -2 * 1.5e-3, 0));
-  EXPECT_NEAR(node.height_m, 75e-6, 1e-15);
+  EXPECT_NEAR(node.height_m, 0.75 * 75e-6, 1e-15);
   EXPECT_NEAR(node.gradient_w.norm(), 0.0, 1e-12);
   EXPECT_NEAR(node.friction_scale, 1.15, 1e-12);
   const RoughnessSample between = SampleRoughness(g, o + Vec3(0.75e-3, 0.3e-3, 0));
-  EXPECT_NEAR(between.height_m, 0.0, 1e-18);
-  EXPECT_NEAR(between.friction_scale, 0.85, 1e-12);
-  // halfway along x on a node row: h = A/2, slope dh/dx = -A pi / g (hand computed)
+  EXPECT_NEAR(between.height_m, -0.25 * 75e-6, 1e-18);
+  EXPECT_NEAR(between.friction_scale, 0.95, 1e-12);
+  // halfway along x on a node row: b = 1/2, slope dh/dx = -A pi / g (hand computed)
   const RoughnessSample half = SampleRoughness(g, o + Vec3(0.375e-3, 0, 0));
-  EXPECT_NEAR(half.height_m, 37.5e-6, 1e-15);
+  EXPECT_NEAR(half.height_m, 0.25 * 75e-6, 1e-15);
   EXPECT_NEAR(half.gradient_w.x(), -75e-6 * 3.14159265358979323846 / 1.5e-3, 1e-12);
 }
 
@@ -55,6 +55,21 @@ TEST(RoughnessGrid, GradientMatchesFiniteDifferences) {
     EXPECT_NEAR(grad.x(), dx, 1e-6);
     EXPECT_NEAR(grad.y(), dy, 1e-6);
   }
+}
+
+TEST(RoughnessGrid, HeightAndFrictionScaleAverageToZeroAndOneOverTheGrid) {
+  const RoughnessGrid g = Grid(5);
+  double height = 0.0, scale = 0.0;
+  const int n = 64;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const RoughnessSample s = SampleRoughness(g, g.frame.origin_w + Vec3(i, j, 0) * (g.spacing_m / n));
+      height += s.height_m / (n * n);
+      scale += s.friction_scale / (n * n);
+    }
+  }
+  EXPECT_NEAR(height, 0.0, 1e-18);
+  EXPECT_NEAR(scale, 1.0, 1e-14);
 }
 
 TEST(RoughnessGrid, IsPeriodicFarFromTheFrameOrigin) {

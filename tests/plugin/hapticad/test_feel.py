@@ -18,7 +18,8 @@ class FeelTest(unittest.TestCase):
         box = cls.doc.addObject("Part::Box", "Box")
         box.Length, box.Width, box.Height = 60, 40, 20
         cls.doc.recompute()
-        HaptiCAD.make_surface(cls.doc, [(box, "Face6")], material="Rubber", stiffness_n_per_mm=0.5)
+        HaptiCAD.make_surface(cls.doc, [(box, "Face6")], material="Rubber", stiffness_n_per_mm=0.5,
+                              FeelRoughness=False)
         cls.scene = build_document_scene(cls.doc)
 
     @classmethod

@@ -88,3 +88,93 @@ class BadFileTest(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class FcmatTest(unittest.TestCase):
+    """Haptic materials as FreeCAD 0.20 cards in the user's Material folder."""
+
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.addCleanup(self.dir.cleanup)
+        self.cards = os.path.join(self.dir.name, "Material")
+        os.makedirs(self.cards)
+
+    def test_cards_round_trip_and_freecad_reads_them(self):
+        import importFCMat  # FreeCAD's own reader
+
+        for material in materials.load_database(include_user=False):
+            path = os.path.join(self.cards, "card.FCMat")
+            materials.write_fcmat(material, path)
+            back, errors = materials.read_fcmat(path)
+            self.assertEqual(errors, [])
+            for field in ("name", "static_friction", "dynamic_friction", "friction_min", "friction_max",
+                          "stiffness_n_per_mm", "friction_source", "bulk_source"):
+                self.assertEqual(getattr(back, field), getattr(material, field), field)
+            self.assertAlmostEqual(back.youngs_modulus_gpa, material.youngs_modulus_gpa, places=12)
+            self.assertAlmostEqual(back.density_kg_m3, material.density_kg_m3, places=9)
+            freecad_view = importFCMat.read(path)
+            self.assertEqual(freecad_view["Name"], material.name)
+            self.assertEqual(float(freecad_view["HaptiCAD_DynamicFriction"]), material.dynamic_friction)
+            self.assertTrue(freecad_view["YoungsModulus"].endswith("MPa"))
+
+    def test_freecads_own_cards_are_left_alone(self):
+        import FreeCAD
+
+        standard = os.path.join(FreeCAD.getResourceDir(), "Mod", "Material", "StandardMaterial")
+        for path in sorted(os.listdir(standard))[:10]:
+            material, errors = materials.read_fcmat(os.path.join(standard, path))
+            self.assertIsNone(material, path)
+            self.assertEqual(errors, [], path)
+
+    def test_user_cards_add_and_override_without_touching_the_installation(self):
+        base = materials.load_database(include_user=False)
+        abs_ = base.get("ABS")
+        from dataclasses import replace
+
+        materials.write_fcmat(replace(abs_, static_friction=0.9, dynamic_friction=0.8),
+                              os.path.join(self.cards, "HaptiCAD-ABS.FCMat"))
+        materials.write_fcmat(replace(abs_, name="Walnut veneer", static_friction=0.5),
+                              os.path.join(self.cards, "Walnut.FCMat"))
+        db = materials.load_database(data_dir=self.dir.name)
+        self.assertEqual(db.errors, [])
+        self.assertEqual(db.get("ABS").dynamic_friction, 0.8)
+        self.assertEqual(db.get("Walnut veneer").static_friction, 0.5)
+        self.assertEqual(len(db), len(base) + 1)
+        self.assertEqual(materials.load_database(include_user=False).get("ABS").dynamic_friction, 0.5)
+
+    def test_a_bad_card_is_rejected_by_line_and_the_rest_loads(self):
+        abs_ = materials.load_database(include_user=False).get("ABS")
+        good = os.path.join(self.cards, "Good.FCMat")
+        materials.write_fcmat(abs_, good)
+        cases = {
+            "NegMu.FCMat": ("HaptiCAD_DynamicFriction = 0.5", "HaptiCAD_DynamicFriction = -0.2", "must be >= 0"),
+            "NaN.FCMat": ("HaptiCAD_StaticFriction = 0.6", "HaptiCAD_StaticFriction = nan", "not finite"),
+            "ZeroE.FCMat": ("YoungsModulus = 2300 MPa", "YoungsModulus = 0 MPa", "must be > 0"),
+            "Unit.FCMat": ("YoungsModulus = 2300 MPa", "YoungsModulus = 2300 furlongs", "unknown unit"),
+            "Missing.FCMat": ("HaptiCAD_FrictionMax = 0.8\n", "", "lacks HaptiCAD_FrictionMax"),
+            "Garbage.FCMat": ("[Mechanical]", "this line is not a key value pair", "expected 'key = value'"),
+        }
+        text = open(good).read()
+        for name, (old, new, _) in cases.items():
+            with open(os.path.join(self.cards, name), "w") as handle:
+                handle.write(text.replace(old, new))
+        db = materials.load_database(data_dir=self.dir.name)
+        self.assertIn("ABS", db)
+        self.assertEqual(len(db.errors), len(cases), db.errors)
+        for name, (old, new, message) in cases.items():
+            error = [e for e in db.errors if name in e]
+            self.assertEqual(len(error), 1, name)
+            path_line, problem = error[0].split(": ", 1)
+            self.assertTrue(path_line.startswith(os.path.join(self.cards, name) + ":"), error[0])
+            line = int(path_line.rsplit(":", 1)[1])
+            if new:
+                with open(os.path.join(self.cards, name)) as handle:
+                    self.assertIn(new, handle.read().splitlines()[line - 1], name)
+            self.assertIn(message, problem, name)
+
+    def test_a_user_csv_is_read_too(self):
+        os.makedirs(os.path.join(self.dir.name, "HaptiCAD"))
+        with open(os.path.join(self.dir.name, "HaptiCAD", "materials.csv"), "w") as handle:
+            handle.write(HEADER + "\nCork,0.7,0.6,0.4,0.9,0.03,240,0.3,own test,own test\n")
+        db = materials.load_database(data_dir=self.dir.name)
+        self.assertEqual(db.get("Cork").dynamic_friction, 0.6)

@@ -97,8 +97,7 @@ class MakeSurfaceTest(unittest.TestCase):
 class PersistenceTest(unittest.TestCase):
     """Every property survives save and reopen, twice, without touching the object."""
 
-    PROPERTIES = ("Material", "RoughnessCategory", "Pattern", "PatternAngle", "PatternCenter",
-                  "StaticFriction", "DynamicFriction", "Stiffness")
+    PROPERTIES = [p[0] for p in surface_object.PROPERTIES if p[0] not in ("References", "PatternCurve")]
 
     def setUp(self):
         self.dir = tempfile.TemporaryDirectory()
@@ -114,7 +113,9 @@ class PersistenceTest(unittest.TestCase):
         values = {p: getattr(s, p) for p in self.PROPERTIES}
         values["PatternAngle"] = float(values["PatternAngle"])
         values["PatternCenter"] = tuple(values["PatternCenter"])
+        values["PatternAxis"] = tuple(values["PatternAxis"])
         values["References"] = [(o.Name, tuple(subs)) for o, subs in s.References]
+        values["PatternCurve"] = (s.PatternCurve[0].Name, tuple(s.PatternCurve[1]))
         values["MaterialChoices"] = s.getEnumerationsOfProperty("Material")
         return values
 
@@ -123,11 +124,25 @@ class PersistenceTest(unittest.TestCase):
         doc.addObject("Part::Box", "Box")
         doc.addObject("Part::Cylinder", "Cylinder")
         doc.recompute()
+        # a value off its default for every property
         s = HaptiCAD.make_surface(doc, [(doc.Box, "Face6"), (doc.Box, "Face2"), (doc.Cylinder, "Face1")],
                                   material="TPE soft-touch", roughness_category=6, pattern="Circular",
                                   pattern_angle_deg=37.5, pattern_center_mm=(1.5, -2.0, 30.0),
-                                  static_friction=1.7, dynamic_friction=1.3, stiffness_n_per_mm=0.35)
+                                  static_friction=1.7, dynamic_friction=1.3, stiffness_n_per_mm=0.35,
+                                  FeelRoughness=False, RoughnessHeight=0.12, RoughnessFrictionModulation=0.4,
+                                  FrictionModel="Friction cone (stick-slip)", StickSpeed=3.5,
+                                  TransitionSpeed=1.5, StribeckSpeed=7.0, PatternAxis=App.Vector(0, 1, 1),
+                                  PatternBlendRadius=2.5, CurveEvaluation="Exact", CurveTableSize=100,
+                                  Interpolation="Friction ellipse", AcrossFriction=2.5, BackwardFriction=0.7,
+                                  Texture="Custom", TextureDC=0.4, TextureViscosity=-0.1, TextureBeta=0.2,
+                                  TextureAlpha=1.5, TextureBetaViscosity=0.05, TextureAlphaViscosity=-0.3,
+                                  TexturePeriod=3.25)
+        s.PatternCurve = (doc.Box, ["Edge3"])
         doc.recompute()
+        defaults = {p[0]: p[4] for p in surface_object.PROPERTIES}
+        for name in self.PROPERTIES:
+            if defaults.get(name) is not None:
+                self.assertNotEqual(getattr(s, name), defaults[name], name)
         before = self.snapshot(s)
         doc.saveAs(self.path)
         App.closeDocument(doc.Name)
@@ -143,6 +158,53 @@ class PersistenceTest(unittest.TestCase):
             s.RoughnessCategory = 6
             doc.save()
             App.closeDocument(doc.Name)
+
+
+class MigrationTest(unittest.TestCase):
+    def test_a_schema_1_document_gains_the_new_properties_and_keeps_its_values(self):
+        path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "schema1_toothbrush.FCStd")
+        doc = App.openDocument(path)
+        try:
+            grip = doc.getObject("ThumbGrip")
+            self.assertEqual((grip.Material, grip.RoughnessCategory), ("TPE soft-touch", 4))
+            self.assertEqual(grip.DynamicFriction, 1.2)
+            for name, _, _, _, default, _ in surface_object.PROPERTIES:
+                self.assertIn(name, grip.PropertiesList)
+                if default is not None and name not in ("RoughnessCategory", "StaticFriction",
+                                                        "DynamicFriction", "Stiffness"):
+                    self.assertEqual(getattr(grip, name), default, name)
+            self.assertEqual(grip.Texture, "None")
+            self.assertNotIn("Touched", grip.State)
+        finally:
+            App.closeDocument(doc.Name)
+
+
+class TexturePresetTest(unittest.TestCase):
+    def setUp(self):
+        self.doc = App.newDocument("TexturePreset")
+        self.box = self.doc.addObject("Part::Box", "Box")
+        self.doc.recompute()
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def test_a_preset_fills_the_values_and_an_edit_makes_it_custom(self):
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], Texture="Paper f_DC 0.325 f_vis -0.2")
+        self.assertEqual((s.TextureDC, s.TextureViscosity, s.TextureBeta, s.TextureAlpha), (0.325, -0.2, 0.125, 2.5))
+        s.TextureDC = 0.4
+        self.assertEqual(s.Texture, "Custom")
+        self.assertEqual(s.TextureDC, 0.4)
+        s.Texture = "Paper f_DC 0.675 f_vis +0.2"
+        self.assertEqual((s.TextureDC, s.TextureViscosity), (0.675, 0.2))
+
+    def test_unknown_properties_and_choices_are_refused(self):
+        with self.assertRaisesRegex(ValueError, "unknown property 'Colour'"):
+            HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], Colour="red")
+        with self.assertRaisesRegex(ValueError, "Texture must be one of"):
+            HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], Texture="Velvet")
+        with self.assertRaisesRegex(ValueError, "AcrossFriction"):
+            HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], AcrossFriction=-1)
+        self.assertEqual(HaptiCAD.surfaces_of(self.doc), [])
 
 
 if __name__ == "__main__":

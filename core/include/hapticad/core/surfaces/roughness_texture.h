@@ -3,12 +3,16 @@
 // where different sizes of grids are related to different surface roughness"; the
 // grid spacing is the category's "computer grid ball size" (Table 2, roughness.h).
 //
-// Height field over the face frame's (x, y), spacing g, amplitude A:
-//   h(x, y) = A * (1 + cos(2 pi x / g)) / 2 * (1 + cos(2 pi y / g)) / 2
-// a ball at every grid node, 0 between them. It is felt three ways through the proxy:
+// Height field over the face frame's (x, y), spacing g, amplitude A, with
+// b(x, y) = (1 + cos(2 pi x / g)) / 2 * (1 + cos(2 pi y / g)) / 2 in [0, 1] (a ball at
+// every grid node, nothing between them; its mean over the grid is 1/4):
+//   h(x, y) = A (b - 1/4)
+// zero on average, so the face's stiffness times the depth stays the mean normal
+// force. It is felt three ways through the proxy:
 //   height    the penetration grows by h (k h more normal force on a ball);
 //   normal    the force tilts by the slope, n' = normalize(n - grad h) (bump mapping);
-//   friction  mu scales by 1 + m (2 h / A - 1): more on the balls, less between.
+//   friction  mu scales by 1 + m (b - 1/4) 4/3, in [1 - m/3, 1 + m]: more on the
+//             balls, less between, the material's mu on average over the face.
 // A stroke at speed v therefore carries the spatial period g, i.e. v / g Hz: at 1 kHz
 // and 50 mm/s category 1 (0.1 mm) sits at the Nyquist limit; use 5-10 kHz for the
 // finest categories (field notes: textures want 5-10 kHz).
@@ -39,9 +43,9 @@ RoughnessGrid MakeRoughnessGrid(int category, const SurfaceFrame& frame,
                                 double friction_modulation = 0.15);
 
 struct RoughnessSample {
-  double height_m;        // h
+  double height_m;        // h, in [-A/4, 3A/4]
   Vec3 gradient_w;        // grad h in the tangent plane (dimensionless slope, world vector)
-  double friction_scale;  // 1 + m (2 h / A - 1)
+  double friction_scale;  // 1 + m (b - 1/4) 4/3
 };
 
 // Non-finite points give a flat sample (h = 0, no slope, scale 1).

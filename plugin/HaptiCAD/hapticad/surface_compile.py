@@ -1,0 +1,161 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Compile a HapticSurface on one B-rep face into the core's SurfaceProperties.
+
+The face gives the geometry the effects need, in world metres: a tangent frame at its
+centre (e1 = dS/du turned by PatternAngle about the outward normal, e2 = n x e1), the
+circular pattern's axis, and the plane of a curve pattern. Document units (mm, mm/s,
+N/mm) become SI here. No GUI.
+"""
+import math
+
+import numpy as np
+
+import FreeCAD as App
+
+from . import _core
+
+MM = 1e-3
+
+
+def point_on_face(face):
+    """(u, v) of a point on the face near its centre (not in a hole)."""
+    u, v = face.Surface.parameter(face.CenterOfMass)
+    if face.isInside(face.valueAt(u, v), 1e-6, True):
+        return u, v
+    u0, u1, v0, v1 = face.ParameterRange
+    grid = sorted(((i, j) for i in range(1, 10) for j in range(1, 10)),
+                  key=lambda ij: abs(ij[0] - 5) + abs(ij[1] - 5))
+    for i, j in grid:
+        u, v = u0 + (u1 - u0) * i / 10, v0 + (v1 - v0) * j / 10
+        if face.isInside(face.valueAt(u, v), 1e-6, True):
+            return u, v
+    return 0.5 * (u0 + u1), 0.5 * (v0 + v1)
+
+
+def _vec(v, scale=1.0):
+    return np.array([v.x, v.y, v.z], dtype=float) * scale
+
+
+def face_frame(face, angle_deg):
+    """(origin m, e1, e2, n) at the face's centre; e1 is the u direction turned by angle."""
+    u, v = point_on_face(face)
+    origin = _vec(face.valueAt(u, v), MM)
+    n = _vec(face.normalAt(u, v))
+    du = _vec(face.derivative1At(u, v)[0])
+    e1 = du - du.dot(n) * n
+    if np.linalg.norm(e1) < 1e-12:  # degenerate parametrisation at the centre: any tangent
+        e1 = np.cross(n, [1.0, 0, 0] if abs(n[0]) < 0.9 else [0, 1.0, 0])
+    e1 /= np.linalg.norm(e1)
+    a = math.radians(angle_deg)
+    e1 = math.cos(a) * e1 + math.sin(a) * np.cross(n, e1)
+    e2 = np.cross(n, e1)
+    return origin, e1, e2, n
+
+
+def _curve_edges(link):
+    """The edges a PatternCurve link names: a whole sketch, or chosen edges."""
+    obj, subs = link
+    if subs and any(subs):
+        return [obj.Shape.getElement(s) for s in subs if s]
+    return list(obj.Shape.Edges)
+
+
+def _as_bspline(edges):
+    if len(edges) == 1:
+        e = edges[0]
+        return e.Curve.toBSpline(e.FirstParameter, e.LastParameter)
+    import Part
+
+    wire = Part.Wire(Part.__sortEdges__(edges))
+    return wire.approximate(1e-7, 1e-4, 200, 7)
+
+
+def curve_pattern(surface, frame):
+    """The core CurvePattern of a surface: the curve, in a plane through the face frame's
+    origin, the lookup axis y along the curve's chord. Raises ValueError clearly."""
+    if surface.PatternCurve is None:
+        raise ValueError(f"{surface.Label}: the Curve pattern needs a sketch or edge in PatternCurve")
+    edges = _curve_edges(surface.PatternCurve)
+    if not edges:
+        raise ValueError(f"{surface.Label}: PatternCurve {surface.PatternCurve[0].Label} has no edges")
+    curve = _as_bspline(edges)
+    if curve.isPeriodic():
+        curve = curve.copy()
+        curve.setNotPeriodic()
+    origin, _, _, n = frame
+    start, end = _vec(curve.value(curve.FirstParameter), MM), _vec(curve.value(curve.LastParameter), MM)
+    chord = end - start
+    y = chord - chord.dot(n) * n
+    if np.linalg.norm(y) < 1e-12:
+        raise ValueError(f"{surface.Label}: the pattern curve is closed or normal to the face")
+    y /= np.linalg.norm(y)
+    x = np.cross(y, n)
+    poles = np.array([[(p - origin).dot(x), (p - origin).dot(y)]
+                      for p in (_vec(q, MM) for q in curve.getPoles())])
+    knots = [k for k, m in zip(curve.getKnots(), curve.getMultiplicities()) for _ in range(m)]
+    evaluation = (_core.CurveEvaluation.EXACT if surface.CurveEvaluation == "Exact"
+                  else _core.CurveEvaluation.LOOKUP_TABLE)
+    try:
+        return _core.CurvePattern.build(_core.PatternPlane(origin, x, y), curve.Degree, knots, poles,
+                                        list(curve.getWeights()), surface.CurveTableSize, evaluation)
+    except ValueError as exc:
+        raise ValueError(f"{surface.Label}: {exc}") from None
+
+
+def compile_surface(surface, face):
+    """_core.SurfaceProperties of HapticSurface ``surface`` on B-rep ``face`` (global)."""
+    props = _core.SurfaceProperties()
+    friction = props.friction
+    friction.static_coefficient = surface.StaticFriction
+    friction.dynamic_coefficient = surface.DynamicFriction
+    friction.stick_speed_mps = surface.StickSpeed * MM
+    friction.transition_speed_mps = surface.TransitionSpeed * MM
+    friction.stribeck_speed_mps = surface.StribeckSpeed * MM
+    props.friction = friction
+    props.stiffness_n_per_m = surface.Stiffness / MM
+    props.friction_mode = (_core.FrictionMode.CONE if surface.FrictionModel.startswith("Friction cone")
+                           else _core.FrictionMode.VELOCITY)
+
+    frame = face_frame(face, float(surface.PatternAngle))
+    origin, e1, e2, n = frame
+    surface_frame = _core.SurfaceFrame(origin, e1, e2)
+    anisotropy = props.anisotropy
+    anisotropy.across_factor = surface.AcrossFriction
+    anisotropy.backward_factor = surface.BackwardFriction
+    anisotropy.interpolation = (_core.AnisotropyInterpolation.ELLIPSE if surface.Interpolation == "Friction ellipse"
+                                else _core.AnisotropyInterpolation.LINEAR)
+    props.anisotropy = anisotropy
+    if surface.Pattern == "Linear":
+        props.pattern = _core.LinearPattern(e1)
+    elif surface.Pattern == "Circular":
+        axis = _vec(surface.PatternAxis)
+        axis = n if np.linalg.norm(axis) == 0 else axis / np.linalg.norm(axis)
+        props.pattern = _core.CircularPattern(_vec(surface.PatternCenter, MM), axis,
+                                              surface.PatternBlendRadius * MM)
+    elif surface.Pattern == "Curve":
+        props.pattern = curve_pattern(surface, frame)
+
+    if surface.FeelRoughness:
+        props.roughness = _core.make_roughness_grid(surface.RoughnessCategory, surface_frame,
+                                                    surface.RoughnessHeight, surface.RoughnessFrictionModulation)
+    if surface.Texture != "None":
+        params = _core.ViscousTextureParams()
+        params.f_dc = surface.TextureDC
+        params.f_vis = surface.TextureViscosity
+        params.beta_h = surface.TextureBeta
+        params.alpha_h = surface.TextureAlpha
+        params.beta_vis = surface.TextureBetaViscosity
+        params.alpha_vis = surface.TextureAlphaViscosity
+        params.period_m = surface.TexturePeriod * MM
+        props.texture = _core.ViscousGrating(params, surface_frame)
+    try:
+        _core.validate_surface_properties(props)
+    except ValueError as exc:
+        raise ValueError(f"{surface.Label}: {exc}") from None
+    return props
+
+
+def compile_vibration(vibration):
+    axis = _vec(vibration.Axis)
+    return _core.Vibration(vibration.Frequency, vibration.Amplitude, axis / np.linalg.norm(axis),
+                           vibration.Powered)

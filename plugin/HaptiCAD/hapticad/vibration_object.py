@@ -1,0 +1,112 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The HapticVibration document object: a part that vibrates when powered.
+
+Seed 000 lets a designer "feel the vibration while an electronic razor is powered on".
+A HapticVibration links one part (``App::PropertyLinkGlobal``) and holds its
+``Frequency`` (Hz), ``Amplitude`` (N), ``Axis`` and ``Powered``; while the probe touches
+any face of that part, the force carries amplitude * sin(2 pi f t) along the axis.
+Created with :func:`make_vibration`. App-only.
+"""
+import math
+
+import FreeCAD as App
+
+TYPE = "HaptiCAD::HapticVibration"
+SCHEMA_VERSION = 1
+FREQUENCY_RANGE_HZ = (1.0, 1000.0)  # what a servo loop up to 10 kHz can render
+AMPLITUDE_RANGE_N = (0.0, 10.0)
+
+
+class HapticVibration:
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.setup(obj, new=True)
+
+    def setup(self, obj, new=False):
+        def add(kind, name, group, tip):
+            if name not in obj.PropertiesList:
+                obj.addProperty(kind, name, group, tip)
+                return True
+            return False
+
+        if add("App::PropertyString", "HaptiCADType", "Base", "Type tag of HaptiCAD objects"):
+            obj.setEditorMode("HaptiCADType", 2)
+        obj.HaptiCADType = TYPE
+        add("App::PropertyLinkGlobal", "Part", "Vibration", "The part that vibrates")
+        add("App::PropertyBool", "Powered", "Vibration", "Whether the part is switched on")
+        if add("App::PropertyFloatConstraint", "Frequency", "Vibration", "Vibration frequency, Hz"):
+            obj.Frequency = 100.0
+        if add("App::PropertyFloatConstraint", "Amplitude", "Vibration", "Force amplitude, N"):
+            obj.Amplitude = 0.3
+        if add("App::PropertyVector", "Axis", "Vibration", "Direction of the vibration (global)"):
+            obj.Axis = App.Vector(0, 0, 1)
+        if new:
+            obj.Powered = True
+        obj.Frequency = (obj.Frequency, *FREQUENCY_RANGE_HZ, 10.0)
+        obj.Amplitude = (obj.Amplitude, *AMPLITUDE_RANGE_N, 0.05)
+
+    def onChanged(self, obj, prop):
+        if prop == "Axis" and "Restore" not in obj.State and obj.Axis.Length == 0:
+            App.Console.PrintError(f"{obj.Label}: the vibration axis cannot be zero; kept +Z\n")
+            obj.Axis = App.Vector(0, 0, 1)
+
+    def onDocumentRestored(self, obj):
+        self.setup(obj)
+        from .surface_object import attach_view_provider
+
+        attach_view_provider(obj)
+        obj.purgeTouched()
+
+    def execute(self, obj):
+        if obj.Part is None:
+            App.Console.PrintError(f"{obj.Label}: no part to vibrate\n")
+
+    def dumps(self):
+        return {"schema": SCHEMA_VERSION}
+
+    def loads(self, state):
+        self.schema = (state or {}).get("schema", SCHEMA_VERSION)
+
+    def __getstate__(self):
+        return self.dumps()
+
+    def __setstate__(self, state):
+        self.loads(state)
+
+
+def is_haptic_vibration(obj):
+    return getattr(obj, "HaptiCADType", None) == TYPE
+
+
+def vibrations_of(doc):
+    return [o for o in doc.Objects if is_haptic_vibration(o)]
+
+
+def make_vibration(doc, part, frequency_hz=100.0, amplitude_n=0.3, axis=(0.0, 0.0, 1.0), powered=True,
+                   name="HapticVibration"):
+    """Makes ``part`` vibrate when touched and powered. Raises ValueError on bad input."""
+    if isinstance(part, str):
+        found = doc.getObject(part)
+        if found is None:
+            raise ValueError(f"make_vibration: document {doc.Name} has no object {part!r}")
+        part = found
+    if part.Document != doc or not hasattr(part, "Shape"):
+        raise ValueError(f"make_vibration: {part.Name} is not a part of document {doc.Name}")
+    for label, value, (low, high) in (("frequency_hz", frequency_hz, FREQUENCY_RANGE_HZ),
+                                      ("amplitude_n", amplitude_n, AMPLITUDE_RANGE_N)):
+        if not (isinstance(value, (int, float)) and low <= value <= high):
+            raise ValueError(f"make_vibration: {label} = {value!r} is outside {low}..{high}")
+    length = math.sqrt(sum(float(a) ** 2 for a in axis))
+    if not (length > 0 and math.isfinite(length)):
+        raise ValueError(f"make_vibration: axis {axis!r} must be a non-zero vector")
+    obj = doc.addObject("App::FeaturePython", name)
+    HapticVibration(obj)
+    obj.Part = part
+    obj.Frequency = float(frequency_hz)
+    obj.Amplitude = float(amplitude_n)
+    obj.Axis = App.Vector(*axis)
+    obj.Powered = bool(powered)
+    from .surface_object import attach_view_provider
+
+    attach_view_provider(obj)
+    return obj

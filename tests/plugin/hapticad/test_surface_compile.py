@@ -1,0 +1,140 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Compiling HapticSurfaces on real B-rep faces into the core's SurfaceProperties:
+face frames, each pattern (curves from sketches and edges), roughness, texture, and
+clear errors for curves that cannot make a pattern."""
+import math
+import unittest
+
+import numpy as np
+
+import FreeCAD as App
+import Part
+
+import HaptiCAD
+from hapticad import _core
+from hapticad.surface_compile import compile_surface, face_frame
+
+V = App.Vector
+
+
+class CompileTest(unittest.TestCase):
+    def setUp(self):
+        self.doc = App.newDocument("CompileTest")
+        self.box = self.doc.addObject("Part::Box", "Box")
+        self.box.Length, self.box.Width, self.box.Height = 60, 40, 10
+        self.doc.recompute()
+        self.top = self.box.Shape.Faces[5]
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def surface(self, **properties):
+        return HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS", **properties)
+
+    def sketch(self, geometry, z=10.0):
+        sketch = self.doc.addObject("Sketcher::SketchObject", "Sketch")
+        sketch.Placement = App.Placement(V(0, 0, z), App.Rotation())
+        for g in geometry:
+            sketch.addGeometry(g, False)
+        self.doc.recompute()
+        return sketch
+
+    def test_the_face_frame_follows_u_turned_by_the_pattern_angle(self):
+        origin, e1, e2, n = face_frame(self.top, 0.0)
+        np.testing.assert_allclose(origin, [0.03, 0.02, 0.01], atol=1e-12)
+        np.testing.assert_allclose(n, [0, 0, 1], atol=1e-12)
+        np.testing.assert_allclose(e1, [1, 0, 0], atol=1e-12)
+        _, e1, e2, _ = face_frame(self.top, 90.0)
+        np.testing.assert_allclose(e1, [0, 1, 0], atol=1e-12)
+        np.testing.assert_allclose(e2, [-1, 0, 0], atol=1e-12)
+        # a reversed face (the bottom): the normal still points out of the solid
+        _, _, _, n_bottom = face_frame(self.box.Shape.Faces[4], 0.0)
+        np.testing.assert_allclose(n_bottom, [0, 0, -1], atol=1e-12)
+
+    def test_plain_friction_and_units(self):
+        s = self.surface(FeelRoughness=False, StickSpeed=3.0, TransitionSpeed=1.0, StribeckSpeed=5.0,
+                         FrictionModel="Friction cone (stick-slip)")
+        p = compile_surface(s, self.top)
+        self.assertEqual(p.friction.static_coefficient, s.StaticFriction)
+        self.assertAlmostEqual(p.friction.stick_speed_mps, 0.003)
+        self.assertAlmostEqual(p.friction.transition_speed_mps, 0.001)
+        self.assertAlmostEqual(p.friction.stribeck_speed_mps, 0.005)
+        self.assertAlmostEqual(p.stiffness_n_per_m, s.Stiffness * 1000)
+        self.assertEqual(p.friction_mode, _core.FrictionMode.CONE)
+        self.assertIsNone(p.pattern)
+        self.assertIsNone(p.roughness)
+        self.assertIsNone(p.texture)
+        self.assertEqual(_core.SurfaceTable([p]).effects(0), _core.EFFECT_CONE)
+
+    def test_linear_and_circular_patterns(self):
+        p = compile_surface(self.surface(Pattern="Linear", PatternAngle=30.0, AcrossFriction=2.0,
+                                         BackwardFriction=1.5, Interpolation="Friction ellipse"), self.top)
+        np.testing.assert_allclose(p.pattern.direction_w, [math.cos(math.pi / 6), math.sin(math.pi / 6), 0], atol=1e-12)
+        self.assertEqual((p.anisotropy.across_factor, p.anisotropy.backward_factor), (2.0, 1.5))
+        self.assertEqual(p.anisotropy.interpolation, _core.AnisotropyInterpolation.ELLIPSE)
+        c = compile_surface(self.surface(Pattern="Circular", pattern_center_mm=(10, 20, 10),
+                                         PatternBlendRadius=2.0), self.top)
+        np.testing.assert_allclose(c.pattern.centre_w, [0.01, 0.02, 0.01], atol=1e-12)
+        np.testing.assert_allclose(c.pattern.axis_w, [0, 0, 1], atol=1e-12)  # zero axis: the face normal
+        self.assertAlmostEqual(c.pattern.blend_radius_m, 0.002)
+        # at (30, 20) the circle about (10, 20) runs along y
+        frame = _core.evaluate_circular(c.pattern, [0.03, 0.02, 0.01], [0, 0, 1])
+        np.testing.assert_allclose(np.abs(frame.stripe), [0, 1, 0], atol=1e-12)
+
+    def test_curve_pattern_from_a_sketch_follows_the_curve(self):
+        poles = [V(10, 5, 0), V(30, 12, 0), V(10, 25, 0), V(30, 35, 0)]
+        sketch = self.sketch([Part.BSplineCurve(poles)])
+        s = self.surface(Pattern="Curve", CurveEvaluation="Exact")
+        s.PatternCurve = (sketch, [])
+        p = compile_surface(s, self.top)
+        curve = sketch.Shape.Edges[0]
+        for t in (0.2, 0.5, 0.8):
+            param = curve.FirstParameter + t * (curve.LastParameter - curve.FirstParameter)
+            point = curve.valueAt(param)
+            tangent = curve.tangentAt(param)
+            # any point of the family member through `point` (shifted along the family's x)
+            frame = p.pattern.evaluate([point.x * 1e-3, point.y * 1e-3, 0.01], [0, 0, 1])
+            self.assertAlmostEqual(abs(np.dot(frame.stripe, [tangent.x, tangent.y, tangent.z])), 1.0, places=9)
+        # the lookup table agrees with the exact curve to the size it was given
+        s.CurveEvaluation = "Lookup table"
+        s.CurveTableSize = 1024
+        table = compile_surface(s, self.top).pattern
+        ys = np.linspace(table.y_min, table.y_max, 200)
+        self.assertLess(max(abs(table.lookup_angle(y) - table.exact_angle(y)) for y in ys), 1e-4)
+
+    def test_curve_pattern_from_one_edge_of_an_object(self):
+        wire = self.doc.addObject("Part::Feature", "Guide")
+        wire.Shape = Part.Edge(Part.LineSegment(V(0, 0, 10), V(20, 40, 10)))
+        s = self.surface(Pattern="Curve")
+        s.PatternCurve = (wire, ["Edge1"])
+        p = compile_surface(s, self.top)
+        frame = p.pattern.evaluate([0.05, 0.01, 0.01], [0, 0, 1])
+        np.testing.assert_allclose(np.abs(frame.stripe), np.array([1, 2, 0]) / math.sqrt(5), atol=1e-9)
+
+    def test_curves_that_cannot_make_a_pattern_are_refused_clearly(self):
+        s = self.surface(Pattern="Curve")
+        with self.assertRaisesRegex(ValueError, "needs a sketch or edge"):
+            compile_surface(s, self.top)
+        circle = self.sketch([Part.Circle(V(30, 20, 0), V(0, 0, 1), 8)])
+        s.PatternCurve = (circle, [])
+        with self.assertRaisesRegex(ValueError, "closed"):
+            compile_surface(s, self.top)
+        # an S that comes back on itself along its chord
+        hook = self.sketch([Part.BSplineCurve([V(0, 0, 0), V(40, 30, 0), V(-10, 30, 0), V(30, 5, 0)])])
+        s.PatternCurve = (hook, [])
+        with self.assertRaisesRegex(ValueError, "turns back or touches itself"):
+            compile_surface(s, self.top)
+
+    def test_roughness_and_texture(self):
+        p = compile_surface(self.surface(RoughnessCategory=6, RoughnessHeight=0.1,
+                                         Texture="Paper f_DC 0.675 f_vis -0.2", TexturePeriod=3.0), self.top)
+        self.assertAlmostEqual(p.roughness.spacing_m, 1.5e-3)
+        self.assertAlmostEqual(p.roughness.amplitude_m, 1.5e-4)
+        self.assertEqual((p.texture.params.f_dc, p.texture.params.f_vis), (0.675, -0.2))
+        self.assertAlmostEqual(p.texture.params.period_m, 3e-3)
+        effects = _core.SurfaceTable([p]).effects(0)
+        self.assertEqual(effects, _core.EFFECT_ROUGHNESS | _core.EFFECT_TEXTURE)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,69 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""HapticVibration: a part that vibrates when powered; validation and persistence."""
+import os
+import tempfile
+import unittest
+
+import FreeCAD as App
+
+import HaptiCAD
+from hapticad.document_scene import build_document_scene
+
+
+class VibrationTest(unittest.TestCase):
+    def setUp(self):
+        self.doc = App.newDocument("VibrationTest")
+        self.razor = self.doc.addObject("Part::Box", "Razor")
+        self.doc.recompute()
+
+    def tearDown(self):
+        for name in list(App.listDocuments()):
+            App.closeDocument(name)
+
+    def test_make_vibration_sets_the_values(self):
+        v = HaptiCAD.make_vibration(self.doc, self.razor, frequency_hz=120.0, amplitude_n=0.4, axis=(1, 0, 0))
+        self.assertTrue(HaptiCAD.is_haptic_vibration(v))
+        self.assertEqual((v.Part, v.Frequency, v.Amplitude, v.Powered), (self.razor, 120.0, 0.4, True))
+        self.assertEqual(tuple(v.Axis), (1.0, 0.0, 0.0))
+        self.assertEqual(HaptiCAD.vibrations_of(self.doc), [v])
+
+    def test_bad_values_raise_and_add_nothing(self):
+        for kwargs, message in (({"frequency_hz": 0.0}, "frequency_hz"), ({"amplitude_n": -1.0}, "amplitude_n"),
+                                ({"axis": (0, 0, 0)}, "axis"), ({"frequency_hz": "fast"}, "frequency_hz")):
+            with self.assertRaisesRegex(ValueError, message):
+                HaptiCAD.make_vibration(self.doc, self.razor, **kwargs)
+        with self.assertRaisesRegex(ValueError, "no object"):
+            HaptiCAD.make_vibration(self.doc, "Shaver")
+        self.assertEqual(len(self.doc.Objects), 1)
+
+    def test_a_zero_axis_typed_in_is_refused(self):
+        v = HaptiCAD.make_vibration(self.doc, self.razor)
+        v.Axis = App.Vector(0, 0, 0)
+        self.assertEqual(tuple(v.Axis), (0.0, 0.0, 1.0))
+
+    def test_every_face_of_the_part_carries_the_vibration(self):
+        HaptiCAD.make_vibration(self.doc, self.razor, frequency_hz=150.0, powered=False)
+        scene = build_document_scene(self.doc)
+        self.assertEqual(len(scene.face_names), 6)
+        for face in range(6):
+            self.assertEqual(scene.surfaces.surface(face).vibration, 0)
+
+    def test_round_trip(self):
+        v = HaptiCAD.make_vibration(self.doc, self.razor, frequency_hz=167.0, amplitude_n=0.25,
+                                    axis=(0, 1, 0), powered=False)
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "razor.FCStd")
+            self.doc.saveAs(path)
+            App.closeDocument(self.doc.Name)
+            doc = App.openDocument(path)
+            v = doc.getObject("HapticVibration")
+            self.assertEqual((v.Part.Name, v.Frequency, v.Amplitude, v.Powered), ("Razor", 167.0, 0.25, False))
+            self.assertEqual(tuple(v.Axis), (0.0, 1.0, 0.0))
+            self.assertNotIn("Touched", v.State)
+            v.Frequency = 5000.0  # constraint restored on reopening
+            self.assertEqual(v.Frequency, 1000.0)
+            self.doc = doc
+
+
+if __name__ == "__main__":
+    unittest.main()
