@@ -213,7 +213,8 @@ void DefineTextures(py::module_& m) {
            }),
            py::arg("params"), py::arg("frame"))
       .def_readwrite("params", &ViscousGrating::params)
-      .def_readwrite("frame", &ViscousGrating::frame);
+      .def_readwrite("frame", &ViscousGrating::frame)
+      .def_readwrite("full_range_n", &ViscousGrating::full_range_n);
 
   py::class_<Vibration>(m, "Vibration")
       .def(py::init([](double f, double a, const Vec3& axis, bool powered) {

@@ -20,6 +20,9 @@ from hapticad.freecad_env import ensure_freecad  # noqa: E402
 App = ensure_freecad()
 import HaptiCAD  # noqa: E402
 
+# the module under test is the build's, not an installed copy
+assert HaptiCAD.__file__.startswith(os.environ["HAPTICAD_MOD"]), HaptiCAD.__file__
+
 K_N_PER_MM = 0.5
 MU_D = 0.45
 
@@ -97,3 +100,70 @@ class FeelCommandTest(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class TablesCommandTest(unittest.TestCase):
+    def test_roughness_table_json_is_table_2(self):
+        proc = run_cli("roughness-table", "--json")
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        rows = json.loads(proc.stdout)
+        self.assertEqual([r["category"] for r in rows], list(range(1, 8)))
+        self.assertEqual(set(rows[0]), {"category", "ra_min_um", "ra_max_um", "n_grades", "grid_size_mm"})
+        self.assertEqual(rows[0], {"category": 1, "ra_min_um": None, "ra_max_um": 0.05,
+                                   "n_grades": ["N1", "N2"], "grid_size_mm": 0.1})
+        self.assertEqual(rows[3], {"category": 4, "ra_min_um": 0.8, "ra_max_um": 3.2,
+                                   "n_grades": ["N7", "N8"], "grid_size_mm": 0.9})
+        self.assertEqual(rows[6], {"category": 7, "ra_min_um": 50.0, "ra_max_um": None,
+                                   "n_grades": [], "grid_size_mm": 3.0})
+
+    def test_materials_json_lists_every_material_with_sources(self):
+        proc = run_cli("materials", "--json", "--shipped-only")
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        rows = json.loads(proc.stdout)
+        names = [r["name"] for r in rows]
+        for name in ("Steel", "Aluminium", "Glass", "ABS", "PP", "PC", "PMMA", "TPE soft-touch", "Rubber", "Wood"):
+            self.assertIn(name, names)
+        for row in rows:
+            self.assertTrue(row["mu_source"] and row["bulk_source"], row)
+            self.assertGreater(row["youngs_modulus_gpa"], 0)
+
+    def test_materials_can_be_exported_as_freecad_cards(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            proc = run_cli("materials", "--json", "--shipped-only", "--export-fcmat", tmp)
+            self.assertEqual(proc.returncode, 0, proc.stderr)
+            cards = sorted(os.listdir(tmp))
+            self.assertEqual(len(cards), len(json.loads(proc.stdout)))
+            self.assertIn("HaptiCAD-TPE-soft-touch.FCMat", cards)
+        self.assertEqual(run_cli("materials", "--export-fcmat", "/nonexistent/dir").returncode, 2)
+
+
+class PatternStrokeTest(unittest.TestCase):
+    """A linear pattern felt through the CLI: mu_a along the stripes, mu_n across."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.doc_path = os.path.join(cls.tmp.name, "striped.FCStd")
+        doc = App.newDocument("Striped")
+        box = doc.addObject("Part::Box", "Box")
+        box.Length, box.Width, box.Height = 80, 80, 20
+        doc.recompute()
+        HaptiCAD.make_surface(doc, [(box, "Face6")], material="PMMA", static_friction=0.4,
+                              dynamic_friction=0.3, pattern="Linear", pattern_angle_deg=0.0,
+                              AcrossFriction=2.0, FeelRoughness=False)
+        doc.saveAs(cls.doc_path)
+        App.closeDocument(doc.Name)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def ratio(self, stroke):
+        proc = run_cli("feel", self.doc_path, "--stroke", stroke, "--out", os.path.join(self.tmp.name, "s"))
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        return json.loads(proc.stdout)["faces"]["Box.Face6"]["mean_ft_over_fn"]
+
+    def test_along_across_and_diagonal(self):
+        self.assertAlmostEqual(self.ratio("10,40,20:70,40,20"), 0.3, delta=0.015)   # along x: mu_a
+        self.assertAlmostEqual(self.ratio("40,10,20:40,70,20"), 0.6, delta=0.03)    # across: mu_n
+        self.assertAlmostEqual(self.ratio("15,15,20:65,65,20"), 0.45, delta=0.0225)  # eq. 3 at 45 degrees

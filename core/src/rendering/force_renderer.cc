@@ -164,7 +164,9 @@ void ForceRenderer::Render(const RenderInput& input, RenderOutput* out) {
 
   Vec3 force = normal_force * normal_direction;
   if (effects & kEffectTexture) {
-    const Vec3 texture = CalcViscousTextureForce(surface.texture->params, limits_.max_force_n,
+    const double full_range =
+        surface.texture->full_range_n > 0.0 ? surface.texture->full_range_n : limits_.max_force_n;
+    const Vec3 texture = CalcViscousTextureForce(surface.texture->params, full_range,
                                                  GratingCoordinate(surface, contact_w), v_t,
                                                  surface.friction.stick_speed_mps);
     out->texture_force_n = texture.norm();

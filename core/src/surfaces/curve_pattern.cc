@@ -10,12 +10,9 @@
 namespace hapticad {
 namespace {
 
-// Direction angle of a tangent, flipped so the family direction is consistent (the
-// stripe is an unoriented line: only the angle mod pi matters).
-double TangentAngle(const Vec2& d, bool increasing) {
-  const Vec2 oriented = increasing ? d : Vec2(-d);
-  return std::atan2(oriented.y(), oriented.x());
-}
+// Unit tangent oriented toward increasing y, so neighbouring table entries never
+// point opposite ways (the stripe is an unoriented line).
+Vec2 OrientedTangent(const Vec2& d) { return (d.y() < 0.0 ? Vec2(-d) : d).normalized(); }
 
 }  // namespace
 
@@ -75,10 +72,10 @@ CurvePattern CurvePattern::Build(const PatternPlane& plane, NurbsCurve2 curve, i
   }
   pattern.y_min_ = std::min(y_start, y_end);
   pattern.y_max_ = std::max(y_start, y_end);
-  pattern.angles_.resize(lut_size);
+  pattern.tangents_.resize(lut_size);
   for (int i = 0; i < lut_size; ++i) {
     const double y = pattern.y_min_ + (pattern.y_max_ - pattern.y_min_) * i / (lut_size - 1);
-    pattern.angles_[i] = pattern.ExactAngle(y);
+    pattern.tangents_[i] = pattern.ExactTangent(y);
   }
   return pattern;
 }
@@ -109,18 +106,28 @@ double CurvePattern::SolveParameter(double y) const {
   return t;
 }
 
-double CurvePattern::ExactAngle(double y) const {
+Vec2 CurvePattern::ExactTangent(double y) const {
   Vec2 p, d;
   curve_.Evaluate(SolveParameter(y), &p, &d);
-  return TangentAngle(d, increasing_);
+  return OrientedTangent(d);
+}
+
+Vec2 CurvePattern::LookupTangent(double y) const {
+  const double u = (std::clamp(y, y_min_, y_max_) - y_min_) / (y_max_ - y_min_) *
+                   static_cast<double>(tangents_.size() - 1);
+  const auto i = std::min(static_cast<std::size_t>(u), tangents_.size() - 2);
+  const double f = u - static_cast<double>(i);
+  return ((1.0 - f) * tangents_[i] + f * tangents_[i + 1]).normalized();
+}
+
+double CurvePattern::ExactAngle(double y) const {
+  const Vec2 t = ExactTangent(y);
+  return std::atan2(t.y(), t.x());
 }
 
 double CurvePattern::LookupAngle(double y) const {
-  const double u = (std::clamp(y, y_min_, y_max_) - y_min_) / (y_max_ - y_min_) *
-                   static_cast<double>(angles_.size() - 1);
-  const auto i = std::min(static_cast<std::size_t>(u), angles_.size() - 2);
-  const double f = u - static_cast<double>(i);
-  return (1.0 - f) * angles_[i] + f * angles_[i + 1];
+  const Vec2 t = LookupTangent(y);
+  return std::atan2(t.y(), t.x());
 }
 
 double CurvePattern::MemberOffset(const Vec3& point_w) const {
@@ -134,8 +141,8 @@ double CurvePattern::MemberOffset(const Vec3& point_w) const {
 StripeFrame CurvePattern::Evaluate(const Vec3& point_w, const Vec3& normal) const {
   const double y = (point_w - plane_.origin_w).dot(plane_.y_w);
   if (!std::isfinite(y)) return ProjectStripe(Vec3::Zero(), normal);  // weight 0: isotropic
-  const double angle = evaluation_ == Evaluation::kLookupTable ? LookupAngle(y) : ExactAngle(y);
-  return ProjectStripe(std::cos(angle) * plane_.x_w + std::sin(angle) * plane_.y_w, normal);
+  const Vec2 t = evaluation_ == Evaluation::kLookupTable ? LookupTangent(y) : ExactTangent(y);
+  return ProjectStripe(t.x() * plane_.x_w + t.y() * plane_.y_w, normal);
 }
 
 }  // namespace hapticad

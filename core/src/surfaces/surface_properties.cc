@@ -106,6 +106,8 @@ void ValidateSurfaceProperties(const SurfaceProperties& s) {
       Require(std::isfinite(x), "texture parameter", x, "finite");
     }
     Require(Positive(t.period_m), "texture period", t.period_m, "> 0 m");
+    Require(NonNegative(s.texture->full_range_n), "texture full range", s.texture->full_range_n,
+            ">= 0 N");
   }
 }
 

@@ -12,7 +12,13 @@ FREECAD_LIB = os.environ.get("HAPTICAD_FREECAD_LIB", "/usr/lib/freecad-python3/l
 
 
 def ensure_freecad():
-    """Import and return the FreeCAD module, adding its library folder if needed."""
+    """Import and return the FreeCAD module, adding its library folder if needed.
+
+    Importing FreeCAD runs its start-up, which puts every Mod folder it knows first on
+    sys.path, an installed HaptiCAD among them: this Mod folder goes back in front, so
+    `import HaptiCAD` loads the same copy as this package, never a stale install."""
+    from . import MOD_DIR
+
     try:
         import FreeCAD  # noqa: F401  (already importable: inside FreeCAD)
     except ImportError:
@@ -27,4 +33,9 @@ def ensure_freecad():
             ) from exc
     import FreeCAD
 
+    if sys.path[0] != MOD_DIR:
+        sys.path[:] = [MOD_DIR] + [p for p in sys.path if p != MOD_DIR]
+    stale = sys.modules.get("HaptiCAD")
+    if stale is not None and not os.path.abspath(stale.__file__).startswith(MOD_DIR + os.sep):
+        del sys.modules["HaptiCAD"]
     return FreeCAD

@@ -147,7 +147,9 @@ def compile_surface(surface, face):
         params.beta_vis = surface.TextureBetaViscosity
         params.alpha_vis = surface.TextureAlphaViscosity
         params.period_m = surface.TexturePeriod * MM
-        props.texture = _core.ViscousGrating(params, surface_frame)
+        grating = _core.ViscousGrating(params, surface_frame)
+        grating.full_range_n = surface.TextureFullRange
+        props.texture = grating
     try:
         _core.validate_surface_properties(props)
     except ValueError as exc:

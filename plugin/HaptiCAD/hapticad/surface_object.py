@@ -90,6 +90,9 @@ PROPERTIES = [
     ("TextureBetaViscosity", "App::PropertyFloat", "Texture", "beta_vis: amplitude change per 400 mm/s", 0.0, None),
     ("TextureAlphaViscosity", "App::PropertyFloat", "Texture", "alpha_vis: decay change per 400 mm/s", 0.0, None),
     ("TexturePeriod", "App::PropertyFloatConstraint", "Texture", "Grating period lambda (mm)", 2.5, (1e-3, 1e3, 0.1)),
+    ("TextureFullRange", "App::PropertyFloatConstraint", "Texture",
+     "Newtons that level 1 stands for; 0 = the device's full range (the paper's convention)",
+     0.0, (0.0, 100.0, 0.1)),
 ]
 ENUMERATIONS = {
     "Pattern": PATTERNS,

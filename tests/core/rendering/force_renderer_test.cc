@@ -229,6 +229,12 @@ TEST_F(EffectsOnBox, ViscousGratingReplacesFrictionWithEq2InNewtons) {
                 trace[i].normal_force_n + 1e-6);
     EXPECT_EQ(trace[i].friction_force_n, 0.0);
   }
+  // a texture with its own full range: level 1 is 2 N whatever the device
+  top_.texture->full_range_n = 2.0;
+  auto own = Make();
+  const RenderOutput out = Stroke(own, Vec3::UnitY(), 0.08, 120, 1000.0, 0.0).back();
+  EXPECT_NEAR(out.texture_force_n,
+              ViscousTextureLevel(grating.params, 0.08 * 119 / 1000.0, 0.08) * 2.0, 1e-9);
 }
 
 TEST_F(EffectsOnBox, VibrationShakesOnlyWhileTouched) {

@@ -63,7 +63,8 @@ TEST(RoughnessGrid, HeightAndFrictionScaleAverageToZeroAndOneOverTheGrid) {
   const int n = 64;
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {
-      const RoughnessSample s = SampleRoughness(g, g.frame.origin_w + Vec3(i, j, 0) * (g.spacing_m / n));
+      const RoughnessSample s =
+          SampleRoughness(g, g.frame.origin_w + Vec3(i, j, 0) * (g.spacing_m / n));
       height += s.height_m / (n * n);
       scale += s.friction_scale / (n * n);
     }

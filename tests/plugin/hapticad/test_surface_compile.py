@@ -127,11 +127,13 @@ class CompileTest(unittest.TestCase):
 
     def test_roughness_and_texture(self):
         p = compile_surface(self.surface(RoughnessCategory=6, RoughnessHeight=0.1,
-                                         Texture="Paper f_DC 0.675 f_vis -0.2", TexturePeriod=3.0), self.top)
+                                         Texture="Paper f_DC 0.675 f_vis -0.2", TexturePeriod=3.0,
+                                         TextureFullRange=1.2), self.top)
         self.assertAlmostEqual(p.roughness.spacing_m, 1.5e-3)
         self.assertAlmostEqual(p.roughness.amplitude_m, 1.5e-4)
         self.assertEqual((p.texture.params.f_dc, p.texture.params.f_vis), (0.675, -0.2))
         self.assertAlmostEqual(p.texture.params.period_m, 3e-3)
+        self.assertEqual(p.texture.full_range_n, 1.2)
         effects = _core.SurfaceTable([p]).effects(0)
         self.assertEqual(effects, _core.EFFECT_ROUGHNESS | _core.EFFECT_TEXTURE)
 

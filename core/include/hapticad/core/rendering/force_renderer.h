@@ -33,7 +33,7 @@
 namespace hapticad {
 
 struct RenderLimits {
-  double max_force_n = 3.3;              // > 0; also the full range of viscous textures
+  double max_force_n = 3.3;              // > 0; the full range of textures that set none
   double max_stiffness_n_per_m = 400.0;  // > 0
 };
 

@@ -6,8 +6,8 @@
 // paper's Fig. 7: every member has, at height y, the direction the base curve has at
 // height y. Hence the paper's lookup table "along y": index by the contact point's y,
 // read the curve's direction. HaptiCAD offers both
-//   kLookupTable  the paper's table of tangent angles at `lut_size` heights, linearly
-//                 interpolated (O(1) per tick);
+//   kLookupTable  the paper's table of unit tangents at `lut_size` heights, linearly
+//                 interpolated and renormalised (O(1) per tick, no trigonometry);
 //   kExact        the exact member through the point: solve y(t) = y_p on the NURBS
 //                 (bracketed Newton; the closest point of the base curve along x).
 // BENCHMARKS.md publishes table size against angle error and time.
@@ -48,7 +48,7 @@ class CurvePattern {
   StripeFrame Evaluate(const Vec3& point_w, const Vec3& normal) const;
 
   // Tangent angle (radians, in the pattern plane, from x) of the family at height y (m),
-  // by the table and exactly. For tests and the size/accuracy benchmark.
+  // by the table and exactly. For tests, the size/accuracy benchmark and plots.
   double LookupAngle(double y) const;
   double ExactAngle(double y) const;
 
@@ -58,12 +58,14 @@ class CurvePattern {
 
   double y_min() const { return y_min_; }
   double y_max() const { return y_max_; }
-  int lut_size() const { return static_cast<int>(angles_.size()); }
+  int lut_size() const { return static_cast<int>(tangents_.size()); }
   Evaluation evaluation() const { return evaluation_; }
 
  private:
   CurvePattern(const PatternPlane& plane, NurbsCurve2 curve);
   double SolveParameter(double y) const;  // t with y(t) = y, y clamped to the range
+  Vec2 LookupTangent(double y) const;     // interpolated table entry, unit
+  Vec2 ExactTangent(double y) const;      // unit
 
   PatternPlane plane_;
   NurbsCurve2 curve_;
@@ -71,7 +73,7 @@ class CurvePattern {
   bool increasing_ = true;
   double y_min_ = 0.0;
   double y_max_ = 0.0;
-  std::vector<double> angles_;  // tangent angle at evenly spaced heights
+  std::vector<Vec2> tangents_;  // unit tangent at evenly spaced heights
 };
 
 }  // namespace hapticad

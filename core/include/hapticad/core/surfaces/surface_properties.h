@@ -46,6 +46,9 @@ using StripePattern = std::variant<std::monostate, LinearPattern, CircularPatter
 struct ViscousGrating {
   ViscousTextureParams params;
   SurfaceFrame frame;  // x across the ridges: e2 of the frame unless a pattern says otherwise
+  // Newtons that level 1 stands for; 0 takes the device's full range (seed 001's
+  // convention), which on a strong device is several times a light touch's normal force.
+  double full_range_n = 0.0;
 };
 
 struct SurfaceProperties {

@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// One servo tick of the renderer in sliding contact on a box face: a plain face
+// against one with each effect and one with every effect ("model only what the scene
+// requires": a plain face must not pay for effects it does not use).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "hapticad/core/rendering/force_renderer.h"
+#include "test_meshes.h"
+
+namespace hapticad {
+namespace {
+
+enum Setup { kPlain, kPattern, kCurve, kRoughness, kTexture, kVibration, kCone, kEverything };
+const char* kNames[] = {"plain",         "linear pattern",  "curve pattern (exact)",
+                        "roughness",     "viscous texture", "vibration",
+                        "friction cone", "every effect"};
+
+SurfaceProperties Make(int setup) {
+  SurfaceProperties s;
+  const SurfaceFrame frame{Vec3(0, 0, 0.05), Vec3::UnitX(), Vec3::UnitY()};
+  if (setup == kPattern || setup == kEverything) s.pattern = LinearPattern{Vec3::UnitX()};
+  if (setup == kCurve) {
+    s.pattern = std::make_shared<const CurvePattern>(CurvePattern::Build(
+        PatternPlane{Vec3(0, 0, 0.05), Vec3::UnitX(), Vec3::UnitY()},
+        NurbsCurve2(2, {0, 0, 0, 1, 1, 1}, {Vec2(0, -0.05), Vec2(0.01, 0.0), Vec2(0.0, 0.05)}, {}),
+        256, CurvePattern::Evaluation::kExact));
+  }
+  if (setup == kRoughness || setup == kEverything) s.roughness = MakeRoughnessGrid(4, frame);
+  if (setup == kTexture || setup == kEverything)
+    s.texture = ViscousGrating{PaperPreset(1, 2), frame};
+  if (setup == kVibration || setup == kEverything) s.vibration = 0;
+  if (setup == kCone) s.friction_mode = FrictionMode::kCone;
+  return s;
+}
+
+void BM_RenderTick(benchmark::State& state) {
+  const int setup = static_cast<int>(state.range(0));
+  const auto scene =
+      HapticScene::Build(testing::MakeBoxSoup(Vec3(-50, -50, -50), Vec3(50, 50, 50)), 1e-3);
+  std::vector<SurfaceProperties> faces(6);
+  faces[5] = Make(setup);
+  const auto table = std::make_shared<SurfaceTable>(
+      faces, std::vector<Vibration>{{120.0, 0.3, Vec3::UnitZ(), true}});
+  ForceRenderer renderer(scene, table, RenderLimits{8.9, 3000.0});
+  // a circle of radius 20 mm, 2 mm below the top face, at 50 mm/s, 1 kHz: precomputed
+  constexpr int kTicks = 2513;  // one lap
+  std::vector<RenderInput> inputs(kTicks);
+  for (int k = 0; k < kTicks; ++k) {
+    const double t = 1e-3 * k;
+    inputs[k] = {Vec3(0.02 * std::cos(2.5 * t), 0.02 * std::sin(2.5 * t), 0.048),
+                 Vec3(-0.05 * std::sin(2.5 * t), 0.05 * std::cos(2.5 * t), 0.0), t};
+  }
+  RenderOutput out;
+  renderer.Render({Vec3(0.02, 0.0, 0.06), Vec3::Zero(), 0.0}, &out);
+  int i = 0;
+  for (auto _ : state) {
+    renderer.Render(inputs[i], &out);
+    i = i + 1 == kTicks ? 0 : i + 1;
+    benchmark::DoNotOptimize(out);
+  }
+  if (!(out.flags & kContact)) state.SkipWithError("lost contact");
+  state.SetLabel(kNames[setup]);
+}
+BENCHMARK(BM_RenderTick)->DenseRange(kPlain, kEverything);
+
+}  // namespace
+}  // namespace hapticad
+
+BENCHMARK_MAIN();
