@@ -33,6 +33,21 @@ struct SurfacePoint {
 
 class TriangleTree {
  public:
+  // A cut through the tree around a box: the subtrees of at most kSubtreeSize triangles
+  // whose bounding boxes meet the box. Every triangle that meets the box lies in one of
+  // them, so a segment query confined to the box needs only these subtrees: a proxy
+  // that moves a little each tick reuses the same few hot subtrees instead of walking
+  // the whole tree (temporal coherence). Fixed size, no allocation.
+  struct Neighbourhood {
+    static constexpr int kCapacity = 64;
+    static constexpr std::uint32_t kSubtreeSize = 64;
+    Vec3 lo = Vec3::Zero();  // the box, local frame
+    Vec3 hi = Vec3::Zero();
+    int count = 0;
+    bool valid = false;
+    const void* subtree[kCapacity] = {};  // tree node, or a triangle primitive when size is 1
+    std::uint32_t size[kCapacity] = {};
+  };
   // Builds the tree and the distance acceleration. `mesh` must outlive the tree.
   // `pad` (model units) grows every node box so a segment grazing a box edge is not
   // lost to rounding; the scene passes a small fraction of its size.
@@ -41,6 +56,14 @@ class TriangleTree {
   // First triangle hit along a -> b. Servo-tick safe: no allocation, no lock.
   // `bary_tol` as in IntersectSegmentTriangle.
   bool FirstHit(const Vec3& a, const Vec3& b, double bary_tol, SegmentHit* hit) const;
+
+  // Gathers the neighbourhood of box [lo, hi]. Servo-tick safe. Returns false, leaving
+  // it invalid, when more than kCapacity subtrees meet the box (make the box smaller).
+  bool GatherNeighbourhood(const Vec3& lo, const Vec3& hi, Neighbourhood* out) const;
+
+  // First hit along a -> b among the neighbourhood's triangles only. Servo-tick safe.
+  bool FirstHitIn(const Neighbourhood& neighbourhood, const Vec3& a, const Vec3& b, double bary_tol,
+                  SegmentHit* hit) const;
 
   // Closest surface point to `p`. Uses CGAL's accelerated distance query: not for the
   // servo tick (CGAL's kd-tree search allocates).

@@ -1,0 +1,239 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// hapticad-bench-mesh: the contact engine's speed and correctness on one mesh, as JSON.
+//
+//   hapticad-bench-mesh (MESH_FILE | --icosphere TRIANGLES) [--radius MM] [--ticks N]
+//       [--proxy point|sphere:R_MM] [--units mm|m] [--seed S] [--json]
+//
+// Workload (issue 4): the device strokes over the surface along a seeded path at
+// 50-100 mm/s, pressed 1-3 mm below it (for meshes under 50 mm in bounding radius,
+// 1-3 % of it), k = 0.4 N/mm, mu 0.3/0.2, 1 kHz. The path is computed before the timed
+// loop; each tick is timed on its own (steady clock, about 20 ns of overhead included).
+// One thread: the tick never waits on anything else.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "hapticad/core/geometry/icosphere.h"
+#include "hapticad/core/geometry/mesh_file.h"
+#include "hapticad/core/rendering/force_renderer.h"
+
+namespace hapticad {
+namespace {
+
+struct Options {
+  std::string file;
+  long long icosphere = 0;
+  double radius_mm = 50.0;
+  long long ticks = 20000;
+  double sphere_radius_mm = 0.0;  // 0: point proxy
+  bool metres = false;
+  unsigned seed = 1;
+};
+
+[[noreturn]] void Usage(const std::string& problem) {
+  std::cerr << "hapticad-bench-mesh: " << problem << "\n"
+            << "usage: hapticad-bench-mesh (MESH_FILE | --icosphere TRIANGLES) [--radius MM] "
+               "[--ticks N]\n"
+               "           [--proxy point|sphere:R_MM] [--units mm|m] [--seed S] [--json]\n";
+  std::exit(2);
+}
+
+double Number(const std::string& text, const char* what) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (used != text.size() || !std::isfinite(v)) throw std::invalid_argument(text);
+    return v;
+  } catch (const std::exception&) {
+    Usage(std::string(what) + " must be a number, got '" + text + "'");
+  }
+}
+
+Options Parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) Usage(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--icosphere")
+      o.icosphere = static_cast<long long>(Number(next(), "--icosphere"));
+    else if (a == "--radius")
+      o.radius_mm = Number(next(), "--radius");
+    else if (a == "--ticks")
+      o.ticks = static_cast<long long>(Number(next(), "--ticks"));
+    else if (a == "--seed")
+      o.seed = static_cast<unsigned>(Number(next(), "--seed"));
+    else if (a == "--json")
+      continue;
+    else if (a == "--units") {
+      const std::string u = next();
+      if (u != "mm" && u != "m") Usage("--units must be mm or m");
+      o.metres = u == "m";
+    } else if (a == "--proxy") {
+      const std::string p = next();
+      if (p == "point")
+        o.sphere_radius_mm = 0.0;
+      else if (p.rfind("sphere:", 0) == 0)
+        o.sphere_radius_mm = Number(p.substr(7), "sphere radius");
+      else
+        Usage("--proxy must be point or sphere:R_MM");
+    } else if (!a.empty() && a[0] == '-')
+      Usage("unknown option " + a);
+    else
+      o.file = a;
+  }
+  if (o.file.empty() == (o.icosphere == 0)) Usage("give a mesh file or --icosphere, not both");
+  if (o.ticks < 100) Usage("--ticks must be at least 100");
+  if (!(o.radius_mm > 0) || o.sphere_radius_mm < 0) Usage("radii must be positive");
+  return o;
+}
+
+double Percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  const auto k = static_cast<std::size_t>(
+      std::min<double>(v.size() - 1, std::floor(q * (v.size() - 1) + 0.5)));
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return v[k];
+}
+
+int Run(const Options& o) {
+  // scene in model units: mm, or m with every coordinate scaled by 1e-3
+  const double unit = o.metres ? 1.0 : 1e-3;  // metres per model unit
+  const double mm = 1e-3 / unit;              // model units per mm
+  TriangleSoup soup = o.file.empty()
+                          ? MakeIcosphere(IcosphereFrequencyFor(o.icosphere), o.radius_mm * mm)
+                          : ReadMeshFile(o.file);
+  if (!o.file.empty() && o.metres) {
+    for (Vec3& v : soup.vertices) v *= 1e-3;  // a file is read in mm; --units m rescales
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto scene = HapticScene::Build(soup, unit);
+  const double build_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  const std::size_t triangles = scene->mesh().num_triangles();
+
+  SurfaceProperties surface;
+  surface.stiffness_n_per_m = 400.0;
+  surface.friction.static_coefficient = 0.3;
+  surface.friction.dynamic_coefficient = 0.2;
+  const auto table = std::make_shared<SurfaceTable>(std::vector<SurfaceProperties>(
+      static_cast<std::size_t>(std::max(1, scene->mesh().num_cad_faces())), surface));
+  // no force cap: a spike must show, not be clipped
+  ForceRenderer renderer(scene, table, RenderLimits{1e6, 400.0});
+
+  // the path, before any timing: a seeded walk over the surface, re-projected each tick
+  const double bounding_radius_m = 0.5 * scene->size_m();
+  const double depth_lo = bounding_radius_m >= 0.05 ? 1e-3 : 0.01 * bounding_radius_m;
+  const double depth_hi = bounding_radius_m >= 0.05 ? 3e-3 : 0.03 * bounding_radius_m;
+  const double r_proxy = o.sphere_radius_mm * 1e-3;
+  const double dt = 1e-3;
+  std::mt19937_64 rng(o.seed);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  const auto& mesh = scene->mesh();
+  const std::uint32_t t_start = static_cast<std::uint32_t>(uniform(rng) * triangles) % triangles;
+  const auto& tri = mesh.triangle(t_start);
+  Vec3 p_w =
+      scene->ToWorld((mesh.vertex(tri[0]) + mesh.vertex(tri[1]) + mesh.vertex(tri[2])) / 3.0);
+  SurfaceSample here = scene->CalcClosestPoint(p_w);
+  Vec3 heading = here.normal_w.cross(Vec3(gauss(rng), gauss(rng), gauss(rng))).normalized();
+  double speed = 0.075, depth = 0.5 * (depth_lo + depth_hi);
+  std::vector<RenderInput> path(static_cast<std::size_t>(o.ticks));
+  std::vector<Vec3> surface_points(path.size()), surface_normals(path.size());
+  Vec3 previous_goal;
+  for (std::size_t k = 0; k < path.size(); ++k) {
+    speed = std::clamp(speed + 0.002 * gauss(rng), 0.05, 0.1);
+    depth = std::clamp(depth + 0.00002 * gauss(rng), depth_lo, depth_hi);
+    heading = (heading + 0.05 * here.normal_w.cross(heading) * gauss(rng)).normalized();
+    here = scene->CalcClosestPoint(here.point_w + speed * dt * heading);
+    heading = (heading - heading.dot(here.normal_w) * here.normal_w).normalized();
+    const Vec3 goal = here.point_w + (r_proxy - depth) * here.normal_w;
+    path[k].position_w = goal;
+    path[k].velocity_w = k == 0 ? Vec3::Zero() : Vec3((goal - previous_goal) / dt);
+    path[k].time_s = k * dt;
+    surface_points[k] = here.point_w;
+    surface_normals[k] = here.normal_w;
+    previous_goal = goal;
+  }
+
+  // the timed run, starting from above the first point
+  RenderOutput out;
+  renderer.Render({surface_points[0] + (r_proxy + 0.01) * surface_normals[0], Vec3::Zero(), 0.0},
+                  &out);
+  std::vector<double> tick_us, contact_us;
+  tick_us.reserve(path.size());
+  contact_us.reserve(path.size());
+  std::vector<Vec3> proxies(path.size());
+  double max_force = 0.0;
+  std::size_t contact = 0;
+  for (std::size_t k = 0; k < path.size(); ++k) {
+    const auto a = std::chrono::steady_clock::now();
+    renderer.Render(path[k], &out);
+    const auto b = std::chrono::steady_clock::now();
+    const double us = std::chrono::duration<double, std::micro>(b - a).count();
+    tick_us.push_back(us);
+    proxies[k] = out.proxy_w;
+    if (out.flags & kContact) {
+      ++contact;
+      contact_us.push_back(us);
+    }
+    max_force = std::max(max_force, out.force_w.norm());
+  }
+
+  // after the run: did the proxy end on the far side of the surface?
+  std::size_t pop_through = 0;
+  const double tolerance = 1e-6 * scene->size_m();
+  for (std::size_t k = 0; k < proxies.size(); k += (proxies.size() > 200000 ? 5 : 1)) {
+    const SurfaceSample s = scene->CalcClosestPoint(proxies[k]);
+    if ((proxies[k] - s.point_w).dot(s.normal_w) <
+            r_proxy - tolerance - (r_proxy > 0 ? r_proxy : 0.0) - tolerance &&
+        (proxies[k] - s.point_w).dot(s.normal_w) < -tolerance) {
+      ++pop_through;
+    }
+  }
+
+  std::printf("{\n");
+  std::printf("  \"mesh\": \"%s\",\n", o.file.empty() ? "icosphere" : o.file.c_str());
+  std::printf("  \"units\": \"%s\",\n", o.metres ? "m" : "mm");
+  std::printf("  \"proxy\": \"%s\",\n",
+              r_proxy > 0 ? ("sphere:" + std::to_string(o.sphere_radius_mm)).c_str() : "point");
+  std::printf("  \"triangles\": %zu,\n", triangles);
+  std::printf("  \"build_ms\": %.3f,\n", build_ms);
+  std::printf("  \"bytes_per_triangle\": %.1f,\n",
+              static_cast<double>(scene->CalcMemoryBytes()) / triangles);
+  std::printf("  \"ticks\": %zu,\n", path.size());
+  std::printf("  \"contact_ticks\": %zu,\n", contact);
+  std::printf("  \"tick_us\": {\"p50\": %.3f, \"p99\": %.3f, \"p999\": %.3f, \"max\": %.3f},\n",
+              Percentile(contact_us, 0.5), Percentile(contact_us, 0.99),
+              Percentile(contact_us, 0.999),
+              contact_us.empty() ? 0.0 : *std::max_element(contact_us.begin(), contact_us.end()));
+  std::printf("  \"all_tick_us\": {\"p50\": %.3f, \"p99\": %.3f},\n", Percentile(tick_us, 0.5),
+              Percentile(tick_us, 0.99));
+  std::printf("  \"pop_through\": %zu,\n", pop_through);
+  std::printf("  \"max_force_n\": %.6f,\n", max_force);
+  std::printf("  \"expected_force_n\": [%.6f, %.6f]\n", 400.0 * depth_lo,
+              400.0 * depth_hi * std::sqrt(1 + 0.3 * 0.3));
+  std::printf("}\n");
+  return 0;
+}
+
+}  // namespace
+}  // namespace hapticad
+
+int main(int argc, char** argv) {
+  try {
+    return hapticad::Run(hapticad::Parse(argc, argv));
+  } catch (const std::exception& e) {
+    std::cerr << "hapticad-bench-mesh: " << e.what() << "\n";
+    return 1;
+  }
+}

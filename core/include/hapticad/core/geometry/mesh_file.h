@@ -1,0 +1,17 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Reads a triangle or polygon mesh file (OFF, OBJ, STL ascii/binary, PLY) as a soup,
+// exactly as written: duplicate, degenerate or non-manifold faces are kept for the
+// repair pipeline to judge (mesh_repair.h). Polygons are fanned into triangles. Every
+// triangle gets CAD face 0 (a file has no B-rep). Units: the file's.
+#pragma once
+
+#include <string>
+
+#include "hapticad/core/geometry/triangle_soup.h"
+
+namespace hapticad {
+
+// Throws std::runtime_error naming the file when it cannot be read or holds no faces.
+TriangleSoup ReadMeshFile(const std::string& path);
+
+}  // namespace hapticad
