@@ -128,7 +128,9 @@ int Run(const Options& o) {
   const auto table = std::make_shared<SurfaceTable>(std::vector<SurfaceProperties>(
       static_cast<std::size_t>(std::max(1, scene->mesh().num_cad_faces())), surface));
   // no force cap: a spike must show, not be clipped
-  ForceRenderer renderer(scene, table, RenderLimits{1e6, 400.0});
+  ContactOptions options;
+  options.proxy_radius_m = o.sphere_radius_mm * 1e-3;
+  ForceRenderer renderer(scene, table, RenderLimits{1e6, 400.0}, options);
 
   // the path, before any timing: a seeded walk over the surface, re-projected each tick
   const double bounding_radius_m = 0.5 * scene->size_m();
@@ -189,15 +191,21 @@ int Run(const Options& o) {
     max_force = std::max(max_force, out.force_w.norm());
   }
 
-  // after the run: did the proxy end on the far side of the surface?
+  // after the run: did the proxy pass through the surface between two ticks (its
+  // centre's path crossed a triangle), and did a sphere ever overlap it?
   std::size_t pop_through = 0;
-  const double tolerance = 1e-6 * scene->size_m();
-  for (std::size_t k = 0; k < proxies.size(); k += (proxies.size() > 200000 ? 5 : 1)) {
-    const SurfaceSample s = scene->CalcClosestPoint(proxies[k]);
-    if ((proxies[k] - s.point_w).dot(s.normal_w) <
-            r_proxy - tolerance - (r_proxy > 0 ? r_proxy : 0.0) - tolerance &&
-        (proxies[k] - s.point_w).dot(s.normal_w) < -tolerance) {
+  double max_penetration = 0.0;
+  for (std::size_t k = 1; k < proxies.size(); ++k) {
+    SweepHit hit;
+    SweepQuery crossing;
+    crossing.a = scene->ToLocal(proxies[k - 1]);
+    crossing.b = scene->ToLocal(proxies[k]);
+    if (scene->tree().FirstHit(crossing, &hit)) {
       ++pop_through;
+    }
+    if (r_proxy > 0.0 && k % (proxies.size() > 200000 ? 5 : 1) == 0) {
+      max_penetration =
+          std::max(max_penetration, r_proxy - scene->CalcClosestPoint(proxies[k]).distance_m);
     }
   }
 
@@ -219,6 +227,7 @@ int Run(const Options& o) {
   std::printf("  \"all_tick_us\": {\"p50\": %.3f, \"p99\": %.3f},\n", Percentile(tick_us, 0.5),
               Percentile(tick_us, 0.99));
   std::printf("  \"pop_through\": %zu,\n", pop_through);
+  std::printf("  \"max_penetration_mm\": %.9f,\n", max_penetration * 1e3);
   std::printf("  \"max_force_n\": %.6f,\n", max_force);
   std::printf("  \"expected_force_n\": [%.6f, %.6f]\n", 400.0 * depth_lo,
               400.0 * depth_hi * std::sqrt(1 + 0.3 * 0.3));

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hapticad/core/geometry/triangle_mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -69,10 +70,10 @@ std::unique_ptr<TriangleMesh> TriangleMesh::Build(
   om.reserve(vertices_l.size(), triangles.size() * 3 / 2 + 3, triangles.size());
   for (const Vec3& p : vertices_l) om.add_vertex(p);
 
-  mesh->has_corner_normals_ = !corner_normals.empty();
-  if (mesh->has_corner_normals_) om.request_halfedge_normals();
   om.add_property(mesh->cad_face_prop_, "cad_face");
   mesh->triangles_.reserve(triangles.size());
+  mesh->face_normals_.reserve(triangles.size());
+  mesh->corner_normals_.reserve(3 * corner_normals.size());
 
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     const auto& tri = triangles[t];
@@ -90,13 +91,13 @@ std::unique_ptr<TriangleMesh> TriangleMesh::Build(
     mesh->triangles_.push_back({static_cast<std::uint32_t>(tri[0]),
                                 static_cast<std::uint32_t>(tri[1]),
                                 static_cast<std::uint32_t>(tri[2])});
-    if (mesh->has_corner_normals_) {
-      // the halfedge of this face that points to a corner's vertex carries that corner's normal
-      for (auto he : om.fh_range(fh)) {
-        const int corner =
-            om.to_vertex_handle(he) == vh[0] ? 0 : (om.to_vertex_handle(he) == vh[1] ? 1 : 2);
-        om.set_normal(he, corner_normals[t][corner].normalized());
-      }
+    const Vec3 n =
+        (vertices_l[tri[1]] - vertices_l[tri[0]]).cross(vertices_l[tri[2]] - vertices_l[tri[0]]);
+    const double len = n.norm();
+    mesh->face_normals_.push_back(len > 0.0 ? Vec3(n / len) : Vec3::Zero());
+    if (!corner_normals.empty()) {
+      for (const Vec3& c : corner_normals[t])
+        mesh->corner_normals_.push_back(c.normalized().cast<float>());
     }
   }
   mesh->cad_faces_ = om.property(mesh->cad_face_prop_).data();
@@ -104,21 +105,29 @@ std::unique_ptr<TriangleMesh> TriangleMesh::Build(
   return mesh;
 }
 
-Vec3 TriangleMesh::face_normal(std::uint32_t t) const {
+Vec3 TriangleMesh::CalcShadingNormal(std::uint32_t t, const Vec3& point_l) const {
+  if (corner_normals_.empty()) return face_normals_[t];
   const auto& tri = triangles_[t];
   const Vec3* p = mesh_.points();
-  const Vec3 n = (p[tri[1]] - p[tri[0]]).cross(p[tri[2]] - p[tri[0]]);
-  const double len = n.norm();
-  return len > 0.0 ? Vec3(n / len) : Vec3::Zero();
-}
-
-Vec3 TriangleMesh::corner_normal(std::uint32_t t, int corner) const {
-  const auto fh = mesh_.face_handle(static_cast<int>(t));
-  const auto vh = mesh_.vertex_handle(static_cast<int>(triangles_[t][corner]));
-  for (auto he : mesh_.fh_range(fh)) {
-    if (mesh_.to_vertex_handle(he) == vh) return mesh_.normal(he);
+  const Vec3 e1 = p[tri[1]] - p[tri[0]];
+  const Vec3 e2 = p[tri[2]] - p[tri[0]];
+  const Vec3 w = point_l - p[tri[0]];
+  const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
+  const double det = d11 * d22 - d12 * d12;
+  if (!(det > 0.0)) return face_normals_[t];
+  // barycentrics of the point's projection, clamped so a point a hair outside blends
+  // like the nearest edge
+  double u = std::max((d22 * w.dot(e1) - d12 * w.dot(e2)) / det, 0.0);
+  double v = std::max((d11 * w.dot(e2) - d12 * w.dot(e1)) / det, 0.0);
+  const double sum = u + v;
+  if (sum > 1.0) {
+    u /= sum;
+    v /= sum;
   }
-  return face_normal(t);
+  const Vec3 n =
+      (1.0 - u - v) * corner_normal(t, 0) + u * corner_normal(t, 1) + v * corner_normal(t, 2);
+  const double len = n.norm();
+  return len > 1e-6 ? Vec3(n / len) : face_normals_[t];
 }
 
 std::size_t TriangleMesh::CalcMemoryBytes() const {
@@ -127,8 +136,9 @@ std::size_t TriangleMesh::CalcMemoryBytes() const {
   std::size_t bytes = mesh_.n_vertices() * (sizeof(Vec3) + sizeof(int));
   bytes += mesh_.n_halfedges() * 4 * sizeof(int);
   bytes += mesh_.n_faces() * (sizeof(int) + sizeof(std::int32_t));
-  if (has_corner_normals_) bytes += mesh_.n_halfedges() * sizeof(OpenMeshTraits::Normal);
   bytes += triangles_.capacity() * sizeof(triangles_[0]);
+  bytes += face_normals_.capacity() * sizeof(Vec3);
+  bytes += corner_normals_.capacity() * sizeof(Eigen::Vector3f);
   return bytes;
 }
 

@@ -4,7 +4,6 @@
 
 #include <limits>
 #include <new>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -16,6 +15,7 @@
 #include <boost/iterator/counting_iterator.hpp>
 
 #include "hapticad/core/geometry/segment_triangle.h"
+#include "hapticad/core/geometry/sphere_triangle.h"
 
 namespace hapticad {
 namespace {
@@ -74,32 +74,62 @@ struct TriangleBboxMap {
 
 using Traits = CGAL::AABB_traits<Kernel, TrianglePrimitive, TriangleBboxMap>;
 using Tree = CGAL::AABB_tree<Traits>;
-using Node =
-    std::remove_cv_t<std::remove_pointer_t<decltype(std::declval<const Tree&>().root_node())>>;
 
-// Traversal that keeps the nearest hit so far and prunes every box entered beyond it.
-// Children are visited nearest entry first (CGAL's traversal_with_priority).
+// Traversal that keeps the nearest contact so far and prunes every box entered beyond
+// it. Children are visited nearest entry first (CGAL's traversal_with_priority). A
+// sphere query grows every box by its radius: the swept sphere meets a box only if its
+// centre's segment meets the box grown by r. Boxes and triangles inside a floor are
+// skipped; so are those behind the best contact so far: until it, the query stays at
+// least r in front of the plane through the contact point across the contact normal.
 class FirstHitTraversal {
  public:
   using Priority = double;
 
-  FirstHitTraversal(const TriangleMesh& mesh, const Vec3& a, const Vec3& d, double pad,
-                    double bary_tol)
-      : mesh_(mesh), a_(a), d_(d), pad_(pad), bary_tol_(bary_tol) {}
+  FirstHitTraversal(const TriangleMesh& mesh, const SweepQuery& q, double pad)
+      : mesh_(mesh),
+        a_(q.a),
+        d_(q.b - q.a),
+        ray_(q.a, q.b - q.a),
+        radius_(q.radius),
+        pad_(pad + q.radius),
+        bary_tol_(q.bary_tol) {
+    if (q.floors != nullptr) {
+      for (int i = 0; i < q.floors->count; ++i) AddFloor(q.floors->normal[i], q.floors->offset[i]);
+    }
+    given_floors_ = floor_count_;
+    if (q.hint >= 0 && static_cast<std::size_t>(q.hint) < mesh.num_triangles()) {
+      Test(static_cast<std::uint32_t>(q.hint));
+    }
+  }
 
   bool go_further() const { return true; }
 
-  void intersection(const Vec3&, const TrianglePrimitive& primitive) {
-    const auto& t = mesh_.triangle(primitive.id());
-    SegmentTriangleHit hit;
-    if (IntersectSegmentTriangle(a_, d_, best_s_, mesh_.vertex(t[0]), mesh_.vertex(t[1]),
-                                 mesh_.vertex(t[2]), bary_tol_, &hit)) {
-      // equal s on a shared edge: keep the first found, so the result is deterministic
-      if (!found_ || hit.s < best_s_) {
-        best_s_ = hit.s;
-        best_triangle_ = primitive.id();
-        found_ = true;
+  void intersection(const Vec3&, const TrianglePrimitive& primitive) { Test(primitive.id()); }
+
+  void Test(std::uint32_t id) {
+    const auto& t = mesh_.triangle(id);
+    const Vec3& v0 = mesh_.vertex(t[0]);
+    const Vec3& v1 = mesh_.vertex(t[1]);
+    const Vec3& v2 = mesh_.vertex(t[2]);
+    for (int i = 0; i < floor_count_; ++i) {
+      const Vec3& f = floor_normal_[i];
+      if (f.dot(v0) <= floor_offset_[i] && f.dot(v1) <= floor_offset_[i] &&
+          f.dot(v2) <= floor_offset_[i]) {
+        return;
       }
+    }
+    const Vec3& n = mesh_.face_normal(id);
+    if (radius_ > 0.0) {
+      SphereTriangleHit hit;
+      if (SweepSphereTriangle(a_, d_, best_s_, radius_, v0, v1, v2, n, bary_tol_, &hit)) {
+        Keep(id, hit.s, hit.normal);
+      }
+      return;
+    }
+    SegmentTriangleHit hit;
+    if (IntersectSegmentTriangle(a_, d_, best_s_, v0, v1, v2, bary_tol_, &hit)) {
+      // a point meets the side it comes from
+      Keep(id, hit.s, n.dot(d_) > 0.0 ? Vec3(-n) : n);
     }
   }
 
@@ -117,90 +147,67 @@ class FirstHitTraversal {
   }
 
   bool found() const { return found_; }
-  double best_s() const { return best_s_; }
-  std::uint32_t best_triangle() const { return best_triangle_; }
+  void Report(SweepHit* hit) const {
+    hit->triangle = best_triangle_;
+    hit->s = best_s_;
+    hit->point = a_ + best_s_ * d_;
+    hit->normal = best_normal_;
+  }
 
  private:
+  void Keep(std::uint32_t id, double s, const Vec3& normal) {
+    // equal s on a shared edge: keep the first found, so the result is deterministic
+    if (!found_ || s < best_s_) {
+      best_s_ = s;
+      best_triangle_ = id;
+      best_normal_ = normal;
+      found_ = true;
+      // the plane through the contact point, across the contact normal: before s the
+      // query is at least r in front of it
+      const Vec3 contact = a_ + s * d_ - radius_ * normal;
+      floor_count_ = given_floors_;  // the new contact's plane replaces the last one's
+      AddFloor(normal, normal.dot(contact));
+    }
+  }
+
+  void AddFloor(const Vec3& normal, double offset) {
+    if (floor_count_ == kMaxFloors) return;
+    floor_normal_[floor_count_] = normal;
+    floor_offset_[floor_count_] = offset;
+    ++floor_count_;
+  }
+
   bool Enter(const CGAL::Bbox_3& box, double* entry) const {
     const double lo[3] = {box.xmin(), box.ymin(), box.zmin()};
     const double hi[3] = {box.xmax(), box.ymax(), box.zmax()};
-    return IntersectSegmentBox(a_, d_, best_s_, lo, hi, pad_, entry);
+    for (int i = 0; i < floor_count_; ++i) {
+      // the box's highest corner along the floor's normal
+      const Vec3& f = floor_normal_[i];
+      double top = 0.0;
+      for (int k = 0; k < 3; ++k) top += f[k] * (f[k] > 0.0 ? hi[k] + pad_ : lo[k] - pad_);
+      if (top <= floor_offset_[i]) return false;
+    }
+    return IntersectSegmentBox(ray_, best_s_, lo, hi, pad_, entry);
   }
+
+  static constexpr int kMaxFloors = SweepFloors::kMax + 1;
 
   const TriangleMesh& mesh_;
   const Vec3 a_;
   const Vec3 d_;
+  const SegmentRay ray_;
+  const double radius_;
   const double pad_;
   const double bary_tol_;
   double best_s_ = 1.0;
   std::uint32_t best_triangle_ = 0;
+  Vec3 best_normal_ = Vec3::Zero();
   bool found_ = false;
+  Vec3 floor_normal_[kMaxFloors];
+  double floor_offset_[kMaxFloors];
+  int floor_count_ = 0;
+  int given_floors_ = 0;
 };
-
-bool BoxesMeet(const CGAL::Bbox_3& box, const Vec3& lo, const Vec3& hi) {
-  return box.xmin() <= hi.x() && box.xmax() >= lo.x() && box.ymin() <= hi.y() &&
-         box.ymax() >= lo.y() && box.zmin() <= hi.z() && box.zmax() >= lo.z();
-}
-
-// The children of a node of `n` primitives, as CGAL lays them out (AABB_node.h):
-// n = 2: two primitives; n = 3: a primitive and a node of 2; else nodes of n/2, n - n/2.
-void Gather(const Node& node, std::uint32_t n, const TriangleBboxMap& boxes, const Vec3& lo,
-            const Vec3& hi, TriangleTree::Neighbourhood* out, bool* overflow) {
-  auto push = [&](const void* subtree, std::uint32_t size) {
-    if (out->count == TriangleTree::Neighbourhood::kCapacity) {
-      *overflow = true;
-      return;
-    }
-    out->subtree[out->count] = subtree;
-    out->size[out->count] = size;
-    ++out->count;
-  };
-  if (*overflow) return;
-  if (n <= TriangleTree::Neighbourhood::kSubtreeSize) {
-    push(&node, n);
-    return;
-  }
-  // n > kSubtreeSize >= 4: both children are nodes
-  const std::uint32_t left = n / 2;
-  if (BoxesMeet(node.left_child().bbox(), lo, hi))
-    Gather(node.left_child(), left, boxes, lo, hi, out, overflow);
-  if (BoxesMeet(node.right_child().bbox(), lo, hi)) {
-    Gather(node.right_child(), n - left, boxes, lo, hi, out, overflow);
-  }
-}
-
-// CGAL's traversal_with_priority, over a subtree of n primitives.
-void Traverse(const Node& node, std::uint32_t n, FirstHitTraversal& t) {
-  const Vec3 unused;
-  switch (n) {
-    case 2:
-      t.intersection(unused, node.left_data());
-      t.intersection(unused, node.right_data());
-      return;
-    case 3:
-      t.intersection(unused, node.left_data());
-      if (t.do_intersect(unused, node.right_child())) Traverse(node.right_child(), 2, t);
-      return;
-    default: {
-      const auto [hit_left, p_left] = t.do_intersect_with_priority(unused, node.left_child());
-      const auto [hit_right, p_right] = t.do_intersect_with_priority(unused, node.right_child());
-      const std::uint32_t left = n / 2;
-      if (hit_left && hit_right) {
-        if (p_left >= p_right) {
-          Traverse(node.left_child(), left, t);
-          if (t.do_intersect(unused, node.right_child())) Traverse(node.right_child(), n - left, t);
-        } else {
-          Traverse(node.right_child(), n - left, t);
-          if (t.do_intersect(unused, node.left_child())) Traverse(node.left_child(), left, t);
-        }
-      } else if (hit_left) {
-        Traverse(node.left_child(), left, t);
-      } else if (hit_right) {
-        Traverse(node.right_child(), n - left, t);
-      }
-    }
-  }
-}
 
 }  // namespace
 
@@ -238,47 +245,15 @@ std::unique_ptr<TriangleTree> TriangleTree::Build(const TriangleMesh& mesh, doub
   return std::unique_ptr<TriangleTree>(new TriangleTree(std::move(impl)));
 }
 
-bool TriangleTree::FirstHit(const Vec3& a, const Vec3& b, double bary_tol, SegmentHit* hit) const {
-  const Vec3 d = b - a;
-  FirstHitTraversal traversal(*impl_->mesh, a, d, impl_->pad, bary_tol);
-  impl_->tree.traversal_with_priority(a, traversal);
+bool TriangleTree::FirstHit(const SweepQuery& query, SweepHit* hit) const {
+  FirstHitTraversal traversal(*impl_->mesh, query, impl_->pad);
+  impl_->tree.traversal_with_priority(query.a, traversal);
   if (!traversal.found()) return false;
-  hit->triangle = traversal.best_triangle();
-  hit->s = traversal.best_s();
-  hit->point = a + hit->s * d;
+  traversal.Report(hit);
   return true;
 }
 
-bool TriangleTree::GatherNeighbourhood(const Vec3& lo, const Vec3& hi, Neighbourhood* out) const {
-  out->lo = lo;
-  out->hi = hi;
-  out->count = 0;
-  out->valid = false;
-  const auto n = static_cast<std::uint32_t>(impl_->tree.size());
-  if (n < 2) return false;  // a one-triangle scene: the plain query is as cheap
-  bool overflow = false;
-  if (BoxesMeet(impl_->tree.bbox(), lo, hi)) {
-    Gather(*impl_->tree.root_node(), n, impl_->boxes, lo, hi, out, &overflow);
-  }
-  out->valid = !overflow;
-  return out->valid;
-}
-
-bool TriangleTree::FirstHitIn(const Neighbourhood& nb, const Vec3& a, const Vec3& b,
-                              double bary_tol, SegmentHit* hit) const {
-  const Vec3 d = b - a;
-  FirstHitTraversal traversal(*impl_->mesh, a, d, impl_->pad, bary_tol);
-  const Vec3 unused;
-  for (int i = 0; i < nb.count; ++i) {
-    const Node& node = *static_cast<const Node*>(nb.subtree[i]);
-    if (traversal.do_intersect(unused, node)) Traverse(node, nb.size[i], traversal);
-  }
-  if (!traversal.found()) return false;
-  hit->triangle = traversal.best_triangle();
-  hit->s = traversal.best_s();
-  hit->point = a + hit->s * d;
-  return true;
-}
+double TriangleTree::pad() const { return impl_->pad; }
 
 SurfacePoint TriangleTree::CalcClosestPoint(const Vec3& p) const {
   const auto result = impl_->tree.closest_point_and_primitive(Kernel::Point_3(p.x(), p.y(), p.z()));

@@ -18,8 +18,12 @@ const HapticScene& Checked(const std::shared_ptr<const HapticScene>& scene) {
   return *scene;
 }
 
-ProxyConfig MakeProxyConfig(const HapticScene& scene) {
+ProxyConfig MakeProxyConfig(const HapticScene& scene, const ContactOptions& options) {
+  if (!(std::isfinite(options.proxy_radius_m) && options.proxy_radius_m >= 0.0)) {
+    throw std::invalid_argument("force renderer: the proxy radius must be finite and >= 0");
+  }
   ProxyConfig config;
+  config.radius_m = options.proxy_radius_m;
   config.surface_offset_m = scene.surface_offset_m();
   return config;
 }
@@ -31,11 +35,13 @@ constexpr double kStickReentry = 0.6;
 }  // namespace
 
 ForceRenderer::ForceRenderer(std::shared_ptr<const HapticScene> scene,
-                             std::shared_ptr<const SurfaceTable> surfaces, RenderLimits limits)
+                             std::shared_ptr<const SurfaceTable> surfaces, RenderLimits limits,
+                             ContactOptions options)
     : scene_(std::move(scene)),
       surfaces_(std::move(surfaces)),
       limits_(limits),
-      proxy_(Checked(scene_).mesh(), scene_->tree(), MakeProxyConfig(*scene_)) {
+      options_(options),
+      proxy_(Checked(scene_).mesh(), scene_->tree(), MakeProxyConfig(*scene_, options)) {
   if (!surfaces_) throw std::invalid_argument("force renderer: no surface table");
   if (!(limits_.max_force_n > 0.0) || !(limits_.max_stiffness_n_per_m > 0.0)) {
     throw std::invalid_argument("force renderer: device limits must be > 0");
@@ -78,8 +84,8 @@ Vec3 ForceRenderer::ApplyFrictionCone(const SurfaceProperties& surface, double f
     anchor_l_ = proxy + offset * (dynamic_radius / lag);
   }
   // never pull the spring's end through geometry between the proxy and the anchor
-  SegmentHit hit;
-  if (scene_->tree().FirstHit(proxy, anchor_l_, 1e-9, &hit)) anchor_l_ = proxy;
+  SweepHit hit;
+  if (proxy_.FirstHit(proxy, anchor_l_, &hit)) anchor_l_ = proxy;
   if (sticking_) out->flags |= kSticking;
   return anchor_l_;
 }
@@ -113,8 +119,14 @@ void ForceRenderer::Render(const RenderInput& input, RenderOutput* out) {
     k = limits_.max_stiffness_n_per_m;
     out->flags |= kStiffnessClamped;
   }
-  // spring from the device to the proxy; its direction is the contact normal
-  const Vec3 spring = k * (proxy_.position() - goal_l);
+  // spring from the device to the proxy; its direction is the contact normal, or the
+  // shading normal on a face
+  Vec3 spring = k * (proxy_.position() - goal_l);
+  if (options_.force_shading && proxy_.constraints().count() == 1 &&
+      scene_->mesh().has_corner_normals()) {
+    const Vec3 shaded = scene_->mesh().CalcShadingNormal(triangle, proxy_.contact_point());
+    spring = std::max(spring.dot(shaded), 0.0) * shaded;
+  }
   const double spring_n = spring.norm();
   const Vec3 normal =
       spring_n > 0.0 ? Vec3(spring / spring_n) : proxy_.constraints().plane(0).normal;
@@ -139,7 +151,7 @@ void ForceRenderer::Render(const RenderInput& input, RenderOutput* out) {
     return;
   }
 
-  const Vec3 contact_w = out->proxy_w;
+  const Vec3 contact_w = scene_->ToWorld(proxy_.contact_point());
   // roughness: deeper on a ball, normal tilted by its slope, mu scaled
   double normal_force = spring_n;
   Vec3 normal_direction = normal;

@@ -50,25 +50,7 @@ SurfaceSample HapticScene::CalcClosestPoint(const Vec3& p_w) const {
   out.triangle = closest.triangle;
   out.cad_face = mesh_->cad_face(closest.triangle);
   out.distance_m = closest.distance;
-  out.normal_w = mesh_->face_normal(closest.triangle);
-  if (mesh_->has_corner_normals()) {
-    // barycentric blend of the corner normals at the closest point
-    const auto& t = mesh_->triangle(closest.triangle);
-    const Vec3 a = mesh_->vertex(t[0]);
-    const Vec3 e1 = mesh_->vertex(t[1]) - a;
-    const Vec3 e2 = mesh_->vertex(t[2]) - a;
-    const Vec3 r = closest.point - a;
-    const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
-    const double det = d11 * d22 - d12 * d12;
-    if (det > 0.0) {
-      const double u = (d22 * e1.dot(r) - d12 * e2.dot(r)) / det;
-      const double w = (d11 * e2.dot(r) - d12 * e1.dot(r)) / det;
-      const Vec3 n = (1.0 - u - w) * mesh_->corner_normal(closest.triangle, 0) +
-                     u * mesh_->corner_normal(closest.triangle, 1) +
-                     w * mesh_->corner_normal(closest.triangle, 2);
-      if (n.norm() > 0.0) out.normal_w = n.normalized();
-    }
-  }
+  out.normal_w = mesh_->CalcShadingNormal(closest.triangle, closest.point);
   return out;
 }
 

@@ -12,11 +12,12 @@ namespace {
 
 class ProxyOnBox : public ::testing::Test {
  protected:
-  void Make(const TriangleSoup& s) {
+  void Make(const TriangleSoup& s, double radius = 0.0) {
     mesh_ = TriangleMesh::Build(s.vertices, s.triangles, s.cad_faces, s.corner_normals);
     tree_ = TriangleTree::Build(*mesh_, 1e-12);
     ProxyConfig config;
     config.surface_offset_m = kOffset;
+    config.radius_m = radius;
     proxy_ = std::make_unique<GodObjectProxy>(*mesh_, *tree_, config);
   }
   static constexpr double kOffset = 1e-8;
@@ -94,6 +95,46 @@ TEST_F(ProxyOnBox, FeelsAZeroThicknessSheetFromBothSides) {
   proxy_->Reset(Vec3(0, 0, -0.01));
   proxy_->Update(Vec3(0.001, 0, 0.003));
   EXPECT_NEAR(proxy_->position().z(), -kOffset, 1e-15);
+}
+
+TEST_F(ProxyOnBox, ASphereRestsOneRadiusAboveTheFaceAndRollsOverTheEdge) {
+  const double r = 0.004;
+  Make(testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05)), r);
+  proxy_->Reset(Vec3(0, 0, 0.07));
+  proxy_->Update(Vec3(0.01, 0.0, 0.05));  // centre goal 4 mm into the top (r above it)
+  ASSERT_TRUE(proxy_->in_contact());
+  EXPECT_NEAR(proxy_->position().z(), 0.05 + r + kOffset, 1e-12);
+  EXPECT_NEAR((proxy_->contact_point() - Vec3(0.01, 0, 0.05 + kOffset)).norm(), 0.0, 1e-12);
+  // slide off the +x edge, pressing down: beyond it the ball rolls round the edge, its
+  // centre always r from it, and ends on the side
+  for (int i = 0; i <= 400; ++i) {
+    const Vec3 goal(0.03 + 0.0001 * i, 0.0, 0.05 - 0.002);
+    proxy_->Update(goal);
+    const Vec3& c = proxy_->position();
+    const Vec3 nearest(std::min(c.x(), 0.05), c.y(), std::min(c.z(), 0.05));
+    ASSERT_GE((c - nearest).norm(), r - 1e-12) << i << " " << c.transpose();
+  }
+  EXPECT_GT(proxy_->position().x(), 0.05 + r - 1e-9);
+}
+
+TEST_F(ProxyOnBox, ASphereNeverEntersTheBoxUnderRandomMotion) {
+  const double r = 0.003;
+  {
+    Make(testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05)), r);
+    std::mt19937 rng(99);
+    std::normal_distribution<double> step(0.0, 0.004);
+    proxy_->Reset(Vec3(0, 0, 0.08));
+    Vec3 goal(0, 0, 0.08);
+    for (int i = 0; i < 20000; ++i) {
+      goal += Vec3(step(rng), step(rng), step(rng));
+      goal = goal.cwiseMax(Vec3::Constant(-0.09)).cwiseMin(Vec3::Constant(0.09));
+      proxy_->Update(goal);
+      const Vec3& c = proxy_->position();
+      // distance from the centre to the solid box
+      const Vec3 outside = (c.cwiseAbs() - Vec3::Constant(0.05)).cwiseMax(0.0);
+      ASSERT_GE(outside.norm(), r - 1e-12) << "step " << i;
+    }
+  }
 }
 
 }  // namespace

@@ -13,6 +13,13 @@
 namespace hapticad {
 namespace {
 
+bool FirstHit(const TriangleTree& tree, const Vec3& a, const Vec3& b, SweepHit* hit) {
+  SweepQuery q;
+  q.a = a;
+  q.b = b;
+  return tree.FirstHit(q, hit);
+}
+
 class BoxTree : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -25,23 +32,23 @@ class BoxTree : public ::testing::Test {
 };
 
 TEST_F(BoxTree, FirstHitIsTheNearestTriangle) {
-  SegmentHit hit;
-  ASSERT_TRUE(tree_->FirstHit(Vec3(0.2, 0.3, 3), Vec3(0.2, 0.3, -3), 1e-9, &hit));
+  SweepHit hit;
+  ASSERT_TRUE(FirstHit(*tree_, Vec3(0.2, 0.3, 3), Vec3(0.2, 0.3, -3), &hit));
   EXPECT_EQ(mesh_->cad_face(hit.triangle), 5);  // +z, not -z behind it
   EXPECT_NEAR((hit.point - Vec3(0.2, 0.3, 1)).norm(), 0.0, 1e-12);
   EXPECT_NEAR(hit.s, 2.0 / 6.0, 1e-12);
 }
 
 TEST_F(BoxTree, MissesWhenTheSegmentStopsShortOrPassesBeside) {
-  SegmentHit hit;
-  EXPECT_FALSE(tree_->FirstHit(Vec3(0, 0, 3), Vec3(0, 0, 1.001), 1e-9, &hit));
-  EXPECT_FALSE(tree_->FirstHit(Vec3(1.5, 0, 3), Vec3(1.5, 0, -3), 1e-9, &hit));
+  SweepHit hit;
+  EXPECT_FALSE(FirstHit(*tree_, Vec3(0, 0, 3), Vec3(0, 0, 1.001), &hit));
+  EXPECT_FALSE(FirstHit(*tree_, Vec3(1.5, 0, 3), Vec3(1.5, 0, -3), &hit));
 }
 
 TEST_F(BoxTree, ASegmentThroughASharedEdgeStillHits) {
   // the top face's diagonal from (-1,-1) to (1,1) is shared by its two triangles
-  SegmentHit hit;
-  ASSERT_TRUE(tree_->FirstHit(Vec3(0.25, 0.25, 2), Vec3(0.25, 0.25, 0), 1e-9, &hit));
+  SweepHit hit;
+  ASSERT_TRUE(FirstHit(*tree_, Vec3(0.25, 0.25, 2), Vec3(0.25, 0.25, 0), &hit));
   EXPECT_EQ(mesh_->cad_face(hit.triangle), 5);
 }
 
@@ -60,8 +67,8 @@ TEST_F(BoxTree, RandomSegmentsAgreeWithBruteForce) {
         best = std::min(best, h.s);
       }
     }
-    SegmentHit hit;
-    const bool found = tree_->FirstHit(a, b, 1e-9, &hit);
+    SweepHit hit;
+    const bool found = FirstHit(*tree_, a, b, &hit);
     ASSERT_EQ(found, best <= 1.0) << i;
     if (found) {
       EXPECT_NEAR(hit.s, best, 1e-12) << i;
@@ -70,11 +77,10 @@ TEST_F(BoxTree, RandomSegmentsAgreeWithBruteForce) {
 }
 
 TEST_F(BoxTree, FirstHitDoesNotAllocate) {
-  SegmentHit hit;
-  tree_->FirstHit(Vec3(0, 0, 3), Vec3(0, 0, -3), 1e-9, &hit);  // warm
+  SweepHit hit;
+  FirstHit(*tree_, Vec3(0, 0, 3), Vec3(0, 0, -3), &hit);  // warm
   testing::AllocationCounter counter;
-  for (int i = 0; i < 100; ++i)
-    tree_->FirstHit(Vec3(0.01 * i, 0, 3), Vec3(0, 0.01 * i, -3), 1e-9, &hit);
+  for (int i = 0; i < 100; ++i) FirstHit(*tree_, Vec3(0.01 * i, 0, 3), Vec3(0, 0.01 * i, -3), &hit);
   EXPECT_EQ(counter.count(), 0u);
 }
 

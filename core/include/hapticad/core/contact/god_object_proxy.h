@@ -1,15 +1,24 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// GodObjectProxy: a point proxy that follows the device but never crosses the surface
-// (Zilles and Salisbury 1995; Ruspini et al. 1997).
+// GodObjectProxy: a point or a sphere that follows the device but never crosses the
+// surface (Zilles and Salisbury 1995; Ruspini et al. 1997).
 //
 // Each tick the proxy moves from where it is toward the goal (the device position)
-// along a segment. The first triangle the segment hits becomes a constraint plane,
-// offset by `surface_offset` to the free side; the proxy stops on that offset plane
-// and the goal is re-projected onto the constraint set. This repeats until the segment
-// is free or three planes bind (a concave corner). Forces come from proxy - goal.
+// along a segment, swept as a point (radius 0) or as a sphere. The first triangle the
+// sweep touches becomes a constraint plane through the proxy's centre at contact,
+// facing the side the proxy came from (surfaces are two-sided: sheets and plates are
+// felt from both sides) and offset by `surface_offset` to the free side; the proxy
+// stops on that plane and the goal is re-projected onto the constraint set. This
+// repeats until the sweep is free or three planes bind (a concave corner), so the proxy
+// can never pass through anything, however far the device moves in one tick.
+//
+// Temporal coherence: each tick's first sweep tests the last tick's contact triangle
+// before walking the tree, and every sweep carries the planes it cannot cross (the
+// constraints found so far, and the plane of the best contact so far): whole subtrees
+// under them are skipped. A proxy sliding over a dense convex surface then tests a
+// handful of triangles per tick instead of every one within its radius.
 //
 // Frame and units: the scene's local frame, metres. Update() is servo-tick safe: no
-// allocation, no lock, bounded work (at most kMaxIterations tree queries).
+// allocation, no lock, bounded work (at most kMaxIterations sweeps).
 #pragma once
 
 #include "hapticad/core/contact/constraint_set.h"
@@ -20,6 +29,7 @@
 namespace hapticad {
 
 struct ProxyConfig {
+  double radius_m = 0.0;           // 0: a point proxy; > 0: a sphere of this radius
   double surface_offset_m = 1e-8;  // how far off the surface the proxy rests (> 0)
   double bary_tolerance = 1e-9;    // inclusive edge tolerance of the triangle test
 };
@@ -28,7 +38,8 @@ class GodObjectProxy {
  public:
   static constexpr int kMaxIterations = 4;
 
-  // `mesh` and `tree` must outlive the proxy.
+  // `mesh` and `tree` must outlive the proxy. Throws std::invalid_argument for a
+  // negative or non-finite radius or a non-positive offset.
   GodObjectProxy(const TriangleMesh& mesh, const TriangleTree& tree, ProxyConfig config);
 
   // Places the proxy at `position_l` without collision (the caller knows it is free).
@@ -37,9 +48,18 @@ class GodObjectProxy {
   // Moves the proxy toward `goal_l`, constrained by the surface.
   void Update(const Vec3& goal_l);
 
+  // First contact of the proxy's shape swept from a to b. `floors` and `hint` as in
+  // SweepQuery. Servo-tick safe.
+  bool FirstHit(const Vec3& a, const Vec3& b, SweepHit* hit, const SweepFloors* floors = nullptr,
+                std::int64_t hint = -1);
+
   const Vec3& position() const { return position_; }
   const ConstraintSet& constraints() const { return constraints_; }
   bool in_contact() const { return constraints_.count() > 0; }
+  const ProxyConfig& config() const { return config_; }
+  // Where the proxy touches the first constraint's triangle: its centre less the radius
+  // along the plane's normal. Precondition: in_contact().
+  Vec3 contact_point() const { return position_ - config_.radius_m * constraints_.plane(0).normal; }
 
  private:
   const TriangleMesh& mesh_;
@@ -47,6 +67,7 @@ class GodObjectProxy {
   ProxyConfig config_;
   Vec3 position_ = Vec3::Zero();
   ConstraintSet constraints_;
+  std::int64_t last_triangle_ = -1;  // the last tick's first contact: tested first
 };
 
 }  // namespace hapticad

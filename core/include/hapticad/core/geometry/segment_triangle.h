@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cmath>
+#include <utility>
 
 #include "hapticad/core/vec3.h"
 
@@ -46,23 +47,36 @@ inline bool IntersectSegmentTriangle(const Vec3& a, const Vec3& d, double s_max,
   return true;
 }
 
-// Slab test of the segment against the box [lo, hi] grown by `pad` on every side.
-// Returns the entry parameter in *s_entry. A zero component of d is handled without
-// dividing by it.
-inline bool IntersectSegmentBox(const Vec3& a, const Vec3& d, double s_max, const double lo[3],
+// A segment prepared for many box tests: its start and the inverse of its direction
+// (the divisions done once per query, not once per box).
+struct SegmentRay {
+  SegmentRay(const Vec3& a_in, const Vec3& d) : a(a_in) {
+    for (int k = 0; k < 3; ++k) {
+      parallel[k] = d[k] == 0.0;
+      inv_d[k] = parallel[k] ? 0.0 : 1.0 / d[k];
+    }
+  }
+  Vec3 a;
+  double inv_d[3];
+  bool parallel[3];
+};
+
+// Slab test of the segment against the box [lo, hi] grown by `pad` on every side, for
+// s in [0, s_max]. Returns the entry parameter in *s_entry. A zero component of the
+// direction is handled without dividing by it.
+inline bool IntersectSegmentBox(const SegmentRay& ray, double s_max, const double lo[3],
                                 const double hi[3], double pad, double* s_entry) {
   double s0 = 0.0;
   double s1 = s_max;
   for (int k = 0; k < 3; ++k) {
     const double l = lo[k] - pad;
     const double h = hi[k] + pad;
-    if (d[k] == 0.0) {
-      if (a[k] < l || a[k] > h) return false;
+    if (ray.parallel[k]) {
+      if (ray.a[k] < l || ray.a[k] > h) return false;
       continue;
     }
-    const double inv = 1.0 / d[k];
-    double t0 = (l - a[k]) * inv;
-    double t1 = (h - a[k]) * inv;
+    double t0 = (l - ray.a[k]) * ray.inv_d[k];
+    double t1 = (h - ray.a[k]) * ray.inv_d[k];
     if (t0 > t1) std::swap(t0, t1);
     s0 = t0 > s0 ? t0 : s0;
     s1 = t1 < s1 ? t1 : s1;

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // TriangleMesh: the scene's surface as an OpenMesh triangle mesh whose faces carry the
 // CAD face they came from (an OpenMesh face property), plus the flat arrays the
-// collision queries read.
+// collision queries read: vertex triples, unit face normals (doubles: the plane tests
+// of the proxy need them exact) and, when the tessellator gave them, the exact surface
+// normal at each triangle corner (floats: they only shade, and 1e-7 rad is plenty).
 //
 // Frame and units: the scene's local frame, metres (see HapticScene).
 // Built once, before the servo loop; immutable afterwards. Accessors are cheap and
@@ -56,11 +58,17 @@ class TriangleMesh {
   std::int32_t num_cad_faces() const { return num_cad_faces_; }
 
   // Unit normal from the winding (v1 - v0) x (v2 - v0); zero for a degenerate triangle.
-  Vec3 face_normal(std::uint32_t t) const;
+  const Vec3& face_normal(std::uint32_t t) const { return face_normals_[t]; }
 
-  bool has_corner_normals() const { return has_corner_normals_; }
+  bool has_corner_normals() const { return !corner_normals_.empty(); }
   // Unit normal at corner `corner` (0..2) of triangle `t`. Precondition: has_corner_normals().
-  Vec3 corner_normal(std::uint32_t t, int corner) const;
+  Vec3 corner_normal(std::uint32_t t, int corner) const {
+    return corner_normals_[3 * t + corner].cast<double>();
+  }
+  // The shading normal at `point_l` (on or near triangle t): the corner normals blended
+  // by the point's barycentric coordinates (clamped to the triangle), unit. The face
+  // normal when there are no corner normals. Servo-tick safe.
+  Vec3 CalcShadingNormal(std::uint32_t t, const Vec3& point_l) const;
 
   const OpenMeshTriMesh& openmesh() const { return mesh_; }
 
@@ -82,7 +90,8 @@ class TriangleMesh {
   const std::int32_t* cad_faces_ = nullptr;
   // Vertex triples per triangle, so queries read them without circulating halfedges.
   std::vector<std::array<std::uint32_t, 3>> triangles_;
-  bool has_corner_normals_ = false;
+  std::vector<Vec3> face_normals_;
+  std::vector<Eigen::Vector3f> corner_normals_;  // 3 per triangle, or none
   std::int32_t num_cad_faces_ = 0;
 };
 

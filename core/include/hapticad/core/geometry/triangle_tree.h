@@ -17,11 +17,12 @@
 
 namespace hapticad {
 
-// First hit of a segment: triangle, parameter s in [0, 1] along a -> b, the point.
-struct SegmentHit {
+// First contact of a query swept from a to b: a point (radius 0) or a sphere.
+struct SweepHit {
   std::uint32_t triangle;
-  double s;
-  Vec3 point;
+  double s;     // in [0, 1] along a -> b
+  Vec3 point;   // the query's centre at contact, a + s (b - a)
+  Vec3 normal;  // unit contact normal, pointing to the side the query came from
 };
 
 // Closest point on the surface to a query point.
@@ -31,39 +32,42 @@ struct SurfacePoint {
   double distance;
 };
 
+// Half-spaces n . x <= offset that the swept query provably never comes within its
+// radius of (the proxy's constraint planes, lowered by the radius): triangles and
+// boxes entirely inside one are skipped without a contact test. On a convex surface
+// this discards everything under the face the proxy slides on.
+struct SweepFloors {
+  static constexpr int kMax = 3;
+  int count = 0;
+  Vec3 normal[kMax];  // unit
+  double offset[kMax];
+};
+
+// A first-contact query: a point (radius 0) or a sphere whose centre sweeps a -> b.
+struct SweepQuery {
+  Vec3 a = Vec3::Zero();  // model units, the tree's frame
+  Vec3 b = Vec3::Zero();
+  double radius = 0.0;
+  double bary_tol = 1e-9;               // as in IntersectSegmentTriangle
+  const SweepFloors* floors = nullptr;  // may be null
+  // A triangle likely to be hit (the last contact), tested before the traversal so its
+  // contact prunes the rest early. Any value, or -1.
+  std::int64_t hint = -1;
+};
+
 class TriangleTree {
  public:
-  // A cut through the tree around a box: the subtrees of at most kSubtreeSize triangles
-  // whose bounding boxes meet the box. Every triangle that meets the box lies in one of
-  // them, so a segment query confined to the box needs only these subtrees: a proxy
-  // that moves a little each tick reuses the same few hot subtrees instead of walking
-  // the whole tree (temporal coherence). Fixed size, no allocation.
-  struct Neighbourhood {
-    static constexpr int kCapacity = 64;
-    static constexpr std::uint32_t kSubtreeSize = 64;
-    Vec3 lo = Vec3::Zero();  // the box, local frame
-    Vec3 hi = Vec3::Zero();
-    int count = 0;
-    bool valid = false;
-    const void* subtree[kCapacity] = {};  // tree node, or a triangle primitive when size is 1
-    std::uint32_t size[kCapacity] = {};
-  };
   // Builds the tree and the distance acceleration. `mesh` must outlive the tree.
   // `pad` (model units) grows every node box so a segment grazing a box edge is not
   // lost to rounding; the scene passes a small fraction of its size.
   static std::unique_ptr<TriangleTree> Build(const TriangleMesh& mesh, double pad);
 
-  // First triangle hit along a -> b. Servo-tick safe: no allocation, no lock.
-  // `bary_tol` as in IntersectSegmentTriangle.
-  bool FirstHit(const Vec3& a, const Vec3& b, double bary_tol, SegmentHit* hit) const;
+  // First contact of the query. Triangles are two-sided. Servo-tick safe: no
+  // allocation, no lock.
+  bool FirstHit(const SweepQuery& query, SweepHit* hit) const;
 
-  // Gathers the neighbourhood of box [lo, hi]. Servo-tick safe. Returns false, leaving
-  // it invalid, when more than kCapacity subtrees meet the box (make the box smaller).
-  bool GatherNeighbourhood(const Vec3& lo, const Vec3& hi, Neighbourhood* out) const;
-
-  // First hit along a -> b among the neighbourhood's triangles only. Servo-tick safe.
-  bool FirstHitIn(const Neighbourhood& neighbourhood, const Vec3& a, const Vec3& b, double bary_tol,
-                  SegmentHit* hit) const;
+  // How much every node box is grown (model units).
+  double pad() const;
 
   // Closest surface point to `p`. Uses CGAL's accelerated distance query: not for the
   // servo tick (CGAL's kd-tree search allocates).

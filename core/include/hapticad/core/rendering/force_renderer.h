@@ -1,10 +1,16 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // ForceRenderer: one servo tick of haptic rendering — device state in, force out.
 //
-//   proxy      god-object point proxy on the scene (GodObjectProxy)
+//   proxy      god-object proxy on the scene, a point or a sphere (GodObjectProxy)
 //   normal     k (proxy - device), k = the touched face's stiffness capped at the
-//              device's maximum stable stiffness; with roughness, k (depth + h) along
-//              the bump-tilted normal (roughness_texture.h)
+//              device's maximum stable stiffness. With force shading and one
+//              constraint, the spring acts along the shading normal n_s (the CAD's
+//              exact normals blended over the triangle) with the depth measured along
+//              it, k ((proxy - device) . n_s) n_s: a coarse tessellation of a curved
+//              face feels smooth (Morgenbesser and Srinivasan 1996). On edges and in
+//              corners (two or three constraints) the plain spring acts. With
+//              roughness, k (depth + h) along the bump-tilted normal
+//              (roughness_texture.h)
 //   lateral    one of
 //                seed 000 §2.1 friction, f_t = -mu_eq(|v_t|) F_n v_hat_t, with the
 //                face's mu (anisotropic along a pattern, scaled by roughness);
@@ -37,6 +43,12 @@ struct RenderLimits {
   double max_stiffness_n_per_m = 400.0;  // > 0
 };
 
+// How the contact is computed: the shape of the proxy and whether to shade.
+struct ContactOptions {
+  double proxy_radius_m = 0.0;  // 0: a point proxy; > 0: a sphere (a fingertip) of this radius
+  bool force_shading = true;    // needs corner normals in the scene; without them, no effect
+};
+
 struct RenderInput {
   Vec3 position_w = Vec3::Zero();  // device tip, m
   Vec3 velocity_w = Vec3::Zero();  // device tip, m/s (filtered by the device layer)
@@ -65,9 +77,11 @@ struct RenderOutput {
 
 class ForceRenderer {
  public:
-  // Throws std::invalid_argument for null inputs or non-positive limits.
+  // Throws std::invalid_argument for null inputs, non-positive limits or a negative or
+  // non-finite proxy radius.
   ForceRenderer(std::shared_ptr<const HapticScene> scene,
-                std::shared_ptr<const SurfaceTable> surfaces, RenderLimits limits);
+                std::shared_ptr<const SurfaceTable> surfaces, RenderLimits limits,
+                ContactOptions options = {});
 
   // Puts the proxy at the device position; the next Render() starts from there.
   void Reset(const Vec3& device_w);
@@ -76,6 +90,8 @@ class ForceRenderer {
 
   const HapticScene& scene() const { return *scene_; }
   const RenderLimits& limits() const { return limits_; }
+  const ContactOptions& options() const { return options_; }
+  const GodObjectProxy& proxy() const { return proxy_; }
 
  private:
   // Friction cone: returns the point the spring pulls toward (the anchor while sticking).
@@ -86,6 +102,7 @@ class ForceRenderer {
   std::shared_ptr<const HapticScene> scene_;
   std::shared_ptr<const SurfaceTable> surfaces_;
   RenderLimits limits_;
+  ContactOptions options_;
   GodObjectProxy proxy_;
   bool started_ = false;
   // friction cone state, local frame

@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "hapticad/core/geometry/sphere_triangle.h"
+
+#include <random>
+
+#include <gtest/gtest.h>
+
+namespace hapticad {
+namespace {
+
+// the triangle (0,0,0), (1,0,0), (0,1,0), normal +z
+const Vec3 kV0(0, 0, 0), kV1(1, 0, 0), kV2(0, 1, 0), kN(0, 0, 1);
+
+bool Sweep(const Vec3& a, const Vec3& b, double r, SphereTriangleHit* hit) {
+  return SweepSphereTriangle(a, b - a, 1.0, r, kV0, kV1, kV2, kN, 1e-12, hit);
+}
+
+// distance from p to the triangle: the closest point by Voronoi regions (Ericson,
+// Real-Time Collision Detection 5.1.5), an independent reference
+double DistanceToTriangle(const Vec3& p) {
+  const Vec3 &a = kV0, &b = kV1, &c = kV2;
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return (p - a).norm();
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return (p - b).norm();
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + d1 / (d1 - d3) * ab)).norm();
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return (p - c).norm();
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + d2 / (d2 - d6) * ac)).norm();
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  return (p - (a + ab * (vb * denom) + ac * (vc * denom))).norm();
+}
+
+TEST(SweepSphereTriangle, TouchesTheFaceOneRadiusAbove) {
+  SphereTriangleHit hit;
+  ASSERT_TRUE(Sweep(Vec3(0.2, 0.2, 1.0), Vec3(0.2, 0.2, -1.0), 0.25, &hit));
+  EXPECT_NEAR(hit.s, 0.375, 1e-15);  // centre at z = 0.25
+  EXPECT_NEAR((hit.normal - kN).norm(), 0.0, 1e-15);
+  // from below: the other side
+  ASSERT_TRUE(Sweep(Vec3(0.2, 0.2, -1.0), Vec3(0.2, 0.2, 1.0), 0.25, &hit));
+  EXPECT_NEAR(hit.s, 0.375, 1e-15);
+  EXPECT_NEAR((hit.normal + kN).norm(), 0.0, 1e-15);
+}
+
+TEST(SweepSphereTriangle, TouchesAnEdgeAndAVertexBesideTheFace) {
+  SphereTriangleHit hit;
+  // straight down beside the edge y = 0, 0.1 away: touches the edge when z = sqrt(r^2 - 0.01)
+  ASSERT_TRUE(Sweep(Vec3(0.5, -0.1, 1.0), Vec3(0.5, -0.1, -1.0), 0.25, &hit));
+  const double z = std::sqrt(0.25 * 0.25 - 0.01);
+  EXPECT_NEAR(hit.s, (1.0 - z) / 2.0, 1e-14);
+  EXPECT_NEAR((hit.normal - Vec3(0, -0.1, z) / 0.25).norm(), 0.0, 1e-13);
+  // beside the vertex (0,0,0), diagonally out
+  ASSERT_TRUE(Sweep(Vec3(-0.1, -0.1, 1.0), Vec3(-0.1, -0.1, -1.0), 0.25, &hit));
+  const double zv = std::sqrt(0.25 * 0.25 - 0.02);
+  EXPECT_NEAR(hit.s, (1.0 - zv) / 2.0, 1e-14);
+  // far beside: nothing
+  EXPECT_FALSE(Sweep(Vec3(-0.3, -0.3, 1.0), Vec3(-0.3, -0.3, -1.0), 0.25, &hit));
+}
+
+TEST(SweepSphereTriangle, ALateralSweepAlongThePlaneHitsTheEdgeItRunsInto) {
+  SphereTriangleHit hit;
+  // centre 0.1 above the plane, moving in +x from x = -1 toward the triangle
+  ASSERT_TRUE(Sweep(Vec3(-1.0, 0.3, 0.1), Vec3(1.0, 0.3, 0.1), 0.25, &hit));
+  const double dx = std::sqrt(0.25 * 0.25 - 0.01);  // to the edge x = 0 at height 0.1
+  EXPECT_NEAR(hit.s, (1.0 - dx) / 2.0, 1e-14);
+  EXPECT_NEAR((hit.normal - Vec3(-dx, 0, 0.1) / 0.25).norm(), 0.0, 1e-13);
+}
+
+TEST(SweepSphereTriangle, AnOverlappingSphereMayLeaveButNotGoDeeper) {
+  SphereTriangleHit hit;
+  EXPECT_FALSE(Sweep(Vec3(0.2, 0.2, 0.1), Vec3(0.2, 0.2, 0.5), 0.25, &hit));
+  ASSERT_TRUE(Sweep(Vec3(0.2, 0.2, 0.1), Vec3(0.2, 0.2, 0.0), 0.25, &hit));
+  EXPECT_EQ(hit.s, 0.0);
+  EXPECT_FALSE(Sweep(Vec3(0.5, -0.1, 0.0), Vec3(0.5, -0.4, 0.0), 0.25, &hit));  // off an edge
+}
+
+TEST(SweepSphereTriangle, AgreesWithBruteForceDistancesOnRandomSweeps) {
+  // the reported contact is at distance r, and no earlier point of the sweep is closer
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 2.0);
+  const double r = 0.2;
+  int hits = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3 a(u(rng), u(rng), u(rng));
+    const Vec3 b(u(rng), u(rng), u(rng));
+    if (DistanceToTriangle(a) <= r + 1e-6) continue;  // start clearly outside
+    SphereTriangleHit hit;
+    const bool found = Sweep(a, b, r, &hit);
+    double first = 2.0;  // brute force: first sample closer than r
+    for (int k = 0; k <= 2000; ++k) {
+      if (DistanceToTriangle(a + (b - a) * (k / 2000.0)) < r - 1e-9) {
+        first = k / 2000.0;
+        break;
+      }
+    }
+    if (first <= 1.0) {
+      ASSERT_TRUE(found) << i;
+      EXPECT_LE(hit.s, first + 1e-12) << i;
+    }
+    if (found) {
+      ++hits;
+      EXPECT_NEAR(DistanceToTriangle(a + hit.s * (b - a)), r, 1e-9) << i;
+    }
+  }
+  EXPECT_GT(hits, 300);
+}
+
+}  // namespace
+}  // namespace hapticad
