@@ -8,13 +8,18 @@
 
 namespace hapticad {
 
-std::shared_ptr<const HapticScene> HapticScene::Build(const TriangleSoup& soup,
-                                                      double metres_per_unit) {
+std::shared_ptr<const HapticScene> HapticScene::Build(const TriangleSoup& input,
+                                                      double metres_per_unit,
+                                                      const SceneOptions& options) {
   if (!(std::isfinite(metres_per_unit) && metres_per_unit > 0.0)) {
     throw std::invalid_argument("haptic scene: metres per unit must be finite and > 0, got " +
                                 std::to_string(metres_per_unit));
   }
-  if (soup.vertices.empty()) throw std::invalid_argument("haptic scene: no vertices");
+  if (input.vertices.empty()) throw std::invalid_argument("haptic scene: no vertices");
+  RepairReport report;
+  TriangleSoup repaired;
+  if (options.repair) repaired = RepairSoup(input, options.repair_options, &report);
+  const TriangleSoup& soup = options.repair ? repaired : input;
   // the local origin is taken in model units, before scaling, so far-away parts keep
   // their digits
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
@@ -36,6 +41,7 @@ std::shared_ptr<const HapticScene> HapticScene::Build(const TriangleSoup& soup,
   scene->metres_per_unit_ = metres_per_unit;
   scene->origin_w_ = origin_model * metres_per_unit;
   scene->size_m_ = (hi - lo).norm() * metres_per_unit;
+  scene->repair_report_ = report;
   if (!(scene->size_m_ > 0.0)) throw std::invalid_argument("haptic scene: all vertices coincide");
   scene->mesh_ = TriangleMesh::Build(local, soup.triangles, soup.cad_faces, soup.corner_normals);
   // node boxes grow by a hair so a segment along a box face is not lost to rounding

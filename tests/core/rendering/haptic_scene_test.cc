@@ -17,7 +17,13 @@ TEST(HapticScene, StoresMetresAroundALocalOrigin) {
   const auto scene = HapticScene::Build(testing::MakeBoxSoup(lo, lo + Vec3(20, 40, 60)), 1e-3);
   EXPECT_NEAR((scene->origin_w() - Vec3(1000.010, 1000.020, 1000.030)).norm(), 0.0, 1e-12);
   EXPECT_NEAR(scene->size_m(), std::sqrt(0.02 * 0.02 + 0.04 * 0.04 + 0.06 * 0.06), 1e-15);
-  EXPECT_NEAR((scene->mesh().vertex(7) - Vec3(0.010, 0.020, 0.030)).norm(), 0.0, 1e-15);
+  // the repair may renumber vertices: the box's far corner is there, in local metres
+  double nearest = 1.0;
+  for (std::uint32_t v = 0; v < scene->mesh().num_vertices(); ++v) {
+    nearest = std::min(nearest, (scene->mesh().vertex(v) - Vec3(0.010, 0.020, 0.030)).norm());
+  }
+  EXPECT_NEAR(nearest, 0.0, 1e-15);
+  EXPECT_TRUE(scene->repair_report().watertight()) << scene->repair_report().Describe();
 }
 
 TEST(HapticScene, ClosestPointGivesFaceAndOutwardNormalInWorld) {
@@ -30,14 +36,32 @@ TEST(HapticScene, ClosestPointGivesFaceAndOutwardNormalInWorld) {
   EXPECT_NEAR(s.distance_m, 0.040, 1e-15);
 }
 
-TEST(HapticScene, RejectsBadUnitsAndNonFiniteVertices) {
+TEST(HapticScene, RejectsBadUnitsAndRepairsOrRejectsNonFiniteVertices) {
   const TriangleSoup box = testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(1, 1, 1));
   EXPECT_THROW(HapticScene::Build(box, 0.0), std::invalid_argument);
   EXPECT_THROW(HapticScene::Build(box, std::numeric_limits<double>::infinity()),
                std::invalid_argument);
+  // a NaN vertex: its triangles go, and the hole they leave is reported
   TriangleSoup nan_box = box;
   nan_box.vertices[2].x() = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_THROW(HapticScene::Build(nan_box, 1.0), std::invalid_argument);
+  const auto scene = HapticScene::Build(nan_box, 1.0);
+  const RepairReport& report = scene->repair_report();
+  EXPECT_EQ(report.removed_nonfinite, 4u);  // vertex 2 is a corner of four triangles
+  EXPECT_EQ(scene->mesh().num_triangles(), 8u);
+  EXPECT_FALSE(report.watertight());
+  EXPECT_NE(report.Describe().find("NOT REPAIRED"), std::string::npos) << report.Describe();
+  for (std::uint32_t v = 0; v < scene->mesh().num_vertices(); ++v) {
+    EXPECT_TRUE(scene->mesh().vertex(v).allFinite());
+  }
+  // nothing finite left: a clear error
+  TriangleSoup all_nan = box;
+  for (Vec3& v : all_nan.vertices) v.x() = std::numeric_limits<double>::infinity();
+  try {
+    HapticScene::Build(all_nan, 1.0);
+    FAIL() << "an all-infinite soup was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("finite"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -9,13 +9,15 @@
 // Tolerances are relative to the scene's size (size_m()), so the same part behaves the
 // same in mm, in m, or far away.
 //
-// Build() runs before the loop starts (it allocates and can take seconds on large
-// meshes); everything else is a cheap accessor.
+// Build() runs before the loop starts (it repairs the soup, builds the mesh and the
+// tree, allocates and can take seconds on large meshes); everything else is a cheap
+// accessor.
 #pragma once
 
 #include <cstdint>
 #include <memory>
 
+#include "hapticad/core/geometry/mesh_repair.h"
 #include "hapticad/core/geometry/triangle_mesh.h"
 #include "hapticad/core/geometry/triangle_soup.h"
 #include "hapticad/core/geometry/triangle_tree.h"
@@ -32,11 +34,19 @@ struct SurfaceSample {
   double distance_m;  // from the query point
 };
 
+struct SceneOptions {
+  // Run RepairSoup first (a soup known to be clean, e.g. generated, may skip it).
+  bool repair = true;
+  RepairOptions repair_options;
+};
+
 class HapticScene {
  public:
   // `metres_per_unit` > 0 converts the soup's units (1e-3 for mm). Throws
-  // std::invalid_argument with a message naming what is wrong with the input.
-  static std::shared_ptr<const HapticScene> Build(const TriangleSoup& soup, double metres_per_unit);
+  // std::invalid_argument with a message naming what is wrong with the input (or what
+  // the repair could not mend).
+  static std::shared_ptr<const HapticScene> Build(const TriangleSoup& soup, double metres_per_unit,
+                                                  const SceneOptions& options = {});
 
   const TriangleMesh& mesh() const { return *mesh_; }
   const TriangleTree& tree() const { return *tree_; }
@@ -57,6 +67,9 @@ class HapticScene {
   Vec3 ToLocal(const Vec3& p_w) const { return p_w - origin_w_; }
   Vec3 ToWorld(const Vec3& p_l) const { return p_l + origin_w_; }
 
+  // What the repair did and left undone (all zero when it was skipped).
+  const RepairReport& repair_report() const { return repair_report_; }
+
   std::size_t CalcMemoryBytes() const {
     return mesh_->CalcMemoryBytes() + tree_->CalcMemoryBytes();
   }
@@ -69,6 +82,7 @@ class HapticScene {
   Vec3 origin_w_ = Vec3::Zero();
   double metres_per_unit_ = 1.0;
   double size_m_ = 0.0;
+  RepairReport repair_report_;
 };
 
 }  // namespace hapticad

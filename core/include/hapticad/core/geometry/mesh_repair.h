@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// RepairSoup: makes a tessellator's or a file's triangle soup fit to touch, and says
+// what it did and what it could not do. Nothing is silently accepted or dropped.
+//
+// In order:
+//   1. triangles with a vertex that is not finite are removed (counted); an index out
+//      of range cannot be repaired and throws;
+//   2. duplicate vertices are merged: exact duplicates everywhere (CGAL's
+//      merge_duplicate_points_in_polygon_soup), and vertices on open edges that lie
+//      within `weld_tolerance` of each other, which stitches the tessellations of
+//      neighbouring CAD faces so no crack is left between them;
+//   3. degenerate triangles (a repeated vertex, or thinner than `needle_tolerance` of
+//      their longest edge: needles and caps narrower than the proxy's edge tolerance,
+//      which covers the slit they leave) and duplicate triangles are removed;
+//   4. orientation is made consistent (CGAL's orient_polygon_soup); a non-manifold
+//      edge or vertex is split by duplicating its vertex, as CGAL does, and counted;
+//   5. what stays open is reported: edges with one triangle are holes or cracks.
+// CAD face ids and corner normals follow their triangles (a flipped triangle's corner
+// normals are flipped with it: they are the CAD surface's, not the winding's).
+//
+// Units: the soup's; tolerances are fractions of its bounding-box diagonal, so a part
+// in mm or in m is repaired the same. Not for the servo thread (allocates, seconds on
+// millions of triangles).
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "hapticad/core/geometry/triangle_soup.h"
+
+namespace hapticad {
+
+struct RepairOptions {
+  double weld_tolerance = 1e-7;    // open-edge vertices closer than this (x diagonal) merge
+  double needle_tolerance = 1e-10;  // height / longest edge below this: degenerate
+};
+
+struct RepairReport {
+  std::size_t input_vertices = 0;
+  std::size_t input_triangles = 0;
+  std::size_t removed_nonfinite = 0;   // triangles with a NaN or infinite vertex
+  std::size_t merged_vertices = 0;     // vertices folded into another (duplicates, welds)
+  std::size_t welded_vertices = 0;     // of those, merged across an open edge within tolerance
+  std::size_t removed_degenerate = 0;  // repeated vertex, zero area, needles and caps
+  std::size_t removed_duplicates = 0;  // same three vertices as another triangle
+  std::size_t reoriented = 0;          // triangles flipped to agree with their neighbours
+  std::size_t non_manifold_edges = 0;  // edges of more than two triangles (split)
+  std::size_t non_manifold_vertices = 0;
+  std::size_t boundary_edges = 0;      // edges of one triangle after repair: holes, cracks
+  std::size_t output_triangles = 0;
+
+  // Whether every edge has exactly two triangles (a closed, manifold surface).
+  bool watertight() const { return boundary_edges == 0 && non_manifold_edges == 0; }
+  // One line for the user: what was repaired and what was not.
+  std::string Describe() const;
+};
+
+// Throws std::invalid_argument naming the problem for input that cannot be repaired:
+// an index out of range, shapes that disagree, or nothing left to touch.
+TriangleSoup RepairSoup(const TriangleSoup& soup, const RepairOptions& options,
+                        RepairReport* report);
+
+}  // namespace hapticad

@@ -1,0 +1,157 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "hapticad/core/geometry/mesh_repair.h"
+
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "hapticad/core/geometry/triangle_mesh.h"
+#include "test_meshes.h"
+
+namespace hapticad {
+namespace {
+
+// A box whose six faces are tessellated on their own, as a CAD tessellator hands them
+// over: each face has its own four vertices (24 in all), optionally nudged by `nudge`.
+TriangleSoup FacewiseBox(double nudge) {
+  const TriangleSoup box = testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(10, 20, 30));
+  TriangleSoup out;
+  for (std::size_t t = 0; t < box.triangles.size(); ++t) {
+    std::array<std::int32_t, 3> tri{};
+    for (int k = 0; k < 3; ++k) {
+      tri[k] = static_cast<std::int32_t>(out.vertices.size());
+      out.vertices.push_back(box.vertices[box.triangles[t][k]] +
+                             Vec3::Constant(nudge * ((t + k) % 3 == 0 ? 1.0 : -0.5)));
+    }
+    out.triangles.push_back(tri);
+    out.cad_faces.push_back(box.cad_faces[t]);
+  }
+  return out;
+}
+
+RepairReport Repair(const TriangleSoup& soup, TriangleSoup* out = nullptr) {
+  RepairReport report;
+  TriangleSoup repaired = RepairSoup(soup, RepairOptions{}, &report);
+  if (out != nullptr) *out = repaired;
+  return report;
+}
+
+TEST(MeshRepair, MergesTheVerticesOfSeparatelyTessellatedFacesIntoAClosedSurface) {
+  TriangleSoup out;
+  const RepairReport r = Repair(FacewiseBox(0.0), &out);
+  EXPECT_EQ(r.merged_vertices, 36u - 8u);
+  EXPECT_EQ(r.output_triangles, 12u);
+  EXPECT_TRUE(r.watertight()) << r.Describe();
+  // the CAD faces follow their triangles
+  ASSERT_EQ(out.cad_faces.size(), 12u);
+  for (std::size_t t = 0; t < 12; ++t) EXPECT_EQ(out.cad_faces[t], static_cast<int>(t / 2));
+}
+
+TEST(MeshRepair, WeldsCracksBetweenFacesWithinTheToleranceAndReportsWiderOnes) {
+  // 30 nm apart on a 37 mm box (8e-10 of it): welded
+  const RepairReport close = Repair(FacewiseBox(3e-8));
+  EXPECT_GT(close.welded_vertices, 0u);
+  EXPECT_TRUE(close.watertight()) << close.Describe();
+  // 10 um apart: a real crack, reported, never silently closed
+  const RepairReport wide = Repair(FacewiseBox(1e-2));
+  EXPECT_EQ(wide.welded_vertices, 0u);
+  EXPECT_EQ(wide.boundary_edges, 24u);  // each face's four sides
+  EXPECT_NE(wide.Describe().find("NOT REPAIRED: 24 open edges"), std::string::npos) << wide.Describe();
+}
+
+TEST(MeshRepair, RemovesDegenerateNeedleAndDuplicateTriangles) {
+  TriangleSoup s = testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(1, 1, 1));
+  s.vertices.push_back(Vec3(0.5, 0, 0));          // 8: on the edge 0-1 of the bottom
+  s.vertices.push_back(Vec3(0.5, 1e-13, 1e-13));  // 9: a hair off it
+  s.triangles.push_back({0, 0, 1});  // repeated vertex
+  s.triangles.push_back({0, 8, 1});  // collinear: zero area
+  s.triangles.push_back({0, 9, 1});  // a cap 1e-13 high on a unit edge
+  s.triangles.push_back({0, 2, 3});  // the bottom's first triangle again
+  s.triangles.push_back({3, 0, 2});  // ... and again, turned
+  for (int i = 0; i < 5; ++i) s.cad_faces.push_back(4);
+  TriangleSoup out;
+  const RepairReport r = Repair(s, &out);
+  EXPECT_EQ(r.removed_degenerate, 3u);
+  EXPECT_EQ(r.removed_duplicates, 2u);
+  EXPECT_EQ(out.triangles.size(), 12u);
+  EXPECT_TRUE(r.watertight()) << r.Describe();
+}
+
+TEST(MeshRepair, OrientsConsistentlyAndFlipsTheCornerNormalsWithTheTriangle) {
+  TriangleSoup s = testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(1, 1, 1));
+  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+    s.corner_normals.push_back({Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()});
+  }
+  std::swap(s.triangles[5][1], s.triangles[5][2]);  // one triangle wound the wrong way
+  std::swap(s.corner_normals[5][1], s.corner_normals[5][2]);
+  TriangleSoup out;
+  const RepairReport r = Repair(s, &out);
+  EXPECT_EQ(r.reoriented, 1u);
+  EXPECT_TRUE(r.watertight());
+  // each corner keeps its own normal, whichever way the triangle now turns
+  for (std::size_t t = 0; t < out.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = out.vertices[out.triangles[t][k]];
+      const Vec3& q = s.vertices[s.triangles[t][0]];
+      if ((p - q).norm() == 0.0) EXPECT_EQ(out.corner_normals[t][k], s.corner_normals[t][0]) << t;
+    }
+  }
+  // and the winding agrees: every edge is used once each way
+  const auto mesh = TriangleMesh::Build(out.vertices, out.triangles, out.cad_faces, out.corner_normals);
+  EXPECT_EQ(mesh->num_triangles(), 12u);
+}
+
+TEST(MeshRepair, SplitsANonManifoldEdgeAndSaysSo) {
+  TriangleSoup s;
+  s.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1)};
+  s.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  s.cad_faces = {0, 0, 0};
+  TriangleSoup out;
+  const RepairReport r = Repair(s, &out);
+  EXPECT_EQ(r.non_manifold_edges, 1u);
+  EXPECT_FALSE(r.watertight());
+  EXPECT_EQ(out.triangles.size(), 3u);
+  EXPECT_NE(r.Describe().find("non-manifold"), std::string::npos);
+  // the result is manifold: OpenMesh takes it
+  EXPECT_NO_THROW(TriangleMesh::Build(out.vertices, out.triangles, out.cad_faces, out.corner_normals));
+}
+
+TEST(MeshRepair, DropsNonFiniteTrianglesAndRejectsWhatCannotBeRepaired) {
+  TriangleSoup s = testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(1, 1, 1));
+  s.vertices.push_back(Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0));
+  s.triangles.push_back({0, 1, 8});
+  s.cad_faces.push_back(0);
+  const RepairReport r = Repair(s);
+  EXPECT_EQ(r.removed_nonfinite, 1u);
+  EXPECT_TRUE(r.watertight());
+
+  TriangleSoup bad_index = s;
+  bad_index.triangles[3][2] = 99;
+  try {
+    Repair(bad_index);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("triangle 3"), std::string::npos) << e.what();
+  }
+  TriangleSoup all_degenerate;
+  all_degenerate.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)};
+  all_degenerate.triangles = {{0, 1, 2}};
+  all_degenerate.cad_faces = {0};
+  EXPECT_THROW(Repair(all_degenerate), std::invalid_argument);
+}
+
+TEST(MeshRepair, ToleranceIsRelativeSoMillimetresAndMetresRepairAlike) {
+  TriangleSoup mm = FacewiseBox(3e-8);
+  TriangleSoup m = mm;
+  for (Vec3& v : m.vertices) v *= 1e-3;
+  TriangleSoup far = mm;
+  for (Vec3& v : far.vertices) v += Vec3::Constant(1e6);
+  const RepairReport a = Repair(mm), b = Repair(m), c = Repair(far);
+  EXPECT_EQ(a.merged_vertices, b.merged_vertices);
+  EXPECT_TRUE(a.watertight() && b.watertight() && c.watertight()) << c.Describe();
+}
+
+}  // namespace
+}  // namespace hapticad
