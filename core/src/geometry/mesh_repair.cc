@@ -158,7 +158,8 @@ TriangleSoup RepairSoup(const TriangleSoup& soup, const RepairOptions& options,
   r.input_vertices = soup.vertices.size();
   r.input_triangles = soup.triangles.size();
   const std::size_t n = soup.triangles.size();
-  if (soup.cad_faces.size() != n || (!soup.corner_normals.empty() && soup.corner_normals.size() != n)) {
+  if (soup.cad_faces.size() != n ||
+      (!soup.corner_normals.empty() && soup.corner_normals.size() != n)) {
     throw std::invalid_argument("mesh repair: " + std::to_string(soup.cad_faces.size()) +
                                 " CAD face ids and " + std::to_string(soup.corner_normals.size()) +
                                 " corner-normal triples for " + std::to_string(n) + " triangles");
@@ -181,13 +182,14 @@ TriangleSoup RepairSoup(const TriangleSoup& soup, const RepairOptions& options,
     bool finite = true;
     for (std::int32_t v : tri) {
       if (v < 0 || static_cast<std::size_t>(v) >= soup.vertices.size()) {
-        throw std::invalid_argument("mesh repair: triangle " + std::to_string(t) + " has vertex index " +
-                                    std::to_string(v) + ", out of range");
+        throw std::invalid_argument("mesh repair: triangle " + std::to_string(t) +
+                                    " has vertex index " + std::to_string(v) + ", out of range");
       }
       finite = finite && soup.vertices[v].allFinite();
     }
     if (soup.cad_faces[t] < 0) {
-      throw std::invalid_argument("mesh repair: triangle " + std::to_string(t) + " has a negative CAD face id");
+      throw std::invalid_argument("mesh repair: triangle " + std::to_string(t) +
+                                  " has a negative CAD face id");
     }
     if (!finite) {
       ++r.removed_nonfinite;
@@ -275,7 +277,8 @@ TriangleSoup RepairSoup(const TriangleSoup& soup, const RepairOptions& options,
     // which corner of the triangle before is each corner now
     std::array<int, 3> from{};
     for (int k = 0; k < 3; ++k) {
-      const std::size_t v = polygons[t][k] < original.size() ? original[polygons[t][k]] : polygons[t][k];
+      const std::size_t v =
+          polygons[t][k] < original.size() ? original[polygons[t][k]] : polygons[t][k];
       from[k] = v == before[t][0] ? 0 : (v == before[t][1] ? 1 : 2);
     }
     const bool flipped = (from[1] - from[0] + 3) % 3 != 1;

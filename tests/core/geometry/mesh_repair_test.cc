@@ -50,7 +50,7 @@ TEST(MeshRepair, MergesTheVerticesOfSeparatelyTessellatedFacesIntoAClosedSurface
 }
 
 TEST(MeshRepair, WeldsCracksBetweenFacesWithinTheToleranceAndReportsWiderOnes) {
-  // 30 nm apart on a 37 mm box (8e-10 of it): welded
+  // 3e-8 mm apart on a 37 mm box (8e-10 of its diagonal): welded
   const RepairReport close = Repair(FacewiseBox(3e-8));
   EXPECT_GT(close.welded_vertices, 0u);
   EXPECT_TRUE(close.watertight()) << close.Describe();
@@ -58,18 +58,19 @@ TEST(MeshRepair, WeldsCracksBetweenFacesWithinTheToleranceAndReportsWiderOnes) {
   const RepairReport wide = Repair(FacewiseBox(1e-2));
   EXPECT_EQ(wide.welded_vertices, 0u);
   EXPECT_EQ(wide.boundary_edges, 24u);  // each face's four sides
-  EXPECT_NE(wide.Describe().find("NOT REPAIRED: 24 open edges"), std::string::npos) << wide.Describe();
+  EXPECT_NE(wide.Describe().find("NOT REPAIRED: 24 open edges"), std::string::npos)
+      << wide.Describe();
 }
 
 TEST(MeshRepair, RemovesDegenerateNeedleAndDuplicateTriangles) {
   TriangleSoup s = testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(1, 1, 1));
   s.vertices.push_back(Vec3(0.5, 0, 0));          // 8: on the edge 0-1 of the bottom
   s.vertices.push_back(Vec3(0.5, 1e-13, 1e-13));  // 9: a hair off it
-  s.triangles.push_back({0, 0, 1});  // repeated vertex
-  s.triangles.push_back({0, 8, 1});  // collinear: zero area
-  s.triangles.push_back({0, 9, 1});  // a cap 1e-13 high on a unit edge
-  s.triangles.push_back({0, 2, 3});  // the bottom's first triangle again
-  s.triangles.push_back({3, 0, 2});  // ... and again, turned
+  s.triangles.push_back({0, 0, 1});               // repeated vertex
+  s.triangles.push_back({0, 8, 1});               // collinear: zero area
+  s.triangles.push_back({0, 9, 1});               // a cap 1e-13 high on a unit edge
+  s.triangles.push_back({0, 2, 3});               // the bottom's first triangle again
+  s.triangles.push_back({3, 0, 2});               // ... and again, turned
   for (int i = 0; i < 5; ++i) s.cad_faces.push_back(4);
   TriangleSoup out;
   const RepairReport r = Repair(s, &out);
@@ -99,7 +100,8 @@ TEST(MeshRepair, OrientsConsistentlyAndFlipsTheCornerNormalsWithTheTriangle) {
     }
   }
   // and the winding agrees: every edge is used once each way
-  const auto mesh = TriangleMesh::Build(out.vertices, out.triangles, out.cad_faces, out.corner_normals);
+  const auto mesh =
+      TriangleMesh::Build(out.vertices, out.triangles, out.cad_faces, out.corner_normals);
   EXPECT_EQ(mesh->num_triangles(), 12u);
 }
 
@@ -115,7 +117,8 @@ TEST(MeshRepair, SplitsANonManifoldEdgeAndSaysSo) {
   EXPECT_EQ(out.triangles.size(), 3u);
   EXPECT_NE(r.Describe().find("non-manifold"), std::string::npos);
   // the result is manifold: OpenMesh takes it
-  EXPECT_NO_THROW(TriangleMesh::Build(out.vertices, out.triangles, out.cad_faces, out.corner_normals));
+  EXPECT_NO_THROW(
+      TriangleMesh::Build(out.vertices, out.triangles, out.cad_faces, out.corner_normals));
 }
 
 TEST(MeshRepair, DropsNonFiniteTrianglesAndRejectsWhatCannotBeRepaired) {
