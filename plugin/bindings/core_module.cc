@@ -291,17 +291,37 @@ void DefineScene(py::module_& m) {
       .def_readonly("cad_face", &SurfaceSample::cad_face)
       .def_readonly("distance_m", &SurfaceSample::distance_m);
 
+  py::class_<RepairReport>(m, "RepairReport")
+      .def_readonly("input_triangles", &RepairReport::input_triangles)
+      .def_readonly("output_triangles", &RepairReport::output_triangles)
+      .def_readonly("removed_nonfinite", &RepairReport::removed_nonfinite)
+      .def_readonly("merged_vertices", &RepairReport::merged_vertices)
+      .def_readonly("welded_vertices", &RepairReport::welded_vertices)
+      .def_readonly("removed_degenerate", &RepairReport::removed_degenerate)
+      .def_readonly("removed_duplicates", &RepairReport::removed_duplicates)
+      .def_readonly("reoriented", &RepairReport::reoriented)
+      .def_readonly("non_manifold_edges", &RepairReport::non_manifold_edges)
+      .def_readonly("non_manifold_vertices", &RepairReport::non_manifold_vertices)
+      .def_readonly("boundary_edges", &RepairReport::boundary_edges)
+      .def_property_readonly("watertight", &RepairReport::watertight)
+      .def("describe", &RepairReport::Describe);
+
   py::class_<HapticScene, std::shared_ptr<HapticScene>>(m, "HapticScene")
       .def_static(
           "build",
           [](const RowsD& vertices, const RowsI& triangles, const RowsI& cad_faces,
-             double metres_per_unit, const std::optional<RowsD>& corner_normals) {
+             double metres_per_unit, const std::optional<RowsD>& corner_normals, bool repair) {
             TriangleSoup soup = MakeSoup(vertices, triangles, cad_faces, corner_normals);
+            SceneOptions options;
+            options.repair = repair;
             py::gil_scoped_release release;
-            return std::const_pointer_cast<HapticScene>(HapticScene::Build(soup, metres_per_unit));
+            return std::const_pointer_cast<HapticScene>(
+                HapticScene::Build(soup, metres_per_unit, options));
           },
           py::arg("vertices"), py::arg("triangles"), py::arg("cad_faces"),
-          py::arg("metres_per_unit"), py::arg("corner_normals") = py::none())
+          py::arg("metres_per_unit"), py::arg("corner_normals") = py::none(),
+          py::arg("repair") = true)
+      .def_property_readonly("repair_report", &HapticScene::repair_report)
       .def_property_readonly("origin_w", &HapticScene::origin_w)
       .def_property_readonly("size_m", &HapticScene::size_m)
       .def_property_readonly("metres_per_unit", &HapticScene::metres_per_unit)
@@ -357,12 +377,17 @@ void DefineDevices(py::module_& m) {
   m.attr("FLAG_STICKING") = static_cast<std::uint32_t>(kSticking);
   m.attr("FLAG_DEVICE_FAULT") = kDeviceFault;
 
+  py::class_<ContactOptions>(m, "ContactOptions")
+      .def(py::init<>())
+      .def_readwrite("proxy_radius_m", &ContactOptions::proxy_radius_m)
+      .def_readwrite("force_shading", &ContactOptions::force_shading);
   py::class_<ForceRenderer>(m, "ForceRenderer")
       .def(py::init([](std::shared_ptr<HapticScene> scene, std::shared_ptr<SurfaceTable> surfaces,
-                       RenderLimits limits) {
-             return std::make_unique<ForceRenderer>(scene, surfaces, limits);
+                       RenderLimits limits, ContactOptions options) {
+             return std::make_unique<ForceRenderer>(scene, surfaces, limits, options);
            }),
-           py::arg("scene"), py::arg("surfaces"), py::arg("limits"));
+           py::arg("scene"), py::arg("surfaces"), py::arg("limits"),
+           py::arg("options") = ContactOptions{});
 
   py::class_<ServoStats>(m, "ServoStats")
       .def_readonly("ticks", &ServoStats::ticks)

@@ -124,7 +124,10 @@ void ForceRenderer::Render(const RenderInput& input, RenderOutput* out) {
   Vec3 spring = k * (proxy_.position() - goal_l);
   if (options_.force_shading && proxy_.constraints().count() == 1 &&
       scene_->mesh().has_corner_normals()) {
-    const Vec3 shaded = scene_->mesh().CalcShadingNormal(triangle, proxy_.contact_point());
+    Vec3 shaded = scene_->mesh().CalcShadingNormal(triangle, proxy_.contact_point());
+    // on the side the proxy touches: sheets are felt from both sides, and a CAD normal
+    // must never pull the hand into the part
+    if (shaded.dot(proxy_.constraints().plane(0).normal) < 0.0) shaded = -shaded;
     spring = std::max(spring.dot(shaded), 0.0) * shaded;
   }
   const double spring_n = spring.norm();

@@ -3,7 +3,11 @@
 
 Every object that a HapticSurface references is tessellated whole (all its faces are
 in the scene, tagged or not) with ``MeshPart.meshFromShape(..., Segments=True)``, which
-gives a conforming mesh and one segment per B-rep face. CAD face ids are numbered
+gives a conforming mesh and one segment per B-rep face, as finely as the accuracy
+preset says (accuracy.py). Each triangle corner carries the exact normal of its B-rep
+face there (``Face.normalAt``), for force shading. The core repairs the soup (welds
+the faces' tessellations together, drops degenerate triangles) and reports what it
+could not mend: ``DocumentScene.repair`` says it in one line. CAD face ids are numbered
 across objects in document order; ``face_names[id]`` is "Object.FaceN". Lengths in the
 document are mm; the core gets metres through ``metres_per_unit = 1e-3``. No GUI.
 """
@@ -15,19 +19,12 @@ import FreeCAD as App
 import MeshPart
 
 from . import _core
+from . import accuracy as accuracy_presets
 from .surface_compile import compile_surface, compile_vibration
 from .surface_object import reference_pairs, surfaces_of
 from .vibration_object import vibrations_of
 
 MM = 1e-3  # metres per FreeCAD length unit
-
-
-@dataclass(frozen=True)
-class Tessellation:
-    """How finely to tessellate: chord deviation (mm) and angle between normals (rad)."""
-
-    linear_deflection_mm: float = 0.1
-    angular_deflection_rad: float = 0.26
 
 
 @dataclass
@@ -38,6 +35,9 @@ class DocumentScene:
     face_surface: dict  # "Object.FaceN" -> name of the HapticSurface tagging it
     face_material: dict  # "Object.FaceN" -> material name
     shapes: dict = field(default_factory=dict)  # object name -> shape, global placement
+    accuracy: object = None  # the accuracy.Accuracy it was built with
+    repair: str = ""  # what the core's repair did and left undone, one line
+    watertight: bool = True  # every edge between exactly two triangles after repair
 
     def face_id(self, name):
         try:
@@ -61,12 +61,13 @@ def global_shape(obj):
     return shape
 
 
-def tessellate(shape, settings):
-    """(vertices #Vx3 mm, triangles #Tx3, face index #T) of a shape; face i is Face(i+1)."""
+def tessellate(shape, accuracy):
+    """(vertices #Vx3 mm, triangles #Tx3, face index #T, corner normals #Tx9) of a
+    shape; face i is Face(i+1); corner normals are the B-rep face's exact normals."""
     mesh = MeshPart.meshFromShape(
         Shape=shape,
-        LinearDeflection=settings.linear_deflection_mm,
-        AngularDeflection=settings.angular_deflection_rad,
+        LinearDeflection=accuracy.linear_deflection_mm,
+        AngularDeflection=accuracy.angular_deflection_rad,
         Relative=False,
         Segments=True,
     )
@@ -82,13 +83,57 @@ def tessellate(shape, settings):
         face_of[list(mesh.getSegment(i))] = i
     if (face_of < 0).any():
         raise ValueError(f"{int((face_of < 0).sum())} triangles belong to no face")
-    return vertices, triangles, face_of
+    return vertices, triangles, face_of, corner_normals(shape, vertices, triangles, face_of)
 
 
-def build_document_scene(doc, settings=Tessellation()):
-    """The haptic scene of every HapticSurface and HapticVibration in ``doc``. Raises
-    ValueError when there is nothing to feel, a face is tagged by two surfaces, or a
-    surface's values cannot be compiled (the message names the surface)."""
+def corner_normals(shape, vertices, triangles, face_of):
+    """#Tx9: at each triangle corner, the unit normal of the triangle's B-rep face at
+    that vertex (a vertex on an edge between faces gets each face's own normal). A
+    plane's normal is computed once; a point the surface cannot parametrise falls back
+    to the facet's own normal."""
+    facet = np.cross(vertices[triangles[:, 1]] - vertices[triangles[:, 0]],
+                     vertices[triangles[:, 2]] - vertices[triangles[:, 0]])
+    length = np.linalg.norm(facet, axis=1, keepdims=True)
+    facet = np.divide(facet, length, out=np.zeros_like(facet), where=length > 0)
+    normals = np.repeat(facet, 3, axis=0).reshape(-1, 3, 3)
+    cache = {}  # (face, vertex) -> normal
+    for index, face in enumerate(shape.Faces):
+        rows = np.nonzero(face_of == index)[0]
+        if len(rows) == 0:
+            continue
+        plane = face.Surface.TypeId == "Part::GeomPlane"
+        constant = _normal_at(face, face.CenterOfMass) if plane else None
+        for t in rows:
+            for corner in range(3):
+                v = int(triangles[t, corner])
+                key = (index, v)
+                if key not in cache:
+                    cache[key] = constant if plane else _normal_at(face, App.Vector(*vertices[v]))
+                n = cache[key]
+                if n is not None:
+                    normals[t, corner] = n
+    # the facet's winding and the face's normal agree on which side is out
+    flip = np.einsum("tcj,tj->tc", normals, facet) < 0
+    normals[flip] *= -1
+    return normals.reshape(-1, 9)
+
+
+def _normal_at(face, point):
+    try:
+        u, v = face.Surface.parameter(point)
+        n = face.normalAt(u, v)
+    except Exception:  # noqa: BLE001 (OCC raises its own kinds; the facet normal stands in)
+        return None
+    length = n.Length
+    return (n.x / length, n.y / length, n.z / length) if length > 0 else None
+
+
+def build_document_scene(doc, accuracy=None):
+    """The haptic scene of every HapticSurface and HapticVibration in ``doc``, at the
+    given accuracy.Accuracy (the default preset when None). Raises ValueError when there
+    is nothing to feel, a face is tagged by two surfaces, or a surface's values cannot
+    be compiled (the message names the surface)."""
+    accuracy = accuracy or accuracy_presets.preset()
     surfaces = surfaces_of(doc)
     vibrating = [v for v in vibrations_of(doc) if v.Part is not None]
     if not surfaces and not vibrating:
@@ -107,14 +152,14 @@ def build_document_scene(doc, settings=Tessellation()):
         if vibration.Part not in objects:
             objects.append(vibration.Part)
 
-    all_vertices, all_triangles, all_faces, face_names = [], [], [], []
+    all_vertices, all_triangles, all_faces, all_normals, face_names = [], [], [], [], []
     shapes = {}
     offset = 0
     for obj in objects:
         shape = global_shape(obj)
         shapes[obj.Name] = shape
         try:
-            vertices, triangles, face_of = tessellate(shape, settings)
+            vertices, triangles, face_of, normals = tessellate(shape, accuracy)
         except ValueError as exc:
             raise ValueError(f"{obj.Label}: {exc}") from None
         for name in tagged:
@@ -124,6 +169,7 @@ def build_document_scene(doc, settings=Tessellation()):
         all_vertices.append(vertices)
         all_triangles.append(triangles + offset)
         all_faces.append(face_of + len(face_names))
+        all_normals.append(normals)
         face_names.extend(f"{obj.Name}.Face{i + 1}" for i in range(len(shape.Faces)))
         offset += len(vertices)
 
@@ -137,8 +183,10 @@ def build_document_scene(doc, settings=Tessellation()):
             if name.startswith(prefix):
                 table[face_id].vibration = index
     scene = _core.HapticScene.build(
-        np.vstack(all_vertices), np.vstack(all_triangles), np.concatenate(all_faces), MM
+        np.vstack(all_vertices), np.vstack(all_triangles), np.concatenate(all_faces), MM,
+        corner_normals=np.vstack(all_normals),
     )
+    report = scene.repair_report
     return DocumentScene(
         scene=scene,
         surfaces=_core.SurfaceTable(table, [compile_vibration(v) for v in vibrating]),
@@ -146,4 +194,7 @@ def build_document_scene(doc, settings=Tessellation()):
         face_surface={name: s.Name for name, s in tagged.items()},
         face_material={name: s.Material for name, s in tagged.items()},
         shapes=shapes,
+        accuracy=accuracy,
+        repair=report.describe(),
+        watertight=report.watertight,
     )

@@ -7,7 +7,10 @@ import FreeCAD as App
 import Part
 
 import HaptiCAD
+import numpy as np
+
 from hapticad import _core
+from hapticad import accuracy
 from hapticad.document_scene import MM, build_document_scene
 
 
@@ -106,6 +109,50 @@ class DocumentSceneTest(unittest.TestCase):
             build_document_scene(self.doc)
         self.assertIn("Part.Face1 is tagged by both", str(caught.exception))
         self.assertTrue(a.isValid())
+
+    def test_the_faces_tessellations_are_stitched_into_a_closed_surface(self):
+        # a box with a hole and a sphere: the repair welds every face to its neighbours
+        HaptiCAD.make_surface(self.doc, [(self.part, "Face1")])
+        HaptiCAD.make_surface(self.doc, [(self.other, "Face1")])
+        for name in accuracy.PRESETS:
+            ds = build_document_scene(self.doc, accuracy.preset(name))
+            self.assertTrue(ds.watertight, f"{name}: {ds.repair}")
+            self.assertIn("closed", ds.repair)
+            self.assertIs(ds.accuracy, accuracy.PRESETS[name])
+
+    def test_corner_normals_are_the_exact_normals_of_each_face(self):
+        # on the cylinder's wall the normal at a vertex is radial, whatever the facets do
+        HaptiCAD.make_surface(self.doc, [(self.part, "Face1")])
+        ds = build_document_scene(self.doc, accuracy.preset("Draft"))
+        hole = next(i for i, f in enumerate(self.part.Shape.Faces) if f.Surface.TypeId == "Part::GeomCylinder")
+        checked = 0
+        for z in (2.0, 10.0, 18.0):
+            for angle in np.linspace(0.1, 6.0, 7):
+                # a point a hair inside the hole's wall (the wall faces the axis)
+                p = np.array([20 + 4.99 * np.cos(angle), 15 + 4.99 * np.sin(angle), z])
+                sample = ds.scene.calc_closest_point(p * MM)
+                if sample.cad_face != hole:
+                    continue
+                q = np.asarray(sample.point_w) / MM
+                radial = np.array([20 - q[0], 15 - q[1], 0.0])  # toward the axis: out of the material
+                radial /= np.linalg.norm(radial)
+                self.assertGreater(float(np.dot(sample.normal_w, radial)), np.cos(np.radians(1.0)))
+                checked += 1
+        self.assertGreater(checked, 15)
+
+    def test_presets_trade_triangles_for_accuracy(self):
+        HaptiCAD.make_surface(self.doc, [(self.other, "Face1")])
+        counts = [build_document_scene(self.doc, accuracy.preset(n)).scene.num_triangles
+                  for n in ("Draft", "Normal", "Fine")]
+        self.assertLess(counts[0], counts[1])
+        self.assertLess(counts[1], counts[2])
+        with self.assertRaises(KeyError):
+            accuracy.preset("Ultra")
+        with self.assertRaises(ValueError) as caught:
+            accuracy.custom(0.0, 0.3)
+        self.assertIn("linear deflection", str(caught.exception))
+        custom = accuracy.custom(0.05, 0.2, force_shading=False)
+        self.assertFalse(custom.force_shading)
 
 
 if __name__ == "__main__":

@@ -1,0 +1,57 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Accuracy presets: how finely a part is tessellated for touch, and whether its
+curved faces are force-shaded. Designers trade speed for accuracy here.
+
+A preset fixes FreeCAD's tessellation (``MeshPart.meshFromShape``: the largest chord
+deviation in mm and the largest angle between neighbouring facet normals) and force
+shading (the spring acts along the exact B-rep normal blended over each facet, so a
+coarse tessellation of a curved face feels smooth). ``custom`` takes any values. The
+default is the one the speed/accuracy table in BENCHMARKS.md justifies
+(``hapticad accuracy-table``). No GUI, no FreeCAD needed.
+"""
+import math
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Accuracy:
+    name: str
+    linear_deflection_mm: float  # largest distance between a facet and its face
+    angular_deflection_rad: float  # largest angle between neighbouring facets' normals
+    force_shading: bool = True
+
+    def problems(self):
+        """What is wrong with the values, as sentences (empty when fine)."""
+        found = []
+        if not (isinstance(self.linear_deflection_mm, (int, float)) and math.isfinite(self.linear_deflection_mm)
+                and 1e-4 <= self.linear_deflection_mm <= 10.0):
+            found.append(f"linear deflection {self.linear_deflection_mm!r} mm is outside 0.0001..10 mm")
+        if not (isinstance(self.angular_deflection_rad, (int, float)) and math.isfinite(self.angular_deflection_rad)
+                and 0.01 <= self.angular_deflection_rad <= 1.5):
+            found.append(f"angular deflection {self.angular_deflection_rad!r} rad is outside 0.01..1.5 rad")
+        return found
+
+
+PRESETS = {
+    "Draft": Accuracy("Draft", 0.5, 0.5),
+    "Normal": Accuracy("Normal", 0.1, 0.26),
+    "Fine": Accuracy("Fine", 0.02, 0.1),
+}
+DEFAULT = "Normal"
+
+
+def preset(name=DEFAULT):
+    """The preset called ``name``; KeyError listing the presets otherwise."""
+    try:
+        return PRESETS[name]
+    except KeyError:
+        raise KeyError(f"accuracy preset {name!r} is not one of {', '.join(PRESETS)}") from None
+
+
+def custom(linear_deflection_mm, angular_deflection_rad, force_shading=True):
+    """A preset of one's own. ValueError naming what is out of range."""
+    accuracy = Accuracy("Custom", linear_deflection_mm, angular_deflection_rad, force_shading)
+    found = accuracy.problems()
+    if found:
+        raise ValueError("; ".join(found))
+    return accuracy
