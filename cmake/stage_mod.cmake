@@ -1,9 +1,10 @@
 # Mirrors the workbench sources and resources into the staged Mod folder, removing
-# files that are gone from the source tree; keeps the compiled _core module.
+# files that are gone from the source tree; keeps the compiled _core module and the
+# hapticad-bench-mesh program.
 # Usage: cmake -DSTAGE=... -DPLUGIN=... -DRESOURCES=... -P stage_mod.cmake
 file(GLOB_RECURSE staged LIST_DIRECTORIES false "${STAGE}/*")
 foreach(f IN LISTS staged)
-  if(NOT f MATCHES "/hapticad/_core[^/]*\\.so$")
+  if(NOT f MATCHES "/hapticad/(_core[^/]*\\.so|hapticad-bench-mesh)$")
     file(REMOVE "${f}")
   endif()
 endforeach()

@@ -1,0 +1,74 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""`hapticad bench-mesh` end to end: the JSON the issue names, for an icosphere and a
+mesh file, in mm and in metres, point and sphere proxies; forces as expected from
+k * depth; no pop-through; bad input gets a clear error. Timings are printed, never
+asserted (they are benchmarks).
+
+Environment: HAPTICAD_CLI (the launcher)."""
+import json
+import os
+import subprocess
+import tempfile
+import unittest
+
+CLI = os.environ["HAPTICAD_CLI"]
+KEYS = {"triangles", "build_ms", "tick_us", "bytes_per_triangle", "contact_ticks", "pop_through",
+        "max_force_n"}
+
+
+def bench(*args):
+    done = subprocess.run([CLI, "bench-mesh", *args, "--json"], capture_output=True, text=True, timeout=120)
+    return done
+
+
+class BenchMeshCommandTest(unittest.TestCase):
+    def check(self, result, triangles):
+        self.assertTrue(KEYS <= result.keys(), result.keys())
+        self.assertEqual(result["triangles"], triangles)
+        self.assertTrue({"p50", "p99", "p999"} <= result["tick_us"].keys())
+        self.assertGreater(result["contact_ticks"], 0.9 * result["ticks"])
+        self.assertEqual(result["pop_through"], 0)
+        # pressed 1-3 mm at 0.4 N/mm with mu_d 0.2: at most 1.2 N normal, 1.22 N in all
+        low, high = result["expected_force_n"]
+        self.assertGreater(result["max_force_n"], low)
+        self.assertLessEqual(result["max_force_n"], high * 1.001)
+
+    def test_icosphere_point_and_sphere_in_mm_and_m(self):
+        for proxy in ("point", "sphere:1"):
+            for units in ("mm", "m"):
+                done = bench("--icosphere", "9680", "--ticks", "3000", "--proxy", proxy, "--units", units)
+                self.assertEqual(done.returncode, 0, done.stderr)
+                result = json.loads(done.stdout)
+                self.check(result, 9680)
+                self.assertEqual(result["units"], units)
+                self.assertEqual(result.get("max_penetration_mm", 0.0), 0.0)
+
+    def test_the_same_stroke_feels_the_same_in_mm_and_in_m(self):
+        mm = json.loads(bench("--icosphere", "9680", "--ticks", "2000").stdout)
+        m = json.loads(bench("--icosphere", "9680", "--ticks", "2000", "--units", "m").stdout)
+        self.assertAlmostEqual(mm["max_force_n"], m["max_force_n"], places=9)
+        self.assertEqual(mm["contact_ticks"], m["contact_ticks"])
+
+    def test_a_mesh_file(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "tet.off")
+            with open(path, "w") as f:
+                f.write("OFF\n4 4 0\n0 0 0\n10 0 0\n0 10 0\n0 0 10\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n")
+            done = bench(path, "--ticks", "1000", "--proxy", "sphere:0.1")
+            self.assertEqual(done.returncode, 0, done.stderr)
+            result = json.loads(done.stdout)
+            self.assertEqual(result["triangles"], 4)
+            self.assertEqual(result["pop_through"], 0)
+            self.assertIn("closed", result["repair"])
+
+    def test_bad_input_is_a_clear_error(self):
+        done = bench("/nonexistent/part.stl")
+        self.assertNotEqual(done.returncode, 0)
+        self.assertIn("/nonexistent/part.stl", done.stderr)
+        done = bench("--icosphere", "1000", "--proxy", "cube")
+        self.assertEqual(done.returncode, 2)
+        self.assertIn("--proxy", done.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()
