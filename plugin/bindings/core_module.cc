@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "hapticad/core/analysis/stroke_run.h"
 #include "hapticad/core/rendering/force_renderer.h"
 #include "hapticad/core/rendering/haptic_scene.h"
 #include "hapticad/core/surfaces/anisotropy.h"
@@ -420,6 +421,57 @@ void DefineDevices(py::module_& m) {
       .def_property_readonly("stats", &ServoLoop::stats);
 }
 
+void DefineAnalysis(py::module_& m) {
+  m.def(
+      "run_stroke",
+      [](ForceRenderer& renderer, const RowsD& positions_w, const RowsD& velocities_w,
+         const std::vector<double>& times_s) {
+        RequireShape(positions_w, 3, "positions_w");
+        RequireShape(velocities_w, 3, "velocities_w");
+        const auto p = positions_w.unchecked<2>();
+        const auto v = velocities_w.unchecked<2>();
+        if (v.shape(0) != p.shape(0) || static_cast<py::ssize_t>(times_s.size()) != p.shape(0)) {
+          throw py::value_error("run_stroke: positions, velocities and times differ in length");
+        }
+        std::vector<RenderInput> inputs(static_cast<std::size_t>(p.shape(0)));
+        for (py::ssize_t i = 0; i < p.shape(0); ++i) {
+          inputs[i].position_w = Vec3(p(i, 0), p(i, 1), p(i, 2));
+          inputs[i].velocity_w = Vec3(v(i, 0), v(i, 1), v(i, 2));
+          inputs[i].time_s = times_s[i];
+        }
+        StrokeRun run;
+        {
+          py::gil_scoped_release release;
+          run = RunStroke(renderer, inputs);
+        }
+        const auto n = static_cast<py::ssize_t>(inputs.size());
+        py::array_t<double> force({n, py::ssize_t{3}}), proxy({n, py::ssize_t{3}});
+        py::array_t<std::uint32_t> flags(n);
+        py::array_t<std::int32_t> face(n), constraints(n);
+        py::array_t<double> tick_us(n);
+        for (py::ssize_t i = 0; i < n; ++i) {
+          const RenderOutput& o = run.outputs[i];
+          for (int c = 0; c < 3; ++c) {
+            force.mutable_at(i, c) = o.force_w[c];
+            proxy.mutable_at(i, c) = o.proxy_w[c];
+          }
+          flags.mutable_at(i) = o.flags;
+          face.mutable_at(i) = o.cad_face;
+          constraints.mutable_at(i) = o.constraints;
+          tick_us.mutable_at(i) = run.tick_us[i];
+        }
+        py::dict out;
+        out["force_w"] = force;
+        out["proxy_w"] = proxy;
+        out["flags"] = flags;
+        out["cad_face"] = face;
+        out["constraints"] = constraints;
+        out["tick_us"] = tick_us;
+        return out;
+      },
+      py::arg("renderer"), py::arg("positions_w"), py::arg("velocities_w"), py::arg("times_s"));
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -431,4 +483,5 @@ PYBIND11_MODULE(_core, m) {
   DefineSurfaces(m);
   DefineScene(m);
   DefineDevices(m);
+  DefineAnalysis(m);
 }

@@ -32,6 +32,12 @@ ProxyConfig MakeProxyConfig(const HapticScene& scene, const ContactOptions& opti
 // share of the dynamic cone (CHAI3D uses 0.6 of the dynamic angle).
 constexpr double kStickReentry = 0.6;
 
+// Shading normals of the triangles holding the proxy that agree this well (2 degrees)
+// belong to one smooth CAD surface: the edge between them is the tessellation's (a
+// valley where the mesher cut a curved face along the "wrong" diagonal), and the force
+// is shaded across it. A CAD crease is not.
+constexpr double kSmoothEdgeCos = 0.99939;
+
 }  // namespace
 
 ForceRenderer::ForceRenderer(std::shared_ptr<const HapticScene> scene,
@@ -90,6 +96,25 @@ Vec3 ForceRenderer::ApplyFrictionCone(const SurfaceProperties& surface, double f
   return anchor_l_;
 }
 
+Vec3 ForceRenderer::SmoothShadingNormal() const {
+  const ConstraintSet& constraints = proxy_.constraints();
+  const double r = proxy_.config().radius_m;
+  Vec3 first = Vec3::Zero();
+  for (int i = 0; i < constraints.count(); ++i) {
+    const ConstraintPlane& plane = constraints.plane(i);
+    Vec3 n = scene_->mesh().CalcShadingNormal(plane.triangle, proxy_.position() - r * plane.normal);
+    // on the side the proxy touches: sheets are felt from both sides, and a CAD normal
+    // must never pull the hand into the part
+    if (n.dot(plane.normal) < 0.0) n = -n;
+    if (i == 0) {
+      first = n;
+    } else if (n.dot(first) < kSmoothEdgeCos) {
+      return Vec3::Zero();  // a crease of the CAD model: the plain spring
+    }
+  }
+  return first;
+}
+
 void ForceRenderer::Render(const RenderInput& input, RenderOutput* out) {
   *out = RenderOutput{};
   if (!input.position_w.allFinite() || !input.velocity_w.allFinite() ||
@@ -109,6 +134,7 @@ void ForceRenderer::Render(const RenderInput& input, RenderOutput* out) {
   }
 
   const std::uint32_t triangle = proxy_.constraints().plane(0).triangle;
+  out->constraints = proxy_.constraints().count();
   out->cad_face = scene_->mesh().cad_face(triangle);
   const SurfaceProperties& surface = surfaces_->surface(out->cad_face);
   const std::uint32_t effects = surfaces_->effects(out->cad_face);
@@ -122,13 +148,9 @@ void ForceRenderer::Render(const RenderInput& input, RenderOutput* out) {
   // spring from the device to the proxy; its direction is the contact normal, or the
   // shading normal on a face
   Vec3 spring = k * (proxy_.position() - goal_l);
-  if (options_.force_shading && proxy_.constraints().count() == 1 &&
-      scene_->mesh().has_corner_normals()) {
-    Vec3 shaded = scene_->mesh().CalcShadingNormal(triangle, proxy_.contact_point());
-    // on the side the proxy touches: sheets are felt from both sides, and a CAD normal
-    // must never pull the hand into the part
-    if (shaded.dot(proxy_.constraints().plane(0).normal) < 0.0) shaded = -shaded;
-    spring = std::max(spring.dot(shaded), 0.0) * shaded;
+  if (options_.force_shading && scene_->mesh().has_corner_normals()) {
+    const Vec3 shaded = SmoothShadingNormal();
+    if (shaded.squaredNorm() > 0.0) spring = std::max(spring.dot(shaded), 0.0) * shaded;
   }
   const double spring_n = spring.norm();
   const Vec3 normal =

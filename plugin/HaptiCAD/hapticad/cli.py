@@ -97,6 +97,20 @@ def cmd_roughness_table(args):
     return None
 
 
+def cmd_accuracy_table(args):
+    ensure_freecad()
+    from . import accuracy_table
+
+    rows = accuracy_table.run_table()
+    if args.plot:
+        accuracy_table.plot(rows, args.plot)
+        print(f"hapticad accuracy-table: plot in {os.path.abspath(args.plot)}", file=sys.stderr)
+    if args.json:
+        return rows
+    print(accuracy_table.markdown(rows))
+    return None
+
+
 BENCH_MESH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "hapticad-bench-mesh")
 
 
@@ -140,6 +154,12 @@ def build_parser():
                     "k = 0.4 N/mm, mu 0.3/0.2, and prints build time, tick percentiles, bytes "
                     "per triangle, contact ticks, pop-through and the largest force.")
     bench.set_defaults(run=cmd_bench_mesh)
+
+    table = sub.add_parser("accuracy-table", help="speed against accuracy of each accuracy preset "
+                                                  "on an analytic sphere and cylinder")
+    table.add_argument("--json", action="store_true", help="print JSON (default: a Markdown table)")
+    table.add_argument("--plot", metavar="PNG", help="also draw the errors and tick cost against triangles")
+    table.set_defaults(run=cmd_accuracy_table)
 
     demo = sub.add_parser("demo", help="open the example toothbrush and feel it")
     demo.add_argument("--headless", action="store_true", help="stroke every tagged face, even with a display")

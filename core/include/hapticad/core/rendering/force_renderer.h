@@ -3,14 +3,15 @@
 //
 //   proxy      god-object proxy on the scene, a point or a sphere (GodObjectProxy)
 //   normal     k (proxy - device), k = the touched face's stiffness capped at the
-//              device's maximum stable stiffness. With force shading and one
-//              constraint, the spring acts along the shading normal n_s (the CAD's
-//              exact normals blended over the triangle) with the depth measured along
-//              it, k ((proxy - device) . n_s) n_s: a coarse tessellation of a curved
-//              face feels smooth (Morgenbesser and Srinivasan 1996). On edges and in
-//              corners (two or three constraints) the plain spring acts. With
-//              roughness, k (depth + h) along the bump-tilted normal
-//              (roughness_texture.h)
+//              device's maximum stable stiffness. With force shading the spring acts
+//              along the shading normal n_s (the CAD's exact normals blended over the
+//              triangle) with the depth measured along it, k ((proxy - device) . n_s)
+//              n_s: a coarse tessellation of a curved face feels smooth (Morgenbesser
+//              and Srinivasan 1996). On an edge or in a corner of the tessellation (two
+//              or three constraints) it shades when the triangles' shading normals
+//              agree there (one smooth CAD face); at a crease of the CAD model the
+//              plain spring acts. With roughness, k (depth + h) along the bump-tilted
+//              normal (roughness_texture.h)
 //   lateral    one of
 //                seed 000 §2.1 friction, f_t = -mu_eq(|v_t|) F_n v_hat_t, with the
 //                face's mu (anisotropic along a pattern, scaled by roughness);
@@ -72,6 +73,7 @@ struct RenderOutput {
   double texture_force_n = 0.0;     // magnitude of the viscous grating part, before clamping
   double vibration_force_n = 0.0;   // signed vibration along its axis, before clamping
   std::int32_t cad_face = -1;       // touched CAD face, -1 when free
+  std::int32_t constraints = 0;     // planes holding the proxy: 1 face, 2 edge, 3 corner
   std::uint32_t flags = 0;          // RenderFlags
 };
 
@@ -94,6 +96,10 @@ class ForceRenderer {
   const GodObjectProxy& proxy() const { return proxy_; }
 
  private:
+  // The shading normal at the contact, or zero where the constraints' triangles meet at
+  // a crease of the CAD model.
+  Vec3 SmoothShadingNormal() const;
+
   // Friction cone: returns the point the spring pulls toward (the anchor while sticking).
   Vec3 ApplyFrictionCone(const SurfaceProperties& surface, double friction_scale,
                          const Vec3& normal, double depth_m, const StripeFrame& stripe,
