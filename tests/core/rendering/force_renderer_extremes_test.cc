@@ -276,3 +276,55 @@ TEST(ContactExtremes, ADirtyMeshIsRepairedAndNeverGivesANaNForce) {
 
 }  // namespace
 }  // namespace hapticad
+
+namespace hapticad {
+namespace {
+
+// A shallow valley of two triangles meeting along x = 0 (each tilted 5 degrees up
+// away from it), in mm. `smooth`: every corner carries +z, as the tessellation of one
+// smooth CAD face would; otherwise each triangle carries its own facet normal (a crease).
+TriangleSoup Valley(bool smooth) {
+  const double rise = 20.0 * std::tan(5.0 * M_PI / 180.0);
+  TriangleSoup s;
+  s.vertices = {Vec3(0, -20, 0), Vec3(0, 20, 0), Vec3(-20, 0, rise), Vec3(20, 0, rise)};
+  s.triangles = {{0, 1, 2}, {1, 0, 3}};
+  s.cad_faces = smooth ? std::vector<std::int32_t>{0, 0} : std::vector<std::int32_t>{0, 1};
+  for (int t = 0; t < 2; ++t) {
+    const Vec3 a = s.vertices[s.triangles[t][0]], b = s.vertices[s.triangles[t][1]],
+               c = s.vertices[s.triangles[t][2]];
+    Vec3 n = (b - a).cross(c - a).normalized();
+    if (n.z() < 0) n = -n;
+    const Vec3 corner = smooth ? Vec3::UnitZ() : n;
+    s.corner_normals.push_back({corner, corner, corner});
+  }
+  return s;
+}
+
+TEST(ForceShading, ShadesAcrossTessellationValleysButNotAcrossCadCreases) {
+  for (bool smooth : {true, false}) {
+    const auto scene = HapticScene::Build(Valley(smooth), 1e-3);
+    ForceRenderer r(scene, Frictionless(*scene), Unclamped());
+    RenderOutput out;
+    r.Render({Vec3(0.0, 0.0, 0.01), Vec3::Zero(), 0.0}, &out);
+    // pressed 5 mm deep, 0.1 mm right of the fold: the goal's projection on either
+    // slope lies past the fold, so the proxy rests on the fold, held by both
+    const Vec3 goal(0.0001, 0.0, -0.005);
+    r.Render({goal, Vec3::Zero(), 0.001}, &out);
+    ASSERT_EQ(out.constraints, 2) << smooth;
+    const Vec3 proxy = out.proxy_w;
+    EXPECT_NEAR(proxy.x(), 0.0, 1e-9);
+    const Vec3 direction = out.force_w.normalized();
+    if (smooth) {
+      // shaded: along the smooth face's normal, the depth measured along it
+      EXPECT_NEAR((direction - Vec3::UnitZ()).norm(), 0.0, 1e-9);
+      EXPECT_NEAR(out.force_w.z(), kK * (proxy.z() - goal.z()), 1e-9);
+    } else {
+      // a crease: the plain spring from the device to the fold, 1.1 degrees off +z
+      EXPECT_NEAR((out.force_w - kK * (proxy - goal)).norm(), 0.0, 1e-9);
+      EXPECT_GT(std::acos(direction.z()), 1.0 * M_PI / 180.0);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace hapticad
