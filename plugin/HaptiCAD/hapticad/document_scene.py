@@ -16,7 +16,7 @@ import MeshPart
 
 from . import _core
 from .surface_compile import compile_surface, compile_vibration
-from .surface_object import reference_pairs, surfaces_of
+from .surface_object import active_reference_pairs, surfaces_of
 from .vibration_object import vibrations_of
 
 MM = 1e-3  # metres per FreeCAD length unit
@@ -96,7 +96,8 @@ def build_document_scene(doc, settings=Tessellation()):
     tagged = {}  # "Object.FaceN" -> surface
     objects = []
     for surface in surfaces:
-        for obj, sub in reference_pairs(surface):
+        # a broken reference names the wrong face (face_references): leave it out
+        for obj, sub in active_reference_pairs(surface):
             name = f"{obj.Name}.{sub}"
             if name in tagged and tagged[name] is not surface:
                 raise ValueError(f"{name} is tagged by both {tagged[name].Label} and {surface.Label}")
@@ -106,6 +107,8 @@ def build_document_scene(doc, settings=Tessellation()):
     for vibration in vibrating:
         if vibration.Part not in objects:
             objects.append(vibration.Part)
+    if not objects:
+        raise ValueError(f"document {doc.Label}: every tagged face reference is broken; pick the faces again")
 
     all_vertices, all_triangles, all_faces, face_names = [], [], [], []
     shapes = {}
