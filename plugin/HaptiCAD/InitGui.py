@@ -23,3 +23,13 @@ class HaptiCADWorkbench(Workbench):  # noqa: F821 (FreeCAD injects Workbench)
 
 
 Gui.addWorkbench(HaptiCADWorkbench())  # noqa: F821
+
+
+def _add_preferences_page():
+    # at start-up, so Edit > Preferences shows the page before the workbench is opened
+    from hapticad.gui.preferences_page import PreferencesPage
+
+    Gui.addPreferencePage(PreferencesPage, "HaptiCAD")  # noqa: F821
+
+
+_add_preferences_page()

@@ -213,8 +213,10 @@ class HapticSurface:
         self.loads(state)
 
 
-def validate(obj):
-    """Problems with a surface's current values, as sentences (empty when fine)."""
+def validate(obj, compile_faces=True):
+    """Problems with a surface's current values, as sentences (empty when fine). With
+    ``compile_faces`` each tagged face is also compiled for the core, whose own checks
+    (surface_compile, _core.validate_surface_properties) then speak here too."""
     problems = []
     if not obj.References:
         problems.append("no faces: pick at least one face")
@@ -229,6 +231,19 @@ def validate(obj):
         values = [getattr(obj, n) for n in TEXTURE_VALUES]
         if any(v != v or abs(v) == float("inf") for v in values):
             problems.append("texture parameters must be finite")
+    if compile_faces and not problems:
+        from .surface_compile import compile_surface
+
+        for o, sub in active_reference_pairs(obj):
+            shape = o.Shape.copy()
+            shape.Placement = o.getGlobalPlacement()
+            try:
+                compile_surface(obj, shape.getElement(sub))
+            except ValueError as exc:
+                message = str(exc)
+                prefix = f"{obj.Label}: "
+                problems.append(message[len(prefix):] if message.startswith(prefix) else message)
+                break
     return problems
 
 
@@ -433,6 +448,11 @@ def attach_view_provider(obj):
     """Gives a HaptiCAD object its view provider when the GUI is up and it has none yet."""
     if not App.GuiUp or obj.ViewObject is None or obj.ViewObject.Proxy:
         return
-    from .gui.view_provider_surface import ViewProviderHapticSurface
+    if is_haptic_surface(obj):
+        from .gui.view_provider_surface import ViewProviderHapticSurface
 
-    ViewProviderHapticSurface(obj.ViewObject)
+        ViewProviderHapticSurface(obj.ViewObject)
+    else:
+        from .gui.view_provider_vibration import ViewProviderHapticVibration
+
+        ViewProviderHapticVibration(obj.ViewObject)
