@@ -81,10 +81,13 @@ def press_task_button(which):
     raise LookupError(f"no visible {which} button")
 
 
-def save_view(name, width=800, height=600, background="White"):
-    """Saves the 3D view (saveImage) and returns (path, QImage)."""
+def save_view(name, background="White"):
+    """Saves the 3D view (saveImage, at the view's own size so image_pos maps exactly)
+    and returns (path, QImage)."""
     path = os.path.join(SHOTS, name)
-    Gui.ActiveDocument.ActiveView.saveImage(path, width, height, background)
+    view = Gui.ActiveDocument.ActiveView
+    width, height = view.getSize()
+    view.saveImage(path, width, height, background)
     return path, QtGui.QImage(path)
 
 
@@ -97,11 +100,11 @@ def grab_screen(name):
 
 
 def image_pos(point, image):
-    """Pixel (x, y) of a 3D point in an image saved from the active view at the same aspect."""
+    """Pixel (x, y) of a 3D point (mm) in an image saved by save_view."""
     view = Gui.ActiveDocument.ActiveView
     x, y = view.getPointOnScreen(App.Vector(*point))
     width, height = view.getSize()
-    return int(x / width * image.width()), int((height - y) / height * image.height())
+    return int(round(x * image.width() / width)), int(round((height - 1 - y) * image.height() / height))
 
 
 def pixel(image, x, y):
