@@ -12,6 +12,14 @@ class HaptiCADWorkbench(Workbench):  # noqa: F821 (FreeCAD injects Workbench)
         self.__class__.Icon = hapticad.icon("HaptiCAD")
 
     def Initialize(self):
+        try:
+            from hapticad import _core  # noqa: F401
+        except ImportError as exc:
+            # e.g. installed by the Addon Manager, which cannot compile
+            App.Console.PrintError(  # noqa: F821
+                f"HaptiCAD: its compiled module is missing ({exc}). Install the hapticad .deb, or build "
+                "it with packaging/setup.sh from a checkout (see README.md)\n")
+            return
         # commands are imported on activation only, as freecad.gears does
         from hapticad.gui import commands
 
