@@ -70,7 +70,8 @@ def widget(kind, name):
 
 def press_task_button(which):
     """Presses OK or Cancel of the task dialog, as a user does."""
-    role = {"OK": QtWidgets.QDialogButtonBox.Ok, "Cancel": QtWidgets.QDialogButtonBox.Cancel}[which]
+    role = {"OK": QtWidgets.QDialogButtonBox.Ok, "Cancel": QtWidgets.QDialogButtonBox.Cancel,
+            "Close": QtWidgets.QDialogButtonBox.Close}[which]
     process_events()
     for box in Gui.getMainWindow().findChildren(QtWidgets.QDialogButtonBox):
         button = box.button(role)
@@ -89,6 +90,19 @@ def save_view(name, background="White"):
     width, height = view.getSize()
     view.saveImage(path, width, height, background)
     return path, QtGui.QImage(path)
+
+
+def widen_panel(width=440):
+    """Gives the combo view (tree and task panels) room, as a user would drag it."""
+    main = Gui.getMainWindow()
+    docks = [d for d in main.findChildren(QtWidgets.QDockWidget) if d.isVisible()]
+    combo = [d for d in docks if d.objectName() in ("Combo View", "ComboView")]
+    if combo:
+        main.resizeDocks(combo, [width], QtCore.Qt.Horizontal)
+    for dock in docks:
+        if dock.objectName() in ("Report view", "Python console"):
+            dock.hide()
+    process_events()
 
 
 def grab_screen(name):
