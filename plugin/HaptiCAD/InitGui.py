@@ -34,9 +34,12 @@ Gui.addWorkbench(HaptiCADWorkbench())  # noqa: F821
 
 
 def _add_preferences_page():
-    # at start-up, so Edit > Preferences shows the page before the workbench is opened
+    # at start-up, so Edit > Preferences shows the page before the workbench is opened;
+    # the group's icon is found by name (preferences-hapticad.svg) in the icon path
+    import hapticad
     from hapticad.gui.preferences_page import PreferencesPage
 
+    Gui.addIconPath(hapticad.ICONS_DIR)  # noqa: F821
     Gui.addPreferencePage(PreferencesPage, "HaptiCAD")  # noqa: F821
 
 

@@ -90,6 +90,12 @@ class ViewProviderHapticSurface:
             return
         obj = self.Object
         if obj.Document.Restoring or "Restore" in obj.State:
+            # the referenced parts may not be there yet: draw once the document is open
+            if not getattr(self, "_refresh_pending", False):
+                from PySide2 import QtCore
+
+                self._refresh_pending = True
+                QtCore.QTimer.singleShot(0, self._deferred_refresh)
             return
         from ..surface_object import is_haptic_surface
 
@@ -138,6 +144,14 @@ class ViewProviderHapticSurface:
                 annotation.addChild(coords)
                 annotation.addChild(lines)
         self._highlight.addChild(annotation)
+
+    def _deferred_refresh(self):
+        self._refresh_pending = False
+        try:
+            self.Object.Name
+        except Exception:  # closed before the document finished opening
+            return
+        self.refresh()
 
     def overlay_face_count(self):
         return self._faces.getNumChildren() if hasattr(self, "_faces") else 0

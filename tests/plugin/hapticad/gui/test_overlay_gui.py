@@ -122,6 +122,34 @@ class OverlayTest(unittest.TestCase):
             Gui.ActiveDocument.ActiveView.getPointOnScreen(App.Vector(20, 15, 20)))
         self.assertEqual((info["Object"], info["Component"]), ("Box", "Face6"))
 
+    def test_the_overlay_comes_back_after_reopening(self):
+        import tempfile
+
+        self.top.PatternAngle = 45
+        before = {s.Name: (s.Material, float(s.PatternAngle), s.ReferenceState) for s in HaptiCAD.surfaces_of(self.doc)}
+        top_name = self.top.Name
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "overlay.FCStd")
+            self.doc.saveAs(path)
+            App.closeDocument(self.doc.Name)
+            self.doc = App.openDocument(path)
+            h.process_events()
+            after = {s.Name: (s.Material, float(s.PatternAngle), s.ReferenceState)
+                     for s in HaptiCAD.surfaces_of(self.doc)}
+            self.assertEqual(after, before)
+            for surface in HaptiCAD.surfaces_of(self.doc):
+                self.assertEqual(surface.ViewObject.Proxy.overlay_face_count(), 1)
+                self.assertNotIn("Touched", surface.State)
+            view = Gui.ActiveDocument.ActiveView
+            view.viewIsometric()
+            view.fitAll()
+            _, image = h.save_view("overlay_reopened.png")
+            self.top = self.doc.getObject(top_name)
+            self.box = self.doc.getObject("Box")
+            _, e2 = self.stripe_axes()
+            self.assertGreaterEqual(h.runs(self.scan_top(image, e2)), 8)
+            self.assertGreater(h.non_white_fraction(image, 0.0, 0.0, 0.35, 0.12), 0.02)
+
     def test_documentation_screenshot(self):
         """The README's overlay picture: several materials, a linear and a circular pattern."""
         cyl = self.doc.addObject("Part::Cylinder", "Knob")

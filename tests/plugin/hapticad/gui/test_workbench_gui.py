@@ -61,6 +61,32 @@ class WorkbenchGuiTest(unittest.TestCase):
         Gui.Selection.addSelection(self.box, "Face6")
         self.assertTrue(command.IsActive())
 
+    def test_commands_are_in_toolbar_and_menu_with_icons_tooltips_and_sensible_enabling(self):
+        from hapticad.gui import commands
+
+        names = [c for c in commands.MENU if c != "Separator"]
+        for name in ("HaptiCAD_Surface", "HaptiCAD_EditSurface", "HaptiCAD_ToggleOverlay",
+                     "HaptiCAD_OverlayByRoughness", "HaptiCAD_Feel", "HaptiCAD_Preferences"):
+            self.assertIn(name, names)
+        for name in names:
+            command = Gui.Command.get(name)
+            info = command.getInfo()
+            self.assertTrue(info["toolTip"], name)
+            self.assertTrue(os.path.isfile(info["pixmap"]), (name, info["pixmap"]))
+        toolbar = [t for t in Gui.getMainWindow().findChildren(QtWidgets.QToolBar) if t.windowTitle() == "HaptiCAD"][0]
+        self.assertEqual(len([a for a in toolbar.actions() if not a.isSeparator()]),
+                         len([c for c in commands.TOOLBAR if c != "Separator"]))
+        # without a surface: no edit, no feel; with one selected: both
+        self.assertFalse(Gui.Command.get("HaptiCAD_EditSurface").isActive())
+        self.assertFalse(Gui.Command.get("HaptiCAD_Feel").isActive())
+        surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])
+        Gui.Selection.addSelection(surface)
+        h.process_events()
+        self.assertTrue(Gui.Command.get("HaptiCAD_EditSurface").isActive())
+        self.assertTrue(Gui.Command.get("HaptiCAD_Feel").isActive())
+        # the overlay commands are check boxes that show the stored state
+        self.assertTrue(Gui.Command.get("HaptiCAD_ToggleOverlay").getAction()[0].isCheckable())
+
     def test_command_tags_the_selected_face_in_one_undoable_step(self):
         Gui.Selection.addSelection(self.box, "Face6")
         Gui.runCommand("HaptiCAD_Surface")
