@@ -102,6 +102,7 @@ def widen_panel(width=440):
     for dock in docks:
         if dock.objectName() in ("Report view", "Python console"):
             dock.hide()
+    main.statusBar().clearMessage()
     process_events()
 
 

@@ -78,7 +78,13 @@ class TaskPanelTest(unittest.TestCase):
         self.assertEqual(vibration.Part, self.box)
         h.widget(QtWidgets.QDoubleSpinBox, "VibrationFrequency").setValue(167.0)
         self.assertEqual(vibration.Frequency, 167.0)
+        h.widen_panel()
         h.grab_screen("task_panel.png")
+        pattern = h.widget(QtWidgets.QComboBox, "Pattern")
+        for area in Gui.getMainWindow().findChildren(QtWidgets.QScrollArea):
+            if area.isVisible() and area.widget() is not None and area.widget().isAncestorOf(pattern):
+                area.ensureWidgetVisible(h.widget(QtWidgets.QCheckBox, "vibrates"), 0, 0)
+        h.grab_screen("task_panel_pattern.png")
 
         h.press_task_button("OK")
         self.assertFalse(Gui.Control.activeDialog())
