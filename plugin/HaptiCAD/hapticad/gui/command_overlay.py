@@ -11,8 +11,19 @@ COLOUR_NAME = "HaptiCAD_OverlayByRoughness"
 
 
 def refresh_all():
-    """Redraws every surface's overlay and legend in every open document."""
+    """Redraws every surface's overlay and legend in every open document, and shows the
+    stored state in the two check boxes (the preferences page may have changed it)."""
     from . import overlay_legend
+
+    prefs = preferences.load()
+    for name, checked in ((NAME, prefs.overlay_visible), (COLOUR_NAME, prefs.overlay_colour_by == "Roughness")):
+        command = Gui.Command.get(name)
+        actions = command.getAction() if command is not None else []
+        for action in actions:
+            if action.isCheckable() and action.isChecked() != checked:
+                action.blockSignals(True)
+                action.setChecked(checked)
+                action.blockSignals(False)
 
     for doc in App.listDocuments().values():
         for surface in surfaces_of(doc):

@@ -44,6 +44,9 @@ class ViewProviderHapticSurface:
         self._root.addChild(self._highlight)
         self._highlighted = []
         vobj.addDisplayMode(self._root, "Overlay")
+        from . import overlay_observer
+
+        overlay_observer.install()  # redraws when a tagged part (or its container) moves
         self.refresh()
 
     def getDisplayModes(self, vobj):

@@ -102,8 +102,19 @@ class OverlayTest(unittest.TestCase):
         _, hidden = h.save_view("overlay_hidden.png")
         self.assertEqual(h.runs(self.scan_top(hidden, e2)), 0)
         self.assertLess(h.non_white_fraction(hidden, 0.0, 0.0, 0.35, 0.12), 0.002)
+        action = Gui.Command.get("HaptiCAD_ToggleOverlay").getAction()[0]
+        self.assertFalse(action.isChecked())
         Gui.runCommand("HaptiCAD_ToggleOverlay", 1)
         h.process_events()
+        self.assertTrue(action.isChecked())
+        # a change made elsewhere (the preferences page) shows in the check box too
+        preferences.update(overlay_visible=False)
+        from hapticad.gui.command_overlay import refresh_all
+
+        refresh_all()
+        self.assertFalse(action.isChecked())
+        preferences.update(overlay_visible=True)
+        refresh_all()
         _, again = h.save_view("overlay_shown_again.png")
         self.assertGreaterEqual(h.runs(self.scan_top(again, e2)), 8)
 
@@ -121,6 +132,23 @@ class OverlayTest(unittest.TestCase):
         info = Gui.ActiveDocument.ActiveView.getObjectInfo(
             Gui.ActiveDocument.ActiveView.getPointOnScreen(App.Vector(20, 15, 20)))
         self.assertEqual((info["Object"], info["Component"]), ("Box", "Face6"))
+
+    def test_the_overlay_follows_a_moved_part_and_a_moved_app_part(self):
+        def top_points():
+            node = self.top.ViewObject.Proxy._faces.getChild(0)
+            coords = [node.getChild(i) for i in range(node.getNumChildren())
+                      if node.getChild(i).getTypeId().getName().getString() == "Coordinate3"][0]
+            return np.array([tuple(p.getValue()) for p in coords.point.getValues()])
+
+        self.assertAlmostEqual(top_points()[:, 2].max(), 20.0, places=6)
+        self.box.Placement.Base = App.Vector(0, 0, 7)
+        self.doc.recompute()
+        self.assertAlmostEqual(top_points()[:, 2].max(), 27.0, places=6)
+        container = self.doc.addObject("App::Part", "Assembly")
+        container.addObject(self.box)
+        container.Placement.Base = App.Vector(0, 0, 100)
+        self.doc.recompute()
+        self.assertAlmostEqual(top_points()[:, 2].max(), 127.0, places=6)
 
     def test_the_overlay_comes_back_after_reopening(self):
         import tempfile

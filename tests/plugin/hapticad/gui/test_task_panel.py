@@ -177,6 +177,41 @@ class TaskPanelTest(unittest.TestCase):
         self.assertEqual(len(HaptiCAD.reference_pairs(surface)), 1)
         h.press_task_button("OK")
 
+    def test_faces_of_a_partdesign_body_and_of_a_part_in_an_app_part(self):
+        import Part
+        import Sketcher
+
+        body = self.doc.addObject("PartDesign::Body", "Body")
+        sketch = body.newObject("Sketcher::SketchObject", "Sketch")
+        sketch.Support = (self.doc.getObject("XY_Plane"), [""])
+        sketch.MapMode = "FlatFace"
+        corners = [App.Vector(60, 0, 0), App.Vector(90, 0, 0), App.Vector(90, 20, 0), App.Vector(60, 20, 0)]
+        for i in range(4):
+            sketch.addGeometry(Part.LineSegment(corners[i], corners[(i + 1) % 4]))
+        for i in range(4):
+            sketch.addConstraint(Sketcher.Constraint("Coincident", i, 2, (i + 1) % 4, 1))
+        pad = body.newObject("PartDesign::Pad", "Pad")
+        pad.Profile = sketch
+        pad.Length = 10
+        container = self.doc.addObject("App::Part", "Assembly")
+        inner = self.doc.addObject("Part::Box", "Inner")
+        inner.Placement.Base = App.Vector(0, 60, 0)
+        container.addObject(inner)
+        self.doc.recompute()
+        pad_top = [f"Face{i + 1}" for i, f in enumerate(pad.Shape.Faces)
+                   if abs(f.CenterOfMass.z - 10) < 1e-6 and type(f.Surface).__name__ == "Plane"][0]
+        # as the 3D view selects them: through the Body and through the App::Part
+        Gui.Selection.addSelection(self.doc.Name, body.Name, f"{pad.Name}.{pad_top}")
+        Gui.Selection.addSelection(self.doc.Name, container.Name, f"{inner.Name}.Face6")
+        Gui.runCommand("HaptiCAD_Surface")
+        h.process_events()
+        (surface,) = HaptiCAD.surfaces_of(self.doc)
+        pairs = HaptiCAD.reference_pairs(surface)
+        self.assertEqual([o.Name for o, _ in pairs], ["Body", "Inner"])  # the Body owns the pad's face
+        self.assertAlmostEqual(body.Shape.getElement(pairs[0][1]).CenterOfMass.z, 10.0)
+        h.press_task_button("OK")
+        self.assertEqual(surface.ViewObject.Proxy.overlay_face_count(), 2)
+
     def test_a_broken_reference_shows_in_the_panel_and_the_tree(self):
         cyl = self.doc.addObject("Part::Cylinder", "Hole")
         cyl.Radius, cyl.Height = 3, 30
