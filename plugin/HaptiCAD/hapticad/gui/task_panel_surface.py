@@ -104,6 +104,7 @@ class SurfaceTaskPanel:
         self.form.append(self._vibration_box())
         self.picker = _Picker(self)
         Gui.Selection.addObserver(self.picker)
+        self.set_mode(self.mode)  # the hint and the Add button say whether clicks add faces
         self.load()
 
     # --- building -------------------------------------------------------------------
