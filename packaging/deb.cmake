@@ -16,11 +16,14 @@ set(HAPTICAD_MOD_PATH /usr/${HAPTICAD_DEB_MOD_DIR})
 configure_file(${PROJECT_SOURCE_DIR}/packaging/hapticad.in ${CMAKE_BINARY_DIR}/deb-bin/hapticad @ONLY)
 install(PROGRAMS ${CMAKE_BINARY_DIR}/deb-bin/hapticad DESTINATION bin COMPONENT deb EXCLUDE_FROM_ALL)
 
-# udev rules, wherever the devices layer keeps them
-file(GLOB HAPTICAD_UDEV_RULES ${PROJECT_SOURCE_DIR}/packaging/udev/*.rules
+# udev rules, wherever the devices layer keeps them (packaging/70-hapticad.rules), and a
+# postinst that makes the group they name and applies them to plugged-in devices
+file(GLOB HAPTICAD_UDEV_RULES ${PROJECT_SOURCE_DIR}/packaging/*.rules ${PROJECT_SOURCE_DIR}/packaging/udev/*.rules
      ${PROJECT_SOURCE_DIR}/devices/udev/*.rules ${PROJECT_SOURCE_DIR}/resources/udev/*.rules)
 if(HAPTICAD_UDEV_RULES)
   install(FILES ${HAPTICAD_UDEV_RULES} DESTINATION lib/udev/rules.d COMPONENT deb EXCLUDE_FROM_ALL)
+  set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${PROJECT_SOURCE_DIR}/packaging/deb/postinst)
+  set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION ON)
 endif()
 
 set(CPACK_GENERATOR DEB)

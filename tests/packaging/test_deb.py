@@ -68,11 +68,14 @@ class DebTest(unittest.TestCase):
         self.assertTrue(mode & 0o111)
 
     def test_udev_rules_of_the_tree_are_installed(self):
-        rules = sorted(os.path.basename(p) for d in ("packaging/udev", "devices/udev", "resources/udev")
+        rules = sorted(os.path.basename(p) for d in ("packaging", "packaging/udev", "devices/udev", "resources/udev")
                        for p in glob.glob(os.path.join(SOURCE, d, "*.rules")))
         installed = sorted(os.path.basename(f) for f in self.files if f.startswith("./usr/lib/udev/rules.d/")
                            and f.endswith(".rules"))
         self.assertEqual(installed, rules)
+        # with rules, the package makes their group on installation
+        control = subprocess.run(["dpkg-deb", "-I", self.deb], check=True, capture_output=True, text=True).stdout
+        self.assertEqual("postinst" in control, bool(rules))
 
 
 if __name__ == "__main__":
