@@ -72,9 +72,11 @@ def device_choices():
     if lister is not None:
         try:
             for info in lister():
-                path = getattr(info, "path", "")
-                if path and getattr(info, "kind", "hid") != "sim":
-                    choices.append(DeviceChoice(f"{getattr(info, 'name', 'HID device')} ({path})", path))
+                # a dict per device (issue 5's binding), or an object with the same fields
+                field = info.get if isinstance(info, dict) else (lambda key, default=None: getattr(info, key, default))
+                path, kind = field("path", "") or "", field("kind", "hid") or "hid"
+                if path and kind != "sim":
+                    choices.append(DeviceChoice(f"{field('name', 'HID device')} ({path})", path))
         except Exception:  # a device that fails to enumerate must not hide the simulated one
             pass
     return choices

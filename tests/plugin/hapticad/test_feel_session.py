@@ -35,6 +35,22 @@ class FeelSessionTest(unittest.TestCase):
         self.assertTrue(choices[0].simulated)
         self.assertEqual(len({c.path for c in choices}), len(choices))
 
+    def test_listed_hid_devices_follow_the_simulated_probe(self):
+        # the binding lists dicts (issue 5); simulated entries are not HID choices
+        listed = [{"kind": "sim", "name": "Simulated hand", "path": "sim:hand", "limits": None},
+                  {"kind": "hid", "name": "Prototype", "path": "/dev/hidraw7", "limits": None}]
+        saved = getattr(_core, "list_devices", None)
+        _core.list_devices = lambda: listed
+        try:
+            choices = feel_session.device_choices()
+        finally:
+            if saved is None:
+                del _core.list_devices
+            else:
+                _core.list_devices = saved
+        self.assertEqual([c.path for c in choices], ["simulated", "/dev/hidraw7"])
+        self.assertEqual(choices[1].label, "Prototype (/dev/hidraw7)")
+
     def test_without_live_bindings_a_session_refuses_and_says_why(self):
         missing = feel_session.missing_bindings()
         if not missing:

@@ -13,17 +13,10 @@ from .. import preferences
 def hid_devices():
     """[(label, path)] of the haptic devices the core finds now; [] if it cannot look."""
     try:
-        from .. import _core
-
-        listed = _core.list_devices()
-    except Exception:  # no compiled module, or a core without device discovery yet
+        from ..feel_session import device_choices
+    except ImportError:  # no compiled module (an Addon Manager install)
         return []
-    found = []
-    for info in listed:
-        path = getattr(info, "path", "")
-        if path and path != preferences.SIMULATED_DEVICE:
-            found.append((f"{getattr(info, 'name', 'HID device')} ({path})", path))
-    return found
+    return [(c.label, c.path) for c in device_choices() if not c.simulated]
 
 
 class PreferencesPage:
