@@ -13,6 +13,8 @@ packages=(
   freecad python3-numpy python3-matplotlib python3-pivy
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth
+  # the .deb (CPack: dpkg-shlibdeps computes library dependencies, `file` finds the ELF files)
+  dpkg-dev file
 )
 
 sudo=()

@@ -12,6 +12,14 @@ class HaptiCADWorkbench(Workbench):  # noqa: F821 (FreeCAD injects Workbench)
         self.__class__.Icon = hapticad.icon("HaptiCAD")
 
     def Initialize(self):
+        try:
+            from hapticad import _core  # noqa: F401
+        except ImportError as exc:
+            # e.g. installed by the Addon Manager, which cannot compile
+            App.Console.PrintError(  # noqa: F821
+                f"HaptiCAD: its compiled module is missing ({exc}). Install the hapticad .deb, or build "
+                "it with packaging/setup.sh from a checkout (see README.md)\n")
+            return
         # commands are imported on activation only, as freecad.gears does
         from hapticad.gui import commands
 
@@ -23,3 +31,16 @@ class HaptiCADWorkbench(Workbench):  # noqa: F821 (FreeCAD injects Workbench)
 
 
 Gui.addWorkbench(HaptiCADWorkbench())  # noqa: F821
+
+
+def _add_preferences_page():
+    # at start-up, so Edit > Preferences shows the page before the workbench is opened;
+    # the group's icon is found by name (preferences-hapticad.svg) in the icon path
+    import hapticad
+    from hapticad.gui.preferences_page import PreferencesPage
+
+    Gui.addIconPath(hapticad.ICONS_DIR)  # noqa: F821
+    Gui.addPreferencePage(PreferencesPage, "HaptiCAD")  # noqa: F821
+
+
+_add_preferences_page()

@@ -21,7 +21,7 @@ import MeshPart
 from . import _core
 from . import accuracy as accuracy_presets
 from .surface_compile import compile_surface, compile_vibration
-from .surface_object import reference_pairs, surfaces_of
+from .surface_object import active_reference_pairs, surfaces_of
 from .vibration_object import vibrations_of
 
 MM = 1e-3  # metres per FreeCAD length unit
@@ -141,7 +141,8 @@ def build_document_scene(doc, accuracy=None):
     tagged = {}  # "Object.FaceN" -> surface
     objects = []
     for surface in surfaces:
-        for obj, sub in reference_pairs(surface):
+        # a broken reference names the wrong face (face_references): leave it out
+        for obj, sub in active_reference_pairs(surface):
             name = f"{obj.Name}.{sub}"
             if name in tagged and tagged[name] is not surface:
                 raise ValueError(f"{name} is tagged by both {tagged[name].Label} and {surface.Label}")
@@ -151,6 +152,8 @@ def build_document_scene(doc, accuracy=None):
     for vibration in vibrating:
         if vibration.Part not in objects:
             objects.append(vibration.Part)
+    if not objects:
+        raise ValueError(f"document {doc.Label}: every tagged face reference is broken; pick the faces again")
 
     all_vertices, all_triangles, all_faces, all_normals, face_names = [], [], [], [], []
     shapes = {}

@@ -8,12 +8,15 @@ FreeCAD's: lengths in mm, speeds in mm/s, the contact stiffness in N/mm; texture
 parameters in the paper's normalised units. Created with :func:`make_surface`;
 App-only (no GUI import), so it works in ``freecadcmd`` and from the ``hapticad`` CLI.
 """
+import json
+
 import FreeCAD as App
 
-from . import materials, textures
+from . import face_references, materials, textures
 
 TYPE = "HaptiCAD::HapticSurface"
-SCHEMA_VERSION = 2
+# 3: ReferenceState (face signatures and re-match status per reference)
+SCHEMA_VERSION = 3
 PATTERNS = ["None", "Linear", "Circular", "Curve"]
 FRICTION_MODELS = ["Velocity (seed 000)", "Friction cone (stick-slip)"]
 INTERPOLATIONS = ["Linear (seed 000 eq. 3)", "Friction ellipse"]
@@ -121,6 +124,10 @@ class HapticSurface:
             obj.addProperty("App::PropertyString", "HaptiCADType", "Base", "Type tag of HaptiCAD objects")
             obj.setEditorMode("HaptiCADType", 2)  # hidden
         obj.HaptiCADType = TYPE
+        if "ReferenceState" not in obj.PropertiesList:
+            obj.addProperty("App::PropertyString", "ReferenceState", "Base",
+                            "Per referenced face: its geometric signature and re-match status (JSON)")
+            obj.setEditorMode("ReferenceState", 2)
         for name, kind, group, tip, default, constraint in PROPERTIES:
             added = name not in obj.PropertiesList
             if added:
@@ -153,7 +160,9 @@ class HapticSurface:
             return
         self._applying = True
         try:
-            if prop == "Material" and obj.Material in materials.default_database():
+            if prop == "References":
+                sync_reference_state(obj)
+            elif prop == "Material" and obj.Material in materials.default_database():
                 material = materials.default_database().get(obj.Material)
                 obj.StaticFriction = material.static_friction
                 obj.DynamicFriction = material.dynamic_friction
@@ -170,6 +179,9 @@ class HapticSurface:
 
     def onDocumentRestored(self, obj):
         self.setup(obj)
+        if not obj.ReferenceState:
+            # written before schema 3: the names are as good as they get, sign them now
+            sync_reference_state(obj)
         # a document written without the GUI (freecadcmd, the CLI) has no view-provider
         # proxy to restore: give the surface its own
         attach_view_provider(obj)
@@ -177,6 +189,12 @@ class HapticSurface:
         obj.purgeTouched()
 
     def execute(self, obj):
+        # runs after every recompute of a referenced part (References links them)
+        self._applying = True
+        try:
+            rematch_references(obj)
+        finally:
+            self._applying = False
         problems = validate(obj)
         if problems:
             App.Console.PrintError(f"{obj.Label}: {'; '.join(problems)}\n")
@@ -195,18 +213,37 @@ class HapticSurface:
         self.loads(state)
 
 
-def validate(obj):
-    """Problems with a surface's current values, as sentences (empty when fine)."""
+def validate(obj, compile_faces=True):
+    """Problems with a surface's current values, as sentences (empty when fine). With
+    ``compile_faces`` each tagged face is also compiled for the core, whose own checks
+    (surface_compile, _core.validate_surface_properties) then speak here too."""
     problems = []
-    broken = [f"{o.Name}.{sub}" for o, sub in reference_pairs(obj) if not _has_subshape(o, sub)]
+    if not obj.References:
+        problems.append("no faces: pick at least one face")
+    broken = [f"{name}.{face}" for name, face, status in reference_status(obj)
+              if status == face_references.BROKEN]
     if broken:
-        problems.append(f"face(s) no longer exist: {', '.join(broken)}")
+        problems.append(f"broken face reference(s) {', '.join(broken)}: the model changed and the face "
+                        "cannot be found unambiguously; pick it again")
     if obj.Pattern == "Curve" and obj.PatternCurve is None:
         problems.append("the Curve pattern needs a sketch or edge in PatternCurve")
     if obj.Texture != "None":
         values = [getattr(obj, n) for n in TEXTURE_VALUES]
         if any(v != v or abs(v) == float("inf") for v in values):
             problems.append("texture parameters must be finite")
+    if compile_faces and not problems:
+        from .surface_compile import compile_surface
+
+        for o, sub in active_reference_pairs(obj):
+            shape = o.Shape.copy()
+            shape.Placement = o.getGlobalPlacement()
+            try:
+                compile_surface(obj, shape.getElement(sub))
+            except ValueError as exc:
+                message = str(exc)
+                prefix = f"{obj.Label}: "
+                problems.append(message[len(prefix):] if message.startswith(prefix) else message)
+                break
     return problems
 
 
@@ -226,6 +263,83 @@ def reference_pairs(surface):
         for sub in subs if isinstance(subs, (list, tuple)) else [subs]:
             pairs.append((obj, sub))
     return pairs
+
+
+def read_reference_state(obj):
+    """The ReferenceState entries of a surface (see face_references)."""
+    try:
+        entries = json.loads(obj.ReferenceState) if obj.ReferenceState else []
+    except ValueError:
+        entries = []
+    return entries if isinstance(entries, list) else []
+
+
+def _write_reference_state(obj, entries):
+    text = json.dumps(entries, sort_keys=True)
+    if text != obj.ReferenceState:
+        obj.ReferenceState = text
+
+
+def sync_reference_state(obj):
+    """Keeps one state entry per reference: known ones as they are, new ones signed from
+    the face they name now (a designer just picked it)."""
+    known = {(e["object"], e["face"]): e for e in read_reference_state(obj)}
+    entries = [known.get((o.Name, sub)) or face_references.new_entry(o, sub) for o, sub in reference_pairs(obj)]
+    _write_reference_state(obj, entries)
+
+
+def reference_status(surface):
+    """[(object name, face name, "ok" | "rematched" | "broken"), ...] per reference."""
+    known = {(e["object"], e["face"]): e["status"] for e in read_reference_state(surface)}
+    return [(o.Name, sub, known.get((o.Name, sub), face_references.OK if _has_subshape(o, sub)
+                                    else face_references.BROKEN))
+            for o, sub in reference_pairs(surface)]
+
+
+def active_reference_pairs(surface):
+    """reference_pairs without the broken ones: what the scene and the overlay use."""
+    status = {(o, f): s for o, f, s in reference_status(surface)}
+    return [(o, sub) for o, sub in reference_pairs(surface)
+            if status.get((o.Name, sub)) != face_references.BROKEN]
+
+
+def rematch_references(obj):
+    """Re-matches every reference to the current shapes (face_references); re-binds the
+    re-matched ones and reports the ones that broke."""
+    before = read_reference_state(obj)
+    pairs = reference_pairs(obj)
+    known = {(e["object"], e["face"]): e for e in before}
+    inputs = [known.get((o.Name, sub)) or face_references.new_entry(o, sub) for o, sub in pairs]
+    objects = {o.Name: o for o, _ in pairs}
+    entries = face_references.rematch(inputs, {name: getattr(o, "Shape", None) for name, o in objects.items()})
+    # two references landing on one face: the one that kept its name wins, the other breaks
+    holder = {}
+    for i, e in enumerate(entries):
+        if e["status"] == face_references.BROKEN:
+            continue
+        key = (e["object"], e["face"])
+        j = holder.setdefault(key, i)
+        if j != i:
+            loser = i if entries[j]["status"] == face_references.OK else j
+            entries[loser] = dict(inputs[loser], status=face_references.BROKEN)
+            holder[key] = j + i - loser
+    was_broken = {(e["object"], e["face"]) for e in before if e.get("status") == face_references.BROKEN}
+    for e in entries:
+        if e["status"] == face_references.BROKEN and (e["object"], e["face"]) not in was_broken:
+            App.Console.PrintWarning(
+                f"{obj.Label}: the reference to {e['object']}.{e['face']} is broken: the model changed and "
+                "the face cannot be found unambiguously; it is left out until you pick it again\n")
+        elif e["status"] == face_references.REMATCHED:
+            App.Console.PrintMessage(f"{obj.Label}: a face reference now follows {e['object']}.{e['face']}\n")
+    new_pairs = [(objects[e["object"]], e["face"]) for e in entries]
+    if new_pairs != pairs:
+        grouped = {}
+        for o, sub in new_pairs:
+            grouped.setdefault(o, [])
+            if sub not in grouped[o]:
+                grouped[o].append(sub)
+        obj.References = [(o, tuple(subs)) for o, subs in grouped.items()]
+    _write_reference_state(obj, entries)
 
 
 def _has_subshape(obj, sub):
@@ -325,6 +439,7 @@ def make_surface(doc, references, material="ABS", roughness_category=3, pattern=
     for key, value in properties.items():
         if key != "Texture":
             setattr(obj, key, value)
+    sync_reference_state(obj)
     attach_view_provider(obj)
     return obj
 
@@ -333,6 +448,11 @@ def attach_view_provider(obj):
     """Gives a HaptiCAD object its view provider when the GUI is up and it has none yet."""
     if not App.GuiUp or obj.ViewObject is None or obj.ViewObject.Proxy:
         return
-    from .gui.view_provider_surface import ViewProviderHapticSurface
+    if is_haptic_surface(obj):
+        from .gui.view_provider_surface import ViewProviderHapticSurface
 
-    ViewProviderHapticSurface(obj.ViewObject)
+        ViewProviderHapticSurface(obj.ViewObject)
+    else:
+        from .gui.view_provider_vibration import ViewProviderHapticVibration
+
+        ViewProviderHapticVibration(obj.ViewObject)

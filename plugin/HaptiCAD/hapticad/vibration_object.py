@@ -15,6 +15,7 @@ TYPE = "HaptiCAD::HapticVibration"
 SCHEMA_VERSION = 1
 FREQUENCY_RANGE_HZ = (1.0, 1000.0)  # what a servo loop up to 10 kHz can render
 AMPLITUDE_RANGE_N = (0.0, 10.0)
+ZERO_AXIS = "the vibration axis cannot be zero; kept +Z"
 
 
 class HapticVibration:
@@ -47,7 +48,7 @@ class HapticVibration:
 
     def onChanged(self, obj, prop):
         if prop == "Axis" and "Restore" not in obj.State and obj.Axis.Length == 0:
-            App.Console.PrintError(f"{obj.Label}: the vibration axis cannot be zero; kept +Z\n")
+            App.Console.PrintError(f"{obj.Label}: {ZERO_AXIS}\n")
             obj.Axis = App.Vector(0, 0, 1)
 
     def onDocumentRestored(self, obj):
@@ -58,8 +59,9 @@ class HapticVibration:
         obj.purgeTouched()
 
     def execute(self, obj):
-        if obj.Part is None:
-            App.Console.PrintError(f"{obj.Label}: no part to vibrate\n")
+        problems = validate(obj)
+        if problems:
+            App.Console.PrintError(f"{obj.Label}: {'; '.join(problems)}\n")
 
     def dumps(self):
         return {"schema": SCHEMA_VERSION}
@@ -72,6 +74,24 @@ class HapticVibration:
 
     def __setstate__(self, state):
         self.loads(state)
+
+
+def validate(obj):
+    """Problems with a vibration's current values, as sentences (empty when fine)."""
+    problems = []
+    if obj.Part is None:
+        problems.append("no part to vibrate")
+    elif not hasattr(obj.Part, "Shape") or obj.Part.Shape.isNull():
+        problems.append(f"{obj.Part.Label} has no shape to vibrate")
+    return problems
+
+
+def vibration_of(part):
+    """The HapticVibration that makes ``part`` vibrate, or None."""
+    for v in vibrations_of(part.Document):
+        if v.Part == part:
+            return v
+    return None
 
 
 def is_haptic_vibration(obj):

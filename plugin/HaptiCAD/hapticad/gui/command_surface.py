@@ -1,12 +1,19 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Command "Haptic surface": tag the selected faces with a HapticSurface."""
+"""Commands "Haptic surface" (tag the selected faces, then edit them in the task panel)
+and "Edit haptic surface"."""
 import FreeCAD as App
 import FreeCADGui as Gui
 
 from .. import icon
+from ..surface_object import is_haptic_surface
 from .selection import selected_faces
 
 NAME = "HaptiCAD_Surface"
+EDIT_NAME = "HaptiCAD_EditSurface"
+
+
+def _no_dialog():
+    return Gui.Control.activeDialog() is False or not Gui.Control.activeDialog()
 
 
 class CommandHapticSurface:
@@ -14,23 +21,44 @@ class CommandHapticSurface:
         return {
             "Pixmap": icon("HaptiCAD_Surface"),
             "MenuText": "Haptic surface",
-            "ToolTip": "Tag the selected faces with physical surface properties "
-            "(material, roughness, friction pattern) to feel them",
+            "ToolTip": "Tag the selected faces with physical surface properties (material, roughness, "
+            "friction pattern, texture) to feel them; select faces in the 3D view first",
         }
 
     def IsActive(self):
-        return App.ActiveDocument is not None and bool(selected_faces())
+        return App.ActiveDocument is not None and _no_dialog() and bool(selected_faces())
 
     def Activated(self):
         faces = selected_faces()
         refs = ", ".join(f"(App.ActiveDocument.{obj.Name}, {sub!r})" for obj, sub in faces)
         doc = App.ActiveDocument
+        # one transaction for the creation and the whole edit: the panel's OK commits it,
+        # Cancel removes the new surface again
         doc.openTransaction("Haptic surface")
         # through the console, so the action is recorded in macros like any FreeCAD command
         Gui.doCommand("import HaptiCAD")
         Gui.doCommand(f"_surface = HaptiCAD.make_surface(App.ActiveDocument, [{refs}])")
-        Gui.doCommand("App.ActiveDocument.recompute()")
-        doc.commitTransaction()
+        Gui.doCommand("Gui.ActiveDocument.setEdit(_surface.Name, 0)")
+
+
+class CommandEditHapticSurface:
+    def GetResources(self):
+        return {
+            "Pixmap": icon("HaptiCAD_SurfaceObject"),
+            "MenuText": "Edit haptic surface",
+            "ToolTip": "Edit the selected haptic surface in the task panel (or double-click it in the tree)",
+        }
+
+    def _selected(self):
+        sel = Gui.Selection.getSelection()
+        return sel[0] if len(sel) == 1 and is_haptic_surface(sel[0]) else None
+
+    def IsActive(self):
+        return App.ActiveDocument is not None and _no_dialog() and self._selected() is not None
+
+    def Activated(self):
+        Gui.doCommand(f"Gui.ActiveDocument.setEdit({self._selected().Name!r}, 0)")
 
 
 Gui.addCommand(NAME, CommandHapticSurface())
+Gui.addCommand(EDIT_NAME, CommandEditHapticSurface())

@@ -3,6 +3,7 @@
 "Haptic surface" command tags a face picked with Gui.Selection as one undoable step,
 and the 3D view shows the part. Run through gui_test_runner.py under Xvfb."""
 import os
+import sys
 import unittest
 
 import FreeCAD as App
@@ -10,6 +11,9 @@ import FreeCADGui as Gui
 from PySide2 import QtGui, QtWidgets
 
 import HaptiCAD
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import gui_helpers as h  # noqa: E402
 
 SHOTS = os.environ.get("HAPTICAD_SCREENSHOT_DIR", "/tmp")
 
@@ -57,9 +61,37 @@ class WorkbenchGuiTest(unittest.TestCase):
         Gui.Selection.addSelection(self.box, "Face6")
         self.assertTrue(command.IsActive())
 
+    def test_commands_are_in_toolbar_and_menu_with_icons_tooltips_and_sensible_enabling(self):
+        from hapticad.gui import commands
+
+        names = [c for c in commands.MENU if c != "Separator"]
+        for name in ("HaptiCAD_Surface", "HaptiCAD_EditSurface", "HaptiCAD_ToggleOverlay",
+                     "HaptiCAD_OverlayByRoughness", "HaptiCAD_Feel", "HaptiCAD_Preferences"):
+            self.assertIn(name, names)
+        for name in names:
+            command = Gui.Command.get(name)
+            info = command.getInfo()
+            self.assertTrue(info["toolTip"], name)
+            self.assertTrue(os.path.isfile(info["pixmap"]), (name, info["pixmap"]))
+        toolbar = [t for t in Gui.getMainWindow().findChildren(QtWidgets.QToolBar) if t.windowTitle() == "HaptiCAD"][0]
+        self.assertEqual(len([a for a in toolbar.actions() if not a.isSeparator()]),
+                         len([c for c in commands.TOOLBAR if c != "Separator"]))
+        # without a surface: no edit, no feel; with one selected: both
+        self.assertFalse(Gui.Command.get("HaptiCAD_EditSurface").isActive())
+        self.assertFalse(Gui.Command.get("HaptiCAD_Feel").isActive())
+        surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])
+        Gui.Selection.addSelection(surface)
+        h.process_events()
+        self.assertTrue(Gui.Command.get("HaptiCAD_EditSurface").isActive())
+        self.assertTrue(Gui.Command.get("HaptiCAD_Feel").isActive())
+        # the overlay commands are check boxes that show the stored state
+        self.assertTrue(Gui.Command.get("HaptiCAD_ToggleOverlay").getAction()[0].isCheckable())
+
     def test_command_tags_the_selected_face_in_one_undoable_step(self):
         Gui.Selection.addSelection(self.box, "Face6")
         Gui.runCommand("HaptiCAD_Surface")
+        self.assertTrue(Gui.Control.activeDialog())  # the task panel opened on the new surface
+        h.press_task_button("OK")
         surfaces = HaptiCAD.surfaces_of(self.doc)
         self.assertEqual(len(surfaces), 1)
         self.assertEqual(HaptiCAD.reference_pairs(surfaces[0]), [(self.box, "Face6")])
@@ -70,6 +102,7 @@ class WorkbenchGuiTest(unittest.TestCase):
     def test_the_3d_view_shows_the_part(self):
         Gui.Selection.addSelection(self.box, "Face6")
         Gui.runCommand("HaptiCAD_Surface")
+        h.press_task_button("OK")
         Gui.Selection.clearSelection()
         view = Gui.ActiveDocument.ActiveView
         view.viewIsometric()
@@ -78,10 +111,11 @@ class WorkbenchGuiTest(unittest.TestCase):
         view.saveImage(path, 480, 360, "White")
         image = QtGui.QImage(path)
         self.assertFalse(image.isNull())
-        # not blank, and the part sits in the middle of the view
+        # not blank, and the part sits in the middle of the view (the overlay's legend
+        # takes the top-left corner: look at the bottom-left one)
         self.assertGreater(non_white_fraction(image), 0.10)
         self.assertGreater(non_white_fraction(image, 0.4, 0.4, 0.6, 0.6), 0.9)
-        self.assertLess(non_white_fraction(image, 0.0, 0.0, 0.1, 0.1), 0.05)
+        self.assertLess(non_white_fraction(image, 0.0, 0.9, 0.1, 1.0), 0.05)
 
 
 if __name__ == "__main__":

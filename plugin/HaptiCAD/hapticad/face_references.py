@@ -1,0 +1,264 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Face references that survive model edits, or say plainly that they broke.
+
+FreeCAD 0.20 names faces by index ("Face3"), and a model edit can renumber them: in
+Box minus Cylinder, moving the cylinder onto a corner turns the top face from Face6
+into Face3 while "Face6" then names a side face. So each referenced face keeps a
+geometric *signature*, and after every recompute the reference is re-matched:
+
+- **ok**: the name still names the face the signature describes;
+- **rematched**: the face now has another name, found unambiguously; the reference
+  follows it (the status says so, nothing is silent);
+- **broken**: no face, or more than one, fits; the reference keeps its old name and
+  signature (so it comes back if the edit is undone) and is left out of the scene.
+
+A signature is taken in the shape's own frame (its Placement removed), so moving a
+part, or the App::Part holding it, changes nothing. Lengths in mm. Matching goes from
+strict to loose and accepts only a *unique* candidate at the first level that has any:
+
+1. the same face: same underlying surface, area and centre of mass;
+2. the same underlying surface (plane, cylinder, ... with the same parameters): the
+   face was trimmed or extended, e.g. a corner cut off the top face;
+3. the same kind of surface facing the same way (plane normal, cylinder axis and
+   sense): the face moved, e.g. the box got taller.
+
+No GUI; used by the HapticSurface object on every recompute.
+"""
+import math
+
+import FreeCAD as App
+
+OK, REMATCHED, BROKEN = "ok", "rematched", "broken"
+STATUSES = (OK, REMATCHED, BROKEN)
+ANGLE_TOLERANCE = 1e-7  # 1 - cos of the angle two directions may differ by (about 0.03 degrees)
+RELATIVE_TOLERANCE = 1e-6  # of the shape's size, for lengths; of the area, for areas
+
+
+def _vec(v):
+    return [float(v.x), float(v.y), float(v.z)]
+
+
+def local_shape(shape):
+    """A copy of ``shape`` in its own frame (Placement removed)."""
+    local = shape.copy()
+    local.Placement = App.Placement()
+    return local
+
+
+def _uv_on_face(face):
+    u, v = face.Surface.parameter(face.CenterOfMass)
+    if face.isInside(face.valueAt(u, v), 1e-6, True):
+        return u, v
+    u0, u1, v0, v1 = face.ParameterRange
+    return 0.5 * (u0 + u1), 0.5 * (v0 + v1)
+
+
+def _axis_line(position, direction):
+    """A line as (unit direction with a canonical sign, its point closest to the origin)."""
+    d = App.Vector(direction)
+    d.normalize()
+    # canonical sign: the first clearly non-zero component positive
+    for c in (d.x, d.y, d.z):
+        if abs(c) > 1e-9:
+            if c < 0:
+                d = -d
+            break
+    p = App.Vector(position)
+    foot = p - d * p.dot(d)
+    return _vec(d), _vec(foot)
+
+
+def _surface_parameters(face, normal, point):
+    """(kind, parameters, orientation) of the face's underlying surface; parameters are
+    what identifies the surface, orientation what a moved copy would keep."""
+    surface = face.Surface
+    kind = type(surface).__name__
+    if kind == "Plane":
+        n = App.Vector(normal)
+        return kind, {"normal": _vec(n), "offset": float(n.dot(point))}, {"normal": _vec(n)}
+    if kind in ("Cylinder", "Cone", "Sphere", "Toroid"):
+        centre = surface.Center
+        axis, foot = _axis_line(centre, surface.Axis)
+        # sense: +1 when the face points away from the axis (a boss), -1 toward it (a hole)
+        radial = point - App.Vector(*foot)
+        along = App.Vector(*axis)
+        radial = radial - along * radial.dot(along)
+        sense = 1 if radial.Length == 0 or App.Vector(normal).dot(radial) >= 0 else -1
+        params = {"axis": axis, "foot": foot}
+        if kind == "Cylinder":
+            params["radius"] = float(surface.Radius)
+        elif kind == "Cone":
+            params.update(apex=_vec(surface.Apex), semi_angle=float(surface.SemiAngle))
+        elif kind == "Sphere":
+            params.update(centre=_vec(centre), radius=float(surface.Radius))
+        else:
+            params.update(centre=_vec(centre), major=float(surface.MajorRadius),
+                          minor=float(surface.MinorRadius))
+        orientation = {"sense": sense}
+        if kind in ("Cylinder", "Cone", "Toroid"):
+            orientation["axis"] = axis
+        return kind, params, orientation
+    return kind, {}, {}
+
+
+def face_signature(face):
+    """The signature of a B-rep face (in the frame it is given in), JSON-ready."""
+    u, v = _uv_on_face(face)
+    point = face.valueAt(u, v)
+    normal = face.normalAt(u, v)
+    kind, params, orientation = _surface_parameters(face, normal, point)
+    return {
+        "type": kind,
+        "surface": params,
+        "orientation": orientation,
+        "area": float(face.Area),
+        "centre": _vec(face.CenterOfMass),
+    }
+
+
+def shape_signatures(shape):
+    """Signatures of every face of ``shape`` in its own frame, and its size (mm)."""
+    local = local_shape(shape)
+    size = local.BoundBox.DiagonalLength if local.BoundBox.isValid() else 1.0
+    return [face_signature(f) for f in local.Faces], max(size, 1.0)
+
+
+def _close(a, b, tolerance):
+    if isinstance(a, (list, tuple)):
+        return len(a) == len(b) and all(abs(x - y) <= tolerance for x, y in zip(a, b))
+    return abs(a - b) <= tolerance
+
+
+def _same_direction(a, b):
+    return sum(x * y for x, y in zip(a, b)) >= 1.0 - ANGLE_TOLERANCE
+
+
+def _same_dict(a, b, length_tol):
+    if a.keys() != b.keys():
+        return False
+    for key in a:
+        if key in ("normal", "axis"):
+            if not _same_direction(a[key], b[key]):
+                return False
+        elif key == "semi_angle":
+            if not _close(a[key], b[key], math.sqrt(2 * ANGLE_TOLERANCE)):
+                return False
+        elif key == "sense":
+            if a[key] != b[key]:
+                return False
+        elif not _close(a[key], b[key], length_tol):
+            return False
+    return True
+
+
+def same_orientation(a, b, size):
+    return a["type"] == b["type"] and _same_dict(a["orientation"], b["orientation"], RELATIVE_TOLERANCE * size)
+
+
+def same_surface(a, b, size):
+    return same_orientation(a, b, size) and _same_dict(a["surface"], b["surface"], RELATIVE_TOLERANCE * size)
+
+
+def same_face(a, b, size):
+    return (same_surface(a, b, size)
+            and abs(a["area"] - b["area"]) <= RELATIVE_TOLERANCE * max(abs(a["area"]), 1e-12)
+            and _close(a["centre"], b["centre"], RELATIVE_TOLERANCE * size))
+
+
+LEVELS = (same_face, same_surface, same_orientation)
+
+
+def match_face(signature, name, signatures, size):
+    """(face name or None, status) of the face of a shape that ``signature`` describes;
+    ``name`` is the stored name, ``signatures`` those of the shape's faces (Face1 first).
+
+    At each level, from strict to loose: if the stored name fits it is kept ("ok");
+    otherwise exactly one fitting face is a re-match; two or more are ambiguous
+    ("broken"); none passes to the next, looser, level."""
+    index = _face_index(name)
+    for level in LEVELS:
+        fits = [i for i, s in enumerate(signatures) if level(signature, s, size)]
+        if not fits:
+            continue
+        if len(fits) == 1:
+            found = fits[0]
+            return f"Face{found + 1}", OK if found == index else REMATCHED
+        if level is same_face and index in fits:
+            return name, OK
+        return None, BROKEN
+    return None, BROKEN
+
+
+def _face_index(name):
+    try:
+        return int(name[4:]) - 1 if name.startswith("Face") else -1
+    except ValueError:
+        return -1
+
+
+def rematch(entries, shapes):
+    """Re-matches reference entries against the current shapes.
+
+    ``entries``: [{"object": name, "face": "FaceN", "signature": {...}, "status": ...}];
+    ``shapes``: {object name: shape or None}. Returns new entries (same order): the face
+    and signature follow the matched face; a broken entry keeps its old face and
+    signature so that undoing the edit restores it."""
+    cache = {}
+    result = []
+    for entry in entries:
+        shape = shapes.get(entry["object"])
+        if entry.get("signature") is None or shape is None or shape.isNull() or not shape.Faces:
+            result.append(dict(entry, status=BROKEN))
+            continue
+        if entry["object"] not in cache:
+            cache[entry["object"]] = shape_signatures(shape)
+        signatures, size = cache[entry["object"]]
+        name, status = match_face(entry["signature"], entry["face"], signatures, size)
+        if status == BROKEN:
+            result.append(dict(entry, status=BROKEN))
+        else:
+            result.append(dict(entry, face=name, status=status, signature=signatures[_face_index(name)]))
+    return result
+
+
+def new_entry(obj, face_name):
+    """A reference entry for a face as it is now."""
+    signature = None
+    try:
+        face = local_shape(obj.Shape).getElement(face_name)
+        signature = face_signature(face)
+    except Exception:  # a face that does not exist yet is recorded as broken
+        pass
+    return {"object": obj.Name, "face": face_name, "signature": signature,
+            "status": OK if signature is not None else BROKEN}
+
+
+# --- PartDesign: a designer picks the visible solid, which belongs to the Body -----------
+
+def _body_of(obj):
+    if obj.TypeId.startswith("PartDesign::") and obj.TypeId != "PartDesign::Body":
+        for parent in obj.InList:
+            if parent.TypeId == "PartDesign::Body":
+                return parent
+    return None
+
+
+def owner_face(obj, face_name):
+    """(object, face name) a reference should hold for a face picked on ``obj``.
+
+    A PartDesign feature's faces belong to its Body: a later feature would otherwise
+    leave the tag on a hidden intermediate solid. The Body's face is the one with the
+    same geometry (global frame); anything else is kept as given."""
+    body = _body_of(obj)
+    if body is None or body.Shape.isNull():
+        return obj, face_name
+    picked = obj.Shape.copy()
+    picked.Placement = obj.getGlobalPlacement()
+    whole = body.Shape.copy()
+    whole.Placement = body.getGlobalPlacement()
+    size = max(whole.BoundBox.DiagonalLength, 1.0)
+    signature = face_signature(picked.getElement(face_name))
+    fits = [i for i, f in enumerate(whole.Faces) if same_face(signature, face_signature(f), size)]
+    if len(fits) == 1:
+        return body, f"Face{fits[0] + 1}"
+    return obj, face_name

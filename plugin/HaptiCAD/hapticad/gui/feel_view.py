@@ -1,0 +1,157 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""What a Feel session draws in the 3D view, and how the mouse steers the probe.
+
+Drawn in its own Coin node added to the view (unpickable, so picking still sees the
+part): the probe (where the device, or the simulated hand, is) as a blue sphere, the
+proxy (the point held on the surface) as a green sphere, and the force on the hand as
+a red arrow from the proxy. With the simulated probe, moving the mouse over a part aims
+the hand at the point under the cursor, pressed ``depth_mm`` into the surface; the wheel
+sets that depth (and is not passed on to zoom while the session runs).
+"""
+import numpy as np
+
+import FreeCAD as App
+
+MM = 1e-3
+ARROW_MM_PER_N = 8.0  # force arrow length per newton
+LIFT_MM = 5.0  # where the hand goes when the cursor leaves the part: lifted off along the normal
+
+
+class FeelView:
+    def __init__(self, view, probe_radius_mm):
+        from pivy import coin
+
+        self.view = view
+        self.root = coin.SoSeparator()
+        self.root.setName("HaptiCAD_Feel")
+        # on top of the part: the probe is inside it whenever it presses
+        on_top = coin.SoAnnotation()
+        self.root.addChild(on_top)
+        pick = coin.SoPickStyle()
+        pick.style = coin.SoPickStyle.UNPICKABLE
+        on_top.addChild(pick)
+        self.probe = self._sphere((0.15, 0.4, 0.9), probe_radius_mm)
+        self.proxy = self._sphere((0.1, 0.75, 0.2), probe_radius_mm * 0.8)
+        on_top.addChild(self.probe[0])
+        on_top.addChild(self.proxy[0])
+        arrow = coin.SoSeparator()
+        colour = coin.SoBaseColor()
+        colour.rgb.setValue(1.0, 0.75, 0.0)
+        style = coin.SoDrawStyle()
+        style.lineWidth = 4
+        self.arrow_coords = coin.SoCoordinate3()
+        self.arrow_coords.point.setValues(0, 5, [(0, 0, 0)] * 5)
+        lines = coin.SoLineSet()
+        lines.numVertices.setValues(0, 3, [2, 2, 1])
+        light = coin.SoLightModel()
+        light.model = coin.SoLightModel.BASE_COLOR
+        for node in (light, colour, style, self.arrow_coords, lines):
+            arrow.addChild(node)
+        on_top.addChild(arrow)
+        self.radius_mm = probe_radius_mm
+        view.getSceneGraph().addChild(self.root)
+
+    @staticmethod
+    def _sphere(rgb, radius):
+        from pivy import coin
+
+        sep = coin.SoSeparator()
+        move = coin.SoTranslation()
+        material = coin.SoMaterial()
+        material.diffuseColor.setValue(*rgb)
+        material.emissiveColor.setValue(*(0.3 * c for c in rgb))
+        sphere = coin.SoSphere()
+        sphere.radius = radius
+        for node in (move, material, sphere):
+            sep.addChild(node)
+        return sep, move
+
+    def show(self, device_m, proxy_m, force_n):
+        """Moves the probe, proxy and arrow (world metres and newtons)."""
+        device_mm = np.asarray(device_m, float) / MM
+        proxy_mm = np.asarray(proxy_m, float) / MM
+        self.probe[1].translation.setValue(*device_mm)
+        self.proxy[1].translation.setValue(*proxy_mm)
+        force = np.asarray(force_n, float)
+        tip = proxy_mm + force * ARROW_MM_PER_N
+        magnitude = np.linalg.norm(force)
+        if magnitude > 1e-6:
+            back = -force / magnitude * min(2.0 * self.radius_mm, 0.3 * magnitude * ARROW_MM_PER_N)
+            side = np.cross(force / magnitude, [0, 0, 1.0])
+            if np.linalg.norm(side) < 1e-6:
+                side = np.cross(force / magnitude, [1.0, 0, 0])
+            side = side / np.linalg.norm(side) * 0.5 * np.linalg.norm(back)
+            head = [tip + back + side, tip, tip + back - side]
+        else:
+            head = [tip, tip, tip]
+        points = [proxy_mm, tip, head[0], head[1], head[2]]
+        self.arrow_coords.point.setValues(0, 5, [tuple(map(float, p)) for p in points])
+
+    def remove(self):
+        graph = self.view.getSceneGraph()
+        if graph.findChild(self.root) >= 0:
+            graph.removeChild(self.root)
+
+
+class MouseSteering:
+    """Turns mouse moves and the wheel in the 3D view into the simulated hand's target."""
+
+    def __init__(self, view, doc_scene, set_target, depth_changed):
+        from pivy import coin
+        from PySide2 import QtCore
+
+        self.view = view
+        self.doc_scene = doc_scene
+        self.set_target = set_target  # callable(target_w in m)
+        self.depth_changed = depth_changed  # callable(step), from the wheel
+        self.depth_mm = 1.0
+        self.last_surface = None  # (point_mm, normal) under the cursor last
+        self.moves = 0
+        self._move_type = coin.SoLocation2Event.getClassTypeId()
+        self._move_callback = view.addEventCallbackPivy(self._move_type, self._on_move)
+
+        class WheelFilter(QtCore.QObject):
+            # the wheel sets the pressing depth, and does not zoom, while the session runs
+            def eventFilter(filter_self, obj, event):
+                if event.type() == QtCore.QEvent.Wheel:
+                    delta = event.angleDelta().y()  # 120 per notch; touchpads send less
+                    if delta:
+                        self.depth_changed(int(round(delta / 120)) or (1 if delta > 0 else -1))
+                    return True
+                return False
+
+        self._wheel_filter = WheelFilter()
+        self._viewport = view.graphicsView().viewport() if hasattr(view, "graphicsView") else None
+        if self._viewport is not None:
+            self._viewport.installEventFilter(self._wheel_filter)
+
+    def _on_move(self, event_callback):
+        event = event_callback.getEvent()
+        x, y = event.getPosition().getValue()
+        self.moves += 1
+        self.aim_at_pixel(int(x), int(y))
+
+    def aim_at_pixel(self, x, y):
+        """Aims the hand at the part under view pixel (x, y) (Coin's: y up)."""
+        info = self.view.getObjectInfo((x, y))
+        on_part = bool(info) and "x" in info
+        if on_part:
+            point_mm = np.array([info["x"], info["y"], info["z"]], float)
+            sample = self.doc_scene.scene.calc_closest_point(point_mm * MM)
+            self.last_surface = (point_mm, np.asarray(sample.normal_w, float))
+        if self.last_surface is None:
+            return
+        point_mm, normal = self.last_surface
+        depth = self.depth_mm if on_part else -LIFT_MM
+        self.set_target((point_mm - depth * normal) * MM)
+
+    def remove(self):
+        try:
+            self.view.removeEventCallbackPivy(self._move_type, self._move_callback)
+        except Exception:  # the view is already gone
+            App.Console.PrintLog("HaptiCAD: Feel mouse callback outlived its view\n")
+        if self._viewport is not None:
+            try:
+                self._viewport.removeEventFilter(self._wheel_filter)
+            except RuntimeError:
+                pass

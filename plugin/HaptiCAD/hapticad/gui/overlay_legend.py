@@ -1,0 +1,143 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The overlay's legend: colour swatches and labels in the top-left of each 3D view.
+
+One legend per document, drawn in screen space (its own orthographic camera, on top
+of everything, unpickable, outside the view's bounding box so "fit all" ignores it),
+rebuilt whenever a surface changes. Hidden with the overlay.
+"""
+import FreeCAD as App
+
+from .. import overlay, preferences
+
+NODE_NAME = "HaptiCAD_Legend"
+ROW_HEIGHT = 0.075  # of the view's half-height
+LEFT, TOP = -0.97, 0.92
+
+
+def _views(doc):
+    import FreeCADGui as Gui
+
+    gui_doc = Gui.getDocument(doc.Name) if doc.Name in App.listDocuments() else None
+    if gui_doc is None:
+        return []
+    try:
+        return gui_doc.mdiViewsOfType("Gui::View3DInventor")
+    except Exception:
+        return [gui_doc.ActiveView] if gui_doc.ActiveView else []
+
+
+def _new_root():
+    """(node to insert in a view, separator to fill). The scene graph owns the nodes."""
+    from pivy import coin
+
+    kind = coin.SoType.fromName("SoSkipBoundingGroup")  # FreeCAD's: ignored by "fit all"
+    if kind.isBad():
+        root = coin.SoSeparator()
+        inner = root
+    else:
+        root = coin.cast(kind.createInstance(), "SoGroup")
+        inner = coin.SoSeparator()
+        root.addChild(inner)
+    root.setName(NODE_NAME)
+    return root, inner
+
+
+def _remove_legends(graph):
+    for i in reversed(range(graph.getNumChildren())):
+        if graph.getChild(i).getName().getString() == NODE_NAME:
+            graph.removeChild(i)
+
+
+def visible_surfaces(doc, exclude=None):
+    from ..surface_object import surfaces_of
+
+    return [s for s in surfaces_of(doc)
+            if s is not exclude and s.ViewObject is not None and s.ViewObject.Visibility]
+
+
+def entries(doc, exclude=None):
+    prefs = preferences.load()
+    if not prefs.overlay_visible:
+        return []
+    return overlay.legend_entries(visible_surfaces(doc, exclude), prefs.overlay_colour_by)
+
+
+def refresh(doc, exclude=None):
+    """Rebuilds the legend of ``doc`` and shows it in each of its 3D views (or removes it
+    when there is nothing to explain)."""
+    from pivy import coin
+
+    rows = entries(doc, exclude)
+    for view in _views(doc):
+        _remove_legends(view.getSceneGraph())
+    if not rows:
+        return []
+    root, content = _new_root()
+    annotation = coin.SoAnnotation()  # drawn last, without depth test
+    content.addChild(annotation)
+    camera = coin.SoOrthographicCamera()
+    camera.viewportMapping = coin.SoCamera.LEAVE_ALONE  # x and y in -1..1 across the view
+    camera.position.setValue(0, 0, 5)
+    camera.height = 2.0
+    camera.nearDistance = 1.0
+    camera.farDistance = 10.0
+    pick = coin.SoPickStyle()
+    pick.style = coin.SoPickStyle.UNPICKABLE
+    light = coin.SoLightModel()
+    light.model = coin.SoLightModel.BASE_COLOR
+    font = coin.SoFont()
+    font.size = 14
+    for node in (camera, pick, light, font):
+        annotation.addChild(node)
+    for i, (colour, label) in enumerate(rows):
+        y = TOP - i * ROW_HEIGHT
+        annotation.addChild(_swatch(colour, LEFT, y))
+        annotation.addChild(_label(label, LEFT + 0.05, y - 0.02))
+    for view in _views(doc):
+        view.getSceneGraph().addChild(root)
+    return rows
+
+
+def _quad(x0, y0, x1, y1, colour):
+    from pivy import coin
+
+    sep = coin.SoSeparator()
+    mat = coin.SoBaseColor()
+    mat.rgb.setValue(*colour)
+    coords = coin.SoCoordinate3()
+    coords.point.setValues(0, 4, [(x0, y0, 0), (x1, y0, 0), (x1, y1, 0), (x0, y1, 0)])
+    faces = coin.SoFaceSet()
+    faces.numVertices.setValue(4)
+    for node in (mat, coords, faces):
+        sep.addChild(node)
+    return sep
+
+
+def _swatch(colour, x, y):
+    """A filled square; for the stripes key, black and white bars."""
+    from pivy import coin
+
+    sep = coin.SoSeparator()
+    w, h = 0.035, 0.05
+    if colour is None:
+        for k in range(4):
+            sep.addChild(_quad(x + k * w / 4, y - h, x + (k + 1) * w / 4, y,
+                               (0.0, 0.0, 0.0) if k % 2 == 0 else (1.0, 1.0, 1.0)))
+    else:
+        sep.addChild(_quad(x, y - h, x + w, y, colour))
+    return sep
+
+
+def _label(text, x, y):
+    from pivy import coin
+
+    sep = coin.SoSeparator()
+    colour = coin.SoBaseColor()
+    colour.rgb.setValue(0.0, 0.0, 0.0)
+    move = coin.SoTranslation()
+    move.translation.setValue(x, y, 0)
+    label = coin.SoText2()
+    label.string.setValue(text)
+    for node in (colour, move, label):
+        sep.addChild(node)
+    return sep

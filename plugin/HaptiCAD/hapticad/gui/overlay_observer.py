@@ -1,0 +1,41 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Keeps overlays on their faces when parts move.
+
+A surface's overlay is drawn in global coordinates. Moving a tagged part, or the
+App::Part or Body holding it, changes where its faces are without changing anything
+of the surface itself, so this document observer redraws the overlays of the surfaces
+whose parts (or their containers) changed placement or shape. Installed once, by the
+first surface view provider.
+"""
+import FreeCAD as App
+
+WATCHED = frozenset(("Placement", "Shape"))
+_OBSERVER = []
+
+
+class _Observer:
+    def slotChangedObject(self, obj, prop):
+        if prop not in WATCHED:
+            return
+        try:
+            doc = obj.Document
+        except Exception:
+            return
+        if doc.Restoring:
+            return
+        from ..surface_object import is_haptic_surface, reference_pairs
+
+        for surface in doc.Objects:
+            if not is_haptic_surface(surface) or surface is obj:
+                continue
+            parts = {o for o, _ in reference_pairs(surface)}
+            if obj in parts or any(obj in part.InListRecursive for part in parts):
+                proxy = getattr(surface.ViewObject, "Proxy", None) if surface.ViewObject else None
+                if proxy is not None and hasattr(proxy, "refresh"):
+                    proxy.refresh()
+
+
+def install():
+    if not _OBSERVER:
+        _OBSERVER.append(_Observer())
+        App.addDocumentObserver(_OBSERVER[0])

@@ -1,0 +1,88 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""A live strip chart of force components against time (the last few seconds).
+
+Fed with whole arrays of samples drained from the servo loop's trace; keeps a bounded
+history; paints at most as often as the Feel panel's display timer updates it.
+"""
+import numpy as np
+from PySide2 import QtCore, QtGui, QtWidgets
+
+SERIES = (  # trace field, label, colour
+    ("normal_force_n", "normal", QtGui.QColor(31, 119, 180)),
+    ("friction_force_n", "friction", QtGui.QColor(214, 39, 40)),
+    ("texture_force_n", "texture", QtGui.QColor(44, 160, 44)),
+)
+
+
+class StripChart(QtWidgets.QWidget):
+    def __init__(self, seconds=5.0, parent=None):
+        super().__init__(parent)
+        self.setObjectName("stripChart")
+        self.setMinimumHeight(150)
+        self.seconds = seconds
+        self.times = np.zeros(0)
+        self.values = {field: np.zeros(0) for field, _, _ in SERIES}
+        self.sample_count = 0  # every sample ever received
+
+    def append(self, trace):
+        """Adds drained trace samples (a structured array with time_s and SERIES fields)."""
+        if trace is None or len(trace) == 0:
+            return
+        self.sample_count += len(trace)
+        self.times = np.concatenate([self.times, np.asarray(trace["time_s"], float)])
+        keep = self.times >= self.times[-1] - self.seconds
+        self.times = self.times[keep]
+        for field in self.values:
+            self.values[field] = np.concatenate([self.values[field], np.asarray(trace[field], float)])[keep]
+        self.update()
+
+    def clear(self):
+        self.times = np.zeros(0)
+        self.values = {field: np.zeros(0) for field in self.values}
+        self.update()
+
+    def paintEvent(self, event):
+        painter = QtGui.QPainter(self)
+        painter.setRenderHint(QtGui.QPainter.Antialiasing)
+        rect = self.rect().adjusted(36, 6, -6, -20)
+        painter.fillRect(self.rect(), QtGui.QColor(255, 255, 255))
+        painter.setPen(QtGui.QColor(200, 200, 200))
+        painter.drawRect(rect)
+        top = 1.0
+        for field in self.values:
+            if len(self.values[field]):
+                top = max(top, float(np.nanmax(np.abs(self.values[field]))) * 1.1)
+        painter.setPen(QtGui.QColor(90, 90, 90))
+        painter.drawText(QtCore.QRectF(0, rect.top() - 4, 34, 14), QtCore.Qt.AlignRight, f"{top:.1f}")
+        painter.drawText(QtCore.QRectF(0, rect.bottom() - 10, 34, 14), QtCore.Qt.AlignRight, "0 N")
+        x = rect.left() + 4
+        for _, label, colour in SERIES:
+            painter.setPen(colour)
+            painter.drawText(QtCore.QPointF(x, self.height() - 5), label)
+            x += painter.fontMetrics().horizontalAdvance(label) + 14
+        painter.setPen(QtGui.QColor(90, 90, 90))
+        painter.drawText(QtCore.QRectF(rect.right() - 80, self.height() - 17, 80, 14), QtCore.Qt.AlignRight,
+                         f"last {self.seconds:g} s")
+        if len(self.times) < 2:
+            return
+        t1 = self.times[-1]
+        t0 = t1 - self.seconds
+        # at most two points per pixel: decimate by taking the extremes of each column
+        columns = max(int(rect.width()), 2)
+        index = np.clip(((self.times - t0) / self.seconds * (columns - 1)).astype(int), 0, columns - 1)
+        for field, _, colour in SERIES:
+            values = self.values[field]
+            path = QtGui.QPainterPath()
+            first = True
+            for column in np.unique(index):
+                chunk = values[index == column]
+                for value in (chunk.min(), chunk.max()) if len(chunk) > 1 else (chunk[0],):
+                    px = rect.left() + column * rect.width() / (columns - 1)
+                    py = rect.bottom() - max(min(value, top), 0.0) / top * rect.height()
+                    if first:
+                        path.moveTo(px, py)
+                        first = False
+                    else:
+                        path.lineTo(px, py)
+            painter.setPen(QtGui.QPen(colour, 1.5))
+            painter.drawPath(path)

@@ -1,0 +1,216 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Task panel of a Feel session: pick the device, start, watch, stop.
+
+The servo loop runs in C++ (hapticad.feel_session); this panel only displays, from a
+Qt timer at most 60 times a second: the probe, proxy and force arrow in the 3D view, a
+strip chart of normal, friction and texture force, the face under the probe with its
+properties, and the loop rate. With the simulated probe the mouse steers it over the
+part and the wheel or the slider sets how hard it presses.
+"""
+import numpy as np
+
+import FreeCAD as App
+import FreeCADGui as Gui
+from PySide2 import QtCore, QtGui, QtWidgets
+
+from .. import _core, feel_session, icon, preferences
+from .feel_view import FeelView, MouseSteering
+from .strip_chart import StripChart
+
+DISPLAY_HZ = 60
+_ACTIVE = []  # the open panel, for tests and for the Stop of a closing document
+
+
+def active_panel():
+    return _ACTIVE[-1] if _ACTIVE else None
+DEPTH_RANGE_MM = (0.0, 5.0)
+DEPTH_STEP_MM = 0.25
+
+
+class FeelTaskPanel:
+    def __init__(self, doc):
+        self.doc = doc
+        self.session = None
+        self.view_nodes = None
+        self.steering = None
+        self.doc_scene = None
+        self.frames = 0  # display updates with new samples
+        self.last_sample = None
+        self.form = self._build()
+        self.timer = QtCore.QTimer()
+        self.timer.setInterval(int(1000 / DISPLAY_HZ))
+        self.timer.timeout.connect(self.update_display)
+        self.refresh_devices()
+        self.set_running(False)
+        _ACTIVE.append(self)
+
+    # --- widgets -----------------------------------------------------------------------
+
+    def _build(self):
+        box = QtWidgets.QWidget()
+        box.setWindowTitle("Feel")
+        box.setWindowIcon(QtGui.QIcon(icon("HaptiCAD_Feel")))
+        layout = QtWidgets.QVBoxLayout(box)
+        form = QtWidgets.QFormLayout()
+        self.device = QtWidgets.QComboBox()
+        self.device.setObjectName("feelDevice")
+        form.addRow("Device", self.device)
+        self.depth = QtWidgets.QSlider(QtCore.Qt.Horizontal)
+        self.depth.setObjectName("feelDepth")
+        self.depth.setRange(0, int(DEPTH_RANGE_MM[1] / DEPTH_STEP_MM))
+        self.depth.setValue(int(1.0 / DEPTH_STEP_MM))
+        self.depth.setToolTip("How far the simulated hand presses into the part (the mouse wheel sets it too)")
+        self.depth_label = QtWidgets.QLabel()
+        row = QtWidgets.QHBoxLayout()
+        row.addWidget(self.depth, 1)
+        row.addWidget(self.depth_label)
+        form.addRow("Press", row)
+        self.depth.valueChanged.connect(self.depth_set)
+        layout.addLayout(form)
+        buttons = QtWidgets.QHBoxLayout()
+        self.start_button = QtWidgets.QPushButton(QtGui.QIcon(icon("HaptiCAD_Feel")), "Start")
+        self.start_button.setObjectName("feelStart")
+        self.start_button.clicked.connect(self.start)
+        self.stop_button = QtWidgets.QPushButton("Stop")
+        self.stop_button.setObjectName("feelStop")
+        self.stop_button.clicked.connect(self.stop)
+        buttons.addWidget(self.start_button)
+        buttons.addWidget(self.stop_button)
+        layout.addLayout(buttons)
+        self.chart = StripChart()
+        layout.addWidget(self.chart)
+        self.face_label = QtWidgets.QLabel("Face: -")
+        self.face_label.setObjectName("feelFace")
+        self.face_label.setWordWrap(True)
+        self.rate_label = QtWidgets.QLabel("Loop: stopped")
+        self.rate_label.setObjectName("feelRate")
+        self.message = QtWidgets.QLabel()
+        self.message.setObjectName("feelMessage")
+        self.message.setWordWrap(True)
+        for widget in (self.face_label, self.rate_label, self.message):
+            layout.addWidget(widget)
+        self.depth_set(self.depth.value())
+        return box
+
+    def refresh_devices(self):
+        self.device.clear()
+        for choice in feel_session.device_choices():
+            self.device.addItem(choice.label, choice.path)
+        index = self.device.findData(preferences.load().device)
+        self.device.setCurrentIndex(max(index, 0))
+
+    def depth_mm(self):
+        return self.depth.value() * DEPTH_STEP_MM
+
+    def depth_set(self, _value):
+        self.depth_label.setText(f"{self.depth_mm():.2f} mm")
+        if self.steering is not None:
+            self.steering.depth_mm = self.depth_mm()
+
+    def wheel(self, step):
+        self.depth.setValue(self.depth.value() + step)
+
+    def set_running(self, running):
+        self.start_button.setEnabled(not running)
+        self.stop_button.setEnabled(running)
+        self.device.setEnabled(not running)
+        self.depth.setEnabled(self.device.currentData() == feel_session.SIMULATED)
+
+    def show_message(self, text, error=False):
+        colour = "#b00000" if error else "#303030"
+        self.message.setText(f"<span style='color:{colour}'>{text}</span>" if text else "")
+
+    # --- session -----------------------------------------------------------------------
+
+    def start(self):
+        from ..document_scene import build_document_scene
+
+        self.show_message("")
+        try:
+            self.doc_scene = build_document_scene(self.doc)
+            self.session = feel_session.LiveSession(self.doc_scene, self.device.currentData() or
+                                                    feel_session.SIMULATED)
+        except (ValueError, RuntimeError) as exc:
+            self.session = None
+            self.show_message(str(exc), error=True)
+            return False
+        view = Gui.getDocument(self.doc.Name).ActiveView
+        low, high = feel_session.scene_box_m(self.doc_scene)
+        radius = max(float(np.linalg.norm(high - low)) / feel_session.MM / 45.0, 0.3)
+        self.view_nodes = FeelView(view, radius)
+        start_w = None
+        if self.session.simulated:
+            self.steering = MouseSteering(view, self.doc_scene, self.session.set_target, self.wheel)
+            self.steering.depth_mm = self.depth_mm()
+            # the hand starts above the middle of the parts, clear of them
+            start_w = np.array([0.5 * (low[0] + high[0]), 0.5 * (low[1] + high[1]), high[2] + 0.01])
+        try:
+            self.session.start(start_w)
+        except (ValueError, RuntimeError) as exc:
+            self.show_message(str(exc), error=True)
+            self._tear_down()
+            return False
+        self.chart.clear()
+        self.timer.start()
+        self.set_running(True)
+        self.show_message("Move the mouse over the part; the wheel or the slider sets how hard you press."
+                          if self.session.simulated else "The device drives the probe.")
+        return True
+
+    def update_display(self):
+        """Drains the trace and shows it (the display timer, at most DISPLAY_HZ)."""
+        if self.session is None:
+            return
+        trace = self.session.drain()
+        if len(trace):
+            self.frames += 1
+            self.chart.append(trace)
+            last = trace[-1]
+            self.last_sample = last
+            self.view_nodes.show(last["device_m"], last["proxy_m"], last["force_n"])
+            contact = bool(last["flags"] & _core.FLAG_CONTACT)
+            face = self.session.describe_face(int(last["cad_face"])) if contact else ""
+            self.face_label.setText(f"Face: {face}" if face else "Face: - (not touching)")
+        self.rate_label.setText(f"Loop: {self.session.achieved_rate_hz():.0f} Hz of "
+                                f"{self.session.rate_hz:.0f} Hz, display {DISPLAY_HZ} Hz")
+        if not self.session.running:
+            self.show_message(self.session.end_message or "The session ended.", error=True)
+            self.stop()
+
+    def stop(self):
+        if self.session is not None:
+            self.session.stop()
+            self.update_display_final()
+        self._tear_down()
+        self.set_running(False)
+
+    def update_display_final(self):
+        trace = self.session.drain()
+        if len(trace):
+            self.chart.append(trace)
+        self.rate_label.setText(f"Loop: stopped after {self.session.stats.ticks} ticks "
+                                f"({self.session.achieved_rate_hz():.0f} Hz)")
+
+    def _tear_down(self):
+        self.timer.stop()
+        if self.steering is not None:
+            self.steering.remove()
+            self.steering = None
+        if self.view_nodes is not None:
+            self.view_nodes.remove()
+            self.view_nodes = None
+        self.session = None
+
+    # --- FreeCAD's task dialog -----------------------------------------------------------
+
+    def getStandardButtons(self):
+        return int(QtWidgets.QDialogButtonBox.Close)
+
+    def reject(self):
+        self.stop()
+        if self in _ACTIVE:
+            _ACTIVE.remove(self)
+        return True
+
+    def accept(self):
+        return self.reject()

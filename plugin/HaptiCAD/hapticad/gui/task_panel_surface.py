@@ -1,0 +1,647 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Task panel that creates and edits a HapticSurface (and the vibration of its part).
+
+Every property of the object gets a widget, built from surface_object.PROPERTIES by
+its type (a property added there appears here without code): faces picked in the 3D
+view (add, remove, list with their re-match status, highlight), the material with its
+database values shown and overridable, the roughness category with its Ra range and
+N-grades, the pattern (linear angle, circular centre picked in the view, curve from a
+selected sketch or edges), texture presets and parameters, stiffness and friction, and
+the part's vibration.
+
+Edits go straight to the object, inside one transaction opened when the panel opens
+(or by the command that created the surface): the overlay follows live, OK commits
+everything as one undo step and Cancel reverts everything. Values are checked live by
+the object's own validation (surface_object.validate, which includes the core's) and
+the message is shown at the top; OK is refused while there is a problem.
+"""
+import re
+
+import FreeCAD as App
+import FreeCADGui as Gui
+from PySide2 import QtCore, QtGui, QtWidgets
+
+from .. import _core, face_references, icon, materials, surface_object, vibration_object
+from .selection import selected_curve
+
+# units shown after values, by property
+UNITS = {
+    "Stiffness": " N/mm", "StickSpeed": " mm/s", "TransitionSpeed": " mm/s", "StribeckSpeed": " mm/s",
+    "PatternAngle": " °", "PatternBlendRadius": " mm", "TexturePeriod": " mm", "TextureFullRange": " N",
+    "PatternCenter": " mm",
+}
+LABELS = {
+    "StaticFriction": "Static friction μs", "DynamicFriction": "Dynamic friction μd",
+    "RoughnessCategory": "Category", "FeelRoughness": "Feel the roughness grid",
+    "PatternAngle": "Stripe angle", "PatternCenter": "Centre", "PatternAxis": "Axis",
+    "PatternCurve": "Curve", "AcrossFriction": "Across / along", "BackwardFriction": "Backward / forward",
+    "TextureDC": "f_DC", "TextureViscosity": "f_vis", "TextureBeta": "β_h", "TextureAlpha": "α_h",
+    "TextureBetaViscosity": "β_vis", "TextureAlphaViscosity": "α_vis", "TexturePeriod": "Period λ",
+    "TextureFullRange": "Full range",
+}
+GROUP_TITLES = [("Surface", "Material"), ("Friction", "Friction and stiffness"), ("Roughness", "Roughness"),
+                ("Pattern", "Friction pattern"), ("Texture", "Viscous texture")]
+# widgets shown only when they apply
+RELEVANT = {
+    "PatternCenter": lambda o: o.Pattern == "Circular",
+    "PatternAxis": lambda o: o.Pattern == "Circular",
+    "PatternBlendRadius": lambda o: o.Pattern == "Circular",
+    "PatternCurve": lambda o: o.Pattern == "Curve",
+    "CurveEvaluation": lambda o: o.Pattern == "Curve",
+    "CurveTableSize": lambda o: o.Pattern == "Curve",
+    "Interpolation": lambda o: o.Pattern != "None",
+    "AcrossFriction": lambda o: o.Pattern != "None",
+    "BackwardFriction": lambda o: o.Pattern != "None",
+    "RoughnessHeight": lambda o: o.FeelRoughness,
+    "RoughnessFrictionModulation": lambda o: o.FeelRoughness,
+    **{name: (lambda o: o.Texture != "None") for name in surface_object.TEXTURE_VALUES + ("TexturePeriod",
+                                                                                          "TextureFullRange")},
+}
+FLOAT_DECIMALS = 4
+SPECIAL = ("References", "Material", "RoughnessCategory", "PatternCurve")
+
+
+def _label(name):
+    return LABELS.get(name) or re.sub(r"(?<=[a-z])(?=[A-Z])", " ", name).capitalize()
+
+
+def _dspin(low, high, step, suffix="", decimals=FLOAT_DECIMALS):
+    box = QtWidgets.QDoubleSpinBox()
+    box.setRange(low, high)
+    box.setSingleStep(step)
+    box.setDecimals(decimals)
+    box.setSuffix(suffix)
+    box.setKeyboardTracking(False)  # one edit per finished number, not per keystroke
+    return box
+
+
+class _Picker:
+    """Selection observer: a click in the 3D view adds a face or picks the centre."""
+
+    def __init__(self, panel):
+        self.panel = panel
+
+    def addSelection(self, doc_name, obj_name, sub, point):
+        self.panel.picked(doc_name, obj_name, sub, point)
+
+
+class SurfaceTaskPanel:
+    def __init__(self, surface):
+        self.obj = surface
+        self.doc = surface.Document
+        # the creating command already opened the transaction; editing opens its own
+        self._own_transaction = not self.doc.HasPendingTransaction
+        if self._own_transaction:
+            self.doc.openTransaction("Edit haptic surface")
+        self.widgets = {}  # property (or "Prop.x") -> widget
+        self.rows = {}  # property -> (label, field) to show or hide
+        self.mode = "faces" if not surface.References else None
+        self.problems = []
+        self._loading = False
+        self.form = [self._status_box(), self._faces_box()]
+        for group, title in GROUP_TITLES:
+            self.form.append(self._group_box(group, title))
+        self.form.append(self._vibration_box())
+        self.picker = _Picker(self)
+        Gui.Selection.addObserver(self.picker)
+        self.set_mode(self.mode)  # the hint and the Add button say whether clicks add faces
+        self.load()
+
+    # --- building -------------------------------------------------------------------
+
+    def _box(self, title, icon_name="HaptiCAD_SurfaceObject"):
+        box = QtWidgets.QWidget()
+        box.setWindowTitle(title)
+        box.setWindowIcon(QtGui.QIcon(icon(icon_name)))
+        return box
+
+    def _status_box(self):
+        box = self._box("Haptic surface")
+        layout = QtWidgets.QVBoxLayout(box)
+        self.status = QtWidgets.QLabel()
+        self.status.setObjectName("status")
+        self.status.setWordWrap(True)
+        layout.addWidget(self.status)
+        return box
+
+    def _faces_box(self):
+        box = self._box("Faces")
+        layout = QtWidgets.QVBoxLayout(box)
+        self.hint = QtWidgets.QLabel("Click faces in the 3D view to add them.")
+        self.hint.setWordWrap(True)
+        layout.addWidget(self.hint)
+        self.faces = QtWidgets.QListWidget()
+        self.faces.setObjectName("faces")
+        self.faces.setSelectionMode(QtWidgets.QAbstractItemView.ExtendedSelection)
+        self.faces.setMaximumHeight(120)
+        self.faces.itemSelectionChanged.connect(self.highlight_selected)
+        layout.addWidget(self.faces)
+        buttons = QtWidgets.QHBoxLayout()
+        self.add_button = QtWidgets.QPushButton("Add")
+        self.add_button.setObjectName("addFaces")
+        self.add_button.setCheckable(True)
+        self.add_button.setToolTip("While pressed, faces you click in the 3D view are added")
+        self.add_button.toggled.connect(self.set_adding)
+        self.remove_button = QtWidgets.QPushButton("Remove")
+        self.remove_button.setObjectName("removeFaces")
+        self.remove_button.setToolTip("Remove the faces selected in the list")
+        self.remove_button.clicked.connect(self.remove_selected_faces)
+        buttons.addWidget(self.add_button)
+        buttons.addWidget(self.remove_button)
+        layout.addLayout(buttons)
+        self.references = self.faces
+        return box
+
+    def _group_box(self, group, title):
+        box = self._box(title)
+        form = QtWidgets.QFormLayout(box)
+        for name, kind, prop_group, tip, _, constraint in surface_object.PROPERTIES:
+            if prop_group != group or name == "References":
+                continue
+            field = self._make_field(name, kind, constraint)
+            field.setToolTip(tip)
+            label = QtWidgets.QLabel(_label(name))
+            label.setToolTip(tip)
+            form.addRow(label, field)
+            self.rows[name] = (label, field)
+            if name == "Material":
+                self.material_info = QtWidgets.QLabel()
+                self.material_info.setObjectName("materialInfo")
+                self.material_info.setWordWrap(True)
+                reset = QtWidgets.QPushButton("Use the material's values")
+                reset.setObjectName("resetMaterial")
+                reset.clicked.connect(self.reset_to_material)
+                form.addRow(self.material_info)
+                form.addRow(reset)
+            elif name == "RoughnessCategory":
+                self.roughness_info = QtWidgets.QLabel()
+                self.roughness_info.setObjectName("roughnessInfo")
+                self.roughness_info.setWordWrap(True)
+                form.addRow(self.roughness_info)
+        return box
+
+    def _make_field(self, name, kind, constraint):
+        obj = self.obj
+        if name == "Material":
+            combo = QtWidgets.QComboBox()
+            combo.setObjectName(name)
+            combo.currentTextChanged.connect(lambda text: self.set_property("Material", text))
+            self.widgets[name] = combo
+            return combo
+        if name == "RoughnessCategory":
+            combo = QtWidgets.QComboBox()
+            combo.setObjectName(name)
+            for row in _core.roughness_table():
+                combo.addItem(_roughness_item(row), row.category)
+            combo.currentIndexChanged.connect(lambda i: self.set_property(name, i + 1))
+            self.widgets[name] = combo
+            return combo
+        if name == "PatternCurve":
+            field = QtWidgets.QWidget()
+            row = QtWidgets.QHBoxLayout(field)
+            row.setContentsMargins(0, 0, 0, 0)
+            self.curve_label = QtWidgets.QLabel()
+            self.curve_label.setObjectName("curveLabel")
+            button = QtWidgets.QPushButton("Use selection")
+            button.setObjectName("useCurve")
+            button.setToolTip("Select a sketch, or edges, in the 3D view or the tree, then press this")
+            button.clicked.connect(self.use_selected_curve)
+            row.addWidget(self.curve_label, 1)
+            row.addWidget(button)
+            return field
+        if kind == "App::PropertyEnumeration":
+            combo = QtWidgets.QComboBox()
+            combo.setObjectName(name)
+            combo.addItems(obj.getEnumerationsOfProperty(name))
+            combo.currentTextChanged.connect(lambda text, n=name: self.set_property(n, text))
+            self.widgets[name] = combo
+            return combo
+        if kind == "App::PropertyBool":
+            check = QtWidgets.QCheckBox()
+            check.setObjectName(name)
+            check.toggled.connect(lambda on, n=name: self.set_property(n, bool(on)))
+            self.widgets[name] = check
+            return check
+        if kind == "App::PropertyIntegerConstraint":
+            spin = QtWidgets.QSpinBox()
+            spin.setObjectName(name)
+            spin.setRange(int(constraint[0]), int(constraint[1]))
+            spin.setSingleStep(int(constraint[2]))
+            spin.setKeyboardTracking(False)
+            spin.valueChanged.connect(lambda v, n=name: self.set_property(n, int(v)))
+            self.widgets[name] = spin
+            return spin
+        if kind in ("App::PropertyVector", "App::PropertyVectorDistance"):
+            field = QtWidgets.QWidget()
+            row = QtWidgets.QHBoxLayout(field)
+            row.setContentsMargins(0, 0, 0, 0)
+            for axis in "xyz":
+                spin = _dspin(-1e6, 1e6, 1.0, "", 3)
+                spin.setObjectName(f"{name}.{axis}")
+                spin.setToolTip(f"{axis}{UNITS.get(name, '')}")
+                spin.valueChanged.connect(lambda _v, n=name: self.set_vector(n))
+                self.widgets[f"{name}.{axis}"] = spin
+                row.addWidget(spin)
+            if name == "PatternCenter":
+                pick = QtWidgets.QPushButton("Pick")
+                pick.setObjectName("pickCenter")
+                pick.setToolTip("Then click the centre of the circles on the part in the 3D view")
+                pick.clicked.connect(lambda: self.set_mode("centre"))
+                row.addWidget(pick)
+            return field
+        if kind == "App::PropertyAngle":
+            spin = _dspin(-360.0, 360.0, 5.0, UNITS.get(name, ""), 2)
+        elif kind == "App::PropertyFloatConstraint":
+            spin = _dspin(constraint[0], constraint[1], constraint[2], UNITS.get(name, ""))
+        else:  # App::PropertyFloat
+            spin = _dspin(-1e4, 1e4, 0.01, UNITS.get(name, ""))
+        spin.setObjectName(name)
+        spin.valueChanged.connect(lambda v, n=name: self.set_property(n, float(v)))
+        self.widgets[name] = spin
+        return spin
+
+    def _vibration_box(self):
+        box = self._box("Vibration of the part", "HaptiCAD_Vibration")
+        form = QtWidgets.QFormLayout(box)
+        self.vibrates = QtWidgets.QCheckBox("The part vibrates")
+        self.vibrates.setObjectName("vibrates")
+        self.vibrates.setToolTip("While the probe touches any face of this part and it is powered, the part "
+                                 "vibrates (e.g. a shaver)")
+        self.vibrates.toggled.connect(self.set_vibrates)
+        form.addRow(self.vibrates)
+        self.vibration_part = QtWidgets.QLabel()
+        form.addRow("Part", self.vibration_part)
+        self.vibration_widgets = {}
+        low, high = vibration_object.FREQUENCY_RANGE_HZ
+        self.vibration_widgets["Frequency"] = _dspin(low, high, 10.0, " Hz", 1)
+        low, high = vibration_object.AMPLITUDE_RANGE_N
+        self.vibration_widgets["Amplitude"] = _dspin(low, high, 0.05, " N", 3)
+        self.vibration_widgets["Powered"] = QtWidgets.QCheckBox()
+        axis = QtWidgets.QWidget()
+        row = QtWidgets.QHBoxLayout(axis)
+        row.setContentsMargins(0, 0, 0, 0)
+        for c in "xyz":
+            spin = _dspin(-1.0, 1.0, 0.1, "", 3)
+            self.vibration_widgets[f"Axis.{c}"] = spin
+            row.addWidget(spin)
+        for name, widget in self.vibration_widgets.items():
+            widget.setObjectName(f"Vibration{name}")
+            if isinstance(widget, QtWidgets.QCheckBox):
+                widget.toggled.connect(lambda on: self.set_vibration("Powered", bool(on)))
+            elif name.startswith("Axis."):
+                widget.valueChanged.connect(lambda _v: self.set_vibration_axis())
+            else:
+                widget.valueChanged.connect(lambda v, n=name: self.set_vibration(n, float(v)))
+        form.addRow("Frequency", self.vibration_widgets["Frequency"])
+        form.addRow("Amplitude", self.vibration_widgets["Amplitude"])
+        form.addRow("Axis", axis)
+        form.addRow("Powered", self.vibration_widgets["Powered"])
+        self.vibration_box = box
+        return box
+
+    # --- object -> widgets -------------------------------------------------------------
+
+    def load(self):
+        """Shows the object's current values (signals blocked: no echo back)."""
+        self._loading = True
+        try:
+            self._load()
+        finally:
+            self._loading = False
+        self.validate()
+
+    def _load(self):
+        obj = self.obj
+        self._load_faces()
+        names = obj.getEnumerationsOfProperty("Material")
+        combo = self.widgets["Material"]
+        if [combo.itemText(i) for i in range(combo.count())] != names:
+            combo.clear()
+            combo.addItems(names)
+        for name, widget in self.widgets.items():
+            prop, _, axis = name.partition(".")
+            value = getattr(obj, prop)
+            if axis:
+                value = getattr(value, axis)
+            if name == "RoughnessCategory":
+                _set_widget(widget, int(value) - 1, index=True)
+            elif isinstance(widget, QtWidgets.QComboBox):
+                _set_widget(widget, str(value))
+            else:
+                _set_widget(widget, float(value) if hasattr(value, "Value") else value)
+        for name, (label, field) in self.rows.items():
+            shown = RELEVANT.get(name, lambda o: True)(obj)
+            label.setVisible(shown)
+            field.setVisible(shown)
+        self._load_material_info()
+        row = _core.roughness_category(int(obj.RoughnessCategory))
+        self.roughness_info.setText(f"Grid of {row.grid_size_mm:g} mm balls; {_ra_text(row)}")
+        curve = obj.PatternCurve
+        self.curve_label.setText("none: select a sketch or edges" if curve is None else
+                                 f"{curve[0].Label}" + (f": {', '.join(curve[1])}" if curve[1] and any(curve[1])
+                                                        else " (all edges)"))
+        self._load_vibration()
+
+    def _load_faces(self):
+        status = {(o, f): s for o, f, s in surface_object.reference_status(self.obj)}
+        wanted = [(f"{o.Name}.{f}", status.get((o.Name, f), "ok")) for o, f in surface_object.reference_pairs(self.obj)]
+        current = [(self.faces.item(i).data(QtCore.Qt.UserRole), self.faces.item(i).data(QtCore.Qt.UserRole + 1))
+                   for i in range(self.faces.count())]
+        if current == wanted:
+            return
+        self.faces.blockSignals(True)
+        self.faces.clear()
+        for name, state in wanted:
+            label = self.doc.getObject(name.split(".")[0]).Label
+            item = QtWidgets.QListWidgetItem(f"{label}.{name.split('.', 1)[1]}" +
+                                             ("" if state == "ok" else f"  ({state})"))
+            item.setData(QtCore.Qt.UserRole, name)
+            item.setData(QtCore.Qt.UserRole + 1, state)
+            if state == face_references.BROKEN:
+                item.setIcon(QtGui.QIcon(icon("HaptiCAD_SurfaceBroken")))
+                item.setForeground(QtGui.QBrush(QtGui.QColor(180, 0, 0)))
+                item.setToolTip("The model changed and this face cannot be found unambiguously: remove it "
+                                "and pick the face again")
+            elif state == face_references.REMATCHED:
+                item.setToolTip("FreeCAD renamed this face after a model edit; the tag followed it")
+            self.faces.addItem(item)
+        self.faces.blockSignals(False)
+        self.add_button.blockSignals(True)
+        self.add_button.setChecked(self.mode == "faces")
+        self.add_button.blockSignals(False)
+
+    def _load_material_info(self):
+        obj = self.obj
+        database = materials.default_database()
+        if obj.Material not in database:
+            self.material_info.setText(f"{obj.Material} is not in the material database any more.")
+            return
+        m = database.get(obj.Material)
+        overridden = (abs(m.static_friction - obj.StaticFriction) > 1e-9 or
+                      abs(m.dynamic_friction - obj.DynamicFriction) > 1e-9 or
+                      abs(m.stiffness_n_per_mm - obj.Stiffness) > 1e-9)
+        self.material_info.setText(
+            f"Database: μs {m.static_friction:g}, μd {m.dynamic_friction:g} "
+            f"(plausible {m.friction_min:g}–{m.friction_max:g}), {m.stiffness_n_per_mm:g} N/mm"
+            + ("; <b>overridden below</b>" if overridden else ""))
+        self.material_info.setToolTip(f"Friction: {m.friction_source}\nBulk: {m.bulk_source}")
+
+    def vibration(self):
+        part = self.part()
+        return vibration_object.vibration_of(part) if part is not None else None
+
+    def part(self):
+        pairs = surface_object.reference_pairs(self.obj)
+        return pairs[0][0] if pairs else None
+
+    def _load_vibration(self):
+        part, vib = self.part(), self.vibration()
+        self.vibrates.setEnabled(part is not None)
+        _set_widget(self.vibrates, vib is not None)
+        self.vibration_part.setText(part.Label if part is not None else "tag a face first")
+        for name, widget in self.vibration_widgets.items():
+            widget.setEnabled(vib is not None)
+            if vib is None:
+                continue
+            prop, _, axis = name.partition(".")
+            value = getattr(vib, prop)
+            _set_widget(widget, getattr(value, axis) if axis else value)
+
+    # --- widgets -> object -------------------------------------------------------------
+
+    def set_property(self, name, value):
+        if self._loading:
+            return
+        try:
+            setattr(self.obj, name, value)
+        except Exception as exc:  # a value the property refuses: say so, keep the old one
+            self.load()
+            self.show_problems([f"{_label(name)}: {exc}"])
+            return
+        self.load()
+
+    def set_vector(self, name):
+        if self._loading:
+            return
+        value = App.Vector(*(self.widgets[f"{name}.{c}"].value() for c in "xyz"))
+        self.set_property(name, value)
+
+    def reset_to_material(self):
+        m = materials.default_database().get(self.obj.Material)
+        self.obj.StaticFriction = m.static_friction
+        self.obj.DynamicFriction = m.dynamic_friction
+        self.obj.Stiffness = m.stiffness_n_per_mm
+        self.load()
+
+    def use_selected_curve(self):
+        curve = selected_curve()
+        if curve is None:
+            self.show_problems(["select a sketch, or edges, for the curve pattern first"])
+            return
+        self.obj.PatternCurve = curve
+        self.load()
+
+    def set_vibrates(self, on):
+        if self._loading:
+            return
+        part, vib = self.part(), self.vibration()
+        if on and vib is None and part is not None:
+            vibration_object.make_vibration(self.doc, part)
+        elif not on and vib is not None:
+            self.doc.removeObject(vib.Name)
+        self.load()
+
+    def set_vibration(self, name, value):
+        vib = self.vibration()
+        if self._loading or vib is None:
+            return
+        setattr(vib, name, value)
+        self.load()
+
+    def set_vibration_axis(self):
+        vib = self.vibration()
+        if self._loading or vib is None:
+            return
+        axis = App.Vector(*(self.vibration_widgets[f"Axis.{c}"].value() for c in "xyz"))
+        vib.Axis = axis
+        self.load()
+        if axis.Length == 0:
+            self.show_problems([vibration_object.ZERO_AXIS])
+
+    # --- faces -------------------------------------------------------------------------
+
+    def set_mode(self, mode):
+        self.mode = mode
+        self.add_button.blockSignals(True)
+        self.add_button.setChecked(mode == "faces")
+        self.add_button.blockSignals(False)
+        self.hint.setText({"faces": "Click faces in the 3D view to add them.",
+                           "centre": "Click the centre of the circles on the part in the 3D view."}
+                          .get(mode, "Press Add, then click faces in the 3D view."))
+        self.validate()
+
+    def set_adding(self, on):
+        self.set_mode("faces" if on else None)
+
+    def picked(self, doc_name, obj_name, sub, point):
+        """A click in the 3D view (from the selection observer)."""
+        if doc_name != self.doc.Name or self.mode is None:
+            return
+        obj, element = _resolve(self.doc.getObject(obj_name), sub)
+        if obj is None:
+            return
+        if self.mode == "centre":
+            self.obj.PatternCenter = App.Vector(*point)
+            self.set_mode(None)
+            self.load()
+        elif self.mode == "faces" and element.startswith("Face"):
+            self.add_face(obj, element)
+
+    def add_face(self, obj, face):
+        obj, face = face_references.owner_face(obj, face)
+        if obj == self.obj or surface_object.is_haptic_surface(obj) or not hasattr(obj, "Shape"):
+            return
+        pairs = surface_object.reference_pairs(self.obj)
+        if (obj, face) in pairs:
+            return
+        grouped = {}
+        for o, f in pairs + [(obj, face)]:
+            grouped.setdefault(o, []).append(f)
+        self.obj.References = [(o, tuple(fs)) for o, fs in grouped.items()]
+        self.load()
+
+    def remove_selected_faces(self):
+        chosen = {item.data(QtCore.Qt.UserRole) for item in self.faces.selectedItems()}
+        if not chosen:
+            self.show_problems(["select the faces to remove in the list first"])
+            return
+        grouped = {}
+        for o, f in surface_object.reference_pairs(self.obj):
+            if f"{o.Name}.{f}" not in chosen:
+                grouped.setdefault(o, []).append(f)
+        self.obj.References = [(o, tuple(fs)) for o, fs in grouped.items()]
+        self.highlight([])
+        self.load()
+
+    def highlight_selected(self):
+        names = [item.data(QtCore.Qt.UserRole) for item in self.faces.selectedItems()]
+        self.highlight(names)
+
+    def highlight(self, names):
+        """Selects the named faces in the 3D view and outlines them over the overlay."""
+        mode, self.mode = self.mode, None  # our own selection is not a pick
+        try:
+            Gui.Selection.clearSelection()
+            for name in names:
+                obj_name, face = name.split(".", 1)
+                Gui.Selection.addSelection(self.doc.getObject(obj_name), face)
+        finally:
+            self.mode = mode
+        proxy = getattr(self.obj.ViewObject, "Proxy", None) if self.obj.ViewObject else None
+        if proxy is not None and hasattr(proxy, "set_highlight"):
+            proxy.set_highlight(names)
+
+    # --- validation --------------------------------------------------------------------
+
+    def validate(self):
+        problems = surface_object.validate(self.obj)
+        vib = self.vibration()
+        if vib is not None:
+            problems += [f"vibration: {p}" for p in vibration_object.validate(vib)]
+        self.show_problems(problems)
+        return problems
+
+    def show_problems(self, problems):
+        self.problems = problems
+        if problems:
+            self.status.setText("<span style='color:#b00000'>⚠ " + "<br>⚠ ".join(problems) + "</span>")
+        else:
+            n = len(surface_object.reference_pairs(self.obj))
+            self.status.setText(f"<span style='color:#006000'>✓ {n} face{'s' if n != 1 else ''} tagged"
+                                f"{': click more to add them' if self.mode == 'faces' else ''}</span>")
+
+    # --- FreeCAD's task dialog -----------------------------------------------------------
+
+    def getStandardButtons(self):
+        return int(QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel)
+
+    def accept(self):
+        if self.validate():
+            return False
+        self._stop_picking()
+        self.doc.recompute()
+        self.doc.commitTransaction()
+        self._leave_edit()
+        return True
+
+    def reject(self):
+        self._stop_picking()
+        # abort before leaving edit mode: resetEdit commits any open transaction
+        self.doc.abortTransaction()
+        self._leave_edit()
+        if _alive(self.obj):  # an edit, not a creation: show the restored values
+            self.obj.ViewObject.Proxy.refresh()
+        return True
+
+    def _stop_picking(self):
+        Gui.Selection.removeObserver(self.picker)
+        self.highlight([])
+        Gui.Selection.clearSelection()
+
+    def _leave_edit(self):
+        gui_doc = Gui.getDocument(self.doc.Name)
+        if gui_doc is not None and gui_doc.getInEdit() is not None:
+            gui_doc.resetEdit()
+
+
+def _alive(obj):
+    try:
+        return bool(obj.Name)
+    except Exception:
+        return False
+
+
+def _resolve(obj, sub):
+    """(deepest object, element) of a selection path like "Part.Box.Face6"."""
+    if obj is None:
+        return None, ""
+    parts = sub.split(".") if sub else [""]
+    element = parts[-1]
+    if len(parts) > 1:
+        inner = obj.Document.getObject(parts[-2])
+        if inner is not None:
+            obj = inner
+    return obj, element
+
+
+def _set_widget(widget, value, index=False):
+    """Sets a widget's value without emitting, and only if it differs (no cursor jumps)."""
+    widget.blockSignals(True)
+    try:
+        if index:
+            if widget.currentIndex() != value:
+                widget.setCurrentIndex(value)
+        elif isinstance(widget, QtWidgets.QComboBox):
+            if widget.currentText() != value:
+                widget.setCurrentIndex(max(widget.findText(value), 0))
+        elif isinstance(widget, QtWidgets.QCheckBox):
+            if widget.isChecked() != bool(value):
+                widget.setChecked(bool(value))
+        elif isinstance(widget, (QtWidgets.QSpinBox, QtWidgets.QDoubleSpinBox)):
+            if abs(widget.value() - value) > 10 ** -(getattr(widget, "decimals", lambda: 0)() + 1):
+                widget.setValue(value)
+    finally:
+        widget.blockSignals(False)
+
+
+def _ra_text(row):
+    if row.ra_min_um is None and row.ra_max_um is None:
+        return "Ra unclassified"
+    low = "" if row.ra_min_um is None else f"{row.ra_min_um:g}"
+    high = "" if row.ra_max_um is None else f"{row.ra_max_um:g}"
+    grades = ", ".join(row.n_grades)
+    return f"Ra {low}–{high} µm" + (f" ({grades})" if grades else "")
+
+
+def _roughness_item(row):
+    return f"{row.category}: {_ra_text(row)}"

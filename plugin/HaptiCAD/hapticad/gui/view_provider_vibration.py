@@ -1,0 +1,36 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""View provider of HapticVibration objects: icon; double-click edits the surface panel's
+vibration through the properties (a vibration draws nothing of its own)."""
+from .. import icon
+
+
+class ViewProviderHapticVibration:
+    def __init__(self, vobj):
+        vobj.Proxy = self
+
+    def attach(self, vobj):
+        from pivy import coin
+
+        self.Object = vobj.Object
+        vobj.addDisplayMode(coin.SoSeparator(), "Default")  # FreeCAD needs one display mode
+
+    def getDisplayModes(self, vobj):
+        return ["Default"]
+
+    def getDefaultDisplayMode(self):
+        return "Default"
+
+    def getIcon(self):
+        return icon("HaptiCAD_Vibration")
+
+    def dumps(self):
+        return None
+
+    def loads(self, state):
+        return None
+
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None

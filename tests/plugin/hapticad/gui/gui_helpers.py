@@ -1,0 +1,170 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Helpers for GUI tests: synthetic mouse events in the 3D view, the task panel's
+widgets and buttons, screenshots and pixel measures. Used inside FreeCAD's GUI."""
+import os
+
+import FreeCAD as App
+import FreeCADGui as Gui
+from PySide2 import QtCore, QtGui, QtWidgets
+
+SHOTS = os.environ.get("HAPTICAD_SCREENSHOT_DIR", "/tmp")
+
+
+def process_events(rounds=3):
+    for _ in range(rounds):
+        QtWidgets.QApplication.processEvents()
+        Gui.updateGui()
+
+
+def gl_widget():
+    """The widget that receives the 3D view's mouse events (its OpenGL viewport)."""
+    view = Gui.ActiveDocument.ActiveView
+    graphics = view.graphicsView()
+    return graphics.viewport() if graphics is not None else None
+
+
+def screen_pos(point):
+    """Widget coordinates (Qt, y down) of a 3D point (mm) in the active view."""
+    view = Gui.ActiveDocument.ActiveView
+    x, y = view.getPointOnScreen(App.Vector(*point))
+    width, height = view.getSize()
+    widget = gl_widget()
+    sx, sy = widget.width() / width, widget.height() / height
+    return QtCore.QPointF(x * sx, (height - y) * sy)
+
+
+def mouse(kind, pos, button=QtCore.Qt.LeftButton, buttons=None):
+    events = {"press": QtCore.QEvent.MouseButtonPress, "release": QtCore.QEvent.MouseButtonRelease,
+              "move": QtCore.QEvent.MouseMove}
+    if buttons is None:
+        buttons = button if kind == "press" else QtCore.Qt.NoButton
+    event = QtGui.QMouseEvent(events[kind], pos, QtCore.Qt.NoButton if kind == "move" else button, buttons,
+                              QtCore.Qt.NoModifier)
+    QtWidgets.QApplication.sendEvent(gl_widget(), event)
+
+
+def click_at(point):
+    """A left click on the 3D point (mm) as a user would do it."""
+    pos = screen_pos(point)
+    mouse("move", pos)
+    mouse("press", pos)
+    mouse("release", pos)
+    process_events()
+
+
+def wheel(pos, steps):
+    event = QtGui.QWheelEvent(pos, QtCore.QPointF(gl_widget().mapToGlobal(pos.toPoint())), QtCore.QPoint(0, 0),
+                              QtCore.QPoint(0, 120 * steps), QtCore.Qt.NoButton, QtCore.Qt.NoModifier,
+                              QtCore.Qt.NoScrollPhase, False)
+    QtWidgets.QApplication.sendEvent(gl_widget(), event)
+
+
+def widget(kind, name):
+    """The visible widget of a type and objectName in the main window."""
+    found = [w for w in Gui.getMainWindow().findChildren(kind, name)]
+    visible = [w for w in found if w.isVisibleTo(Gui.getMainWindow())] or found
+    if not visible:
+        raise LookupError(f"no {kind.__name__} named {name!r}")
+    return visible[-1]
+
+
+def press_task_button(which):
+    """Presses OK or Cancel of the task dialog, as a user does."""
+    role = {"OK": QtWidgets.QDialogButtonBox.Ok, "Cancel": QtWidgets.QDialogButtonBox.Cancel,
+            "Close": QtWidgets.QDialogButtonBox.Close}[which]
+    process_events()
+    for box in Gui.getMainWindow().findChildren(QtWidgets.QDialogButtonBox):
+        button = box.button(role)
+        if button is not None and button.isVisible():
+            button.click()
+            process_events()
+            return
+    raise LookupError(f"no visible {which} button")
+
+
+def save_view(name, background="White"):
+    """Saves the 3D view (saveImage, at the view's own size so image_pos maps exactly)
+    and returns (path, QImage)."""
+    path = os.path.join(SHOTS, name)
+    view = Gui.ActiveDocument.ActiveView
+    width, height = view.getSize()
+    view.saveImage(path, width, height, background)
+    return path, QtGui.QImage(path)
+
+
+def widen_panel(width=440):
+    """Gives the combo view (tree and task panels) room, as a user would drag it."""
+    main = Gui.getMainWindow()
+    docks = [d for d in main.findChildren(QtWidgets.QDockWidget) if d.isVisible()]
+    combo = [d for d in docks if d.objectName() in ("Combo View", "ComboView")]
+    if combo:
+        main.resizeDocks(combo, [width], QtCore.Qt.Horizontal)
+    for dock in docks:
+        if dock.objectName() in ("Report view", "Python console"):
+            dock.hide()
+    main.statusBar().clearMessage()
+    process_events()
+
+
+def grab_screen(name):
+    """The whole screen (main window, task panel and 3D view) as a PNG."""
+    process_events()
+    path = os.path.join(SHOTS, name)
+    QtWidgets.QApplication.primaryScreen().grabWindow(0).save(path)
+    return path
+
+
+def image_pos(point, image):
+    """Pixel (x, y) of a 3D point (mm) in an image saved by save_view."""
+    view = Gui.ActiveDocument.ActiveView
+    x, y = view.getPointOnScreen(App.Vector(*point))
+    width, height = view.getSize()
+    return int(round(x * image.width() / width)), int(round((height - 1 - y) * image.height() / height))
+
+
+def pixel(image, x, y):
+    c = QtGui.QColor(image.pixel(x, y))
+    return c.red(), c.green(), c.blue()
+
+
+def classify(rgb):
+    """"black", "white" or "other" for a pixel of the overlay."""
+    r, g, b = rgb
+    if max(rgb) < 60:
+        return "black"
+    if min(rgb) > 200 and max(rgb) - min(rgb) < 40:
+        return "white"
+    return "other"
+
+
+def scan(image, p0, p1, samples=200):
+    """Classes of the pixels along a segment between two pixel positions."""
+    out = []
+    for i in range(samples):
+        t = i / (samples - 1)
+        x = int(round(p0[0] + t * (p1[0] - p0[0])))
+        y = int(round(p0[1] + t * (p1[1] - p0[1])))
+        out.append(classify(pixel(image, x, y)))
+    return out
+
+
+def runs(classes, kinds=("black", "white")):
+    """Number of runs of `kinds` along a scan (a stripe pattern gives many)."""
+    count, last = 0, None
+    for c in classes:
+        if c in kinds and c != last:
+            count += 1
+        last = c
+    return count
+
+
+def non_white_fraction(image, x0=0.0, y0=0.0, x1=1.0, y1=1.0):
+    """Share of pixels in a region (fractions of the image) that are not white."""
+    w, h = image.width(), image.height()
+    count = total = 0
+    for y in range(int(y0 * h), int(y1 * h), 2):
+        for x in range(int(x0 * w), int(x1 * w), 2):
+            c = QtGui.QColor(image.pixel(x, y))
+            total += 1
+            count += (c.red() + c.green() + c.blue()) < 720
+    return count / max(total, 1)

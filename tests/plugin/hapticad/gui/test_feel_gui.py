@@ -1,0 +1,114 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""A Feel session in FreeCAD's real GUI (Xvfb) with the simulated probe, driven by
+synthetic mouse events: the probe follows the mouse across the tagged face, the wheel
+presses harder, the strip chart receives the forces, the status names the face, Stop
+ends it. The servo loop is the C++ one. Run by gui_test_runner.py."""
+import os
+import sys
+import time
+import unittest
+
+import numpy as np
+
+import FreeCAD as App
+import FreeCADGui as Gui
+from PySide2 import QtWidgets
+
+import HaptiCAD
+from hapticad import feel_session, preferences
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import gui_helpers as h  # noqa: E402
+
+MM = 1e-3
+
+
+def wait(seconds):
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        h.process_events(1)
+        time.sleep(0.005)
+
+
+class FeelGuiTest(unittest.TestCase):
+    def setUp(self):
+        preferences.update(device="simulated", servo_rate_hz=1000)
+        self.doc = App.newDocument("FeelGui")
+        self.box = self.doc.addObject("Part::Box", "Box")
+        self.box.Length, self.box.Width, self.box.Height = 40, 30, 20
+        self.doc.recompute()
+        HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS", pattern="Linear")
+        self.doc.recompute()
+        Gui.activateWorkbench("HaptiCADWorkbench")
+        view = Gui.ActiveDocument.ActiveView
+        view.viewIsometric()
+        view.fitAll()
+        h.process_events()
+
+    def tearDown(self):
+        if Gui.Control.activeDialog():
+            h.press_task_button("Close")
+        App.closeDocument(self.doc.Name)
+
+    def test_a_simulated_session_follows_the_mouse_and_charts_the_forces(self):
+        if feel_session.missing_bindings():
+            with self.assertRaises(feel_session.BindingsMissing):
+                from hapticad.document_scene import build_document_scene
+
+                feel_session.LiveSession(build_document_scene(self.doc))
+            self.skipTest(feel_session.missing_message())
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        self.assertTrue(Gui.Control.activeDialog())
+        stop = h.widget(QtWidgets.QPushButton, "feelStop")
+        self.assertTrue(stop.isEnabled(), h.widget(QtWidgets.QLabel, "feelMessage").text())
+        chart = h.widget(QtWidgets.QWidget, "stripChart")
+        depth = h.widget(QtWidgets.QSlider, "feelDepth")
+        # slide the mouse across the top face, left to right, for about a second
+        path = [np.array([6.0 + 28.0 * i / 40, 15.0, 20.0]) for i in range(41)]
+        h.mouse("move", h.screen_pos(path[0]))
+        wait(0.4)
+        start_depth = depth.value()
+        h.wheel(h.screen_pos(path[0]), 2)  # press harder
+        self.assertEqual(depth.value(), start_depth + 2)
+        devices = []
+        for point in path:
+            h.mouse("move", h.screen_pos(point))
+            wait(0.025)
+            devices.append(probe_mm())
+        wait(0.3)
+        h.widen_panel()
+        wait(0.1)
+        h.grab_screen("feel_session.png")
+        h.save_view("feel_session_view.png", "Current")
+        self.assertGreater(chart.sample_count, 800)  # about 1.5 s at 1 kHz
+        normal = chart.values["normal_force_n"]
+        self.assertGreater(float(normal[-200:].mean()), 0.2)  # pressing on the face
+        self.assertGreater(float(np.abs(chart.values["friction_force_n"][-600:]).max()), 0.05)
+        face = h.widget(QtWidgets.QLabel, "feelFace").text()
+        self.assertIn("Box.Face6", face)
+        self.assertIn("ABS", face)
+        self.assertIn("Hz", h.widget(QtWidgets.QLabel, "feelRate").text())
+        # the probe followed the mouse along x, on (a little into) the top face
+        self.assertGreater(devices[-1][0] - devices[0][0], 15.0)
+        self.assertLess(abs(devices[-1][2] - 20.0), 2.0)
+        stop.click()
+        h.process_events()
+        self.assertFalse(stop.isEnabled())
+        self.assertIn("stopped", h.widget(QtWidgets.QLabel, "feelRate").text())
+        graph = Gui.ActiveDocument.ActiveView.getSceneGraph()
+        names = [graph.getChild(i).getName().getString() for i in range(graph.getNumChildren())]
+        self.assertNotIn("HaptiCAD_Feel", names)
+        h.press_task_button("Close")
+
+
+def probe_mm():
+    """The probe position (mm) in the Feel panel's last displayed sample."""
+    from hapticad.gui import task_panel_feel
+
+    sample = task_panel_feel.active_panel().last_sample
+    return np.asarray(sample["device_m"], float) / MM if sample is not None else np.full(3, np.nan)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,243 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The surface task panel, driven through its widgets in FreeCAD's real GUI (Xvfb):
+create and edit as one undo step, Cancel reverts, faces picked with synthetic clicks in
+the 3D view, live validation, curve and circular-centre picking, vibration, broken
+references shown. Run through gui_test_runner.py."""
+import os
+import sys
+import unittest
+
+import FreeCAD as App
+import FreeCADGui as Gui
+from PySide2 import QtCore, QtWidgets
+
+import HaptiCAD
+from hapticad import materials
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import gui_helpers as h  # noqa: E402
+
+
+class TaskPanelTest(unittest.TestCase):
+    def setUp(self):
+        self.doc = App.newDocument("PanelTest")
+        self.box = self.doc.addObject("Part::Box", "Box")
+        self.box.Length, self.box.Width, self.box.Height = 40, 30, 20
+        self.doc.recompute()
+        self.doc.UndoMode = 1
+        Gui.activateWorkbench("HaptiCADWorkbench")
+        Gui.Selection.clearSelection()
+        view = Gui.ActiveDocument.ActiveView
+        view.viewIsometric()
+        view.fitAll()
+        h.process_events()
+
+    def tearDown(self):
+        if Gui.Control.activeDialog():
+            h.press_task_button("Cancel")
+        Gui.Selection.clearSelection()
+        App.closeDocument(self.doc.Name)
+
+    def open_new_surface(self, face="Face6"):
+        Gui.Selection.addSelection(self.box, face)
+        Gui.runCommand("HaptiCAD_Surface")
+        h.process_events()
+        self.assertTrue(Gui.Control.activeDialog())
+        (surface,) = HaptiCAD.surfaces_of(self.doc)
+        return surface
+
+    def test_create_and_edit_through_the_widgets_is_one_undo_step(self):
+        surface = self.open_new_surface()
+        self.assertEqual(h.widget(QtWidgets.QListWidget, "faces").count(), 1)
+        h.widget(QtWidgets.QComboBox, "Material").setCurrentText("Steel")
+        steel = materials.default_database().get("Steel")
+        self.assertEqual(surface.Material, "Steel")
+        self.assertAlmostEqual(h.widget(QtWidgets.QDoubleSpinBox, "StaticFriction").value(), steel.static_friction)
+        self.assertNotIn("overridden", h.widget(QtWidgets.QLabel, "materialInfo").text())
+        h.widget(QtWidgets.QDoubleSpinBox, "StaticFriction").setValue(0.95)  # override the database
+        self.assertAlmostEqual(surface.StaticFriction, 0.95)
+        self.assertIn("overridden", h.widget(QtWidgets.QLabel, "materialInfo").text())
+        h.widget(QtWidgets.QComboBox, "RoughnessCategory").setCurrentIndex(5)
+        self.assertEqual(surface.RoughnessCategory, 6)
+        info = h.widget(QtWidgets.QLabel, "roughnessInfo").text()
+        self.assertIn("Ra", info)
+        self.assertIn("N", info)
+        # pattern-specific widgets appear with their pattern
+        self.assertFalse(h.widget(QtWidgets.QDoubleSpinBox, "AcrossFriction").isVisible())
+        h.widget(QtWidgets.QComboBox, "Pattern").setCurrentText("Linear")
+        self.assertTrue(h.widget(QtWidgets.QDoubleSpinBox, "AcrossFriction").isVisible())
+        h.widget(QtWidgets.QDoubleSpinBox, "PatternAngle").setValue(30.0)
+        self.assertAlmostEqual(float(surface.PatternAngle), 30.0)
+        preset = "Paper f_DC 0.325 f_vis -0.2"
+        h.widget(QtWidgets.QComboBox, "Texture").setCurrentText(preset)
+        self.assertAlmostEqual(h.widget(QtWidgets.QDoubleSpinBox, "TextureDC").value(), 0.325)
+        h.widget(QtWidgets.QDoubleSpinBox, "Stiffness").setValue(0.45)
+        self.assertAlmostEqual(surface.Stiffness, 0.45)
+        h.widget(QtWidgets.QCheckBox, "vibrates").setChecked(True)
+        (vibration,) = HaptiCAD.vibrations_of(self.doc)
+        self.assertEqual(vibration.Part, self.box)
+        h.widget(QtWidgets.QDoubleSpinBox, "VibrationFrequency").setValue(167.0)
+        self.assertEqual(vibration.Frequency, 167.0)
+        h.widen_panel()
+        h.grab_screen("task_panel.png")
+        pattern = h.widget(QtWidgets.QComboBox, "Pattern")
+        for area in Gui.getMainWindow().findChildren(QtWidgets.QScrollArea):
+            if area.isVisible() and area.widget() is not None and area.widget().isAncestorOf(pattern):
+                area.ensureWidgetVisible(h.widget(QtWidgets.QCheckBox, "vibrates"), 0, 0)
+        h.grab_screen("task_panel_pattern.png")
+
+        h.press_task_button("OK")
+        self.assertFalse(Gui.Control.activeDialog())
+        self.assertEqual((surface.Material, surface.StaticFriction, surface.Pattern), ("Steel", 0.95, "Linear"))
+        self.assertNotIn("Touched", surface.State)
+        # the whole creation and edit is one step
+        self.assertEqual(self.doc.UndoCount, 1, self.doc.UndoNames)
+        self.doc.undo()
+        self.assertEqual(HaptiCAD.surfaces_of(self.doc), [])
+        self.assertEqual(HaptiCAD.vibrations_of(self.doc), [])
+
+    def test_cancel_on_a_new_surface_removes_it(self):
+        self.open_new_surface()
+        h.press_task_button("Cancel")
+        self.assertEqual(HaptiCAD.surfaces_of(self.doc), [])
+
+    def test_cancel_reverts_every_edit(self):
+        surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS")
+        self.doc.recompute()
+        before = (surface.Material, surface.StaticFriction, surface.RoughnessCategory, surface.Pattern)
+        Gui.ActiveDocument.setEdit(surface.Name, 0)
+        h.process_events()
+        h.widget(QtWidgets.QComboBox, "Material").setCurrentText("Rubber")
+        h.widget(QtWidgets.QComboBox, "RoughnessCategory").setCurrentIndex(0)
+        h.widget(QtWidgets.QComboBox, "Pattern").setCurrentText("Circular")
+        self.assertEqual(surface.Material, "Rubber")
+        h.press_task_button("Cancel")
+        self.assertEqual((surface.Material, surface.StaticFriction, surface.RoughnessCategory, surface.Pattern),
+                         before)
+
+    def test_faces_are_picked_in_the_3d_view_listed_highlighted_and_removed(self):
+        surface = self.open_new_surface()
+        h.widget(QtWidgets.QPushButton, "addFaces").setChecked(True)
+        # the front face (y = 0), clicked at its centre
+        h.click_at((20, 0, 10))
+        faces = h.widget(QtWidgets.QListWidget, "faces")
+        self.assertEqual(HaptiCAD.reference_pairs(surface), [(self.box, "Face6"), (self.box, "Face3")])
+        self.assertEqual(faces.count(), 2)
+        # a click on a face already tagged adds nothing
+        h.click_at((20, 15, 20))
+        self.assertEqual(faces.count(), 2)
+        # selecting it in the list highlights it: outlined in the overlay, selected in the view
+        faces.setCurrentRow(1)
+        h.process_events()
+        self.assertEqual(surface.ViewObject.Proxy._highlighted, ["Box.Face3"])
+        self.assertIn("Face3", Gui.Selection.getSelectionEx()[0].SubElementNames)
+        h.widget(QtWidgets.QPushButton, "removeFaces").click()
+        self.assertEqual(HaptiCAD.reference_pairs(surface), [(self.box, "Face6")])
+        h.press_task_button("OK")
+
+    def test_values_are_validated_live_and_ok_is_refused_while_wrong(self):
+        import Part
+
+        sketch_line = self.doc.addObject("Part::Feature", "Guide")
+        sketch_line.Shape = Part.makeLine(App.Vector(0, 5, 20), App.Vector(40, 25, 20))
+        self.doc.recompute()
+        surface = self.open_new_surface()
+        status = h.widget(QtWidgets.QLabel, "status")
+        self.assertIn("1 face", status.text())
+        h.widget(QtWidgets.QComboBox, "Pattern").setCurrentText("Curve")
+        self.assertIn("needs a sketch or edge", status.text())
+        h.press_task_button("OK")
+        self.assertTrue(Gui.Control.activeDialog(), "OK must be refused while the curve is missing")
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(sketch_line, "Edge1")
+        h.widget(QtWidgets.QPushButton, "useCurve").click()
+        self.assertEqual(surface.PatternCurve[0], sketch_line)
+        self.assertNotIn("⚠", status.text())
+        self.assertIn("Guide", h.widget(QtWidgets.QLabel, "curveLabel").text())
+        # the core's own check speaks through the panel: no stick speed below the minimum exists,
+        # so remove the only face instead
+        faces = h.widget(QtWidgets.QListWidget, "faces")
+        faces.setCurrentRow(0)
+        h.widget(QtWidgets.QPushButton, "removeFaces").click()
+        self.assertIn("no faces", status.text())
+        h.press_task_button("OK")
+        self.assertTrue(Gui.Control.activeDialog())
+        h.press_task_button("Cancel")
+
+    def test_the_circular_centre_is_picked_in_the_3d_view(self):
+        surface = self.open_new_surface()
+        h.widget(QtWidgets.QComboBox, "Pattern").setCurrentText("Circular")
+        h.widget(QtWidgets.QPushButton, "pickCenter").click()
+        h.click_at((10, 20, 20))
+        c = surface.PatternCenter
+        self.assertAlmostEqual(c.z, 20.0, places=3)
+        self.assertLess(abs(c.x - 10) + abs(c.y - 20), 1.0, c)  # within a pixel or two
+        self.assertAlmostEqual(h.widget(QtWidgets.QDoubleSpinBox, "PatternCenter.x").value(), c.x, places=2)
+        # the pick did not add the face a second time
+        self.assertEqual(len(HaptiCAD.reference_pairs(surface)), 1)
+        h.press_task_button("OK")
+
+    def test_faces_of_a_partdesign_body_and_of_a_part_in_an_app_part(self):
+        import Part
+        import Sketcher
+
+        body = self.doc.addObject("PartDesign::Body", "Body")
+        sketch = body.newObject("Sketcher::SketchObject", "Sketch")
+        sketch.Support = (self.doc.getObject("XY_Plane"), [""])
+        sketch.MapMode = "FlatFace"
+        corners = [App.Vector(60, 0, 0), App.Vector(90, 0, 0), App.Vector(90, 20, 0), App.Vector(60, 20, 0)]
+        for i in range(4):
+            sketch.addGeometry(Part.LineSegment(corners[i], corners[(i + 1) % 4]))
+        for i in range(4):
+            sketch.addConstraint(Sketcher.Constraint("Coincident", i, 2, (i + 1) % 4, 1))
+        pad = body.newObject("PartDesign::Pad", "Pad")
+        pad.Profile = sketch
+        pad.Length = 10
+        container = self.doc.addObject("App::Part", "Assembly")
+        inner = self.doc.addObject("Part::Box", "Inner")
+        inner.Placement.Base = App.Vector(0, 60, 0)
+        container.addObject(inner)
+        self.doc.recompute()
+        pad_top = [f"Face{i + 1}" for i, f in enumerate(pad.Shape.Faces)
+                   if abs(f.CenterOfMass.z - 10) < 1e-6 and type(f.Surface).__name__ == "Plane"][0]
+        # as the 3D view selects them: through the Body and through the App::Part
+        Gui.Selection.addSelection(self.doc.Name, body.Name, f"{pad.Name}.{pad_top}")
+        Gui.Selection.addSelection(self.doc.Name, container.Name, f"{inner.Name}.Face6")
+        Gui.runCommand("HaptiCAD_Surface")
+        h.process_events()
+        (surface,) = HaptiCAD.surfaces_of(self.doc)
+        pairs = HaptiCAD.reference_pairs(surface)
+        self.assertEqual([o.Name for o, _ in pairs], ["Body", "Inner"])  # the Body owns the pad's face
+        self.assertAlmostEqual(body.Shape.getElement(pairs[0][1]).CenterOfMass.z, 10.0)
+        h.press_task_button("OK")
+        self.assertEqual(surface.ViewObject.Proxy.overlay_face_count(), 2)
+
+    def test_a_broken_reference_shows_in_the_panel_and_the_tree(self):
+        cyl = self.doc.addObject("Part::Cylinder", "Hole")
+        cyl.Radius, cyl.Height = 3, 30
+        cyl.Placement.Base = App.Vector(10, 10, -5)
+        cut = self.doc.addObject("Part::Cut", "Cut")
+        cut.Base, cut.Tool = self.box, cyl
+        self.doc.recompute()
+        bore = [f"Face{i + 1}" for i, f in enumerate(cut.Shape.Faces) if type(f.Surface).__name__ == "Cylinder"][0]
+        surface = HaptiCAD.make_surface(self.doc, [(cut, bore)])
+        self.doc.recompute()
+        self.assertTrue(surface.ViewObject.Proxy.getIcon().endswith("HaptiCAD_SurfaceObject.svg"))
+        square = self.doc.addObject("Part::Box", "Square")
+        square.Length = square.Width = 4
+        square.Height = 30
+        square.Placement.Base = App.Vector(8, 8, -5)
+        cut.Tool = square
+        self.doc.recompute()
+        self.assertEqual(HaptiCAD.reference_status(surface)[0][2], "broken")
+        self.assertTrue(surface.ViewObject.Proxy.getIcon().endswith("HaptiCAD_SurfaceBroken.svg"))
+        Gui.ActiveDocument.setEdit(surface.Name, 0)
+        h.process_events()
+        item = h.widget(QtWidgets.QListWidget, "faces").item(0)
+        self.assertIn("broken", item.text())
+        self.assertIn("broken face reference", h.widget(QtWidgets.QLabel, "status").text())
+        h.press_task_button("Cancel")
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,316 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Face references survive model edits (or say they broke): Box minus Cylinder, a box
+made taller, a PartDesign Body, an App::Part; never a silent re-bind. Run by freecadcmd."""
+import os
+import tempfile
+import unittest
+
+import FreeCAD as App
+
+import HaptiCAD
+from hapticad import face_references
+from hapticad.document_scene import build_document_scene
+
+
+def faces_where(shape, kind, predicate):
+    """Names of the faces of `shape` of surface type `kind` whose centre passes `predicate`."""
+    return [f"Face{i + 1}" for i, f in enumerate(shape.Faces)
+            if type(f.Surface).__name__ == kind and predicate(f.CenterOfMass)]
+
+
+class BoxMinusCylinderTest(unittest.TestCase):
+    """The issue's example: the cylinder starts clear of the box, then cuts a corner."""
+
+    def setUp(self):
+        self.doc = App.newDocument("BoxMinusCylinder")
+        self.box = self.doc.addObject("Part::Box", "Box")
+        self.box.Length, self.box.Width, self.box.Height = 40, 30, 20
+        self.cyl = self.doc.addObject("Part::Cylinder", "Cylinder")
+        self.cyl.Radius, self.cyl.Height = 5, 30
+        self.cyl.Placement.Base = App.Vector(-20, -20, -5)
+        self.cut = self.doc.addObject("Part::Cut", "Cut")
+        self.cut.Base, self.cut.Tool = self.box, self.cyl
+        self.doc.recompute()
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def top(self):
+        (name,) = faces_where(self.cut.Shape, "Plane", lambda c: abs(c.z - 20) < 1e-6)
+        return name
+
+    def test_the_tag_stays_on_the_top_face_when_freecad_renumbers_it(self):
+        old_top = self.top()
+        surface = HaptiCAD.make_surface(self.doc, [(self.cut, old_top)], material="Steel")
+        self.doc.recompute()
+        self.assertEqual(HaptiCAD.reference_status(surface), [("Cut", old_top, "ok")])
+
+        self.cyl.Placement.Base = App.Vector(40, 30, -5)  # now it cuts the corner
+        self.doc.recompute()
+        new_top = self.top()
+        # the trap is real: FreeCAD renumbered the top face and the old name is a side face
+        self.assertNotEqual(new_top, old_top)
+        old_face = self.cut.Shape.getElement(old_top)
+        self.assertLess(abs(old_face.normalAt(*old_face.Surface.parameter(old_face.CenterOfMass)).z), 1e-9)
+
+        self.assertEqual(HaptiCAD.reference_status(surface), [("Cut", new_top, "rematched")])
+        self.assertEqual(HaptiCAD.reference_pairs(surface), [(self.cut, new_top)])
+        self.assertNotIn("Touched", surface.State)
+        self.assertEqual(surface_object_problems(surface), [])
+        # the scene carries Steel on the top face, and nothing on the side face
+        scene = build_document_scene(self.doc)
+        self.assertEqual(scene.face_material, {f"Cut.{new_top}": "Steel"})
+
+    def test_moving_the_cylinder_back_reports_ok_at_the_old_name(self):
+        old_top = self.top()
+        surface = HaptiCAD.make_surface(self.doc, [(self.cut, old_top)])
+        self.doc.recompute()
+        self.cyl.Placement.Base = App.Vector(40, 30, -5)
+        self.doc.recompute()
+        self.cyl.Placement.Base = App.Vector(-20, -20, -5)
+        self.doc.recompute()
+        self.assertEqual(self.top(), old_top)
+        self.assertEqual(HaptiCAD.reference_status(surface), [("Cut", old_top, "rematched")])
+        self.doc.recompute()  # nothing changed: the surface is not even recomputed
+        surface.touch()
+        self.doc.recompute()
+        self.assertEqual(HaptiCAD.reference_status(surface), [("Cut", old_top, "ok")])
+
+    def test_a_face_split_in_two_is_broken_not_rebound(self):
+        # a slot right through the top face splits it into two coplanar faces
+        top = self.top()
+        surface = HaptiCAD.make_surface(self.doc, [(self.cut, top), (self.cut, "Face1")])
+        self.doc.recompute()
+        slot = self.doc.addObject("Part::Box", "Slot")
+        slot.Length, slot.Width, slot.Height = 4, 50, 10
+        slot.Placement.Base = App.Vector(18, -10, 15)
+        self.cyl.Placement.Base = App.Vector(-20, -20, -5)
+        tool = self.doc.addObject("Part::MultiFuse", "Tools")
+        tool.Shapes = [self.cyl, slot]
+        self.cut.Tool = tool
+        self.doc.recompute()
+        self.assertEqual(len(faces_where(self.cut.Shape, "Plane", lambda c: abs(c.z - 20) < 1e-6)), 2)
+        status = dict(((o, f), s) for o, f, s in HaptiCAD.reference_status(surface))
+        self.assertIn(("Cut", top), status)
+        self.assertEqual(status[("Cut", top)], "broken")
+        # the untouched end face is still fine, and the broken one stays out of the scene
+        self.assertEqual(list(status.values()).count("broken"), 1)
+        problems = surface_object_problems(surface)
+        self.assertTrue(any("broken face reference" in p and f"Cut.{top}" in p for p in problems), problems)
+        scene = build_document_scene(self.doc)
+        self.assertEqual(len(scene.face_surface), 1)
+        self.assertNotIn(f"Cut.{top}", scene.face_surface)
+        # undoing the edit (removing the slot) brings it back
+        self.cut.Tool = self.cyl
+        self.doc.recompute()
+        self.assertEqual([s for _, _, s in HaptiCAD.reference_status(surface)].count("broken"), 0)
+
+    def test_status_survives_save_and_reopen(self):
+        top = self.top()
+        surface = HaptiCAD.make_surface(self.doc, [(self.cut, top)])
+        self.doc.recompute()
+        self.cyl.Placement.Base = App.Vector(40, 30, -5)
+        self.doc.recompute()
+        before = HaptiCAD.reference_status(surface)
+        name = surface.Name
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "cut.FCStd")
+            self.doc.saveAs(path)
+            App.closeDocument(self.doc.Name)
+            self.doc = App.openDocument(path)
+            surface = self.doc.getObject(name)
+            self.assertEqual(HaptiCAD.reference_status(surface), before)
+            self.assertNotIn("Touched", surface.State)
+
+
+def surface_object_problems(surface):
+    from hapticad.surface_object import validate
+
+    return validate(surface)
+
+
+class SimpleEditsTest(unittest.TestCase):
+    def setUp(self):
+        self.doc = App.newDocument("SimpleEdits")
+        self.box = self.doc.addObject("Part::Box", "Box")
+        self.doc.recompute()
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def test_a_taller_box_keeps_its_top_face(self):
+        surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])
+        self.box.Height = 25
+        self.doc.recompute()
+        self.assertEqual(HaptiCAD.reference_status(surface), [("Box", "Face6", "ok")])
+        # the signature follows the face: its centre is now at the new height
+        (entry,) = HaptiCAD_state(surface)
+        self.assertAlmostEqual(entry["signature"]["centre"][2], 25.0)
+
+    def test_moving_the_part_changes_nothing(self):
+        surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])
+        state = surface.ReferenceState
+        self.box.Placement = App.Placement(App.Vector(100, 5, 3), App.Rotation(App.Vector(1, 0, 0), 90))
+        self.doc.recompute()
+        self.assertEqual(HaptiCAD.reference_status(surface), [("Box", "Face6", "ok")])
+        self.assertEqual(surface.ReferenceState, state)
+
+    def test_a_new_face_facing_the_same_way_makes_a_moved_face_ambiguous(self):
+        # a step: two faces facing +z at different heights, the tagged one moves
+        step = self.doc.addObject("Part::Box", "Step")
+        step.Length, step.Width, step.Height = 5, 10, 15
+        fuse = self.doc.addObject("Part::MultiFuse", "Fuse")
+        fuse.Shapes = [self.box, step]
+        fuse.Refine = True
+        self.doc.recompute()
+        (top,) = faces_where(fuse.Shape, "Plane", lambda c: abs(c.z - 15) < 1e-6)
+        surface = HaptiCAD.make_surface(self.doc, [(fuse, top)])
+        step.Height = 12  # the tagged face moves; +z faces at 10 and 12: which one?
+        self.doc.recompute()
+        self.assertEqual(HaptiCAD.reference_status(surface), [("Fuse", top, "broken")])
+
+    def test_a_face_that_is_gone_is_broken(self):
+        hole = self.doc.addObject("Part::Cylinder", "Hole")
+        hole.Radius, hole.Height = 2, 20
+        hole.Placement.Base = App.Vector(5, 5, -5)
+        cut = self.doc.addObject("Part::Cut", "Cut")
+        cut.Base, cut.Tool = self.box, hole
+        self.doc.recompute()
+        (bore,) = faces_where(cut.Shape, "Cylinder", lambda c: True)
+        surface = HaptiCAD.make_surface(self.doc, [(cut, bore), (cut, "Face1")])
+        self.doc.recompute()
+        hole.Radius = 3  # a wider hole is still the same hole
+        self.doc.recompute()
+        self.assertEqual(HaptiCAD.reference_status(surface)[0][2], "ok")
+        # a square hole instead: no cylinder any more
+        square = self.doc.addObject("Part::Box", "Square")
+        square.Length, square.Width, square.Height = 2, 2, 20
+        square.Placement.Base = App.Vector(4, 4, -5)
+        cut.Tool = square
+        self.doc.recompute()
+        self.assertEqual([s for _, _, s in HaptiCAD.reference_status(surface)], ["broken", "ok"])
+        self.assertEqual(len(build_document_scene(self.doc).face_surface), 1)
+
+
+def HaptiCAD_state(surface):
+    from hapticad.surface_object import read_reference_state
+
+    return read_reference_state(surface)
+
+
+class PartDesignBodyTest(unittest.TestCase):
+    def setUp(self):
+        import Part  # noqa: F401
+        import Sketcher
+
+        self.doc = App.newDocument("BodyTest")
+        self.body = self.doc.addObject("PartDesign::Body", "Body")
+        sketch = self.body.newObject("Sketcher::SketchObject", "Sketch")
+        sketch.Support = (self.doc.getObject("XY_Plane"), [""])
+        sketch.MapMode = "FlatFace"
+        import Part as P
+
+        corners = [App.Vector(0, 0, 0), App.Vector(40, 0, 0), App.Vector(40, 30, 0), App.Vector(0, 30, 0)]
+        for i in range(4):
+            sketch.addGeometry(P.LineSegment(corners[i], corners[(i + 1) % 4]))
+        for i in range(4):
+            sketch.addConstraint(Sketcher.Constraint("Coincident", i, 2, (i + 1) % 4, 1))
+        self.pad = self.body.newObject("PartDesign::Pad", "Pad")
+        self.pad.Profile = sketch
+        self.pad.Length = 20
+        self.doc.recompute()
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def top(self, obj):
+        (name,) = faces_where(obj.Shape, "Plane", lambda c: abs(c.z - 20) < 1e-6)
+        return name
+
+    def test_a_face_picked_on_the_pad_belongs_to_the_body_and_survives_a_pocket(self):
+        owner, face = face_references.owner_face(self.pad, self.top(self.pad))
+        self.assertEqual((owner.Name, face), ("Body", self.top(self.body)))
+        surface = HaptiCAD.make_surface(self.doc, [(owner, face)], material="ABS")
+        top_before = self.top(self.body)
+
+        # a hole through the top, added as a Pocket from a sketch on the XY plane
+        import Part as P
+
+        sketch = self.body.newObject("Sketcher::SketchObject", "HoleSketch")
+        sketch.Support = (self.doc.getObject("XY_Plane"), [""])
+        sketch.MapMode = "FlatFace"
+        sketch.addGeometry(P.Circle(App.Vector(8, 8, 0), App.Vector(0, 0, 1), 3))
+        pocket = self.body.newObject("PartDesign::Pocket", "Pocket")
+        pocket.Profile = sketch
+        pocket.Type = "ThroughAll"
+        pocket.Reversed = True
+        self.doc.recompute()
+        self.assertTrue(pocket.isValid(), pocket.State)
+        self.assertEqual(self.body.Tip, pocket)
+        top_after = self.top(self.body)
+        status = HaptiCAD.reference_status(surface)
+        self.assertEqual(status, [("Body", top_after, "ok" if top_after == top_before else "rematched")])
+        scene = build_document_scene(self.doc)
+        self.assertEqual(scene.face_material, {f"Body.{top_after}": "ABS"})
+        # the tagged face has the hole: area 40 x 30 minus the circle
+        import math
+
+        area = self.body.Shape.getElement(top_after).Area
+        self.assertAlmostEqual(area, 1200 - math.pi * 9, places=3)
+
+    def test_a_longer_pad_keeps_the_tag_on_the_body_top(self):
+        surface = HaptiCAD.make_surface(self.doc, [(self.body, self.top(self.body))])
+        self.pad.Length = 35
+        self.doc.recompute()
+        (name, face, status), = HaptiCAD.reference_status(surface)
+        self.assertEqual(status, "ok")
+        self.assertAlmostEqual(self.body.Shape.getElement(face).CenterOfMass.z, 35.0)
+
+
+class AppPartTest(unittest.TestCase):
+    def test_a_box_in_a_moved_app_part_keeps_its_tag_and_scene_position(self):
+        doc = App.newDocument("AppPart")
+        try:
+            part = doc.addObject("App::Part", "Part")
+            box = doc.addObject("Part::Box", "Box")
+            part.addObject(box)
+            doc.recompute()
+            surface = HaptiCAD.make_surface(doc, [(box, "Face6")])
+            part.Placement.Base = App.Vector(0, 0, 100)
+            box.Length = 25
+            doc.recompute()
+            self.assertEqual(HaptiCAD.reference_status(surface), [("Box", "Face6", "ok")])
+            scene = build_document_scene(doc)
+            top = scene.face_shape("Box.Face6")
+            self.assertAlmostEqual(top.CenterOfMass.z, 110.0)  # global: Part placement applied
+            self.assertAlmostEqual(top.CenterOfMass.x, 12.5)
+        finally:
+            App.closeDocument(doc.Name)
+
+
+class MatchFaceUnitTest(unittest.TestCase):
+    """match_face on hand-made signature lists: the decision table."""
+
+    def sig(self, z, area=100.0, normal=(0, 0, 1), centre=None):
+        return {"type": "Plane", "surface": {"normal": list(normal), "offset": float(z)},
+                "orientation": {"normal": list(normal)}, "area": area, "centre": list(centre or (5.0, 5.0, z))}
+
+    def test_decision_table(self):
+        m = face_references.match_face
+        a, b = self.sig(10), self.sig(0, normal=(0, 0, -1))
+        self.assertEqual(m(a, "Face1", [a, b], 10), ("Face1", "ok"))
+        self.assertEqual(m(a, "Face2", [b, a], 10), ("Face2", "ok"))
+        self.assertEqual(m(a, "Face1", [b, a], 10), ("Face2", "rematched"))
+        trimmed = self.sig(10, area=80.0, centre=(4.0, 4.0, 10))
+        self.assertEqual(m(a, "Face1", [b, trimmed], 10), ("Face2", "rematched"))
+        moved = self.sig(12)
+        self.assertEqual(m(a, "Face2", [b, moved], 10), ("Face2", "ok"))
+        split = [self.sig(10, 50, centre=(2, 5, 10)), self.sig(10, 50, centre=(8, 5, 10)), b]
+        self.assertEqual(m(a, "Face1", split, 10), (None, "broken"))
+        self.assertEqual(m(a, "Face1", [b], 10), (None, "broken"))
+        two_moved = [self.sig(12), self.sig(14, centre=(1, 1, 14)), b]
+        self.assertEqual(m(a, "Face1", two_moved, 10), (None, "broken"))
+
+
+if __name__ == "__main__":
+    unittest.main()

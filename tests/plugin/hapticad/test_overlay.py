@@ -1,0 +1,97 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""What the overlay draws, computed without the GUI: stripe coordinates constant along
+the direction of lowest friction, colours, legend, broken faces left out. freecadcmd."""
+import unittest
+
+import numpy as np
+
+import FreeCAD as App
+
+import HaptiCAD
+from hapticad import overlay
+from hapticad.surface_compile import face_frame
+
+
+class OverlayGeometryTest(unittest.TestCase):
+    def setUp(self):
+        self.doc = App.newDocument("OverlayGeometry")
+        self.box = self.doc.addObject("Part::Box", "Box")
+        self.box.Length, self.box.Width, self.box.Height = 40, 30, 20
+        self.box.Placement.Base = App.Vector(100, 0, 0)
+        self.doc.recompute()
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def test_linear_stripes_are_constant_along_the_low_friction_direction(self):
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], pattern="Linear", pattern_angle_deg=30,
+                                  AcrossFriction=2.0)
+        (face,) = overlay.overlay_faces(s)
+        self.assertEqual(face.name, "Box.Face6")
+        self.assertTrue(np.allclose(face.points[:, 2], 20.0))
+        self.assertGreaterEqual(face.points[:, 0].min(), 100.0 - 1e-9)  # global: placement applied
+        top = self.box.Shape.getElement("Face6")
+        _, e1, e2, _ = face_frame(top, 30.0)
+        values, _ = overlay.stripe_coordinates(s, top, face.points)
+        # a linear function of position whose gradient is e2: constant along e1
+        gradient, *_ = np.linalg.lstsq(np.c_[face.points, np.ones(len(face.points))], values, rcond=None)
+        self.assertAlmostEqual(abs(np.dot(gradient[:3], e1)), 0.0, places=9)
+        self.assertAlmostEqual(abs(np.dot(gradient[:3], e2)), 1.0, places=9)
+        # about ten stripe pairs over the face
+        self.assertAlmostEqual(face.stripes.max() - face.stripes.min(), overlay.STRIPES_PER_FACE, places=6)
+        # friction lower across: the stripes turn
+        s.AcrossFriction = 0.5
+        values, _ = overlay.stripe_coordinates(s, top, face.points)
+        gradient, *_ = np.linalg.lstsq(np.c_[face.points, np.ones(len(face.points))], values, rcond=None)
+        self.assertAlmostEqual(abs(np.dot(gradient[:3], e1)), 1.0, places=9)
+
+    def test_circular_rings_are_distances_from_the_axis(self):
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], pattern="Circular",
+                                  pattern_center_mm=(120, 15, 20))
+        (face,) = overlay.overlay_faces(s)
+        self.assertGreater(len(face.points), 100)  # interior vertices, so rings interpolate
+        values, kind = overlay.stripe_coordinates(s, self.box.Shape.getElement("Face6"), face.points)
+        r = np.linalg.norm(face.points[:, :2] - [120, 15], axis=1)
+        self.assertEqual(kind, "length")
+        self.assertTrue(np.allclose(values, r))
+
+    def test_no_pattern_no_stripes_and_colours_by_material_or_roughness(self):
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="Rubber", roughness_category=7)
+        (face,) = overlay.overlay_faces(s, "Material")
+        self.assertIsNone(face.stripes)
+        self.assertEqual(face.colour, overlay.material_colour("Rubber"))
+        self.assertNotEqual(overlay.material_colour("Rubber"), overlay.material_colour("Steel"))
+        (face,) = overlay.overlay_faces(s, "Roughness")
+        self.assertEqual(face.colour, overlay.ROUGHNESS_COLOURS[6])
+
+    def test_legend_has_one_entry_per_colour_and_the_stripe_key(self):
+        a = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="Steel", pattern="Linear")
+        b = HaptiCAD.make_surface(self.doc, [(self.box, "Face1")], material="Steel")
+        c = HaptiCAD.make_surface(self.doc, [(self.box, "Face2")], material="ABS", roughness_category=5)
+        rows = overlay.legend_entries([a, b, c], "Material")
+        self.assertEqual([label.split(":")[0] for _, label in rows], ["Steel", "ABS", "Stripes"])
+        self.assertIsNone(rows[-1][0])
+        rows = overlay.legend_entries([a, b, c], "Roughness")
+        self.assertEqual(rows[0][1], overlay.roughness_label(3))
+        self.assertIn("Ra", rows[0][1])
+        self.assertTrue(all(label.isascii() for _, label in rows))
+
+    def test_broken_references_are_not_drawn(self):
+        hole = self.doc.addObject("Part::Cylinder", "Hole")
+        hole.Placement.Base = App.Vector(110, 10, -5)
+        hole.Height = 30
+        cut = self.doc.addObject("Part::Cut", "Cut")
+        cut.Base, cut.Tool = self.box, hole
+        self.doc.recompute()
+        bore = [f"Face{i + 1}" for i, f in enumerate(cut.Shape.Faces) if type(f.Surface).__name__ == "Cylinder"]
+        s = HaptiCAD.make_surface(self.doc, [(cut, bore[0]), (cut, "Face1")])
+        self.doc.recompute()
+        self.assertEqual(len(overlay.overlay_faces(s)), 2)
+        cut.Tool = self.doc.addObject("Part::Sphere", "Ball")
+        self.doc.recompute()
+        self.assertEqual([st for _, _, st in HaptiCAD.reference_status(s)][0], "broken")
+        self.assertEqual([f.name for f in overlay.overlay_faces(s)], [f"Cut.{HaptiCAD.reference_status(s)[1][1]}"])
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,52 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Preferences: stored in FreeCAD's parameter group, checked in one place. freecadcmd."""
+import unittest
+
+import FreeCAD as App
+
+from hapticad import preferences
+
+
+class PreferencesTest(unittest.TestCase):
+    def setUp(self):
+        App.ParamGet("User parameter:BaseApp/Preferences/Mod").RemGroup("HaptiCAD")
+
+    tearDown = setUp
+
+    def test_defaults_when_nothing_is_stored(self):
+        self.assertEqual(preferences.load(), preferences.Preferences())
+        self.assertEqual(preferences.load().device, "simulated")
+
+    def test_round_trip_through_the_parameter_group(self):
+        prefs = preferences.Preferences(device="/dev/hidraw3", servo_rate_hz=2000, accuracy="Fine",
+                                        force_limit_n=2.5, workspace_mapping="Fixed scale",
+                                        workspace_scale=0.5, overlay_visible=False,
+                                        overlay_colour_by="Roughness")
+        preferences.save(prefs)
+        self.assertEqual(preferences.load(), prefs)
+        group = App.ParamGet(preferences.GROUP)
+        self.assertEqual(group.GetInt("ServoRateHz"), 2000)
+        self.assertEqual(group.GetString("AccuracyPreset"), "Fine")
+        self.assertEqual(group.GetFloat("ForceLimitN"), 2.5)
+
+    def test_bad_values_are_refused_and_nothing_is_written(self):
+        preferences.save(preferences.Preferences(servo_rate_hz=500))
+        for change, message in (({"servo_rate_hz": 50}, "servo rate"), ({"accuracy": "Ultra"}, "accuracy"),
+                                ({"force_limit_n": float("nan")}, "force limit"),
+                                ({"workspace_scale": 0.0}, "workspace scale"),
+                                ({"device": " "}, "device"), ({"workspace_mapping": "Warp"}, "mapping")):
+            with self.subTest(change=change):
+                with self.assertRaisesRegex(ValueError, message):
+                    preferences.update(**change)
+        self.assertEqual(preferences.load(), preferences.Preferences(servo_rate_hz=500))
+
+    def test_a_hand_edited_bad_value_falls_back_to_its_default_only(self):
+        group = App.ParamGet(preferences.GROUP)
+        group.SetInt("ServoRateHz", 7)
+        group.SetString("AccuracyPreset", "Fine")
+        prefs = preferences.load()
+        self.assertEqual((prefs.servo_rate_hz, prefs.accuracy), (1000, "Fine"))
+
+
+if __name__ == "__main__":
+    unittest.main()
