@@ -37,7 +37,10 @@ PRESETS = {
     "Normal": Accuracy("Normal", 0.1, 0.26),
     "Fine": Accuracy("Fine", 0.02, 0.1),
 }
-DEFAULT = "Normal"
+# Fine: its force error stays below the 7 % force JND (2.7 % at most on a 25 mm sphere
+# 1 mm deep) for 0.1 us more per tick than Normal, whose facets make a 20 % ripple
+# (BENCHMARKS.md, speed/accuracy table). Normal and Draft build faster on big models.
+DEFAULT = "Fine"
 
 
 def preset(name=DEFAULT):

@@ -7,6 +7,7 @@ import os
 import signal
 import sys
 
+from .accuracy import PRESETS
 from .freecad_env import ensure_freecad
 
 
@@ -29,6 +30,7 @@ def _stroke(text):
 
 def cmd_feel(args):
     App = ensure_freecad()
+    from . import accuracy, preferences
     from .document_scene import build_document_scene
     from .feel import Stroke, feel_document
 
@@ -36,7 +38,9 @@ def cmd_feel(args):
         raise ValueError(f"{args.file}: no such file")
     doc = App.openDocument(os.path.abspath(args.file))
     try:
-        doc_scene = build_document_scene(doc)
+        doc_scene = build_document_scene(doc, accuracy.preset(args.accuracy or preferences.load().accuracy))
+        if not doc_scene.watertight:
+            print(f"hapticad feel: the scene is not closed: {doc_scene.repair}", file=sys.stderr)
         p0, p1 = args.stroke
         stroke = Stroke(p0, p1, args.speed, args.depth, args.rate)
         return feel_document(doc_scene, stroke, args.out)
@@ -134,6 +138,8 @@ def build_parser():
     feel.add_argument("--depth", type=float, default=1.0, metavar="MM", help="depth below the surface (1)")
     feel.add_argument("--rate", type=float, default=1000.0, metavar="HZ", help="servo rate (1000)")
     feel.add_argument("--out", required=True, metavar="DIR", help="folder for trace.csv and trace.png")
+    feel.add_argument("--accuracy", default=None, choices=list(PRESETS),
+                      help="tessellation and shading preset (default: the preferences', else Fine)")
     feel.set_defaults(run=cmd_feel)
 
     mats = sub.add_parser("materials", help="list the haptic materials (shipped and the user's)")

@@ -17,9 +17,11 @@ import math
 
 import FreeCAD as App
 
+from . import accuracy as accuracy_presets
+
 GROUP = "User parameter:BaseApp/Preferences/Mod/HaptiCAD"
 SIMULATED_DEVICE = "simulated"
-ACCURACY_PRESETS = ("Draft", "Normal", "Fine")
+ACCURACY_PRESETS = tuple(accuracy_presets.PRESETS)
 WORKSPACE_MAPPINGS = ("Fit part", "Fixed scale")
 COLOUR_BY = ("Material", "Roughness")
 SERVO_RATE_RANGE_HZ = (100, 10000)
@@ -31,7 +33,7 @@ WORKSPACE_SCALE_RANGE = (0.01, 100.0)
 class Preferences:
     device: str = SIMULATED_DEVICE  # "simulated" or a HID device path
     servo_rate_hz: int = 1000
-    accuracy: str = "Normal"  # tessellation preset of the haptic scene
+    accuracy: str = accuracy_presets.DEFAULT  # tessellation preset of the haptic scene (accuracy.py)
     force_limit_n: float = 3.0  # never more than the device's own limit
     workspace_mapping: str = "Fit part"  # device workspace -> model
     workspace_scale: float = 1.0  # model mm per device mm, with "Fixed scale"

@@ -123,11 +123,12 @@ class FeelTaskPanel:
     # --- session -----------------------------------------------------------------------
 
     def start(self):
+        from .. import accuracy, preferences
         from ..document_scene import build_document_scene
 
         self.show_message("")
         try:
-            self.doc_scene = build_document_scene(self.doc)
+            self.doc_scene = build_document_scene(self.doc, accuracy.preset(preferences.load().accuracy))
             self.session = feel_session.LiveSession(self.doc_scene, self.device.currentData() or
                                                     feel_session.SIMULATED)
         except (ValueError, RuntimeError) as exc:
