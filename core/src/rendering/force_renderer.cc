@@ -44,14 +44,19 @@ ForceRenderer::ForceRenderer(std::shared_ptr<const HapticScene> scene,
                              std::shared_ptr<const SurfaceTable> surfaces, RenderLimits limits,
                              ContactOptions options)
     : scene_(std::move(scene)),
-      surfaces_(std::move(surfaces)),
       limits_(limits),
       options_(options),
       proxy_(Checked(scene_).mesh(), scene_->tree(), MakeProxyConfig(*scene_, options)) {
-  if (!surfaces_) throw std::invalid_argument("force renderer: no surface table");
   if (!(limits_.max_force_n > 0.0) || !(limits_.max_stiffness_n_per_m > 0.0)) {
     throw std::invalid_argument("force renderer: device limits must be > 0");
   }
+  SetSurfaces(std::move(surfaces));
+  surfaces_ = surfaces_handoff_.Take();
+}
+
+void ForceRenderer::SetSurfaces(std::shared_ptr<const SurfaceTable> surfaces) {
+  if (!surfaces) throw std::invalid_argument("force renderer: no surface table");
+  surfaces_handoff_.Publish(std::move(surfaces));
 }
 
 void ForceRenderer::Reset(const Vec3& device_w) {
@@ -123,6 +128,7 @@ void ForceRenderer::Render(const RenderInput& input, RenderOutput* out) {
     out->proxy_w = scene_->ToWorld(proxy_.position());
     return;
   }
+  surfaces_ = surfaces_handoff_.Take();
   if (!started_) Reset(input.position_w);
 
   const Vec3 goal_l = scene_->ToLocal(input.position_w);

@@ -349,3 +349,32 @@ TEST_F(EffectsOnBox, EveryEffectRendersWithoutAllocating) {
 
 }  // namespace
 }  // namespace hapticad
+
+namespace hapticad {
+namespace {
+
+TEST_F(RendererOnBox, APropertyEditIsInEffectAtTheNextTickWithoutARebuild) {
+  ForceRenderer r(scene_, surfaces_, limits_);
+  const HapticScene* scene_before = &r.scene();
+  RenderOutput out = Press(r, 0.002, Vec3(0.05, 0.0, 0.0));
+  EXPECT_NEAR(out.tangential_force_n / out.normal_force_n, 1.0, 1e-9);  // rubber, mu_d 1
+  const Vec3 proxy = out.proxy_w;
+  // the designer makes the top slippery while sliding
+  std::vector<SurfaceProperties> faces(6, kUntaggedSurface);
+  faces[5].friction.static_coefficient = 0.3;
+  faces[5].friction.dynamic_coefficient = 0.2;
+  faces[5].stiffness_n_per_m = 300.0;
+  r.SetSurfaces(std::make_shared<SurfaceTable>(faces));
+  {
+    testing::AllocationCounter counter;
+    r.Render({Vec3(0.00005, 0, 0.048), Vec3(0.05, 0.0, 0.0), 0.002}, &out);
+    EXPECT_EQ(counter.count(), 0u);  // taking the new table allocates nothing
+  }
+  EXPECT_NEAR(out.tangential_force_n / out.normal_force_n, 0.2, 1e-9);  // the very next tick
+  EXPECT_EQ(&r.scene(), scene_before);                                  // no new scene
+  EXPECT_NEAR((out.proxy_w - proxy).norm(), 0.00005, 1e-12);            // the proxy went on
+  EXPECT_THROW(r.SetSurfaces(nullptr), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace hapticad

@@ -27,12 +27,18 @@
 // Frames and units: world frame, SI (m, m/s, N, N/m, s). Render() is servo-tick safe:
 // no allocation, no lock, no I/O. Non-finite device input yields zero force and the
 // kInputFault flag; it never reaches the proxy.
+//
+// Threads: Render() runs on the servo thread; SetSurfaces() on one control thread
+// (a property edit: the new table is in effect at the next Render(), the scene and its
+// tree are not rebuilt, the proxy carries on). A new scene means a new renderer
+// (ServoLoop::SetRenderer).
 #pragma once
 
 #include <cstdint>
 #include <memory>
 
 #include "hapticad/core/contact/god_object_proxy.h"
+#include "hapticad/core/handoff.h"
 #include "hapticad/core/rendering/haptic_scene.h"
 #include "hapticad/core/surfaces/surface_properties.h"
 #include "hapticad/core/vec3.h"
@@ -85,6 +91,11 @@ class ForceRenderer {
                 std::shared_ptr<const SurfaceTable> surfaces, RenderLimits limits,
                 ContactOptions options = {});
 
+  // Control thread: the surface properties to render from the next Render() on (not
+  // null; ids beyond it are untagged). Lock-free for the servo thread; tables it no
+  // longer uses are freed here, never on the servo thread.
+  void SetSurfaces(std::shared_ptr<const SurfaceTable> surfaces);
+
   // Puts the proxy at the device position; the next Render() starts from there.
   void Reset(const Vec3& device_w);
 
@@ -106,7 +117,8 @@ class ForceRenderer {
                          RenderOutput* out);
 
   std::shared_ptr<const HapticScene> scene_;
-  std::shared_ptr<const SurfaceTable> surfaces_;
+  Handoff<const SurfaceTable> surfaces_handoff_;
+  const SurfaceTable* surfaces_ = nullptr;  // the servo thread's
   RenderLimits limits_;
   ContactOptions options_;
   GodObjectProxy proxy_;
