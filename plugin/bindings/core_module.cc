@@ -311,17 +311,19 @@ void DefineScene(py::module_& m) {
       .def_static(
           "build",
           [](const RowsD& vertices, const RowsI& triangles, const RowsI& cad_faces,
-             double metres_per_unit, const std::optional<RowsD>& corner_normals, bool repair) {
+             double metres_per_unit, const std::optional<RowsD>& corner_normals, bool repair,
+             double refine_edge) {
             TriangleSoup soup = MakeSoup(vertices, triangles, cad_faces, corner_normals);
             SceneOptions options;
             options.repair = repair;
+            options.refine_edge = refine_edge;
             py::gil_scoped_release release;
             return std::const_pointer_cast<HapticScene>(
                 HapticScene::Build(soup, metres_per_unit, options));
           },
           py::arg("vertices"), py::arg("triangles"), py::arg("cad_faces"),
           py::arg("metres_per_unit"), py::arg("corner_normals") = py::none(),
-          py::arg("repair") = true)
+          py::arg("repair") = true, py::arg("refine_edge") = 0.0)
       .def_property_readonly("repair_report", &HapticScene::repair_report)
       .def_property_readonly("origin_w", &HapticScene::origin_w)
       .def_property_readonly("size_m", &HapticScene::size_m)

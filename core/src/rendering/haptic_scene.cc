@@ -16,10 +16,21 @@ std::shared_ptr<const HapticScene> HapticScene::Build(const TriangleSoup& input,
                                 std::to_string(metres_per_unit));
   }
   if (input.vertices.empty()) throw std::invalid_argument("haptic scene: no vertices");
+  if (!(std::isfinite(options.refine_edge) && options.refine_edge >= 0.0)) {
+    throw std::invalid_argument("haptic scene: the refinement edge length must be finite and >= 0");
+  }
   RepairReport report;
-  TriangleSoup repaired;
-  if (options.repair) repaired = RepairSoup(input, options.repair_options, &report);
-  const TriangleSoup& soup = options.repair ? repaired : input;
+  TriangleSoup prepared;
+  const TriangleSoup* source = &input;
+  if (options.repair) {
+    prepared = RepairSoup(input, options.repair_options, &report);
+    source = &prepared;
+  }
+  if (options.refine_edge > 0.0) {
+    prepared = RefineSoup(*source, options.refine_edge);
+    source = &prepared;
+  }
+  const TriangleSoup& soup = *source;
   // the local origin is taken in model units, before scaling, so far-away parts keep
   // their digits
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());

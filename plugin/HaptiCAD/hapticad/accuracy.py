@@ -3,8 +3,9 @@
 curved faces are force-shaded. Designers trade speed for accuracy here.
 
 A preset fixes FreeCAD's tessellation (``MeshPart.meshFromShape``: the largest chord
-deviation in mm and the largest angle between neighbouring facet normals) and force
-shading (the spring acts along the exact B-rep normal blended over each facet, so a
+deviation in mm and the largest angle between neighbouring facet normals), an optional
+refinement (the core splits edges longer than a length; off in the presets: with
+shading it buys nothing the table shows) and force shading (the spring acts along the exact B-rep normal blended over each facet, so a
 coarse tessellation of a curved face feels smooth). ``custom`` takes any values. The
 default is the one the speed/accuracy table in BENCHMARKS.md justifies
 (``hapticad accuracy-table``). No GUI, no FreeCAD needed.
@@ -19,6 +20,7 @@ class Accuracy:
     linear_deflection_mm: float  # largest distance between a facet and its face
     angular_deflection_rad: float  # largest angle between neighbouring facets' normals
     force_shading: bool = True
+    refine_edge_mm: float = 0.0  # split longer edges after tessellating (0: no)
 
     def problems(self):
         """What is wrong with the values, as sentences (empty when fine)."""
@@ -29,6 +31,9 @@ class Accuracy:
         if not (isinstance(self.angular_deflection_rad, (int, float)) and math.isfinite(self.angular_deflection_rad)
                 and 0.01 <= self.angular_deflection_rad <= 1.5):
             found.append(f"angular deflection {self.angular_deflection_rad!r} rad is outside 0.01..1.5 rad")
+        if not (isinstance(self.refine_edge_mm, (int, float)) and math.isfinite(self.refine_edge_mm)
+                and (self.refine_edge_mm == 0.0 or 0.01 <= self.refine_edge_mm <= 100.0)):
+            found.append(f"refinement edge {self.refine_edge_mm!r} mm is neither 0 (off) nor in 0.01..100 mm")
         return found
 
 
@@ -51,9 +56,9 @@ def preset(name=DEFAULT):
         raise KeyError(f"accuracy preset {name!r} is not one of {', '.join(PRESETS)}") from None
 
 
-def custom(linear_deflection_mm, angular_deflection_rad, force_shading=True):
+def custom(linear_deflection_mm, angular_deflection_rad, force_shading=True, refine_edge_mm=0.0):
     """A preset of one's own. ValueError naming what is out of range."""
-    accuracy = Accuracy("Custom", linear_deflection_mm, angular_deflection_rad, force_shading)
+    accuracy = Accuracy("Custom", linear_deflection_mm, angular_deflection_rad, force_shading, refine_edge_mm)
     found = accuracy.problems()
     if found:
         raise ValueError("; ".join(found))

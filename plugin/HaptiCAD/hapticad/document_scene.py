@@ -187,7 +187,7 @@ def build_document_scene(doc, accuracy=None):
                 table[face_id].vibration = index
     scene = _core.HapticScene.build(
         np.vstack(all_vertices), np.vstack(all_triangles), np.concatenate(all_faces), MM,
-        corner_normals=np.vstack(all_normals),
+        corner_normals=np.vstack(all_normals), refine_edge=accuracy.refine_edge_mm,
     )
     report = scene.repair_report
     return DocumentScene(

@@ -153,6 +153,14 @@ class DocumentSceneTest(unittest.TestCase):
         self.assertIn("linear deflection", str(caught.exception))
         custom = accuracy.custom(0.05, 0.2, force_shading=False)
         self.assertFalse(custom.force_shading)
+        with self.assertRaises(ValueError) as caught:
+            accuracy.custom(0.1, 0.3, refine_edge_mm=-1.0)
+        self.assertIn("refinement edge", str(caught.exception))
+        # refinement: more triangles, still closed
+        coarse = build_document_scene(self.doc, accuracy.preset("Draft"))
+        refined = build_document_scene(self.doc, accuracy.custom(0.5, 0.5, refine_edge_mm=2.0))
+        self.assertGreater(refined.scene.num_triangles, 2 * coarse.scene.num_triangles)
+        self.assertTrue(refined.watertight, refined.repair)
 
 
 if __name__ == "__main__":

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <memory>
 
+#include "hapticad/core/geometry/mesh_refine.h"
 #include "hapticad/core/geometry/mesh_repair.h"
 #include "hapticad/core/geometry/triangle_mesh.h"
 #include "hapticad/core/geometry/triangle_soup.h"
@@ -38,6 +39,8 @@ struct SceneOptions {
   // Run RepairSoup first (a soup known to be clean, e.g. generated, may skip it).
   bool repair = true;
   RepairOptions repair_options;
+  // Split edges longer than this (model units) after the repair (mesh_refine.h); 0: no.
+  double refine_edge = 0.0;
 };
 
 class HapticScene {
