@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "alloc_counter.h"
 #include "hapticad/core/geometry/icosphere.h"
 #include "hapticad/core/rendering/force_renderer.h"
 #include "test_meshes.h"
@@ -140,6 +141,26 @@ void ExpectNoPopThrough(const TriangleSoup& soup, double thickness_m, double rad
     if (out.flags & kContact) ++contacts;
   }
   EXPECT_GT(contacts, 1000);
+}
+
+TEST(ContactExtremes, PointAndSphereProxiesRenderWithoutAllocatingOnACurvedShadedMesh) {
+  const auto scene = HapticScene::Build(MakeIcosphere(40, 50.0, Vec3::Zero(), true), 1e-3);
+  const std::vector<RenderInput> path = Stroke(*scene, 3000, 5);
+  for (double radius : {0.0, 0.002}) {
+    ContactOptions options;
+    options.proxy_radius_m = radius;
+    ForceRenderer r(scene, Rubbery(*scene), Unclamped(), options);
+    RenderOutput out;
+    r.Render(path[0], &out);
+    int contacts = 0;
+    testing::AllocationCounter counter;
+    for (const RenderInput& in : path) {
+      r.Render(in, &out);
+      contacts += (out.flags & kContact) != 0;
+    }
+    EXPECT_EQ(counter.count(), 0u) << radius;
+    EXPECT_GT(contacts, 2000) << radius;
+  }
 }
 
 TEST(ContactExtremes, AHundredthOfAMillimetrePlateAt2MetresPerSecondIsNeverPoppedThrough) {
