@@ -18,23 +18,19 @@ namespace {
 
 constexpr double kK = 400.0;  // N/m
 
+// Every face of the scene at 0.4 N/mm with friction mu_s / mu_d.
+std::shared_ptr<SurfaceTable> Uniform(const HapticScene& scene, double mu_s, double mu_d) {
+  SurfaceProperties s;
+  s.stiffness_n_per_m = kK;
+  s.friction.static_coefficient = mu_s;
+  s.friction.dynamic_coefficient = mu_d;
+  return std::make_shared<SurfaceTable>(
+      std::vector<SurfaceProperties>(static_cast<std::size_t>(scene.mesh().num_cad_faces()), s));
+}
 std::shared_ptr<SurfaceTable> Frictionless(const HapticScene& scene) {
-  SurfaceProperties s;
-  s.stiffness_n_per_m = kK;
-  s.friction.static_coefficient = 0.0;
-  s.friction.dynamic_coefficient = 0.0;
-  return std::make_shared<SurfaceTable>(
-      std::vector<SurfaceProperties>(static_cast<std::size_t>(scene.mesh().num_cad_faces()), s));
+  return Uniform(scene, 0.0, 0.0);
 }
-
-std::shared_ptr<SurfaceTable> Rubbery(const HapticScene& scene) {
-  SurfaceProperties s;
-  s.stiffness_n_per_m = kK;
-  s.friction.static_coefficient = 1.2;
-  s.friction.dynamic_coefficient = 1.0;
-  return std::make_shared<SurfaceTable>(
-      std::vector<SurfaceProperties>(static_cast<std::size_t>(scene.mesh().num_cad_faces()), s));
-}
+std::shared_ptr<SurfaceTable> Rubbery(const HapticScene& scene) { return Uniform(scene, 1.2, 1.0); }
 
 RenderLimits Unclamped() { return RenderLimits{1e6, 1e6}; }
 
