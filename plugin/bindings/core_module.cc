@@ -25,6 +25,8 @@
 #include "hapticad/core/surfaces/surface_properties.h"
 #include "hapticad/core/surfaces/vibration.h"
 #include "hapticad/core/surfaces/viscous_texture.h"
+#include "hapticad/devices/device_catalog.h"
+#include "hapticad/devices/hid/hid_device.h"
 #include "hapticad/devices/servo_loop.h"
 #include "hapticad/devices/simulated_device.h"
 #include "hapticad/devices/simulated_hand.h"
@@ -340,6 +342,24 @@ py::array_t<TraceSample> ToArray(const std::vector<TraceSample>& samples) {
   return out;
 }
 
+py::dict LimitsDict(const DeviceLimits& l) {
+  py::dict d;
+  d["max_force_n"] = l.max_force_n;
+  d["continuous_force_n"] = l.continuous_force_n;
+  d["max_stiffness_n_per_m"] = l.max_stiffness_n_per_m;
+  d["max_damping_n_s_per_m"] = l.max_damping_n_s_per_m;
+  d["workspace_min_d"] =
+      std::vector<double>{l.workspace_min_d.x(), l.workspace_min_d.y(), l.workspace_min_d.z()};
+  d["workspace_max_d"] =
+      std::vector<double>{l.workspace_max_d.x(), l.workspace_max_d.y(), l.workspace_max_d.z()};
+  d["position_resolution_m"] = l.position_resolution_m;
+  return d;
+}
+
+py::object NoneIfEmpty(const std::string& s) {
+  return s.empty() ? py::none() : py::object(py::str(s));
+}
+
 void DefineDeviceTypes(py::module_& m) {
   PYBIND11_NUMPY_DTYPE(TraceSample, time_s, device_m, velocity_mps, proxy_m, force_n,
                        normal_force_n, tangential_force_n, friction_force_n, texture_force_n,
@@ -499,6 +519,49 @@ void DefineDevices(py::module_& m) {
       .def_property_readonly("in_session", &SimulatedHand::in_session)
       .def_property_readonly("true_state", &SimulatedHand::true_state)
       .def_property_readonly("model", &SimulatedHand::model);
+
+  py::class_<HidLinkStats>(m, "HidLinkStats")
+      .def_readonly("reports_read", &HidLinkStats::reports_read)
+      .def_readonly("reports_used", &HidLinkStats::reports_used)
+      .def_readonly("malformed", &HidLinkStats::malformed)
+      .def_readonly("not_newer", &HidLinkStats::not_newer)
+      .def_readonly("dropped", &HidLinkStats::dropped)
+      .def_readonly("out_of_range", &HidLinkStats::out_of_range)
+      .def_readonly("device_faults", &HidLinkStats::device_faults)
+      .def_readonly("watchdog_reports", &HidLinkStats::watchdog_reports)
+      .def_readonly("writes", &HidLinkStats::writes)
+      .def_readonly("writes_failed", &HidLinkStats::writes_failed)
+      .def_readonly("round_trip_last_us", &HidLinkStats::round_trip_last_us)
+      .def_readonly("round_trip_p50_us", &HidLinkStats::round_trip_p50_us)
+      .def_readonly("round_trip_p99_us", &HidLinkStats::round_trip_p99_us)
+      .def_readonly("round_trip_count", &HidLinkStats::round_trip_count);
+  py::class_<HidDevice, Device>(m, "HidDevice")
+      .def_static("open", &HidDevice::Open, py::arg("path"), py::arg("watchdog_ms") = 20,
+                  py::call_guard<py::gil_scoped_release>())
+      .def_property_readonly("link_stats", &HidDevice::link_stats)
+      .def_property_readonly("unplugged", &HidDevice::unplugged);
+  // what `hapticad devices --json` prints: kind, name, path, limits (None when the
+  // device could not be read), protocol (HID: the versions it speaks), error
+  m.def("list_devices", [] {
+    std::vector<DeviceListing> listings;
+    {
+      py::gil_scoped_release release;
+      listings = ListDevices();
+    }
+    py::list out;
+    for (const DeviceListing& l : listings) {
+      py::dict d;
+      d["kind"] = l.info.kind;
+      d["name"] = l.info.name;
+      d["path"] = l.info.path;
+      d["limits"] = l.has_limits ? py::object(LimitsDict(l.info.limits)) : py::none();
+      d["protocol"] = NoneIfEmpty(l.protocol);
+      d["error"] = NoneIfEmpty(l.error);
+      out.append(d);
+    }
+    return out;
+  });
+  m.def("open_device", &OpenDevice, py::arg("path"), py::call_guard<py::gil_scoped_release>());
 
   py::class_<ForceRenderer, std::shared_ptr<ForceRenderer>>(m, "ForceRenderer")
       .def(py::init([](std::shared_ptr<HapticScene> scene, std::shared_ptr<SurfaceTable> surfaces,

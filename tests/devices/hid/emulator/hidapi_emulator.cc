@@ -218,6 +218,7 @@ void ConfigureFromSpec(const std::string& spec) {
         config.version_max = version(b);
       } else if (key == "max_force") {
         config.max_force_n = std::stod(value);
+        config.continuous_force_n = config.max_force_n / 2;
       } else if (key == "rate") {
         config.report_rate_hz = static_cast<std::uint16_t>(std::stoi(value));
       } else if (key == "unplug_at") {
