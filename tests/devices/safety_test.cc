@@ -102,7 +102,9 @@ TEST(ForceSafety, HoldsTheContinuousForceOnceTheMotorsAreWarm) {
     std::uint32_t flags = 0;
     const Vec3 f = safety.Shape(t, 0, Vec3(0, 0, 2.5), &flags);
     if ((flags & kThermalLimited) && first_limited < 0) first_limited = t;
-    if (first_limited >= 0) EXPECT_LE(f.norm(), 1.0 + 1e-12);
+    if (first_limited >= 0) {
+      EXPECT_LE(f.norm(), 1.0 + 1e-12);
+    }
   }
   // 2.5 N heats to (1 N)^2 after tau ln(6.25 / 5.25) = 0.17 s (plus the ramp)
   EXPECT_GT(first_limited, 0.2);

@@ -8,14 +8,24 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include "alloc_counter.h"
 #include "faulty_device.h"
 #include "hapticad/devices/simulated_device.h"
 #include "hapticad/devices/simulated_hand.h"
+#include "syscall_counter.h"
 #include "test_meshes.h"
 
 namespace hapticad {
 namespace {
+
+ServoConfig Config(double rate_hz, std::size_t trace_capacity) {
+  ServoConfig c;
+  c.rate_hz = rate_hz;
+  c.trace_capacity = trace_capacity;
+  return c;
+}
 
 std::shared_ptr<ForceRenderer> BoxRenderer(const DeviceLimits& limits, double shift_x = 0.0) {
   auto scene = HapticScene::Build(
@@ -43,7 +53,7 @@ class ServoOnBox : public ::testing::Test {
 };
 
 TEST_F(ServoOnBox, RunsAtItsRateAndRecordsEveryTick) {
-  ServoLoop loop(*device_, *renderer_, ServoConfig{1000.0, 4096});
+  ServoLoop loop(*device_, *renderer_, Config(1000.0, 4096));
   const auto trace = loop.RunFor(0.3);
   const ServoStats stats = loop.stats();
   EXPECT_EQ(trace.size(), stats.ticks);
@@ -75,7 +85,7 @@ TEST_F(ServoOnBox, RunsAtItsRateAndRecordsEveryTick) {
 }
 
 TEST_F(ServoOnBox, StatisticsAreConsistentAndTheSchedulingIsReported) {
-  ServoLoop loop(*device_, *renderer_, ServoConfig{1000.0, 4096});
+  ServoLoop loop(*device_, *renderer_, Config(1000.0, 4096));
   loop.RunFor(0.2);
   const ServoStats s = loop.stats();
   EXPECT_GT(s.achieved_rate_hz, 0.0);
@@ -90,7 +100,7 @@ TEST_F(ServoOnBox, StatisticsAreConsistentAndTheSchedulingIsReported) {
       << report;
   EXPECT_EQ(s.realtime, report.rfind("real-time", 0) == 0);
 
-  ServoConfig plain{1000.0, 4096};
+  ServoConfig plain = Config(1000.0, 4096);
   plain.realtime_priority = 0;
   ServoLoop normal(*device_, *renderer_, plain);
   normal.RunFor(0.01);
@@ -99,7 +109,7 @@ TEST_F(ServoOnBox, StatisticsAreConsistentAndTheSchedulingIsReported) {
 }
 
 TEST_F(ServoOnBox, TickDoesNotAllocate) {
-  ServoLoop loop(*device_, *renderer_, ServoConfig{1000.0, 1024});
+  ServoLoop loop(*device_, *renderer_, Config(1000.0, 1024));
   loop.BeginTicks();
   loop.Tick(0.0);
   testing::AllocationCounter counter;
@@ -110,18 +120,18 @@ TEST_F(ServoOnBox, TickDoesNotAllocate) {
 }
 
 TEST_F(ServoOnBox, CountsSamplesLostToAFullRing) {
-  ServoLoop loop(*device_, *renderer_, ServoConfig{1000.0, 8});
+  ServoLoop loop(*device_, *renderer_, Config(1000.0, 8));
   for (int i = 0; i < 20; ++i) loop.Tick(i * 1e-3);
   EXPECT_EQ(loop.stats().trace_dropped, 12u);
 }
 
 TEST_F(ServoOnBox, RejectsBadSettings) {
-  EXPECT_THROW(ServoLoop(*device_, *renderer_, ServoConfig{0.0, 8}), std::invalid_argument);
-  EXPECT_THROW(ServoLoop(*device_, *renderer_, ServoConfig{20000.0, 8}), std::invalid_argument);
-  ServoConfig bad{1000.0, 8};
+  EXPECT_THROW(ServoLoop(*device_, *renderer_, Config(0.0, 8)), std::invalid_argument);
+  EXPECT_THROW(ServoLoop(*device_, *renderer_, Config(20000.0, 8)), std::invalid_argument);
+  ServoConfig bad = Config(1000.0, 8);
   bad.safety.watchdog_s = -1.0;
   EXPECT_THROW(ServoLoop(*device_, *renderer_, bad), std::invalid_argument);
-  bad = ServoConfig{1000.0, 8};
+  bad = Config(1000.0, 8);
   bad.clutch_button = 40;
   EXPECT_THROW(ServoLoop(*device_, *renderer_, bad), std::invalid_argument);
   ServoLoop loop(*device_, *renderer_);
@@ -166,7 +176,7 @@ class HandOnBox : public ::testing::Test {
 };
 
 TEST_F(HandOnBox, TheForceStopsAHandAimingIntoThePart) {
-  ServoLoop loop(*hand_, renderer_, ServoConfig{1000.0, 1 << 14});
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 14));
   loop.BeginTicks();
   double t = 0.0;
   std::vector<TraceSample> trace;
@@ -186,7 +196,7 @@ TEST_F(HandOnBox, TheForceStopsAHandAimingIntoThePart) {
 
 TEST_F(HandOnBox, ForceRampsInAtTheStartOfASession) {
   hand_->SetTarget(Vec3(0, 0, 0.0485));  // starts 1.5 mm inside... the proxy starts there
-  ServoLoop loop(*hand_, renderer_, ServoConfig{1000.0, 1 << 14});
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 14));
   loop.BeginTicks();
   double t = 0.0;
   std::vector<TraceSample> trace;
@@ -197,7 +207,7 @@ TEST_F(HandOnBox, ForceRampsInAtTheStartOfASession) {
   // start above and press: the force follows the ramp during the first 0.2 s
   auto hand2 = std::make_unique<SimulatedHand>(limits_);
   hand2->SetTarget(Vec3(0, 0, 0.0501));
-  ServoLoop loop2(*hand2, renderer_, ServoConfig{1000.0, 1 << 14});
+  ServoLoop loop2(*hand2, renderer_, Config(1000.0, 1 << 14));
   loop2.BeginTicks();
   t = 0.0;
   trace.clear();
@@ -221,7 +231,7 @@ TEST_F(HandOnBox, ForceRampsInAtTheStartOfASession) {
 }
 
 TEST_F(HandOnBox, TickWithHandMappingClutchAndSwapDoesNotAllocate) {
-  ServoLoop loop(*hand_, renderer_, ServoConfig{1000.0, 1 << 12});
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 12));
   auto other = BoxRenderer(limits_, 10.0);
   loop.BeginTicks();
   double t = 0.0;
@@ -248,8 +258,33 @@ TEST_F(HandOnBox, TickWithHandMappingClutchAndSwapDoesNotAllocate) {
   EXPECT_TRUE(trace[350].flags & kClutched);
 }
 
+TEST_F(HandOnBox, TickWithHandMappingClutchAndSwapMakesNoSystemCall) {
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 12));
+  loop.BeginTicks();
+  loop.Tick(0.0);
+  loop.SetRenderer(BoxRenderer(limits_, 10.0));
+  WorkspaceMapping scaled;
+  scaled.scale = 1.2;
+  const long calls = testing::CountSystemCalls([&] {
+    for (int i = 1; i < 800; ++i) {
+      if (i == 100) hand_->SetTarget(Vec3(0, 0, 0.04));
+      if (i == 200) loop.SetMapping(scaled);
+      if (i == 300) loop.SetClutch(true);
+      if (i == 400) loop.SetClutch(false);
+      loop.Tick(i * 1e-3, 1e-3);
+    }
+  });
+  EXPECT_EQ(calls, 0);
+  // the counter does see system calls: a sleep and a getpid are two
+  EXPECT_EQ(testing::CountSystemCalls([] {
+              std::this_thread::sleep_for(std::chrono::microseconds(10));
+              getpid();
+            }),
+            2);
+}
+
 TEST_F(HandOnBox, ASwappedRendererTakesOverWithoutAJolt) {
-  ServoLoop loop(*hand_, renderer_, ServoConfig{1000.0, 1 << 14});
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 14));
   loop.BeginTicks();
   double t = 0.0;
   std::vector<TraceSample> trace;
@@ -270,7 +305,7 @@ TEST_F(HandOnBox, ASwappedRendererTakesOverWithoutAJolt) {
 }
 
 TEST_F(HandOnBox, ARendererSwapReachesARunningLoop) {
-  ServoLoop loop(*hand_, renderer_, ServoConfig{1000.0, 1 << 14});
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 14));
   loop.Start();
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
   for (int i = 0; i < 5; ++i) loop.SetRenderer(BoxRenderer(limits_, 1.0 * i));
@@ -281,7 +316,7 @@ TEST_F(HandOnBox, ARendererSwapReachesARunningLoop) {
 }
 
 TEST_F(HandOnBox, ClutchFreezesTheToolAndShiftsTheMapping) {
-  ServoLoop loop(*hand_, renderer_, ServoConfig{1000.0, 1 << 14});
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 14));
   loop.BeginTicks();
   double t = 0.0;
   std::vector<TraceSample> trace;
@@ -309,7 +344,7 @@ TEST_F(HandOnBox, ClutchFreezesTheToolAndShiftsTheMapping) {
 
 TEST_F(HandOnBox, TheClutchButtonHoldsTheClutch) {
   testing::FaultyDevice with_buttons(hand_.get());
-  ServoConfig config{1000.0, 1 << 10};
+  ServoConfig config = Config(1000.0, 1 << 10);
   config.clutch_button = 2;
   ServoLoop loop(with_buttons, renderer_, config);
   loop.BeginTicks();
@@ -332,8 +367,7 @@ class FaultsOnBox : public HandOnBox {
   // Presses on the top face for 1 s (in contact, at full force), then runs `duration`
   // more with the fault injected over [1.1, 1.1 + fault_s).
   std::vector<TraceSample> RunWith(testing::FaultyDevice::Fault fault, double fault_s,
-                                   double duration,
-                                   ServoConfig config = ServoConfig{1000.0, 1 << 14},
+                                   double duration, ServoConfig config = Config(1000.0, 1 << 14),
                                    ReadStatus status = ReadStatus::kOk) {
     faulty_ = std::make_unique<testing::FaultyDevice>(hand_.get());
     faulty_->Inject(fault, 1.1, 1.1 + fault_s, status);
@@ -403,13 +437,13 @@ TEST_F(FaultsOnBox, StaleDataZeroesTheForce) {
 
 TEST_F(FaultsOnBox, AFaultTheDeviceReportsZeroesTheForce) {
   const auto trace = RunWith(testing::FaultyDevice::Fault::kStatus, 0.01, 0.3,
-                             ServoConfig{1000.0, 1 << 14}, ReadStatus::kDeviceFault);
+                             Config(1000.0, 1 << 14), ReadStatus::kDeviceFault);
   ExpectZeroDuringAndRampAfter(trace, kFaultReported, 0.01);
   EXPECT_EQ(loop_->stats().faults.reported, 10u);
 }
 
 TEST_F(FaultsOnBox, ALateLoopTripsTheWatchdog) {
-  ServoLoop loop(*hand_, renderer_, ServoConfig{1000.0, 1 << 14});
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 14));
   loop.BeginTicks();
   double t = 0.0;
   std::vector<TraceSample> trace;
@@ -435,7 +469,7 @@ TEST_F(FaultsOnBox, UnplugZeroesTheForceInThatTickAndEndsTheSession) {
   testing::FaultyDevice faulty(hand_.get());
   faulty.Inject(testing::FaultyDevice::Fault::kStatus, 0.05, 1e9, ReadStatus::kUnplugged);
   hand_->SetTarget(Vec3(0, 0, 0.045));
-  ServoLoop loop(faulty, renderer_, ServoConfig{1000.0, 1 << 14});
+  ServoLoop loop(faulty, renderer_, Config(1000.0, 1 << 14));
   const auto trace = loop.RunFor(2.0);
   EXPECT_FALSE(loop.running());
   EXPECT_EQ(loop.session_end(), SessionEnd::kUnplugged);
@@ -463,7 +497,7 @@ TEST_F(FaultsOnBox, UnplugZeroesTheForceInThatTickAndEndsTheSession) {
 TEST_F(FaultsOnBox, FaultsThatLastEndTheSession) {
   testing::FaultyDevice faulty(hand_.get());
   faulty.Inject(testing::FaultyDevice::Fault::kStale, 0.05, 1e9);
-  ServoConfig config{1000.0, 1 << 14};
+  ServoConfig config = Config(1000.0, 1 << 14);
   config.safety.fault_timeout_s = 0.1;
   ServoLoop loop(faulty, renderer_, config);
   const auto trace = loop.RunFor(2.0);

@@ -3,6 +3,7 @@
 #include "hapticad/devices/hid/hid_device.h"
 
 #include <hidapi/hidapi.h>
+#include <time.h>
 
 #include <algorithm>
 #include <cmath>
@@ -165,8 +166,15 @@ void HidDevice::Count(std::atomic<std::uint64_t>& counter, std::uint64_t n) {
   counter.store(counter.load(std::memory_order_relaxed) + n, std::memory_order_relaxed);
 }
 
-ReadStatus HidDevice::ReadState(double loop_time_s, DeviceState* state) {
+double HidDevice::MonotonicSeconds() {
+  timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);  // vDSO: no system call
+  return static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
+}
+
+ReadStatus HidDevice::ReadState(double /*loop_time_s*/, DeviceState* state) {
   if (unplugged()) return ReadStatus::kUnplugged;
+  const double now = clock_();
   for (int i = 0; i < kMaxReadsPerTick; ++i) {
     const int n = hid_read_timeout(handle_, buffer_, sizeof buffer_, 0);
     if (n < 0) {
@@ -217,17 +225,17 @@ ReadStatus HidDevice::ReadState(double loop_time_s, DeviceState* state) {
       position_d_ = p;
       buttons_ = r.buttons;
       // how much later than the quickest recent report this one came
-      const double offset = loop_time_s - device_time_s_;
+      const double offset = now - device_time_s_;
       if (!have_good_) {
         min_offset_s_ = offset;
       } else {
         min_offset_s_ =
-            std::min(min_offset_s_ + kDriftAllowance * (loop_time_s - min_offset_time_s_), offset);
+            std::min(min_offset_s_ + kDriftAllowance * (now - min_offset_time_s_), offset);
       }
-      min_offset_time_s_ = loop_time_s;
+      min_offset_time_s_ = now;
       fresh_delay_s_ = offset - min_offset_s_;
       have_good_ = true;
-      last_fresh_loop_time_s_ = loop_time_s;
+      last_fresh_s_ = now;
       verdict_ = ReadStatus::kOk;
     }
   }
@@ -237,7 +245,7 @@ ReadStatus HidDevice::ReadState(double loop_time_s, DeviceState* state) {
   state->position_d = position_d_;
   state->velocity_d = velocity_filter_.velocity();
   state->buttons = buttons_;
-  state->age_s = loop_time_s - last_fresh_loop_time_s_ + fresh_delay_s_;
+  state->age_s = now - last_fresh_s_ + fresh_delay_s_;
   return ReadStatus::kOk;
 }
 

@@ -102,6 +102,7 @@ TEST_F(HidOnEmulator, ListsTheSimulatedHandThenEachDeviceWithItsLimitsOrWhyNot) 
 TEST_F(HidOnEmulator, OpensNegotiatesAndRunsASession) {
   const int id = hidemu::AddDevice(FirmwareConfig{});
   auto d = HidDevice::Open("emu:0");
+  d->set_clock(&hidemu::Now);
   EXPECT_EQ(d->info().kind, "hid");
   EXPECT_EQ(d->info().name, "HaptiCAD emulated 3-DOF device");
   EXPECT_DOUBLE_EQ(d->info().limits.max_stiffness_n_per_m, 2500.0);
@@ -173,6 +174,7 @@ TEST_F(HidOnEmulator, ReadsPositionsAndVelocityOnTheDeviceClock) {
   c.hand_positions_m = {Vec3(-0.02, 0, 0), Vec3(-0.02, 0, 0), Vec3(0.02, 0, 0)};
   const int id = hidemu::AddDevice(c);
   auto d = HidDevice::Open("emu:0");
+  d->set_clock(&hidemu::Now);
   d->BeginSession();
   DeviceState s;
   // report 0 was sent at plug-in, before the session: flushed, so no data yet
@@ -192,6 +194,7 @@ TEST_F(HidOnEmulator, ReadsPositionsAndVelocityOnTheDeviceClock) {
 TEST_F(HidOnEmulator, TheDeviceAppliesTheForceClampedToItsMaximum) {
   const int id = hidemu::AddDevice(FirmwareConfig{});
   auto d = HidDevice::Open("emu:0");
+  d->set_clock(&hidemu::Now);
   d->BeginSession();
   DeviceState s;
   Tick(*d, 0.0, &s, Vec3(1.0, -2.0, 0.5));
@@ -213,6 +216,7 @@ TEST_F(HidOnEmulator, TheDeviceAppliesTheForceClampedToItsMaximum) {
 TEST_F(HidOnEmulator, TheDeviceWatchdogZeroesTheForceWhenTheHostFallsSilent) {
   const int id = hidemu::AddDevice(FirmwareConfig{});  // 20 ms watchdog
   auto d = HidDevice::Open("emu:0");
+  d->set_clock(&hidemu::Now);
   d->BeginSession();
   DeviceState s;
   for (int i = 0; i <= 10; ++i) Tick(*d, i * 1e-3, &s, Vec3(0, 0, 1.0));
@@ -244,6 +248,7 @@ class HidFaults : public HidOnEmulator {
     c.seed = 7;
     hidemu::AddDevice(c);
     auto d = HidDevice::Open("emu:0");
+    d->set_clock(&hidemu::Now);
     d->BeginSession();
     FaultRun run;
     DeviceState s;
@@ -348,6 +353,7 @@ TEST_F(HidFaults, UnplugIsFinalAndSaysWhy) {
   c.faults.push_back(FaultWindow{Fault::kUnplug, 0.1});
   hidemu::AddDevice(c);
   auto d = HidDevice::Open("emu:0");
+  d->set_clock(&hidemu::Now);
   d->BeginSession();
   DeviceState s;
   for (int i = 1; i < 100; ++i) ASSERT_EQ(Tick(*d, i * 1e-3, &s), ReadStatus::kOk);
@@ -367,6 +373,7 @@ TEST_F(HidFaults, UnplugIsFinalAndSaysWhy) {
 TEST_F(HidOnEmulator, ReadAndWriteDoNotAllocate) {
   hidemu::AddDevice(FirmwareConfig{});
   auto d = HidDevice::Open("emu:0");
+  d->set_clock(&hidemu::Now);
   d->BeginSession();
   DeviceState s;
   Tick(*d, 0.0, &s);

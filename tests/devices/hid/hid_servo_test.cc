@@ -18,6 +18,7 @@
 #include "hapticad/devices/hid/hid_device.h"
 #include "hapticad/devices/servo_loop.h"
 #include "hid_emulator.h"
+#include "syscall_counter.h"
 #include "test_meshes.h"
 
 namespace hapticad {
@@ -69,6 +70,7 @@ class HidServo : public ::testing::Test {
   std::vector<TraceSample> Run(FirmwareConfig config, double duration, ServoConfig servo = {}) {
     id_ = hidemu::AddDevice(config);
     device_ = HidDevice::Open(config.path);
+    device_->set_clock(&hidemu::Now);
     loop_ = std::make_unique<ServoLoop>(*device_, Box(), servo);
     loop_->BeginTicks();
     std::vector<TraceSample> trace;
@@ -291,6 +293,35 @@ TEST_F(HidServo, AWrongProtocolVersionNeverStartsASession) {
   hidemu::SetTime(kPlugTime + 1.0);
   EXPECT_FALSE(hidemu::GetSnapshot(id).session_open);
   EXPECT_EQ(hidemu::GetSnapshot(id).max_applied_force_n, 0.0);
+}
+
+TEST_F(HidServo, ALateTickDoesNotMakeTheReportsAfterItLookStale) {
+  Run(PressingDevice(), 1.0);
+  // the tick scheduled at 1.000 s runs 6 ms late; the loop then skips to 1.007 s
+  hidemu::SetTime(kPlugTime + 1.006);
+  loop_->Tick(1.000, 0.007);
+  for (long i = 1007; i < 1500; ++i) {
+    hidemu::SetTime(kPlugTime + i * 1e-3);
+    loop_->Tick(i * 1e-3, i == 1007 ? 0.001 : 1e-3);
+  }
+  std::vector<TraceSample> trace;
+  loop_->DrainTrace(&trace);
+  EXPECT_EQ(loop_->stats().faults.watchdog, 1u);  // the late tick itself
+  EXPECT_EQ(loop_->stats().faults.stale, 0u);     // nothing after it
+  EXPECT_GT(trace.back().force_n[2], 1.0);
+}
+
+TEST_F(HidServo, ATickThroughTheHidBackendMakesNoSystemCallOfItsOwn) {
+  // the emulator stands in for the kernel without system calls of its own, so what is
+  // left is the backend's and the loop's: none (hidraw adds its poll, read and write)
+  Run(PressingDevice(), 0.3);
+  const long calls = testing::CountSystemCalls([this] {
+    for (long i = 300; i < 800; ++i) {
+      hidemu::SetTime(kPlugTime + i * 1e-3);
+      loop_->Tick(i * 1e-3, 1e-3);
+    }
+  });
+  EXPECT_EQ(calls, 0);
 }
 
 TEST_F(HidServo, ATickThroughTheHidBackendDoesNotAllocate) {

@@ -15,8 +15,11 @@
 //
 // Age: time since the last fresh report, plus how much later than usual that report
 // arrived (its delay over the smallest recent delay, comparing the device's clock with
-// the loop's; the smallest delay is allowed to creep up 1 ms per s so clock drift is
-// not mistaken for lateness). A stall and late reports both show as age.
+// the host's monotonic clock at receipt; the smallest delay is allowed to creep up
+// 1 ms per s so clock drift is not mistaken for lateness). A stall and late reports
+// both show as age. The host clock is read here, not taken from the loop's scheduled
+// tick time: a tick that runs late would otherwise make a report look early and every
+// later one stale.
 //
 // Units: SI (device frame); velocity is filtered from positions on the device's own
 // clock. ReadState()/WriteForce() are servo-tick safe: no allocation, no lock; their
@@ -86,6 +89,11 @@ class HidDevice final : public Device {
   std::string DescribeFault() const override;
 
   HidLinkStats link_stats() const;
+
+  // The host clock, s (CLOCK_MONOTONIC by default; the tests give the emulator's).
+  using Clock = double (*)();
+  void set_clock(Clock clock) { clock_ = clock; }
+  static double MonotonicSeconds();
   const hid::InfoReport& device_report() const { return report_; }
   std::uint16_t protocol_version() const { return hid::kHostVersion; }
   bool unplugged() const { return unplugged_.load(std::memory_order_acquire); }
@@ -99,6 +107,7 @@ class HidDevice final : public Device {
   DeviceInfo info_;
   hid::InfoReport report_;
   int watchdog_ms_ = 20;
+  Clock clock_ = &HidDevice::MonotonicSeconds;
   Vec3 allowed_min_d_;
   Vec3 allowed_max_d_;
 
@@ -109,7 +118,7 @@ class HidDevice final : public Device {
   std::uint32_t last_device_time_us_ = 0;
   double device_time_s_ = 0.0;  // unwrapped
   bool have_good_ = false;
-  double last_fresh_loop_time_s_ = 0.0;
+  double last_fresh_s_ = 0.0;   // host clock
   double fresh_delay_s_ = 0.0;  // how late the last fresh report was
   double min_offset_s_ = 0.0;   // smallest recent (loop time - device time)
   double min_offset_time_s_ = 0.0;
