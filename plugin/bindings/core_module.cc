@@ -536,7 +536,7 @@ void DefineDevices(py::module_& m) {
       .def_readonly("round_trip_p99_us", &HidLinkStats::round_trip_p99_us)
       .def_readonly("round_trip_count", &HidLinkStats::round_trip_count);
   py::class_<HidDevice, Device>(m, "HidDevice")
-      .def_static("open", &HidDevice::Open, py::arg("path"), py::arg("watchdog_ms") = 20,
+      .def_static("open", &HidDevice::Open, py::arg("path"), py::arg("watchdog_ms") = 5,
                   py::call_guard<py::gil_scoped_release>())
       .def_property_readonly("link_stats", &HidDevice::link_stats)
       .def_property_readonly("unplugged", &HidDevice::unplugged);

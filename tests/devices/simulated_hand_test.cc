@@ -113,10 +113,10 @@ TEST(SimulatedHand, TheDeviceWatchdogDropsAForceNotRefreshed) {
   DeviceState s;
   hand.ReadState(0.0, &s);
   hand.WriteForce(Vec3(0, 0, 2.0));
-  // no further command: the force acts for the watchdog's 50 ms, then drops
+  // no further command: the force acts for the watchdog's 5 ms, then drops
   for (int i = 1; i <= 200; ++i) {
     hand.ReadState(i * 1e-3, &s);
-    EXPECT_EQ(hand.true_state().force_d.z(), i <= 50 ? 2.0 : 0.0) << i;
+    EXPECT_EQ(hand.true_state().force_d.z(), i <= 5 ? 2.0 : 0.0) << i;
   }
   // and the hand goes back to its target
   double t = 0.2;

@@ -214,20 +214,21 @@ TEST_F(HidOnEmulator, TheDeviceAppliesTheForceClampedToItsMaximum) {
 }
 
 TEST_F(HidOnEmulator, TheDeviceWatchdogZeroesTheForceWhenTheHostFallsSilent) {
-  const int id = hidemu::AddDevice(FirmwareConfig{});  // 20 ms watchdog
-  auto d = HidDevice::Open("emu:0");
+  const int id = hidemu::AddDevice(FirmwareConfig{});
+  auto d = HidDevice::Open("emu:0");  // asks the device for a 5 ms watchdog
   d->set_clock(&hidemu::Now);
   d->BeginSession();
   DeviceState s;
   for (int i = 0; i <= 10; ++i) Tick(*d, i * 1e-3, &s, Vec3(0, 0, 1.0));
-  hidemu::SetTime(kPlugTime + 0.029);  // 19 ms without a command
+  hidemu::SetTime(kPlugTime + 0.0149);  // 4.9 ms without a command
   EXPECT_NEAR(hidemu::GetSnapshot(id).applied_force_n.z(), 1.0, 1e-9);
-  hidemu::SetTime(kPlugTime + 0.032);  // 22 ms
+  hidemu::SetTime(kPlugTime + 0.0152);  // 5.2 ms
   const hidemu::Snapshot snap = hidemu::GetSnapshot(id);
   EXPECT_EQ(snap.applied_force_n, Vec3::Zero());
   EXPECT_TRUE(snap.watchdog_tripped);
   EXPECT_EQ(snap.watchdog_trips, 1u);
-  d->ReadState(0.032, &s);
+  hidemu::SetTime(kPlugTime + 0.0162);  // the next report says so
+  EXPECT_EQ(d->ReadState(0.0162, &s), ReadStatus::kDeviceFault);
   EXPECT_GT(d->link_stats().watchdog_reports, 0u);  // the host is told, too
 }
 

@@ -43,7 +43,7 @@ struct HandModel {
   double max_grip_force_n = 15.0;         // a hand pushes only so hard, > 0
   double latency_s = 0.001;               // age of a position report, 0..0.5
   double velocity_cutoff_hz = 40.0;       // the device layer's velocity filter
-  double watchdog_s = 0.05;               // device-side watchdog, > 0
+  double watchdog_s = 0.005;              // device-side watchdog, > 0 (as a HID device's)
   double step_s = 1e-4;                   // physics sub-step, 1e-6..1e-3
 };
 

@@ -74,8 +74,10 @@ class HidDevice final : public Device {
   static HidProbe Probe(const std::string& path);
 
   // Opens `path`, checks it as Probe() does and negotiates protocol 1.0 with the
-  // device watchdog `watchdog_ms` (0: the device's default). Throws DeviceError.
-  static std::unique_ptr<HidDevice> Open(const std::string& path, int watchdog_ms = 20);
+  // device watchdog `watchdog_ms` (0: the device's default). The default, 5 ms, makes
+  // the device itself drop the force when the servo loop misses more than 5 ms, even
+  // if the loop never runs again. Throws DeviceError.
+  static std::unique_ptr<HidDevice> Open(const std::string& path, int watchdog_ms = 5);
 
   ~HidDevice() override;
   HidDevice(const HidDevice&) = delete;
@@ -106,7 +108,7 @@ class HidDevice final : public Device {
   hid_device_* handle_;
   DeviceInfo info_;
   hid::InfoReport report_;
-  int watchdog_ms_ = 20;
+  int watchdog_ms_ = 5;
   Clock clock_ = &HidDevice::MonotonicSeconds;
   Vec3 allowed_min_d_;
   Vec3 allowed_max_d_;
