@@ -175,12 +175,14 @@ int Main(int argc, char** argv) {
               trace.empty() ? 0.0 : static_cast<double>(contact) / trace.size());
   std::printf(
       "  \"faults\": {\"zero_force_ticks\": %llu, \"no_data\": %llu, \"stale\": %llu, "
-      "\"watchdog\": %llu, \"out_of_range\": %llu}",
+      "\"watchdog\": %llu, \"out_of_range\": %llu, \"reported\": %llu, \"non_finite\": %llu}",
       static_cast<unsigned long long>(s.faults.zero_force_ticks),
       static_cast<unsigned long long>(s.faults.no_data),
       static_cast<unsigned long long>(s.faults.stale),
       static_cast<unsigned long long>(s.faults.watchdog),
-      static_cast<unsigned long long>(s.faults.out_of_range));
+      static_cast<unsigned long long>(s.faults.out_of_range),
+      static_cast<unsigned long long>(s.faults.reported),
+      static_cast<unsigned long long>(s.faults.non_finite));
   if (emulated >= 0) {
     const hidemu::Snapshot d = hidemu::GetSnapshot(emulated);
     const HidLinkStats link = static_cast<HidDevice&>(*device).link_stats();
