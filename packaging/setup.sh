@@ -4,7 +4,9 @@
 #   1. installs the dependencies (install-deps.sh),
 #   2. builds everything in build/ (as the user who ran sudo, so the checkout stays theirs),
 #   3. installs the workbench into that user's FreeCAD Mod folder
-#      (~/.local/share/FreeCAD/Mod/HaptiCAD) and the `hapticad` command into /usr/local/bin.
+#      (~/.local/share/FreeCAD/Mod/HaptiCAD) and the `hapticad` command into /usr/local/bin,
+#   4. lets that user open HaptiCAD HID devices without root (udev rule, group hapticad)
+#      and give the servo loop real-time priority (rtprio limit for the group).
 # Safe to run again: it rebuilds and reinstalls.
 set -euo pipefail
 
@@ -32,4 +34,15 @@ cmake --install "$build"
 if [ "$user" != root ]; then
   chown -R "$user:" "$home/.local/share/FreeCAD" "$build"
 fi
+# haptic devices without root, and a real-time servo loop (takes effect at next login)
+install -D -m 0644 "$top/packaging/70-hapticad.rules" /etc/udev/rules.d/70-hapticad.rules
+groupadd --force hapticad
+[ "$user" = root ] || usermod -a -G hapticad "$user"
+install -d /etc/security/limits.d
+printf '# HaptiCAD servo loop (packaging/setup.sh)\n@hapticad - rtprio 70\n' \
+  > /etc/security/limits.d/hapticad.conf
+if command -v udevadm > /dev/null && [ -d /run/udev ]; then
+  udevadm control --reload-rules && udevadm trigger --subsystem-match=hidraw || true
+fi
+
 echo "HaptiCAD is set up: workbench in $mod_dir, command $(command -v hapticad)"

@@ -1,22 +1,41 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // HOT PATH: ServoLoop::Tick runs on the servo thread every period. No allocation, no
-// lock, no I/O other than the device's, no Python (see servo_loop.h).
+// lock, no system call other than the device's I/O, no Python (see servo_loop.h).
 #include "hapticad/devices/servo_loop.h"
 
+#include <sys/prctl.h>
 #include <time.h>
 
 #include <cerrno>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
+
+#include "hapticad/devices/realtime.h"
 
 namespace hapticad {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+enum FaultIndex {
+  kNoDataIdx,
+  kStaleIdx,
+  kOutOfRangeIdx,
+  kNonFiniteIdx,
+  kReportedIdx,
+  kWatchdogIdx,
+  kUnpluggedIdx,
+  kZeroForceIdx,
+  kClampedIdx,
+  kThermalIdx,
+  kNumFaultCounters
+};
 
 void CopyVec(const Vec3& v, double out[3]) {
   out[0] = v.x();
@@ -33,94 +52,297 @@ timespec ToTimespec(std::int64_t ns) {
 
 std::int64_t MonotonicNs() {
   timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
+  clock_gettime(CLOCK_MONOTONIC, &ts);  // vDSO: no system call
   return static_cast<std::int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+}
+
+void Bump(std::atomic<std::uint64_t>& counter) {
+  counter.store(counter.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+}
+
+ServoConfig CheckedConfig(ServoConfig config) {
+  if (!(config.rate_hz >= 1.0 && config.rate_hz <= 10000.0)) {
+    throw std::invalid_argument("servo loop: rate " + std::to_string(config.rate_hz) +
+                                " Hz is outside 1..10000 Hz");
+  }
+  if (config.clutch_button < -1 || config.clutch_button > 31) {
+    throw std::invalid_argument("servo loop: clutch button " +
+                                std::to_string(config.clutch_button) + " is outside -1..31");
+  }
+  ValidateSafetyConfig(config.safety);
+  return config;
 }
 
 }  // namespace
 
-ServoLoop::ServoLoop(Device& device, ForceRenderer& renderer, ServoConfig config)
-    : device_(device), renderer_(renderer), config_(config), trace_(config.trace_capacity) {
-  if (!(config_.rate_hz >= 1.0 && config_.rate_hz <= 10000.0)) {
-    throw std::invalid_argument("servo loop: rate " + std::to_string(config_.rate_hz) +
-                                " Hz is outside 1..10000 Hz");
+const char* SessionEndName(SessionEnd end) {
+  switch (end) {
+    case SessionEnd::kNotStarted:
+      return "not started";
+    case SessionEnd::kRunning:
+      return "running";
+    case SessionEnd::kStopped:
+      return "stopped";
+    case SessionEnd::kFinished:
+      return "finished";
+    case SessionEnd::kUnplugged:
+      return "unplugged";
+    case SessionEnd::kDeviceLost:
+      return "device lost";
   }
+  return "unknown";
+}
+
+ServoLoop::ServoLoop(Device& device, ForceRenderer& renderer, ServoConfig config)
+    : ServoLoop(device, std::shared_ptr<ForceRenderer>(&renderer, [](ForceRenderer*) {}), config) {}
+
+ServoLoop::ServoLoop(Device& device, std::shared_ptr<ForceRenderer> renderer, ServoConfig config)
+    : device_(device),
+      config_(CheckedConfig(config)),
+      safety_(device.info().limits, config_.safety),
+      trace_(config_.trace_capacity),
+      latest_(TraceSample{}) {
+  if (!renderer) throw std::invalid_argument("servo loop: no renderer");
+  current_ = renderer.get();
+  active_.store(current_, std::memory_order_release);
+  owned_.push_back(std::move(renderer));
+  effective_mapping_.Write(mapping_);
 }
 
 ServoLoop::~ServoLoop() { Stop(); }
 
 void ServoLoop::Start() { Launch(std::numeric_limits<double>::infinity()); }
 
+void ServoLoop::BeginTicks() {
+  device_.BeginSession();  // may throw DeviceError
+  ResetStats();
+  safety_.BeginSession(0.0);
+  clutch_.Reset();
+  end_requested_ = SessionEnd::kRunning;
+  renderer_needs_reset_ = true;
+  fault_message_.clear();
+}
+
 void ServoLoop::Launch(double stop_at_s) {
   if (running()) throw std::logic_error("servo loop: already running");
   if (thread_.joinable()) thread_.join();
+  BeginTicks();
   stop_requested_.store(false);
+  session_end_.store(SessionEnd::kRunning, std::memory_order_release);
   running_.store(true, std::memory_order_release);
   thread_ = std::thread(&ServoLoop::Run, this, stop_at_s);
+  const RealtimeReport report = RequestRealtime(thread_.native_handle(), config_.realtime_priority);
+  realtime_.store(report.realtime, std::memory_order_relaxed);
+  realtime_report_ = report.message;
 }
 
 void ServoLoop::Stop() {
   stop_requested_.store(true);
   if (thread_.joinable()) thread_.join();
   running_.store(false, std::memory_order_release);
+  PruneRenderers();
 }
 
-void ServoLoop::Tick(double loop_time_s) {
+std::string ServoLoop::fault_message() const {
+  if (running()) return {};
+  return fault_message_;
+}
+
+std::string ServoLoop::realtime_report() const { return realtime_report_; }
+
+void ServoLoop::SetRenderer(std::shared_ptr<ForceRenderer> renderer) {
+  if (!renderer) throw std::invalid_argument("servo loop: no renderer");
+  // one swap at a time: the servo thread empties `pending_` within a tick
+  while (running() && pending_.load(std::memory_order_acquire) != nullptr) {
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
+  }
+  ForceRenderer* raw = renderer.get();
+  owned_.push_back(std::move(renderer));
+  // the servo thread (or the next Tick() when none runs) takes it from here
+  pending_.store(raw, std::memory_order_release);
+  PruneRenderers();
+}
+
+void ServoLoop::PruneRenderers() {
+  // keep what the servo thread uses or is about to take (see AdoptUpdates for the order)
+  const ForceRenderer* active = active_.load(std::memory_order_acquire);
+  const ForceRenderer* pending = pending_.load(std::memory_order_acquire);
+  owned_.erase(std::remove_if(owned_.begin(), owned_.end(),
+                              [&](const std::shared_ptr<ForceRenderer>& r) {
+                                return r.get() != active && r.get() != pending;
+                              }),
+               owned_.end());
+}
+
+void ServoLoop::SetMapping(const WorkspaceMapping& mapping) {
+  ValidateWorkspaceMapping(mapping);
+  mapping_updates_.Write(mapping);
+}
+
+void ServoLoop::AdoptUpdates() {
+  // renderer: publish it as active before clearing pending, so the control thread
+  // always sees it in one of the two and never frees it under us
+  ForceRenderer* next = pending_.load(std::memory_order_acquire);
+  if (next != nullptr) {
+    if (next != current_) {
+      reset_from_proxy_ = had_proxy_;
+      current_ = next;
+      renderer_needs_reset_ = true;
+      safety_.RestartRamp();
+    }
+    active_.store(next, std::memory_order_release);
+    pending_.store(nullptr, std::memory_order_release);
+  }
+  if (mapping_updates_.has_news()) {
+    mapping_ = mapping_updates_.Read();
+    clutch_.Reset();
+    safety_.RestartRamp();
+  }
+}
+
+void ServoLoop::Tick(double loop_time_s, double gap_s) {
   const auto start = Clock::now();
+  AdoptUpdates();
+
   TraceSample sample{};
   sample.time_s = loop_time_s;
-  DeviceState state;
+  sample.period_us = gap_s * 1e6;
+  sample.cad_face = -1;
+  const ReadStatus status = device_.ReadState(loop_time_s, &state_);
+  const std::uint32_t faults = safety_.CheckReading(status, state_, gap_s);
+
   RenderOutput out;
-  if (device_.ReadState(loop_time_s, &state)) {
-    RenderInput input;
-    input.position_w = state.position_w;
-    input.velocity_w = state.velocity_w;
-    input.time_s = loop_time_s;
-    renderer_.Render(input, &out);
-    CopyVec(state.position_w, sample.device_m);
-    CopyVec(state.velocity_w, sample.velocity_mps);
+  std::uint32_t flags = 0;
+  Vec3 tool_w = Vec3::Zero();
+  Vec3 velocity_w = Vec3::Zero();
+  if (faults == 0) {
+    const bool held =
+        clutch_requested_.load(std::memory_order_acquire) ||
+        (config_.clutch_button >= 0 && (state_.buttons >> config_.clutch_button) & 1u);
+    if (clutch_.Update(held, state_.position_d, &mapping_) == Clutch::Event::kReleased) {
+      safety_.RestartRamp();
+    }
+    if (clutch_.engaged()) {
+      tool_w = clutch_.frozen_tool_w();
+      flags |= kClutched;
+      out.proxy_w = last_proxy_w_;
+    } else {
+      tool_w = mapping_.DeviceToWorld(state_.position_d);
+      velocity_w = mapping_.VelocityToWorld(state_.velocity_d);
+      if (renderer_needs_reset_) {
+        current_->Reset(reset_from_proxy_ ? last_proxy_w_ : tool_w);
+        renderer_needs_reset_ = false;
+        reset_from_proxy_ = false;
+      }
+      RenderInput input;
+      input.position_w = tool_w;
+      input.velocity_w = velocity_w;
+      input.time_s = loop_time_s;
+      current_->Render(input, &out);
+      flags |= out.flags;
+      last_proxy_w_ = out.proxy_w;
+      had_proxy_ = true;
+    }
+    last_tool_w_ = tool_w;
   } else {
-    out.flags = kDeviceFault;
+    tool_w = last_tool_w_;
+    out.proxy_w = last_proxy_w_;
   }
-  device_.WriteForce(out.force_w);
+  const Vec3 rendered_d =
+      faults == 0 && !clutch_.engaged() ? mapping_.ForceToDevice(out.force_w) : Vec3::Zero();
+  const Vec3 force_d = safety_.Shape(loop_time_s, faults, rendered_d, &flags);
+  device_.WriteForce(force_d);
   const auto end = Clock::now();
 
+  CopyVec(tool_w, sample.device_m);
+  CopyVec(velocity_w, sample.velocity_mps);
   CopyVec(out.proxy_w, sample.proxy_m);
-  CopyVec(out.force_w, sample.force_n);
+  CopyVec(mapping_.ForceToWorld(force_d), sample.force_n);
+  CopyVec(state_.position_d, sample.handle_d_m);
   sample.normal_force_n = out.normal_force_n;
   sample.tangential_force_n = out.tangential_force_n;
   sample.friction_force_n = out.friction_force_n;
   sample.texture_force_n = out.texture_force_n;
   sample.vibration_force_n = out.vibration_force_n;
   sample.cad_face = out.cad_face;
-  sample.flags = out.flags;
+  sample.flags = flags;
+  sample.buttons = state_.buttons;
   sample.tick_us = std::chrono::duration<double, std::micro>(end - start).count();
-  if (!trace_.Push(sample)) trace_dropped_.fetch_add(1, std::memory_order_relaxed);
-  ticks_.fetch_add(1, std::memory_order_relaxed);
+  if (!trace_.Push(sample)) Bump(trace_dropped_);
+  latest_.Write(sample);
+  effective_mapping_.Write(mapping_);
+  CountFlags(flags);
+  tick_time_.Record(std::chrono::duration_cast<std::chrono::nanoseconds>(end - start).count());
+  Bump(ticks_);
   elapsed_s_.store(loop_time_s, std::memory_order_relaxed);
+
+  if (faults & kFaultUnplugged) {
+    end_requested_ = SessionEnd::kUnplugged;
+  } else if (safety_.fault_timed_out()) {
+    end_requested_ = SessionEnd::kDeviceLost;
+  }
+  if (end_requested_ != SessionEnd::kRunning && fault_time_s_ < 0.0) fault_time_s_ = loop_time_s;
+  if (faults != 0) last_faults_ = faults;
+}
+
+void ServoLoop::CountFlags(std::uint32_t flags) {
+  if (flags & kFaultNoData) Bump(fault_counts_[kNoDataIdx]);
+  if (flags & kFaultStale) Bump(fault_counts_[kStaleIdx]);
+  if (flags & kFaultOutOfRange) Bump(fault_counts_[kOutOfRangeIdx]);
+  if (flags & kFaultNonFinite) Bump(fault_counts_[kNonFiniteIdx]);
+  if (flags & kFaultReported) Bump(fault_counts_[kReportedIdx]);
+  if (flags & kFaultWatchdog) Bump(fault_counts_[kWatchdogIdx]);
+  if (flags & kFaultUnplugged) Bump(fault_counts_[kUnpluggedIdx]);
+  if (flags & kDeviceFault) Bump(fault_counts_[kZeroForceIdx]);
+  if (flags & kSafetyClamped) Bump(fault_counts_[kClampedIdx]);
+  if (flags & kThermalLimited) Bump(fault_counts_[kThermalIdx]);
 }
 
 void ServoLoop::Run(double stop_at_s) {
+  // a sleeping normal thread wakes up to 50 us late by default; ask for 1 us
+  prctl(PR_SET_TIMERSLACK, 1000UL, 0, 0, 0);
   const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / config_.rate_hz));
   const std::int64_t t0 = MonotonicNs();
   std::int64_t deadline = t0;
+  std::int64_t previous_start = 0;
   // compare in integer nanoseconds: 300 * 1e6 * 1e-9 is 0.30000000000000004 > 0.3
   const std::int64_t stop_at_ns =
       stop_at_s >= 9e9 ? std::numeric_limits<std::int64_t>::max() : std::llround(stop_at_s * 1e9);
   std::uint64_t tick = 0;
-  while (!stop_requested_.load(std::memory_order_relaxed)) {
+  SessionEnd end = SessionEnd::kStopped;
+  double last_loop_time_s = 0.0;
+  while (true) {
+    if (stop_requested_.load(std::memory_order_relaxed)) break;
     // the loop clock is the tick's scheduled time, so a late tick does not skew a
     // simulated device's path
     const std::int64_t loop_time_ns = static_cast<std::int64_t>(tick) * period_ns;
-    if (loop_time_ns > stop_at_ns) break;
-    Tick(static_cast<double>(loop_time_ns) * 1e-9);
+    if (loop_time_ns > stop_at_ns) {
+      end = SessionEnd::kFinished;
+      break;
+    }
+    const std::int64_t now = MonotonicNs();
+    wake_latency_.Record(now - deadline);
+    double gap_s = 0.0;
+    if (tick > 0) {
+      const std::int64_t gap = now - previous_start;
+      period_jitter_.Record(std::llabs(gap - period_ns));
+      gap_s = static_cast<double>(gap) * 1e-9;
+      wall_s_.store(static_cast<double>(now - t0) * 1e-9, std::memory_order_relaxed);
+    }
+    previous_start = now;
+    last_loop_time_s = static_cast<double>(loop_time_ns) * 1e-9;
+    Tick(last_loop_time_s, gap_s);
+    if (end_requested_ != SessionEnd::kRunning) {
+      end = end_requested_;
+      break;
+    }
     ++tick;
     deadline += period_ns;
-    const std::int64_t now = MonotonicNs();
-    if (now > deadline + period_ns) {
+    const std::int64_t after = MonotonicNs();
+    if (after > deadline + period_ns) {
       // more than a period behind: count it and skip the lost ticks rather than burst
-      overruns_.fetch_add(1, std::memory_order_relaxed);
-      const std::int64_t behind = (now - deadline) / period_ns;
+      Bump(overruns_);
+      const std::int64_t behind = (after - deadline) / period_ns;
       deadline += behind * period_ns;
       tick += static_cast<std::uint64_t>(behind);
       skipped_ticks_.fetch_add(static_cast<std::uint64_t>(behind), std::memory_order_relaxed);
@@ -129,8 +351,60 @@ void ServoLoop::Run(double stop_at_s) {
     while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
     }
   }
+  FinishSession(end, last_loop_time_s);
+}
+
+void ServoLoop::FinishSession(SessionEnd end, double loop_time_s) {
+  // off the tick: zero force first, then words for the user
   device_.WriteForce(Vec3::Zero());
+  device_.EndSession();
+  const DeviceInfo& info = device_.info();
+  const std::string who = "the haptic device '" + info.name + "' (" + info.path + ")";
+  char when[64];
+  std::snprintf(when, sizeof when, "%.3f s", fault_time_s_ >= 0.0 ? fault_time_s_ : loop_time_s);
+  const std::string detail = device_.DescribeFault();
+  if (end == SessionEnd::kUnplugged) {
+    fault_message_ = "The session ended: " + who + " was unplugged at " + when +
+                     " and the force was zeroed in that tick" +
+                     (detail.empty() ? std::string() : " (" + detail + ")") +
+                     ". Plug it back in and start again; your document is unchanged.";
+  } else if (end == SessionEnd::kDeviceLost) {
+    std::string reasons;
+    auto add = [&](std::uint32_t bit, const char* name) {
+      if (last_faults_ & bit) reasons += (reasons.empty() ? "" : ", ") + std::string(name);
+    };
+    add(kFaultNoData, "no data");
+    add(kFaultStale, "stale data");
+    add(kFaultOutOfRange, "out-of-range values");
+    add(kFaultNonFinite, "non-finite values");
+    add(kFaultReported, "a fault reported by the device");
+    add(kFaultWatchdog, "the servo loop missing its deadline");
+    std::snprintf(when, sizeof when, "%.1f s", config_.safety.fault_timeout_s);
+    fault_message_ = "The session ended: " + who + " gave no usable data for " + when + " (" +
+                     reasons + ")" + (detail.empty() ? std::string() : "; " + detail) +
+                     ". The force was held at zero throughout. Check the cable and the "
+                     "device, then start again; your document is unchanged.";
+  } else {
+    fault_message_.clear();
+  }
+  session_end_.store(end, std::memory_order_release);
   running_.store(false, std::memory_order_release);
+}
+
+void ServoLoop::ResetStats() {
+  ticks_.store(0);
+  overruns_.store(0);
+  skipped_ticks_.store(0);
+  trace_dropped_.store(0);
+  elapsed_s_.store(0.0);
+  wall_s_.store(0.0);
+  for (auto& c : fault_counts_) c.store(0);
+  period_jitter_.Reset();
+  wake_latency_.Reset();
+  tick_time_.Reset();
+  fault_time_s_ = -1.0;
+  last_faults_ = 0;
+  had_proxy_ = false;
 }
 
 std::size_t ServoLoop::DrainTrace(std::vector<TraceSample>* out) {
@@ -150,6 +424,30 @@ ServoStats ServoLoop::stats() const {
   s.skipped_ticks = skipped_ticks_.load(std::memory_order_relaxed);
   s.trace_dropped = trace_dropped_.load(std::memory_order_relaxed);
   s.elapsed_s = elapsed_s_.load(std::memory_order_relaxed);
+  s.wall_s = wall_s_.load(std::memory_order_relaxed);
+  s.achieved_rate_hz =
+      s.wall_s > 0.0 && s.ticks > 1 ? static_cast<double>(s.ticks - 1) / s.wall_s : 0.0;
+  s.period_jitter_p50_us = period_jitter_.Percentile(0.50) * 1e-3;
+  s.period_jitter_p99_us = period_jitter_.Percentile(0.99) * 1e-3;
+  s.period_jitter_max_us = static_cast<double>(period_jitter_.max_ns()) * 1e-3;
+  s.wake_latency_p50_us = wake_latency_.Percentile(0.50) * 1e-3;
+  s.wake_latency_p99_us = wake_latency_.Percentile(0.99) * 1e-3;
+  s.wake_latency_max_us = static_cast<double>(wake_latency_.max_ns()) * 1e-3;
+  s.tick_p50_us = tick_time_.Percentile(0.50) * 1e-3;
+  s.tick_p99_us = tick_time_.Percentile(0.99) * 1e-3;
+  s.tick_max_us = static_cast<double>(tick_time_.max_ns()) * 1e-3;
+  auto get = [&](int i) { return fault_counts_[i].load(std::memory_order_relaxed); };
+  s.faults.no_data = get(kNoDataIdx);
+  s.faults.stale = get(kStaleIdx);
+  s.faults.out_of_range = get(kOutOfRangeIdx);
+  s.faults.non_finite = get(kNonFiniteIdx);
+  s.faults.reported = get(kReportedIdx);
+  s.faults.watchdog = get(kWatchdogIdx);
+  s.faults.unplugged = get(kUnpluggedIdx);
+  s.faults.zero_force_ticks = get(kZeroForceIdx);
+  s.faults.clamped = get(kClampedIdx);
+  s.faults.thermal_limited = get(kThermalIdx);
+  s.realtime = realtime_.load(std::memory_order_relaxed);
   return s;
 }
 

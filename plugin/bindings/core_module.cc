@@ -26,8 +26,12 @@
 #include "hapticad/core/surfaces/surface_properties.h"
 #include "hapticad/core/surfaces/vibration.h"
 #include "hapticad/core/surfaces/viscous_texture.h"
+#include "hapticad/devices/device_catalog.h"
+#include "hapticad/devices/hid/hid_device.h"
 #include "hapticad/devices/servo_loop.h"
 #include "hapticad/devices/simulated_device.h"
+#include "hapticad/devices/simulated_hand.h"
+#include "hapticad/devices/workspace_mapping.h"
 
 namespace py = pybind11;
 using namespace hapticad;
@@ -336,38 +340,153 @@ void DefineScene(py::module_& m) {
       .def("calc_closest_point", &HapticScene::CalcClosestPoint, py::arg("p_w"));
 }
 
-void DefineDevices(py::module_& m) {
+// Vec3 from a 3-sequence or array, refusing other shapes with a clear message.
+Vec3 ToVec3(const py::object& p, const char* name) {
+  auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(p);
+  if (!a || a.ndim() != 1 || a.shape(0) != 3) {
+    throw py::value_error(std::string(name) + " must be three numbers (x, y, z)");
+  }
+  return Vec3(a.at(0), a.at(1), a.at(2));
+}
+
+ScriptedPath ToPath(std::vector<double> times_s, const RowsD& positions) {
+  RequireShape(positions, 3, "positions");
+  ScriptedPath path;
+  path.times_s = std::move(times_s);
+  auto p = positions.unchecked<2>();
+  for (py::ssize_t i = 0; i < p.shape(0); ++i)
+    path.positions.emplace_back(p(i, 0), p(i, 1), p(i, 2));
+  return path;
+}
+
+py::array_t<TraceSample> ToArray(const std::vector<TraceSample>& samples) {
+  py::array_t<TraceSample> out(static_cast<py::ssize_t>(samples.size()));
+  std::copy(samples.begin(), samples.end(), out.mutable_data());
+  return out;
+}
+
+py::dict LimitsDict(const DeviceLimits& l) {
+  py::dict d;
+  d["max_force_n"] = l.max_force_n;
+  d["continuous_force_n"] = l.continuous_force_n;
+  d["max_stiffness_n_per_m"] = l.max_stiffness_n_per_m;
+  d["max_damping_n_s_per_m"] = l.max_damping_n_s_per_m;
+  d["workspace_min_d"] =
+      std::vector<double>{l.workspace_min_d.x(), l.workspace_min_d.y(), l.workspace_min_d.z()};
+  d["workspace_max_d"] =
+      std::vector<double>{l.workspace_max_d.x(), l.workspace_max_d.y(), l.workspace_max_d.z()};
+  d["position_resolution_m"] = l.position_resolution_m;
+  return d;
+}
+
+py::object NoneIfEmpty(const std::string& s) {
+  return s.empty() ? py::none() : py::object(py::str(s));
+}
+
+void DefineDeviceTypes(py::module_& m) {
   PYBIND11_NUMPY_DTYPE(TraceSample, time_s, device_m, velocity_mps, proxy_m, force_n,
                        normal_force_n, tangential_force_n, friction_force_n, texture_force_n,
-                       vibration_force_n, cad_face, flags, tick_us);
+                       vibration_force_n, cad_face, flags, tick_us, handle_d_m, period_us, buttons,
+                       reserved);
+  // a DeviceError is a RuntimeError to Python (the CLI reports those with status 1)
+  py::register_exception<DeviceError>(m, "DeviceError", PyExc_RuntimeError);
+
   py::class_<DeviceLimits>(m, "DeviceLimits")
       .def(py::init<>())
       .def_readwrite("max_force_n", &DeviceLimits::max_force_n)
+      .def_readwrite("continuous_force_n", &DeviceLimits::continuous_force_n)
       .def_readwrite("max_stiffness_n_per_m", &DeviceLimits::max_stiffness_n_per_m)
-      .def_readwrite("workspace_min_w", &DeviceLimits::workspace_min_w)
-      .def_readwrite("workspace_max_w", &DeviceLimits::workspace_max_w);
+      .def_readwrite("max_damping_n_s_per_m", &DeviceLimits::max_damping_n_s_per_m)
+      .def_readwrite("workspace_min_d", &DeviceLimits::workspace_min_d)
+      .def_readwrite("workspace_max_d", &DeviceLimits::workspace_max_d)
+      .def_readwrite("position_resolution_m", &DeviceLimits::position_resolution_m);
+  m.def("validate_device_limits", &ValidateDeviceLimits, py::arg("limits"));
   m.def("simulated_probe_limits", &SimulatedProbeLimits);
+  m.def("simulated_hand_limits", &SimulatedHandLimits);
   py::class_<DeviceInfo>(m, "DeviceInfo")
       .def_readonly("kind", &DeviceInfo::kind)
       .def_readonly("name", &DeviceInfo::name)
       .def_readonly("path", &DeviceInfo::path)
       .def_readonly("limits", &DeviceInfo::limits);
 
-  py::class_<Device>(m, "Device").def_property_readonly("info", &Device::info);
-  py::class_<SimulatedDevice, Device>(m, "SimulatedDevice")
-      .def(py::init([](std::vector<double> times_s, const RowsD& positions_w, DeviceLimits limits) {
-             RequireShape(positions_w, 3, "positions_w");
-             ScriptedPath path;
-             path.times_s = std::move(times_s);
-             auto p = positions_w.unchecked<2>();
-             for (py::ssize_t i = 0; i < p.shape(0); ++i)
-               path.positions_w.emplace_back(p(i, 0), p(i, 1), p(i, 2));
-             return std::make_unique<SimulatedDevice>(std::move(path), limits);
-           }),
-           py::arg("times_s"), py::arg("positions_w"), py::arg("limits"))
-      .def_property_readonly("duration_s",
-                             [](const SimulatedDevice& d) { return d.path().duration_s(); })
-      .def_property_readonly("last_force_w", &SimulatedDevice::last_force_w);
+  py::class_<WorkspaceMapping>(m, "WorkspaceMapping")
+      .def(py::init<>())
+      .def_readwrite("scale", &WorkspaceMapping::scale)
+      .def_readwrite("rotation_wd", &WorkspaceMapping::rotation_wd)
+      .def_readwrite("offset_w", &WorkspaceMapping::offset_w)
+      .def("device_to_world", &WorkspaceMapping::DeviceToWorld, py::arg("p_d"))
+      .def("world_to_device", &WorkspaceMapping::WorldToDevice, py::arg("p_w"))
+      .def("force_to_device", &WorkspaceMapping::ForceToDevice, py::arg("f_w"));
+  m.def("validate_workspace_mapping", &ValidateWorkspaceMapping, py::arg("mapping"));
+  m.def("render_limits_for", &RenderLimitsFor, py::arg("limits"), py::arg("mapping"));
+  m.def("fit_workspace", &FitWorkspace, py::arg("limits"), py::arg("world_min_w"),
+        py::arg("world_max_w"), py::arg("min_scale") = 1.0);
+
+  py::class_<SafetyConfig>(m, "SafetyConfig")
+      .def(py::init<>())
+      .def_readwrite("ramp_s", &SafetyConfig::ramp_s)
+      .def_readwrite("watchdog_s", &SafetyConfig::watchdog_s)
+      .def_readwrite("stale_after_s", &SafetyConfig::stale_after_s)
+      .def_readwrite("fault_timeout_s", &SafetyConfig::fault_timeout_s)
+      .def_readwrite("workspace_margin", &SafetyConfig::workspace_margin)
+      .def_readwrite("max_speed_mps", &SafetyConfig::max_speed_mps)
+      .def_readwrite("thermal_time_constant_s", &SafetyConfig::thermal_time_constant_s);
+
+  py::class_<HandModel>(m, "HandModel")
+      .def(py::init<>())
+      .def_readwrite("mass_kg", &HandModel::mass_kg)
+      .def_readwrite("damping_n_s_per_m", &HandModel::damping_n_s_per_m)
+      .def_readwrite("grip_stiffness_n_per_m", &HandModel::grip_stiffness_n_per_m)
+      .def_readwrite("grip_damping_n_s_per_m", &HandModel::grip_damping_n_s_per_m)
+      .def_readwrite("max_grip_force_n", &HandModel::max_grip_force_n)
+      .def_readwrite("latency_s", &HandModel::latency_s)
+      .def_readwrite("velocity_cutoff_hz", &HandModel::velocity_cutoff_hz)
+      .def_readwrite("watchdog_s", &HandModel::watchdog_s)
+      .def_readwrite("step_s", &HandModel::step_s);
+  py::class_<HandState>(m, "HandState")
+      .def_readonly("time_s", &HandState::time_s)
+      .def_readonly("position_d", &HandState::position_d)
+      .def_readonly("velocity_d", &HandState::velocity_d)
+      .def_readonly("target_d", &HandState::target_d)
+      .def_readonly("force_d", &HandState::force_d);
+
+  py::enum_<SessionEnd>(m, "SessionEnd")
+      .value("NOT_STARTED", SessionEnd::kNotStarted)
+      .value("RUNNING", SessionEnd::kRunning)
+      .value("STOPPED", SessionEnd::kStopped)
+      .value("FINISHED", SessionEnd::kFinished)
+      .value("UNPLUGGED", SessionEnd::kUnplugged)
+      .value("DEVICE_LOST", SessionEnd::kDeviceLost);
+  py::class_<FaultCounts>(m, "FaultCounts")
+      .def_readonly("no_data", &FaultCounts::no_data)
+      .def_readonly("stale", &FaultCounts::stale)
+      .def_readonly("out_of_range", &FaultCounts::out_of_range)
+      .def_readonly("non_finite", &FaultCounts::non_finite)
+      .def_readonly("reported", &FaultCounts::reported)
+      .def_readonly("watchdog", &FaultCounts::watchdog)
+      .def_readonly("unplugged", &FaultCounts::unplugged)
+      .def_readonly("zero_force_ticks", &FaultCounts::zero_force_ticks)
+      .def_readonly("clamped", &FaultCounts::clamped)
+      .def_readonly("thermal_limited", &FaultCounts::thermal_limited);
+  py::class_<ServoStats>(m, "ServoStats")
+      .def_readonly("ticks", &ServoStats::ticks)
+      .def_readonly("overruns", &ServoStats::overruns)
+      .def_readonly("skipped_ticks", &ServoStats::skipped_ticks)
+      .def_readonly("trace_dropped", &ServoStats::trace_dropped)
+      .def_readonly("elapsed_s", &ServoStats::elapsed_s)
+      .def_readonly("wall_s", &ServoStats::wall_s)
+      .def_readonly("achieved_rate_hz", &ServoStats::achieved_rate_hz)
+      .def_readonly("period_jitter_p50_us", &ServoStats::period_jitter_p50_us)
+      .def_readonly("period_jitter_p99_us", &ServoStats::period_jitter_p99_us)
+      .def_readonly("period_jitter_max_us", &ServoStats::period_jitter_max_us)
+      .def_readonly("wake_latency_p50_us", &ServoStats::wake_latency_p50_us)
+      .def_readonly("wake_latency_p99_us", &ServoStats::wake_latency_p99_us)
+      .def_readonly("wake_latency_max_us", &ServoStats::wake_latency_max_us)
+      .def_readonly("tick_p50_us", &ServoStats::tick_p50_us)
+      .def_readonly("tick_p99_us", &ServoStats::tick_p99_us)
+      .def_readonly("tick_max_us", &ServoStats::tick_max_us)
+      .def_readonly("faults", &ServoStats::faults)
+      .def_readonly("realtime", &ServoStats::realtime);
 
   py::class_<RenderLimits>(m, "RenderLimits")
       .def(py::init<>())
@@ -379,34 +498,144 @@ void DefineDevices(py::module_& m) {
   m.attr("FLAG_INPUT_FAULT") = static_cast<std::uint32_t>(kInputFault);
   m.attr("FLAG_STICKING") = static_cast<std::uint32_t>(kSticking);
   m.attr("FLAG_DEVICE_FAULT") = kDeviceFault;
+  m.attr("FLAG_FAULT_NO_DATA") = kFaultNoData;
+  m.attr("FLAG_FAULT_STALE") = kFaultStale;
+  m.attr("FLAG_FAULT_OUT_OF_RANGE") = kFaultOutOfRange;
+  m.attr("FLAG_FAULT_NON_FINITE") = kFaultNonFinite;
+  m.attr("FLAG_FAULT_REPORTED") = kFaultReported;
+  m.attr("FLAG_FAULT_WATCHDOG") = kFaultWatchdog;
+  m.attr("FLAG_FAULT_UNPLUGGED") = kFaultUnplugged;
+  m.attr("FLAG_RAMPING") = kRamping;
+  m.attr("FLAG_SAFETY_CLAMPED") = kSafetyClamped;
+  m.attr("FLAG_THERMAL_LIMITED") = kThermalLimited;
+  m.attr("FLAG_CLUTCHED") = kClutched;
+}
+
+void DefineDevices(py::module_& m) {
+  py::class_<Device>(m, "Device")
+      .def_property_readonly("info", &Device::info)
+      .def("describe_fault", &Device::DescribeFault);
+  py::class_<SimulatedDevice, Device>(m, "SimulatedDevice")
+      .def(py::init([](std::vector<double> times_s, const RowsD& positions_w, DeviceLimits limits) {
+             return std::make_unique<SimulatedDevice>(ToPath(std::move(times_s), positions_w),
+                                                      limits);
+           }),
+           py::arg("times_s"), py::arg("positions_w"), py::arg("limits"))
+      .def_property_readonly("duration_s",
+                             [](const SimulatedDevice& d) { return d.path().duration_s(); })
+      .def_property_readonly("last_force_d", &SimulatedDevice::last_force_d);
+  py::class_<SimulatedHand, Device>(m, "SimulatedHand")
+      .def(py::init<DeviceLimits, HandModel>(), py::arg("limits") = SimulatedHandLimits(),
+           py::arg("model") = HandModel{})
+      .def(
+          "set_target",
+          [](SimulatedHand& h, const py::object& p_w) { h.SetTarget(ToVec3(p_w, "target")); },
+          py::arg("p_w"))
+      .def(
+          "follow_path",
+          [](SimulatedHand& h, std::vector<double> times_s, const RowsD& positions_w) {
+            h.FollowPath(ToPath(std::move(times_s), positions_w));
+          },
+          py::arg("times_s"), py::arg("positions_w"))
+      .def("follow_target", &SimulatedHand::FollowTarget)
+      .def_property_readonly("following_path", &SimulatedHand::following_path)
+      .def_property_readonly("in_session", &SimulatedHand::in_session)
+      .def_property_readonly("true_state", &SimulatedHand::true_state)
+      .def_property_readonly("model", &SimulatedHand::model);
+
+  py::class_<HidLinkStats>(m, "HidLinkStats")
+      .def_readonly("reports_read", &HidLinkStats::reports_read)
+      .def_readonly("reports_used", &HidLinkStats::reports_used)
+      .def_readonly("malformed", &HidLinkStats::malformed)
+      .def_readonly("not_newer", &HidLinkStats::not_newer)
+      .def_readonly("dropped", &HidLinkStats::dropped)
+      .def_readonly("out_of_range", &HidLinkStats::out_of_range)
+      .def_readonly("device_faults", &HidLinkStats::device_faults)
+      .def_readonly("watchdog_reports", &HidLinkStats::watchdog_reports)
+      .def_readonly("writes", &HidLinkStats::writes)
+      .def_readonly("writes_failed", &HidLinkStats::writes_failed)
+      .def_readonly("round_trip_last_us", &HidLinkStats::round_trip_last_us)
+      .def_readonly("round_trip_p50_us", &HidLinkStats::round_trip_p50_us)
+      .def_readonly("round_trip_p99_us", &HidLinkStats::round_trip_p99_us)
+      .def_readonly("round_trip_count", &HidLinkStats::round_trip_count);
+  py::class_<HidDevice, Device>(m, "HidDevice")
+      .def_static("open", &HidDevice::Open, py::arg("path"), py::arg("watchdog_ms") = 5,
+                  py::call_guard<py::gil_scoped_release>())
+      .def_property_readonly("link_stats", &HidDevice::link_stats)
+      .def_property_readonly("unplugged", &HidDevice::unplugged);
+  // what `hapticad devices --json` prints: kind, name, path, limits (None when the
+  // device could not be read), protocol (HID: the versions it speaks), error
+  m.def("list_devices", [] {
+    std::vector<DeviceListing> listings;
+    {
+      py::gil_scoped_release release;
+      listings = ListDevices();
+    }
+    py::list out;
+    for (const DeviceListing& l : listings) {
+      py::dict d;
+      d["kind"] = l.info.kind;
+      d["name"] = l.info.name;
+      d["path"] = l.info.path;
+      d["limits"] = l.has_limits ? py::object(LimitsDict(l.info.limits)) : py::none();
+      d["protocol"] = NoneIfEmpty(l.protocol);
+      d["error"] = NoneIfEmpty(l.error);
+      out.append(d);
+    }
+    return out;
+  });
+  m.def("open_device", &OpenDevice, py::arg("path"), py::call_guard<py::gil_scoped_release>());
 
   py::class_<ContactOptions>(m, "ContactOptions")
       .def(py::init<>())
       .def_readwrite("proxy_radius_m", &ContactOptions::proxy_radius_m)
       .def_readwrite("force_shading", &ContactOptions::force_shading);
-  py::class_<ForceRenderer>(m, "ForceRenderer")
+  py::class_<ForceRenderer, std::shared_ptr<ForceRenderer>>(m, "ForceRenderer")
       .def(py::init([](std::shared_ptr<HapticScene> scene, std::shared_ptr<SurfaceTable> surfaces,
                        RenderLimits limits, ContactOptions options) {
-             return std::make_unique<ForceRenderer>(scene, surfaces, limits, options);
+             return std::make_shared<ForceRenderer>(scene, surfaces, limits, options);
            }),
            py::arg("scene"), py::arg("surfaces"), py::arg("limits"),
            py::arg("options") = ContactOptions{});
 
-  py::class_<ServoStats>(m, "ServoStats")
-      .def_readonly("ticks", &ServoStats::ticks)
-      .def_readonly("overruns", &ServoStats::overruns)
-      .def_readonly("skipped_ticks", &ServoStats::skipped_ticks)
-      .def_readonly("trace_dropped", &ServoStats::trace_dropped)
-      .def_readonly("elapsed_s", &ServoStats::elapsed_s);
   py::class_<ServoLoop>(m, "ServoLoop")
-      .def(py::init([](Device& device, ForceRenderer& renderer, double rate_hz,
-                       std::size_t trace_capacity) {
-             return std::make_unique<ServoLoop>(device, renderer,
-                                                ServoConfig{rate_hz, trace_capacity});
+      .def(py::init([](Device& device, std::shared_ptr<ForceRenderer> renderer, double rate_hz,
+                       std::size_t trace_capacity, int realtime_priority, int clutch_button,
+                       SafetyConfig safety) {
+             return std::make_unique<ServoLoop>(
+                 device, std::move(renderer),
+                 ServoConfig{rate_hz, trace_capacity, realtime_priority, clutch_button, safety});
            }),
            py::arg("device"), py::arg("renderer"), py::arg("rate_hz") = 1000.0,
-           py::arg("trace_capacity") = std::size_t{1} << 16, py::keep_alive<1, 2>(),
-           py::keep_alive<1, 3>())
+           py::arg("trace_capacity") = std::size_t{1} << 16, py::arg("realtime_priority") = 70,
+           py::arg("clutch_button") = -1, py::arg("safety") = SafetyConfig{},
+           py::keep_alive<1, 2>())
+      .def("start", &ServoLoop::Start, py::call_guard<py::gil_scoped_release>())
+      .def("stop", &ServoLoop::Stop, py::call_guard<py::gil_scoped_release>())
+      .def_property_readonly("running", &ServoLoop::running)
+      .def_property_readonly("session_end", &ServoLoop::session_end)
+      .def_property_readonly("fault_message", &ServoLoop::fault_message)
+      .def_property_readonly("realtime_report", &ServoLoop::realtime_report)
+      .def_property_readonly("stats", &ServoLoop::stats)
+      .def("drain_trace",
+           [](ServoLoop& loop) {
+             std::vector<TraceSample> samples;
+             {
+               py::gil_scoped_release release;
+               loop.DrainTrace(&samples);
+             }
+             return ToArray(samples);
+           })
+      .def("latest",
+           [](ServoLoop& loop) {
+             const py::array_t<TraceSample> one = ToArray({loop.latest()});
+             return py::object(one[py::int_(0)]);
+           })
+      .def("set_renderer", &ServoLoop::SetRenderer, py::arg("renderer"),
+           py::call_guard<py::gil_scoped_release>())
+      .def("set_mapping", &ServoLoop::SetMapping, py::arg("mapping"))
+      .def_property_readonly("mapping", &ServoLoop::mapping)
+      .def("set_clutch", &ServoLoop::SetClutch, py::arg("held"))
       .def(
           "run_for",
           [](ServoLoop& loop, double duration_s) {
@@ -415,12 +644,9 @@ void DefineDevices(py::module_& m) {
               py::gil_scoped_release release;
               samples = loop.RunFor(duration_s);
             }
-            py::array_t<TraceSample> out(static_cast<py::ssize_t>(samples.size()));
-            std::copy(samples.begin(), samples.end(), out.mutable_data());
-            return out;
+            return ToArray(samples);
           },
-          py::arg("duration_s"))
-      .def_property_readonly("stats", &ServoLoop::stats);
+          py::arg("duration_s"));
 }
 
 void DefineAnalysis(py::module_& m) {
@@ -484,6 +710,7 @@ PYBIND11_MODULE(_core, m) {
   DefineTextures(m);
   DefineSurfaces(m);
   DefineScene(m);
+  DefineDeviceTypes(m);
   DefineDevices(m);
   DefineAnalysis(m);
 }

@@ -1,41 +1,59 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hapticad/devices/servo_loop.h"
 
+#include <chrono>
+#include <cmath>
 #include <stdexcept>
+#include <thread>
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include "alloc_counter.h"
+#include "faulty_device.h"
 #include "hapticad/devices/simulated_device.h"
+#include "hapticad/devices/simulated_hand.h"
+#include "syscall_counter.h"
 #include "test_meshes.h"
 
 namespace hapticad {
 namespace {
 
+ServoConfig Config(double rate_hz, std::size_t trace_capacity) {
+  ServoConfig c;
+  c.rate_hz = rate_hz;
+  c.trace_capacity = trace_capacity;
+  return c;
+}
+
+std::shared_ptr<ForceRenderer> BoxRenderer(const DeviceLimits& limits, double shift_x = 0.0) {
+  auto scene = HapticScene::Build(
+      testing::MakeBoxSoup(Vec3(-50 + shift_x, -50, -50), Vec3(50 + shift_x, 50, 50)), 1e-3);
+  return std::make_shared<ForceRenderer>(
+      scene, std::make_shared<SurfaceTable>(),
+      RenderLimits{limits.max_force_n, limits.max_stiffness_n_per_m});
+}
+
 class ServoOnBox : public ::testing::Test {
  protected:
   void SetUp() override {
-    scene_ = HapticScene::Build(testing::MakeBoxSoup(Vec3(-50, -50, -50), Vec3(50, 50, 50)), 1e-3);
-    surfaces_ = std::make_shared<SurfaceTable>();
     ScriptedPath path;  // down onto the top face, 1 mm in, slide 20 mm, up
     path.times_s = {0.0, 0.05, 0.10, 0.30, 0.35};
-    path.positions_w = {Vec3(0, 0, 0.06), Vec3(0, 0, 0.049), Vec3(0, 0, 0.049),
-                        Vec3(0.02, 0, 0.049), Vec3(0.02, 0, 0.06)};
+    path.positions = {Vec3(0, 0, 0.06), Vec3(0, 0, 0.049), Vec3(0, 0, 0.049), Vec3(0.02, 0, 0.049),
+                      Vec3(0.02, 0, 0.06)};
     limits_.max_force_n = 8.0;
     limits_.max_stiffness_n_per_m = 3000.0;
     device_ = std::make_unique<SimulatedDevice>(path, limits_);
-    renderer_ = std::make_unique<ForceRenderer>(
-        scene_, surfaces_, RenderLimits{limits_.max_force_n, limits_.max_stiffness_n_per_m});
+    renderer_ = BoxRenderer(limits_);
   }
-  std::shared_ptr<const HapticScene> scene_;
-  std::shared_ptr<SurfaceTable> surfaces_;
   DeviceLimits limits_;
   std::unique_ptr<SimulatedDevice> device_;
-  std::unique_ptr<ForceRenderer> renderer_;
+  std::shared_ptr<ForceRenderer> renderer_;
 };
 
 TEST_F(ServoOnBox, RunsAtItsRateAndRecordsEveryTick) {
-  ServoLoop loop(*device_, *renderer_, ServoConfig{1000.0, 4096});
+  ServoLoop loop(*device_, *renderer_, Config(1000.0, 4096));
   const auto trace = loop.RunFor(0.3);
   const ServoStats stats = loop.stats();
   EXPECT_EQ(trace.size(), stats.ticks);
@@ -44,43 +62,83 @@ TEST_F(ServoOnBox, RunsAtItsRateAndRecordsEveryTick) {
   // must still include 300 ms): every one either ran or was skipped after an overrun
   EXPECT_EQ(trace.size() + stats.skipped_ticks, 301u);
   EXPECT_LE(stats.skipped_ticks, 20u);
-  // the loop clock advances one period per tick (plus skipped ones)
   for (std::size_t i = 1; i < trace.size(); ++i) EXPECT_GT(trace[i].time_s, trace[i - 1].time_s);
-  // it touched the top face, pressed 1 mm at the default 0.4 N/mm
+  // it touched the top face, pressed 1 mm at the default 0.4 N/mm (the ramp is over
+  // by 0.2 s; contact starts at 0.041 s, so the first ticks are ramping)
   int contact = 0;
   for (const auto& s : trace) {
     if (!(s.flags & kContact)) continue;
     ++contact;
     EXPECT_EQ(s.cad_face, 5);
-    if (s.time_s > 0.06 && s.time_s < 0.29) {
+    if (s.time_s > 0.2 && s.time_s < 0.29) {
       EXPECT_NEAR(s.normal_force_n, 0.4, 1e-6);
+      EXPECT_NEAR(s.force_n[2], 0.4, 1e-6);
+      EXPECT_FALSE(s.flags & kRamping);
     }
   }
   EXPECT_GT(contact, 200);
   EXPECT_NEAR(trace.back().time_s, 0.3, 1e-12);
   EXPECT_FALSE(loop.running());
-  EXPECT_EQ(device_->last_force_w(), Vec3::Zero());  // Stop() leaves the device at zero force
+  EXPECT_EQ(loop.session_end(), SessionEnd::kFinished);
+  EXPECT_EQ(loop.fault_message(), "");
+  EXPECT_EQ(device_->last_force_d(), Vec3::Zero());  // the end leaves the device at zero force
+}
+
+TEST_F(ServoOnBox, StatisticsAreConsistentAndTheSchedulingIsReported) {
+  ServoLoop loop(*device_, *renderer_, Config(1000.0, 4096));
+  loop.RunFor(0.2);
+  const ServoStats s = loop.stats();
+  EXPECT_GT(s.achieved_rate_hz, 0.0);
+  EXPECT_GT(s.wall_s, 0.15);
+  EXPECT_LE(s.period_jitter_p50_us, s.period_jitter_p99_us);
+  EXPECT_LE(s.period_jitter_p99_us, s.period_jitter_max_us * 1.04);  // bins are 3 % wide
+  EXPECT_LE(s.wake_latency_p50_us, s.wake_latency_p99_us);
+  EXPECT_GT(s.tick_p50_us, 0.0);
+  const std::string report = loop.realtime_report();
+  EXPECT_TRUE(report.rfind("real-time scheduling: SCHED_FIFO", 0) == 0 ||
+              report.rfind("normal scheduling:", 0) == 0)
+      << report;
+  EXPECT_EQ(s.realtime, report.rfind("real-time", 0) == 0);
+
+  ServoConfig plain = Config(1000.0, 4096);
+  plain.realtime_priority = 0;
+  ServoLoop normal(*device_, *renderer_, plain);
+  normal.RunFor(0.01);
+  EXPECT_EQ(normal.realtime_report(), "normal scheduling: real-time scheduling was not requested");
+  EXPECT_FALSE(normal.stats().realtime);
 }
 
 TEST_F(ServoOnBox, TickDoesNotAllocate) {
-  ServoLoop loop(*device_, *renderer_, ServoConfig{1000.0, 1024});
+  ServoLoop loop(*device_, *renderer_, Config(1000.0, 1024));
+  loop.BeginTicks();
   loop.Tick(0.0);
   testing::AllocationCounter counter;
-  for (int i = 1; i < 350; ++i) loop.Tick(i * 1e-3);
+  for (int i = 1; i < 350; ++i) loop.Tick(i * 1e-3, 1e-3);
   EXPECT_EQ(counter.count(), 0u);
   std::vector<TraceSample> trace;
   EXPECT_EQ(loop.DrainTrace(&trace), 350u);
 }
 
 TEST_F(ServoOnBox, CountsSamplesLostToAFullRing) {
-  ServoLoop loop(*device_, *renderer_, ServoConfig{1000.0, 8});
+  ServoLoop loop(*device_, *renderer_, Config(1000.0, 8));
   for (int i = 0; i < 20; ++i) loop.Tick(i * 1e-3);
   EXPECT_EQ(loop.stats().trace_dropped, 12u);
 }
 
-TEST_F(ServoOnBox, RejectsRatesOutsideRange) {
-  EXPECT_THROW(ServoLoop(*device_, *renderer_, ServoConfig{0.0, 8}), std::invalid_argument);
-  EXPECT_THROW(ServoLoop(*device_, *renderer_, ServoConfig{20000.0, 8}), std::invalid_argument);
+TEST_F(ServoOnBox, RejectsBadSettings) {
+  EXPECT_THROW(ServoLoop(*device_, *renderer_, Config(0.0, 8)), std::invalid_argument);
+  EXPECT_THROW(ServoLoop(*device_, *renderer_, Config(20000.0, 8)), std::invalid_argument);
+  ServoConfig bad = Config(1000.0, 8);
+  bad.safety.watchdog_s = -1.0;
+  EXPECT_THROW(ServoLoop(*device_, *renderer_, bad), std::invalid_argument);
+  bad = Config(1000.0, 8);
+  bad.clutch_button = 40;
+  EXPECT_THROW(ServoLoop(*device_, *renderer_, bad), std::invalid_argument);
+  ServoLoop loop(*device_, *renderer_);
+  WorkspaceMapping squash;
+  squash.rotation_wd(0, 0) = 2.0;
+  EXPECT_THROW(loop.SetMapping(squash), std::invalid_argument);
+  EXPECT_THROW(loop.SetRenderer(nullptr), std::invalid_argument);
 }
 
 TEST_F(ServoOnBox, StopIsIdempotentAndStartTwiceIsAnError) {
@@ -90,6 +148,364 @@ TEST_F(ServoOnBox, StopIsIdempotentAndStartTwiceIsAnError) {
   loop.Stop();
   loop.Stop();
   EXPECT_FALSE(loop.running());
+  EXPECT_EQ(loop.session_end(), SessionEnd::kStopped);
+}
+
+// A simulated hand above the box's top face (z = 50 mm), in a 0.2 m workspace.
+class HandOnBox : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    limits_ = SimulatedHandLimits();
+    limits_.workspace_min_d = Vec3::Constant(-0.1);
+    limits_.workspace_max_d = Vec3::Constant(0.1);
+    hand_ = std::make_unique<SimulatedHand>(limits_);
+    hand_->SetTarget(Vec3(0, 0, 0.06));
+    renderer_ = BoxRenderer(limits_);
+  }
+  // Runs ticks at 1 kHz on this thread from `*t` for `duration` s.
+  static void RunTicks(ServoLoop& loop, double* t, double duration, std::vector<TraceSample>* out) {
+    const long first = std::lround(*t * 1000.0);
+    const long n = std::lround(duration * 1000.0);
+    for (long i = first; i < first + n; ++i) loop.Tick(i * 1e-3, i == 0 ? 0.0 : 1e-3);
+    *t = (first + n) * 1e-3;
+    loop.DrainTrace(out);
+  }
+  DeviceLimits limits_;
+  std::unique_ptr<SimulatedHand> hand_;
+  std::shared_ptr<ForceRenderer> renderer_;
+};
+
+TEST_F(HandOnBox, TheForceStopsAHandAimingIntoThePart) {
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 14));
+  loop.BeginTicks();
+  double t = 0.0;
+  std::vector<TraceSample> trace;
+  RunTicks(loop, &t, 0.3, &trace);
+  // aim 5 mm into the top face: grip 400 N/m against the face's 400 N/m meet halfway
+  hand_->SetTarget(Vec3(0, 0, 0.045));
+  RunTicks(loop, &t, 1.5, &trace);
+  const TraceSample& s = trace.back();
+  EXPECT_TRUE(s.flags & kContact);
+  EXPECT_EQ(s.cad_face, 5);
+  EXPECT_NEAR(s.handle_d_m[2], 0.0475, 0.1e-3);
+  EXPECT_NEAR(s.force_n[2], 1.0, 0.05);
+  EXPECT_NEAR(hand_->true_state().position_d.z(), 0.0475, 0.1e-3);
+  // what the hand feels is what was sent
+  EXPECT_NEAR(hand_->true_state().force_d.z(), s.force_n[2], 1e-12);
+}
+
+TEST_F(HandOnBox, ForceRampsInAtTheStartOfASession) {
+  hand_->SetTarget(Vec3(0, 0, 0.0485));  // starts 1.5 mm inside... the proxy starts there
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 14));
+  loop.BeginTicks();
+  double t = 0.0;
+  std::vector<TraceSample> trace;
+  RunTicks(loop, &t, 0.3, &trace);
+  // started inside, the proxy starts with the handle: no force, no jolt
+  for (const auto& s : trace) EXPECT_EQ(s.force_n[2], 0.0) << s.time_s;
+
+  // start above and press: the force follows the ramp during the first 0.2 s
+  auto hand2 = std::make_unique<SimulatedHand>(limits_);
+  hand2->SetTarget(Vec3(0, 0, 0.0501));
+  ServoLoop loop2(*hand2, renderer_, Config(1000.0, 1 << 14));
+  loop2.BeginTicks();
+  t = 0.0;
+  trace.clear();
+  RunTicks(loop2, &t, 0.02, &trace);
+  hand2->SetTarget(Vec3(0, 0, 0.045));
+  RunTicks(loop2, &t, 0.5, &trace);
+  double max_ratio_before = 0.0;
+  for (const auto& s : trace) {
+    if (s.time_s < 0.2) {
+      EXPECT_TRUE(s.flags & kRamping);
+      // the sent force never exceeds the ramp's share of the rendered force
+      if (s.normal_force_n > 1e-9) {
+        max_ratio_before = std::max(max_ratio_before, s.force_n[2] / s.normal_force_n);
+        EXPECT_LE(s.force_n[2] / s.normal_force_n, s.time_s / 0.2 + 1e-9);
+      }
+    } else {
+      EXPECT_FALSE(s.flags & kRamping);
+    }
+  }
+  EXPECT_GT(max_ratio_before, 0.5);
+}
+
+TEST_F(HandOnBox, TickWithHandMappingClutchAndSwapDoesNotAllocate) {
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 12));
+  auto other = BoxRenderer(limits_, 10.0);
+  loop.BeginTicks();
+  double t = 0.0;
+  std::vector<TraceSample> trace;
+  trace.reserve(4096);
+  loop.Tick(0.0);
+  loop.SetRenderer(other);  // allocates here, on the control thread, not in the tick
+  WorkspaceMapping scaled;
+  scaled.scale = 1.2;
+  testing::AllocationCounter counter;
+  for (int i = 1; i < 800; ++i) {
+    t = i * 1e-3;
+    if (i == 100) hand_->SetTarget(Vec3(0, 0, 0.04));
+    if (i == 200) loop.SetMapping(scaled);
+    if (i == 300) loop.SetClutch(true);
+    if (i == 400) loop.SetClutch(false);
+    loop.Tick(t, 1e-3);
+    if (i % 100 == 0) loop.DrainTrace(&trace);
+  }
+  EXPECT_EQ(counter.count(), 0u);
+  loop.DrainTrace(&trace);
+  ASSERT_EQ(trace.size(), 800u);
+  EXPECT_TRUE(trace[500].flags & kContact);  // pressing on the swapped-in box
+  EXPECT_TRUE(trace[350].flags & kClutched);
+}
+
+TEST_F(HandOnBox, TickWithHandMappingClutchAndSwapMakesNoSystemCall) {
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 12));
+  loop.BeginTicks();
+  loop.Tick(0.0);
+  loop.SetRenderer(BoxRenderer(limits_, 10.0));
+  WorkspaceMapping scaled;
+  scaled.scale = 1.2;
+  const long calls = testing::CountSystemCalls([&] {
+    for (int i = 1; i < 800; ++i) {
+      if (i == 100) hand_->SetTarget(Vec3(0, 0, 0.04));
+      if (i == 200) loop.SetMapping(scaled);
+      if (i == 300) loop.SetClutch(true);
+      if (i == 400) loop.SetClutch(false);
+      loop.Tick(i * 1e-3, 1e-3);
+    }
+  });
+  EXPECT_EQ(calls, 0);
+  // the counter does see system calls: a sleep and a getpid are two
+  EXPECT_EQ(testing::CountSystemCalls([] {
+              std::this_thread::sleep_for(std::chrono::microseconds(10));
+              getpid();
+            }),
+            2);
+}
+
+TEST_F(HandOnBox, ASwappedRendererTakesOverWithoutAJolt) {
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 14));
+  loop.BeginTicks();
+  double t = 0.0;
+  std::vector<TraceSample> trace;
+  RunTicks(loop, &t, 0.3, &trace);
+  hand_->SetTarget(Vec3(0, 0, 0.045));
+  RunTicks(loop, &t, 1.0, &trace);
+  ASSERT_TRUE(trace.back().flags & kContact);
+  // the same box again, as after a material edit: contact carries on from the old proxy
+  loop.SetRenderer(BoxRenderer(limits_));
+  trace.clear();
+  RunTicks(loop, &t, 0.5, &trace);
+  for (const auto& s : trace) {
+    EXPECT_TRUE(s.flags & kContact) << s.time_s;
+    EXPECT_LE(s.force_n[2], 1.05) << s.time_s;
+  }
+  EXPECT_TRUE(trace[10].flags & kRamping);
+  EXPECT_NEAR(trace.back().force_n[2], 1.0, 0.05);
+}
+
+TEST_F(HandOnBox, ARendererSwapReachesARunningLoop) {
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 14));
+  loop.Start();
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  for (int i = 0; i < 5; ++i) loop.SetRenderer(BoxRenderer(limits_, 1.0 * i));
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  loop.Stop();
+  EXPECT_EQ(loop.session_end(), SessionEnd::kStopped);
+  EXPECT_GT(loop.stats().ticks, 40u);
+}
+
+TEST_F(HandOnBox, ClutchFreezesTheToolAndShiftsTheMapping) {
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 14));
+  loop.BeginTicks();
+  double t = 0.0;
+  std::vector<TraceSample> trace;
+  hand_->SetTarget(Vec3(0, 0, 0.08));
+  RunTicks(loop, &t, 0.5, &trace);
+  const double z_before = trace.back().device_m[2];
+  loop.SetClutch(true);
+  hand_->SetTarget(Vec3(0, 0, 0.07));  // lift the handle 10 mm... the tool stays
+  trace.clear();
+  RunTicks(loop, &t, 0.5, &trace);
+  for (std::size_t i = 1; i < trace.size(); ++i) {
+    EXPECT_TRUE(trace[i].flags & kClutched);
+    EXPECT_EQ(trace[i].device_m[2], trace[0].device_m[2]);
+    EXPECT_EQ(trace[i].force_n[2], 0.0);
+  }
+  EXPECT_NEAR(trace.back().handle_d_m[2], 0.07, 0.2e-3);
+  loop.SetClutch(false);
+  hand_->SetTarget(Vec3(0, 0, 0.08));
+  trace.clear();
+  RunTicks(loop, &t, 0.5, &trace);
+  // released 10 mm lower, the handle is back where it was: the tool is 10 mm higher
+  EXPECT_NEAR(loop.mapping().offset_w.z(), z_before - 0.07 + 0.0, 0.3e-3);
+  EXPECT_NEAR(trace.back().device_m[2], z_before + 0.01, 0.3e-3);
+}
+
+TEST_F(HandOnBox, TheClutchButtonHoldsTheClutch) {
+  testing::FaultyDevice with_buttons(hand_.get());
+  ServoConfig config = Config(1000.0, 1 << 10);
+  config.clutch_button = 2;
+  ServoLoop loop(with_buttons, renderer_, config);
+  loop.BeginTicks();
+  with_buttons.SetButtons(0b011);  // other buttons do nothing
+  loop.Tick(0.0);
+  with_buttons.SetButtons(0b100);
+  loop.Tick(0.001, 0.001);
+  with_buttons.SetButtons(0);
+  loop.Tick(0.002, 0.001);
+  std::vector<TraceSample> trace;
+  loop.DrainTrace(&trace);
+  EXPECT_FALSE(trace[0].flags & kClutched);
+  EXPECT_EQ(trace[0].buttons, 0b011u);
+  EXPECT_TRUE(trace[1].flags & kClutched);
+  EXPECT_FALSE(trace[2].flags & kClutched);
+}
+
+class FaultsOnBox : public HandOnBox {
+ protected:
+  // Presses on the top face for 1 s (in contact, at full force), then runs `duration`
+  // more with the fault injected over [1.1, 1.1 + fault_s).
+  std::vector<TraceSample> RunWith(testing::FaultyDevice::Fault fault, double fault_s,
+                                   double duration, ServoConfig config = Config(1000.0, 1 << 14),
+                                   ReadStatus status = ReadStatus::kOk) {
+    faulty_ = std::make_unique<testing::FaultyDevice>(hand_.get());
+    faulty_->Inject(fault, 1.1, 1.1 + fault_s, status);
+    loop_ = std::make_unique<ServoLoop>(*faulty_, renderer_, config);
+    loop_->BeginTicks();
+    double t = 0.0;
+    std::vector<TraceSample> trace;
+    hand_->SetTarget(Vec3(0, 0, 0.06));
+    RunTicks(*loop_, &t, 0.1, &trace);  // above the face
+    hand_->SetTarget(Vec3(0, 0, 0.045));
+    RunTicks(*loop_, &t, 1.0 + duration, &trace);
+    return trace;
+  }
+  // Checks: zero force and `flag` during the fault, force back through a ramp after.
+  void ExpectZeroDuringAndRampAfter(const std::vector<TraceSample>& trace, std::uint32_t flag,
+                                    double fault_s) {
+    int faulty = 0;
+    for (const auto& s : trace) {
+      const bool in_fault = s.time_s >= 1.1 - 1e-9 && s.time_s < 1.1 + fault_s - 1e-9;
+      if (in_fault) {
+        ++faulty;
+        EXPECT_TRUE(s.flags & flag) << s.time_s;
+        EXPECT_TRUE(s.flags & kDeviceFault) << s.time_s;
+        EXPECT_EQ(Vec3(s.force_n[0], s.force_n[1], s.force_n[2]), Vec3::Zero()) << s.time_s;
+      } else if (s.time_s > 1.1 + fault_s && s.time_s < 1.1 + fault_s + 0.19) {
+        EXPECT_FALSE(s.flags & kDeviceFault) << s.time_s;
+        EXPECT_TRUE(s.flags & kRamping) << s.time_s;  // no jolt on re-contact
+      } else if (s.time_s > 0.5 && s.time_s < 1.1) {
+        EXPECT_FALSE(s.flags & (kDeviceFault | kRamping)) << s.time_s;
+        EXPECT_GT(s.force_n[2], 0.5) << s.time_s;
+      }
+    }
+    EXPECT_EQ(faulty, static_cast<int>(std::lround(fault_s * 1000)));
+  }
+  std::unique_ptr<testing::FaultyDevice> faulty_;
+  std::unique_ptr<ServoLoop> loop_;
+};
+
+TEST_F(FaultsOnBox, NaNFromTheDeviceZeroesTheForceAndIsCounted) {
+  const auto trace = RunWith(testing::FaultyDevice::Fault::kNaN, 0.02, 0.5);
+  ExpectZeroDuringAndRampAfter(trace, kFaultNonFinite, 0.02);
+  EXPECT_EQ(loop_->stats().faults.non_finite, 20u);
+  EXPECT_EQ(loop_->stats().faults.zero_force_ticks, 20u);
+  // the NaN never reached the proxy
+  for (const auto& s : trace) EXPECT_TRUE(std::isfinite(s.proxy_m[1])) << s.time_s;
+}
+
+TEST_F(FaultsOnBox, InfinityFromTheDeviceZeroesTheForceAndIsCounted) {
+  const auto trace = RunWith(testing::FaultyDevice::Fault::kInf, 0.01, 0.3);
+  ExpectZeroDuringAndRampAfter(trace, kFaultNonFinite, 0.01);
+  EXPECT_EQ(loop_->stats().faults.non_finite, 10u);
+}
+
+TEST_F(FaultsOnBox, ImpossiblePositionsAndSpeedsZeroTheForce) {
+  auto trace = RunWith(testing::FaultyDevice::Fault::kFarAway, 0.015, 0.3);
+  ExpectZeroDuringAndRampAfter(trace, kFaultOutOfRange, 0.015);
+  EXPECT_EQ(loop_->stats().faults.out_of_range, 15u);
+  trace = RunWith(testing::FaultyDevice::Fault::kTooFast, 0.005, 0.3);
+  ExpectZeroDuringAndRampAfter(trace, kFaultOutOfRange, 0.005);
+}
+
+TEST_F(FaultsOnBox, StaleDataZeroesTheForce) {
+  const auto trace = RunWith(testing::FaultyDevice::Fault::kStale, 0.03, 0.3);
+  ExpectZeroDuringAndRampAfter(trace, kFaultStale, 0.03);
+  EXPECT_EQ(loop_->stats().faults.stale, 30u);
+}
+
+TEST_F(FaultsOnBox, AFaultTheDeviceReportsZeroesTheForce) {
+  const auto trace = RunWith(testing::FaultyDevice::Fault::kStatus, 0.01, 0.3,
+                             Config(1000.0, 1 << 14), ReadStatus::kDeviceFault);
+  ExpectZeroDuringAndRampAfter(trace, kFaultReported, 0.01);
+  EXPECT_EQ(loop_->stats().faults.reported, 10u);
+}
+
+TEST_F(FaultsOnBox, ALateLoopTripsTheWatchdog) {
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 14));
+  loop.BeginTicks();
+  double t = 0.0;
+  std::vector<TraceSample> trace;
+  RunTicks(loop, &t, 0.1, &trace);
+  hand_->SetTarget(Vec3(0, 0, 0.045));
+  RunTicks(loop, &t, 1.0, &trace);
+  ASSERT_GT(trace.back().force_n[2], 0.5);
+  loop.Tick(t, 0.0049);          // within 5 ms: fine
+  loop.Tick(t + 0.006, 0.0061);  // the loop missed 6 ms
+  loop.Tick(t + 0.007, 0.001);
+  trace.clear();
+  loop.DrainTrace(&trace);
+  ASSERT_EQ(trace.size(), 3u);
+  EXPECT_FALSE(trace[0].flags & kDeviceFault);
+  EXPECT_TRUE(trace[1].flags & kFaultWatchdog);
+  EXPECT_EQ(trace[1].force_n[2], 0.0);
+  EXPECT_TRUE(trace[2].flags & kRamping);
+  EXPECT_LT(trace[2].force_n[2], 0.1);
+  EXPECT_EQ(loop.stats().faults.watchdog, 1u);
+}
+
+TEST_F(FaultsOnBox, UnplugZeroesTheForceInThatTickAndEndsTheSession) {
+  testing::FaultyDevice faulty(hand_.get());
+  faulty.Inject(testing::FaultyDevice::Fault::kStatus, 0.05, 1e9, ReadStatus::kUnplugged);
+  hand_->SetTarget(Vec3(0, 0, 0.045));
+  ServoLoop loop(faulty, renderer_, Config(1000.0, 1 << 14));
+  const auto trace = loop.RunFor(2.0);
+  EXPECT_FALSE(loop.running());
+  EXPECT_EQ(loop.session_end(), SessionEnd::kUnplugged);
+  ASSERT_FALSE(trace.empty());
+  const TraceSample& last = trace.back();
+  EXPECT_NEAR(last.time_s, 0.05, 1e-9);  // ended in the tick that saw it
+  EXPECT_TRUE(last.flags & kFaultUnplugged);
+  EXPECT_EQ(Vec3(last.force_n[0], last.force_n[1], last.force_n[2]), Vec3::Zero());
+  EXPECT_EQ(faulty.last_force_d(), Vec3::Zero());
+  const std::string message = loop.fault_message();
+  EXPECT_NE(message.find("was unplugged at 0.050 s"), std::string::npos) << message;
+  EXPECT_NE(message.find("Simulated hand"), std::string::npos) << message;
+  EXPECT_NE(message.find("injected by the test"), std::string::npos) << message;
+  EXPECT_EQ(loop.stats().faults.unplugged, 1u);
+  // the program carries on: the loop can start a new session
+  faulty.Inject(testing::FaultyDevice::Fault::kNone, 0, 0);
+  loop.Start();
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  EXPECT_TRUE(loop.running());
+  loop.Stop();
+  EXPECT_EQ(loop.session_end(), SessionEnd::kStopped);
+  EXPECT_EQ(loop.fault_message(), "");
+}
+
+TEST_F(FaultsOnBox, FaultsThatLastEndTheSession) {
+  testing::FaultyDevice faulty(hand_.get());
+  faulty.Inject(testing::FaultyDevice::Fault::kStale, 0.05, 1e9);
+  ServoConfig config = Config(1000.0, 1 << 14);
+  config.safety.fault_timeout_s = 0.1;
+  ServoLoop loop(faulty, renderer_, config);
+  const auto trace = loop.RunFor(2.0);
+  EXPECT_EQ(loop.session_end(), SessionEnd::kDeviceLost);
+  EXPECT_LT(trace.back().time_s, 0.2);
+  const std::string message = loop.fault_message();
+  EXPECT_NE(message.find("gave no usable data for 0.1 s (stale data)"), std::string::npos)
+      << message;
 }
 
 }  // namespace

@@ -12,19 +12,19 @@ namespace {
 ScriptedPath Path() {
   ScriptedPath p;
   p.times_s = {0.0, 1.0, 3.0};
-  p.positions_w = {Vec3(0, 0, 0), Vec3(0.1, 0, 0), Vec3(0.1, 0.2, 0)};
+  p.positions = {Vec3(0, 0, 0), Vec3(0.1, 0, 0), Vec3(0.1, 0.2, 0)};
   return p;
 }
 
 TEST(SimulatedDevice, InterpolatesPositionWithExactSegmentVelocity) {
   SimulatedDevice d(Path(), DeviceLimits{});
   DeviceState s;
-  ASSERT_TRUE(d.ReadState(0.25, &s));
-  EXPECT_NEAR((s.position_w - Vec3(0.025, 0, 0)).norm(), 0, 1e-15);
-  EXPECT_NEAR((s.velocity_w - Vec3(0.1, 0, 0)).norm(), 0, 1e-15);
-  ASSERT_TRUE(d.ReadState(2.0, &s));
-  EXPECT_NEAR((s.position_w - Vec3(0.1, 0.1, 0)).norm(), 0, 1e-15);
-  EXPECT_NEAR((s.velocity_w - Vec3(0, 0.1, 0)).norm(), 0, 1e-15);
+  ASSERT_EQ(d.ReadState(0.25, &s), ReadStatus::kOk);
+  EXPECT_NEAR((s.position_d - Vec3(0.025, 0, 0)).norm(), 0, 1e-15);
+  EXPECT_NEAR((s.velocity_d - Vec3(0.1, 0, 0)).norm(), 0, 1e-15);
+  ASSERT_EQ(d.ReadState(2.0, &s), ReadStatus::kOk);
+  EXPECT_NEAR((s.position_d - Vec3(0.1, 0.1, 0)).norm(), 0, 1e-15);
+  EXPECT_NEAR((s.velocity_d - Vec3(0, 0.1, 0)).norm(), 0, 1e-15);
   EXPECT_EQ(s.time_s, 2.0);
 }
 
@@ -32,19 +32,27 @@ TEST(SimulatedDevice, RestsBeforeTheStartAndAfterTheEnd) {
   SimulatedDevice d(Path(), DeviceLimits{});
   DeviceState s;
   d.ReadState(5.0, &s);
-  EXPECT_EQ(s.position_w, Vec3(0.1, 0.2, 0));
-  EXPECT_EQ(s.velocity_w, Vec3::Zero());
+  EXPECT_EQ(s.position_d, Vec3(0.1, 0.2, 0));
+  EXPECT_EQ(s.velocity_d, Vec3::Zero());
   d.ReadState(-1.0, &s);  // a rewound clock restarts the path
-  EXPECT_EQ(s.position_w, Vec3::Zero());
+  EXPECT_EQ(s.position_d, Vec3::Zero());
   d.ReadState(0.5, &s);
-  EXPECT_NEAR(s.position_w.x(), 0.05, 1e-15);
+  EXPECT_NEAR(s.position_d.x(), 0.05, 1e-15);
 }
 
 TEST(SimulatedDevice, RecordsTheLastForce) {
   SimulatedDevice d(Path(), DeviceLimits{});
   d.WriteForce(Vec3(1, 2, 3));
-  EXPECT_EQ(d.last_force_w(), Vec3(1, 2, 3));
+  EXPECT_EQ(d.last_force_d(), Vec3(1, 2, 3));
   EXPECT_EQ(d.info().kind, "sim");
+}
+
+TEST(SimulatedDevice, ItsWorkspaceHoldsTheWholePath) {
+  ScriptedPath p = Path();
+  p.positions[2] = Vec3(0.3, -0.2, 0);  // beyond the default +-0.08 m box
+  SimulatedDevice d(p, DeviceLimits{});
+  EXPECT_EQ(d.info().limits.workspace_max_d, Vec3(0.3, 0.08, 0.08));
+  EXPECT_EQ(d.info().limits.workspace_min_d, Vec3(-0.08, -0.2, -0.08));
 }
 
 TEST(ScriptedPath, RejectsBadPaths) {
@@ -54,7 +62,7 @@ TEST(ScriptedPath, RejectsBadPaths) {
   back.times_s[2] = 0.5;
   EXPECT_THROW(SimulatedDevice(back, DeviceLimits{}), std::invalid_argument);
   ScriptedPath nan = Path();
-  nan.positions_w[1].y() = std::numeric_limits<double>::quiet_NaN();
+  nan.positions[1].y() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(SimulatedDevice(nan, DeviceLimits{}), std::invalid_argument);
   ScriptedPath uneven = Path();
   uneven.times_s.pop_back();

@@ -126,6 +126,24 @@ def cmd_bench_mesh(args):
     os.execv(BENCH_MESH, [BENCH_MESH, *args.options])
 
 
+def cmd_devices(args):
+    from . import _core
+
+    rows = _core.list_devices()
+    if args.json:
+        return rows
+    for row in rows:
+        limits = row["limits"]
+        if limits:
+            size = [round((hi - lo) * 1000) for lo, hi in zip(limits["workspace_min_d"], limits["workspace_max_d"])]
+            what = (f"{limits['max_force_n']:g} N, {limits['max_stiffness_n_per_m'] / 1000:g} N/mm, "
+                    f"workspace {size[0]} x {size[1]} x {size[2]} mm")
+        else:
+            what = f"unusable: {row['error']}"
+        print(f"{row['kind']:<4} {row['path']:<20} {row['name']:<32} {what}")
+    return None
+
+
 def build_parser():
     parser = argparse.ArgumentParser(prog="hapticad", description="Feel CAD parts: HaptiCAD's command line")
     sub = parser.add_subparsers(dest="command", required=True)
@@ -166,6 +184,9 @@ def build_parser():
     table.add_argument("--json", action="store_true", help="print JSON (default: a Markdown table)")
     table.add_argument("--plot", metavar="PNG", help="also draw the errors and tick cost against triangles")
     table.set_defaults(run=cmd_accuracy_table)
+    devices = sub.add_parser("devices", help="list the haptic devices (the simulated hand and HID devices)")
+    devices.add_argument("--json", action="store_true", help="print JSON")
+    devices.set_defaults(run=cmd_devices)
 
     demo = sub.add_parser("demo", help="open the example toothbrush and feel it")
     demo.add_argument("--headless", action="store_true", help="stroke every tagged face, even with a display")

@@ -1,29 +1,17 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// SimulatedDevice: a probe that follows a scripted path, for headless feeling, tests and
-// demos without hardware. It does not react to the force it is sent (a position-
-// controlled probe); it records the last command.
+// SimulatedDevice: a position-controlled probe that follows a ScriptedPath exactly,
+// for reproducible strokes (`hapticad feel`), tests and demos without hardware. It
+// does not react to the force it is sent (see SimulatedHand for a handle that does);
+// it records the last command. Velocity is exact: the slope of the current segment.
 //
-// ScriptedPath: waypoints (time s, position m, world frame) with strictly increasing
-// times; the probe moves linearly between them and rests at the last one. Velocity is
-// exact: the slope of the current segment.
+// Its workspace is the limits' box grown to hold the whole path (a script goes where
+// it says), so the safety layer never mistakes a scripted stroke for a bad reading.
 #pragma once
 
-#include <cstddef>
-#include <vector>
-
 #include "hapticad/devices/device.h"
+#include "hapticad/devices/scripted_path.h"
 
 namespace hapticad {
-
-struct ScriptedPath {
-  std::vector<double> times_s;
-  std::vector<Vec3> positions_w;
-
-  // Throws std::invalid_argument if empty, of unequal lengths, with non-finite values
-  // or with times that do not strictly increase.
-  void Validate() const;
-  double duration_s() const { return times_s.empty() ? 0.0 : times_s.back(); }
-};
 
 // A simulated probe has no motors: by default it takes the limits of a capable desktop
 // device (Novint Falcon class: 8.9 N, 3 N/mm, about 0.1 m of travel; field notes), so
@@ -32,27 +20,28 @@ inline DeviceLimits SimulatedProbeLimits() {
   DeviceLimits limits;
   limits.max_force_n = 8.9;
   limits.max_stiffness_n_per_m = 3000.0;
-  limits.workspace_min_w = Vec3::Constant(-0.05);
-  limits.workspace_max_w = Vec3::Constant(0.05);
+  limits.workspace_min_d = Vec3::Constant(-0.05);
+  limits.workspace_max_d = Vec3::Constant(0.05);
   return limits;
 }
 
 class SimulatedDevice final : public Device {
  public:
+  // Throws std::invalid_argument for an invalid path or limits.
   SimulatedDevice(ScriptedPath path, DeviceLimits limits);
 
   const DeviceInfo& info() const override { return info_; }
-  bool ReadState(double loop_time_s, DeviceState* state) override;
-  void WriteForce(const Vec3& force_w) override { last_force_w_ = force_w; }
+  ReadStatus ReadState(double loop_time_s, DeviceState* state) override;
+  void WriteForce(const Vec3& force_d) override { last_force_d_ = force_d; }
 
-  const Vec3& last_force_w() const { return last_force_w_; }
+  const Vec3& last_force_d() const { return last_force_d_; }
   const ScriptedPath& path() const { return path_; }
 
  private:
   DeviceInfo info_;
   ScriptedPath path_;
-  std::size_t segment_ = 0;  // cursor: time only moves forward in a session
-  Vec3 last_force_w_ = Vec3::Zero();
+  PathCursor cursor_{&path_};
+  Vec3 last_force_d_ = Vec3::Zero();
 };
 
 }  // namespace hapticad

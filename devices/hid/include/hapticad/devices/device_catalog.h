@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The devices HaptiCAD can feel with: the simulated hand (always) and every HID
+// device speaking the HaptiCAD protocol. What `hapticad devices --json` prints, and
+// how a GUI opens the one the user picked. (It lives with the HID backend, the one
+// backend that enumerates.)
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hapticad/devices/device.h"
+
+namespace hapticad {
+
+struct DeviceListing {
+  DeviceInfo info;          // kind "sim" or "hid", name, path, limits
+  bool has_limits = false;  // false when the device could not be read (see error)
+  std::string protocol;     // "1.0"-"1.2" for HID devices, empty for simulated ones
+  std::string error;        // why it cannot be used (permissions, version), or empty
+};
+
+// The simulated hand first ("sim:hand"), then HID devices in enumeration order. Each
+// HID device is probed (its information read; no session is touched); one that cannot
+// be read is listed with its error. Never throws for a device's fault; hidapi failing
+// to initialise gives one "hid" listing with the error.
+std::vector<DeviceListing> ListDevices();
+
+// Opens what a listing's `path` names: "sim:hand" is a new SimulatedHand with default
+// limits; anything else a HID device path. Throws DeviceError with a sentence for the
+// user.
+std::unique_ptr<Device> OpenDevice(const std::string& path);
+
+}  // namespace hapticad

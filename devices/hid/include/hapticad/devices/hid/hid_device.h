@@ -1,0 +1,144 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// HidDevice: a haptic device speaking the HaptiCAD HID protocol (PROTOCOL.md) through
+// hidapi. Open() reads the device's information, negotiates the protocol version and
+// checks its limits; a session enables forces; every tick ReadState() drains the
+// input reports queued since the last tick (keeping the newest valid one) and
+// WriteForce() sends one output report.
+//
+// Per report it rejects a wrong ID, length or CRC (truncated, garbage), a sequence
+// that is not newer (duplicated, reordered), a device time that does not advance
+// (frozen), and counts sequence gaps (dropped). Positions outside the stated workspace
+// grown by 25 % give kOutOfRange, a FAULT, NOT_HOMED or WATCHDOG status kDeviceFault
+// (after a device watchdog trip the force must ramp in, not jump back), and never
+// reach the velocity filter. A failed read, or three failed writes in a row, is an
+// unplug: kUnplugged from then on, and DescribeFault() gives hidapi's reason.
+//
+// Age: time since the last fresh report, plus how much later than usual that report
+// arrived (its delay over the smallest recent delay, comparing the device's clock with
+// the host's monotonic clock at receipt; the smallest delay is allowed to creep up
+// 1 ms per s so clock drift is not mistaken for lateness). A stall and late reports
+// both show as age. The host clock is read here, not taken from the loop's scheduled
+// tick time: a tick that runs late would otherwise make a report look early and every
+// later one stale.
+//
+// Units: SI (device frame); velocity is filtered from positions on the device's own
+// clock. ReadState()/WriteForce() are servo-tick safe: no allocation, no lock; their
+// only system calls are hidapi's reads and write. The statistics may be read from any
+// thread.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "hapticad/devices/device.h"
+#include "hapticad/devices/hid/hid_protocol.h"
+#include "hapticad/devices/latency_histogram.h"
+#include "hapticad/devices/velocity_filter.h"
+
+struct hid_device_;
+
+namespace hapticad {
+
+struct HidLinkStats {
+  std::uint64_t reports_read = 0;      // every report hidapi returned
+  std::uint64_t reports_used = 0;      // valid and newer: they became the state
+  std::uint64_t malformed = 0;         // wrong ID, length or CRC
+  std::uint64_t not_newer = 0;         // sequence or device time not newer
+  std::uint64_t dropped = 0;           // sequence numbers skipped
+  std::uint64_t out_of_range = 0;      // positions outside the workspace (+25 %)
+  std::uint64_t device_faults = 0;     // reports with FAULT or NOT_HOMED
+  std::uint64_t watchdog_reports = 0;  // reports saying the device watchdog tripped
+  std::uint64_t writes = 0;
+  std::uint64_t writes_failed = 0;
+  // round trip as measured by the device (input sent -> answering output received)
+  double round_trip_last_us = 0.0;
+  double round_trip_p50_us = 0.0;
+  double round_trip_p99_us = 0.0;
+  std::uint64_t round_trip_count = 0;
+};
+
+// What Probe() learns without opening a session (it changes nothing on the device).
+struct HidProbe {
+  DeviceInfo info;
+  hid::InfoReport report;
+};
+
+class HidDevice final : public Device {
+ public:
+  // Reads the device information at `path` without touching any session (for
+  // listings). Throws DeviceError with a sentence for the user: cannot open
+  // (permissions: install the udev rule), not a HaptiCAD device, wrong protocol
+  // version, impossible limits.
+  static HidProbe Probe(const std::string& path);
+
+  // Opens `path`, checks it as Probe() does and negotiates protocol 1.0 with the
+  // device watchdog `watchdog_ms` (0: the device's default). The default, 5 ms, makes
+  // the device itself drop the force when the servo loop misses more than 5 ms, even
+  // if the loop never runs again. Throws DeviceError.
+  static std::unique_ptr<HidDevice> Open(const std::string& path, int watchdog_ms = 5);
+
+  ~HidDevice() override;
+  HidDevice(const HidDevice&) = delete;
+  HidDevice& operator=(const HidDevice&) = delete;
+
+  const DeviceInfo& info() const override { return info_; }
+  void BeginSession() override;  // throws DeviceError if unplugged or refused
+  ReadStatus ReadState(double loop_time_s, DeviceState* state) override;
+  void WriteForce(const Vec3& force_d) override;
+  void EndSession() override;
+  std::string DescribeFault() const override;
+
+  HidLinkStats link_stats() const;
+
+  // The host clock, s (CLOCK_MONOTONIC by default; the tests give the emulator's).
+  using Clock = double (*)();
+  void set_clock(Clock clock) { clock_ = clock; }
+  static double MonotonicSeconds();
+  const hid::InfoReport& device_report() const { return report_; }
+  std::uint16_t protocol_version() const { return hid::kHostVersion; }
+  bool unplugged() const { return unplugged_.load(std::memory_order_acquire); }
+
+ private:
+  HidDevice(hid_device_* handle, HidProbe probe);
+  void Count(std::atomic<std::uint64_t>& counter, std::uint64_t n = 1);
+  bool SetSession(bool open);
+
+  hid_device_* handle_;
+  DeviceInfo info_;
+  hid::InfoReport report_;
+  int watchdog_ms_ = 5;
+  Clock clock_ = &HidDevice::MonotonicSeconds;
+  Vec3 allowed_min_d_;
+  Vec3 allowed_max_d_;
+
+  // servo thread's
+  bool session_open_ = false;
+  bool have_report_ = false;
+  std::uint16_t last_sequence_ = 0;
+  std::uint32_t last_device_time_us_ = 0;
+  double device_time_s_ = 0.0;  // unwrapped
+  bool have_good_ = false;
+  double last_fresh_s_ = 0.0;   // host clock
+  double fresh_delay_s_ = 0.0;  // how late the last fresh report was
+  double min_offset_s_ = 0.0;   // smallest recent (loop time - device time)
+  double min_offset_time_s_ = 0.0;
+  ReadStatus verdict_ = ReadStatus::kNoData;
+  Vec3 position_d_ = Vec3::Zero();
+  std::uint32_t buttons_ = 0;
+  std::uint8_t last_status_ = 0;
+  VelocityFilter velocity_filter_{40.0};
+  std::uint16_t output_sequence_ = 0;
+  int failed_writes_in_a_row_ = 0;
+  std::uint8_t buffer_[64] = {};
+
+  std::atomic<bool> unplugged_{false};
+  std::atomic<std::uint64_t> reports_read_{0}, reports_used_{0}, malformed_{0}, not_newer_{0},
+      dropped_{0}, out_of_range_{0}, device_faults_{0}, watchdog_reports_{0}, writes_{0},
+      writes_failed_{0};
+  std::atomic<double> round_trip_last_us_{0.0};
+  LatencyHistogram round_trip_;
+};
+
+}  // namespace hapticad

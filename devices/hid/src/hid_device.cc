@@ -1,0 +1,312 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// HOT PATH: HidDevice::ReadState and HidDevice::WriteForce run on the servo tick.
+#include "hapticad/devices/hid/hid_device.h"
+
+#include <hidapi/hidapi.h>
+#include <time.h>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <utility>
+
+#include "hid_text.h"
+
+namespace hapticad {
+namespace {
+
+constexpr int kMaxReadsPerTick = 64;  // hidraw queues at most 64 reports
+constexpr double kWorkspaceMargin = 0.25;
+constexpr double kDriftAllowance = 1e-3;  // s per s: crystals drift 1e-4 at most
+
+// Closes a handle unless released (Open's error paths).
+struct HandleGuard {
+  hid_device* handle;
+  ~HandleGuard() {
+    if (handle) hid_close(handle);
+  }
+};
+
+hid_device* OpenPath(const std::string& path) {
+  hid::EnsureHidInit();
+  hid_device* handle = hid_open_path(path.c_str());
+  if (!handle) {
+    const std::string reason = hid::ErrorText(nullptr);
+    std::string message = "cannot open the HID device " + path + ": " + reason;
+    if (reason.find("ermission") != std::string::npos) {
+      message +=
+          ". Install HaptiCAD's udev rule (sudo ./packaging/setup.sh, or copy "
+          "packaging/70-hapticad.rules to /etc/udev/rules.d/) and plug the device in again";
+    }
+    throw DeviceError(message);
+  }
+  return handle;
+}
+
+hid::InfoReport ReadInfo(hid_device* handle, const std::string& path) {
+  std::uint8_t buffer[256] = {hid::kInfoReportId};
+  const int n = hid_get_feature_report(handle, buffer, sizeof buffer);
+  if (n < 0) {
+    throw DeviceError("the HID device " + path +
+                      " did not answer the HaptiCAD device information request (feature report "
+                      "0x03): " +
+                      hid::ErrorText(handle) + "; it is probably not a HaptiCAD protocol device");
+  }
+  hid::InfoReport info;
+  if (!hid::DecodeInfo(buffer, static_cast<std::size_t>(n), &info)) {
+    throw DeviceError("the HID device " + path + " sent a device information report of " +
+                      std::to_string(n) + " bytes (expected " +
+                      std::to_string(hid::kInfoReportSize) +
+                      "); it is probably not a HaptiCAD protocol device");
+  }
+  const std::string problem = hid::DescribeInfoProblem(info);
+  if (!problem.empty()) {
+    throw DeviceError("cannot use the HID device " + path + ": " + problem);
+  }
+  return info;
+}
+
+HidProbe ProbeOpen(hid_device* handle, const std::string& path) {
+  HidProbe probe;
+  probe.report = ReadInfo(handle, path);
+  probe.info.kind = "hid";
+  probe.info.path = path;
+  probe.info.name = hid::ProductName(handle);
+  probe.info.limits = hid::LimitsFromInfo(probe.report);
+  return probe;
+}
+
+}  // namespace
+
+HidProbe HidDevice::Probe(const std::string& path) {
+  HandleGuard guard{OpenPath(path)};
+  return ProbeOpen(guard.handle, path);
+}
+
+std::unique_ptr<HidDevice> HidDevice::Open(const std::string& path, int watchdog_ms) {
+  if (watchdog_ms < 0 || watchdog_ms > 1000) {
+    throw DeviceError("HID device watchdog " + std::to_string(watchdog_ms) +
+                      " ms is outside 0..1000 ms");
+  }
+  HandleGuard guard{OpenPath(path)};
+  HidProbe probe = ProbeOpen(guard.handle, path);
+  std::unique_ptr<HidDevice> device(new HidDevice(guard.handle, std::move(probe)));
+  guard.handle = nullptr;  // the device owns it now
+  device->watchdog_ms_ = watchdog_ms;
+  if (!device->SetSession(false)) {
+    throw DeviceError("the HID device " + path + " refused HaptiCAD HID protocol " +
+                      hid::VersionString(hid::kHostVersion) + " although it lists it (" +
+                      device->DescribeFault() + ")");
+  }
+  return device;
+}
+
+HidDevice::HidDevice(hid_device* handle, HidProbe probe)
+    : handle_(handle), info_(std::move(probe.info)), report_(probe.report) {
+  const Vec3 margin =
+      kWorkspaceMargin * (info_.limits.workspace_max_d - info_.limits.workspace_min_d);
+  allowed_min_d_ = info_.limits.workspace_min_d - margin;
+  allowed_max_d_ = info_.limits.workspace_max_d + margin;
+}
+
+HidDevice::~HidDevice() {
+  if (session_open_) EndSession();
+  hid_close(handle_);
+}
+
+bool HidDevice::SetSession(bool open) {
+  hid::SessionReport session;
+  session.flags = open ? hid::kSessionOpen : 0;
+  session.version = hid::kHostVersion;
+  session.watchdog_ms = static_cast<std::uint16_t>(watchdog_ms_);
+  std::uint8_t out[hid::kSessionReportSize];
+  hid::EncodeSession(session, out);
+  if (hid_send_feature_report(handle_, out, sizeof out) < 0) return false;
+  std::uint8_t in[256] = {hid::kSessionReportId};
+  const int n = hid_get_feature_report(handle_, in, sizeof in);
+  hid::SessionReport accepted;
+  if (n < 0 || !hid::DecodeSession(in, static_cast<std::size_t>(n), &accepted)) return false;
+  return accepted.version == hid::kHostVersion &&
+         (accepted.flags & hid::kSessionOpen) == session.flags;
+}
+
+void HidDevice::BeginSession() {
+  if (unplugged()) {
+    throw DeviceError("the HID device " + info_.path + " was unplugged; open it again");
+  }
+  // old reports say nothing about now
+  for (int i = 0; i < 4096 && hid_read_timeout(handle_, buffer_, sizeof buffer_, 0) > 0; ++i) {
+  }
+  if (!SetSession(true)) {
+    throw DeviceError("the HID device " + info_.path +
+                      " did not open a session: " + hid::ErrorText(handle_));
+  }
+  session_open_ = true;
+  have_report_ = false;
+  have_good_ = false;
+  verdict_ = ReadStatus::kNoData;
+  velocity_filter_.Reset();
+  failed_writes_in_a_row_ = 0;
+}
+
+void HidDevice::EndSession() {
+  if (!session_open_) return;
+  session_open_ = false;
+  if (unplugged()) return;
+  hid::OutputReport zero;  // ENABLE = 0, zero force
+  zero.sequence = ++output_sequence_;
+  zero.input_sequence = last_sequence_;
+  std::uint8_t out[hid::kOutputReportSize];
+  hid::EncodeOutput(zero, out);
+  hid_write(handle_, out, sizeof out);
+  SetSession(false);
+}
+
+void HidDevice::Count(std::atomic<std::uint64_t>& counter, std::uint64_t n) {
+  counter.store(counter.load(std::memory_order_relaxed) + n, std::memory_order_relaxed);
+}
+
+double HidDevice::MonotonicSeconds() {
+  timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);  // vDSO: no system call
+  return static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
+}
+
+ReadStatus HidDevice::ReadState(double /*loop_time_s*/, DeviceState* state) {
+  if (unplugged()) return ReadStatus::kUnplugged;
+  const double now = clock_();
+  for (int i = 0; i < kMaxReadsPerTick; ++i) {
+    const int n = hid_read_timeout(handle_, buffer_, sizeof buffer_, 0);
+    if (n < 0) {
+      unplugged_.store(true, std::memory_order_release);
+      return ReadStatus::kUnplugged;
+    }
+    if (n == 0) break;
+    Count(reports_read_);
+    hid::InputReport r;
+    if (!hid::DecodeInput(buffer_, static_cast<std::size_t>(n), &r)) {
+      Count(malformed_);
+      continue;
+    }
+    if (have_report_) {
+      const auto ahead = static_cast<std::int16_t>(r.sequence - last_sequence_);
+      // unsigned difference: wraps every 71.6 min; "back" shows as a huge step
+      const std::uint32_t dt_us = r.device_time_us - last_device_time_us_;
+      if (ahead <= 0 || dt_us == 0 || dt_us >= 0x80000000u) {
+        Count(not_newer_);
+        continue;
+      }
+      if (ahead > 1) Count(dropped_, static_cast<std::uint64_t>(ahead - 1));
+      device_time_s_ += dt_us * 1e-6;
+    }
+    have_report_ = true;
+    last_sequence_ = r.sequence;
+    last_device_time_us_ = r.device_time_us;
+    last_status_ = r.status;
+    if (r.status & hid::kStatusWatchdog) Count(watchdog_reports_);
+    if (r.round_trip_us != 0) {
+      round_trip_.Record(static_cast<std::int64_t>(r.round_trip_us) * 1000);
+      round_trip_last_us_.store(r.round_trip_us, std::memory_order_relaxed);
+    }
+    const Vec3 p(hid::PositionFromWire(r.position_nm[0]), hid::PositionFromWire(r.position_nm[1]),
+                 hid::PositionFromWire(r.position_nm[2]));
+    // a tripped device watchdog is a fault too: the force must ramp in again, not jump
+    // back when commands get through
+    if (r.status & (hid::kStatusFault | hid::kStatusNotHomed | hid::kStatusWatchdog)) {
+      Count(device_faults_);
+      verdict_ = ReadStatus::kDeviceFault;
+    } else if (!(p.array() >= allowed_min_d_.array()).all() ||
+               !(p.array() <= allowed_max_d_.array()).all()) {
+      Count(out_of_range_);
+      verdict_ = ReadStatus::kOutOfRange;
+    } else {
+      Count(reports_used_);
+      velocity_filter_.Update(device_time_s_, p);
+      position_d_ = p;
+      buttons_ = r.buttons;
+      // how much later than the quickest recent report this one came
+      const double offset = now - device_time_s_;
+      if (!have_good_) {
+        min_offset_s_ = offset;
+      } else {
+        min_offset_s_ =
+            std::min(min_offset_s_ + kDriftAllowance * (now - min_offset_time_s_), offset);
+      }
+      min_offset_time_s_ = now;
+      fresh_delay_s_ = offset - min_offset_s_;
+      have_good_ = true;
+      last_fresh_s_ = now;
+      verdict_ = ReadStatus::kOk;
+    }
+  }
+  if (!have_good_) return verdict_ == ReadStatus::kOk ? ReadStatus::kNoData : verdict_;
+  if (verdict_ != ReadStatus::kOk) return verdict_;
+  state->time_s = device_time_s_;
+  state->position_d = position_d_;
+  state->velocity_d = velocity_filter_.velocity();
+  state->buttons = buttons_;
+  state->age_s = now - last_fresh_s_ + fresh_delay_s_;
+  return ReadStatus::kOk;
+}
+
+void HidDevice::WriteForce(const Vec3& force_d) {
+  if (unplugged()) return;
+  hid::OutputReport r;
+  r.flags = session_open_ ? hid::kOutputEnable : 0;
+  r.sequence = ++output_sequence_;
+  r.input_sequence = last_sequence_;
+  for (int a = 0; a < 3; ++a) r.force_un[a] = hid::ForceToWire(force_d[a]);
+  std::uint8_t out[hid::kOutputReportSize];
+  hid::EncodeOutput(r, out);
+  Count(writes_);
+  if (hid_write(handle_, out, sizeof out) < 0) {
+    Count(writes_failed_);
+    if (++failed_writes_in_a_row_ >= 3) unplugged_.store(true, std::memory_order_release);
+  } else {
+    failed_writes_in_a_row_ = 0;
+  }
+}
+
+std::string HidDevice::DescribeFault() const {
+  const HidLinkStats s = link_stats();
+  std::string text;
+  if (unplugged()) {
+    text = "hidapi: " + hid::ErrorText(handle_);
+  } else if (last_status_ & hid::kStatusFault) {
+    text = "the device reports a fault (amplifier, encoder or temperature)";
+  } else if (last_status_ & hid::kStatusNotHomed) {
+    text = "the device is not calibrated (homed) yet";
+  } else if (last_status_ & hid::kStatusWatchdog) {
+    text = "the device's watchdog cut the force (no command reached it in time)";
+  }
+  if (s.malformed + s.not_newer + s.dropped + s.out_of_range > 0) {
+    if (!text.empty()) text += "; ";
+    text += "link: " + std::to_string(s.reports_read) + " reports read, " +
+            std::to_string(s.malformed) + " malformed, " + std::to_string(s.not_newer) +
+            " out of order or repeated, " + std::to_string(s.dropped) + " dropped, " +
+            std::to_string(s.out_of_range) + " out of range";
+  }
+  return text;
+}
+
+HidLinkStats HidDevice::link_stats() const {
+  HidLinkStats s;
+  auto get = [](const std::atomic<std::uint64_t>& c) { return c.load(std::memory_order_relaxed); };
+  s.reports_read = get(reports_read_);
+  s.reports_used = get(reports_used_);
+  s.malformed = get(malformed_);
+  s.not_newer = get(not_newer_);
+  s.dropped = get(dropped_);
+  s.out_of_range = get(out_of_range_);
+  s.device_faults = get(device_faults_);
+  s.watchdog_reports = get(watchdog_reports_);
+  s.writes = get(writes_);
+  s.writes_failed = get(writes_failed_);
+  s.round_trip_last_us = round_trip_last_us_.load(std::memory_order_relaxed);
+  s.round_trip_p50_us = round_trip_.Percentile(0.5) * 1e-3;
+  s.round_trip_p99_us = round_trip_.Percentile(0.99) * 1e-3;
+  s.round_trip_count = round_trip_.count();
+  return s;
+}
+
+}  // namespace hapticad

@@ -1,0 +1,139 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The hidapi emulator: a library that implements hidapi's C API (hid_init,
+// hid_enumerate, hid_open_path, hid_read_timeout, hid_write, hid_get_feature_report,
+// hid_send_feature_report, hid_close, hid_error, ... every function of hidapi 0.13)
+// over emulated devices, so that the test build links it instead of libhidapi and
+// exercises the shipped HID backend unchanged.
+//
+// Each emulated device runs the device side of devices/hid/PROTOCOL.md (firmware.h):
+// a 3-DOF mass pushed by the commanded force and held by a model of the user's hand,
+// input reports at the device's rate, the device watchdog, version negotiation, and
+// faults injected in time windows. Devices advance lazily on the emulator's clock
+// whenever hidapi is called (the real monotonic clock, or a manual one for
+// deterministic tests), as if a USB host controller queued their reports meanwhile.
+//
+// Thread-safe (one lock, as a kernel would serialise). hid_read_timeout and hid_write
+// do not allocate (the backend's tick is allocation-counted through them).
+//
+// The same library built as a shared object (libhapticad_hidapi_emulator_preload.so)
+// can be LD_PRELOADed in front of libhidapi; it then creates the devices described in
+// the environment variable HAPTICAD_HIDEMU (see ConfigureFromSpec).
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "hapticad/core/vec3.h"
+
+namespace hapticad::hidemu {
+
+enum class Fault {
+  kUnplug,       // at start_s the device disappears: reads and writes fail, enumerate drops it
+  kStall,        // [start, end): the device sends no input reports
+  kLate,         // [start, end): input reports arrive `param` s late
+  kReorder,      // [start, end): input reports swapped in pairs
+  kDrop,         // [start, end): each input report lost with probability `param`
+  kTruncate,     // [start, end): input reports cut to `param` bytes
+  kGarbage,      // [start, end): input reports replaced by random bytes (half with ID 1, 32 bytes)
+  kExtreme,      // [start, end): positions at the ends of the i32 range (about +-2.1 m)
+  kFreezeClock,  // [start, end): the device time stops advancing
+  kDeviceFault,  // [start, end): the FAULT status bit (and no force)
+  kNotHomed,     // [start, end): the NOT_HOMED status bit
+  kDropOutput,   // [start, end): the host's output reports are lost
+  kDuplicate,    // [start, end): every input report is sent twice
+};
+
+struct FaultWindow {
+  Fault fault;
+  double start_s = 0.0;  // device time since it was plugged in
+  double end_s = std::numeric_limits<double>::infinity();
+  double param = 0.0;
+};
+
+struct FirmwareConfig {
+  std::string path = "emu:0";
+  std::string product = "HaptiCAD emulated 3-DOF device";
+  std::uint16_t vendor_id = 0x1209;
+  std::uint16_t product_id = 0x0001;
+  std::uint16_t usage_page = 0xFF48;
+  std::uint16_t usage = 0x01;
+  // feature report 0x03, as sent (bad values test the host's checks)
+  std::uint8_t dof = 3;
+  std::uint16_t magic = 0x4348;
+  std::uint16_t version_min = 0x0100;
+  std::uint16_t version_max = 0x0100;
+  std::uint16_t watchdog_ms = 20;
+  std::uint16_t report_rate_hz = 1000;
+  double max_force_n = 8.0;
+  double continuous_force_n = 4.0;
+  double max_stiffness_n_per_m = 2500.0;
+  double max_damping_n_s_per_m = 5.0;
+  Vec3 workspace_min_m = Vec3::Constant(-0.08);
+  Vec3 workspace_max_m = Vec3::Constant(0.08);
+  double position_resolution_m = 10e-6;
+  // the handle: a mass with damping, held by the user's hand (a spring-damper toward a
+  // target moving piecewise linearly through hand_positions_m at hand_times_s)
+  double mass_kg = 0.1;
+  double damping_n_s_per_m = 2.0;
+  double hand_stiffness_n_per_m = 300.0;
+  double hand_damping_n_s_per_m = 5.0;
+  std::vector<double> hand_times_s;  // empty: the hand holds the handle at the origin
+  std::vector<Vec3> hand_positions_m;
+  double transport_latency_s = 0.0;  // each way
+  std::uint32_t seed = 1;
+  std::vector<FaultWindow> faults;
+};
+
+struct Snapshot {
+  bool plugged = false;
+  bool session_open = false;
+  std::uint16_t version = 0;
+  double time_s = 0.0;  // device time since plugged in
+  Vec3 position_m = Vec3::Zero();
+  Vec3 velocity_m = Vec3::Zero();
+  Vec3 commanded_force_n = Vec3::Zero();
+  Vec3 applied_force_n = Vec3::Zero();  // after session, enable, watchdog, fault, clamp
+  double max_applied_force_n = 0.0;     // the largest |force| ever applied
+  bool watchdog_tripped = false;
+  std::uint64_t watchdog_trips = 0;
+  std::uint64_t reports_generated = 0;
+  std::uint64_t reports_read = 0;  // by the host
+  std::uint64_t outputs_received = 0;
+  std::uint64_t outputs_applied = 0;
+  std::uint64_t outputs_rejected = 0;  // malformed, bad CRC or not newer
+  std::uint64_t round_trips = 0;
+  double round_trip_last_s = 0.0;
+  double round_trip_p50_s = 0.0;
+  double round_trip_p99_s = 0.0;
+  double round_trip_max_s = 0.0;
+};
+
+// Removes every device and returns to the real clock.
+void Reset();
+// Plugs in a device; returns its id. It appears in hid_enumerate() at once.
+int AddDevice(const FirmwareConfig& config);
+// A HID device that is not a haptic device (a keyboard): enumerated, never ours.
+void AddOtherDevice(const std::string& path, std::uint16_t vendor_id, std::uint16_t product_id,
+                    std::uint16_t usage_page, std::uint16_t usage, const std::string& product);
+// Pulls the cable now.
+void Unplug(int id);
+// Moves the user's hand target (overrides the trajectory from now on).
+void SetHandTarget(int id, const Vec3& target_m);
+Snapshot GetSnapshot(int id);
+
+// The emulator clock, s. Manual mode: time stands still unless set.
+void UseManualClock(double t_s);
+void SetTime(double t_s);
+void UseRealClock();
+double Now();
+
+// Parses a device list like "path=emu:0,product=My arm;path=emu:1,version=2.0-2.1" and
+// adds the devices. Keys: path, product, version (min-max), max_force (N; the continuous
+// force becomes half of it), rate (Hz),
+// unplug_at (s), stall (start-end s), kind=other (a non-haptic HID device). Throws
+// std::invalid_argument for anything else.
+void ConfigureFromSpec(const std::string& spec);
+
+}  // namespace hapticad::hidemu

@@ -1,0 +1,388 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The shipped HID backend against the hidapi emulator, on the emulator's manual clock:
+// every report, fault and answer is deterministic.
+#include "hapticad/devices/hid/hid_device.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "alloc_counter.h"
+#include "hapticad/devices/device_catalog.h"
+#include "hapticad/devices/hid/hid_device_finder.h"
+#include "hid_emulator.h"
+
+namespace hapticad {
+namespace {
+
+using hidemu::Fault;
+using hidemu::FaultWindow;
+using hidemu::FirmwareConfig;
+
+constexpr double kPlugTime = 100.0;  // emulator clock when the devices are plugged in
+
+bool Contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+class HidOnEmulator : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    hidemu::Reset();
+    hidemu::UseManualClock(kPlugTime);
+  }
+  void TearDown() override { hidemu::Reset(); }
+
+  // Reads at loop time t (the emulator's clock follows), then writes `force`.
+  ReadStatus Tick(HidDevice& d, double t, DeviceState* s, const Vec3& force = Vec3::Zero()) {
+    hidemu::SetTime(kPlugTime + t);
+    const ReadStatus status = d.ReadState(t, s);
+    d.WriteForce(force);
+    return status;
+  }
+
+  std::string OpenError(const FirmwareConfig& c) {
+    hidemu::AddDevice(c);
+    try {
+      HidDevice::Open(c.path);
+    } catch (const DeviceError& e) {
+      return e.what();
+    }
+    return "";
+  }
+};
+
+TEST_F(HidOnEmulator, FindsDevicesByUsagePageOrKnownIdAndNothingElse) {
+  FirmwareConfig by_usage;
+  by_usage.path = "emu:usage";
+  by_usage.vendor_id = 0x1234;
+  by_usage.product_id = 0x5678;
+  hidemu::AddDevice(by_usage);
+  FirmwareConfig by_id;
+  by_id.path = "emu:id";
+  by_id.usage_page = 0;
+  by_id.usage = 0;
+  hidemu::AddDevice(by_id);
+  hidemu::AddOtherDevice("emu:keyboard", 0x046d, 0xc31c, 0x0001, 0x0006, "Keyboard");
+  const auto found = FindHidCandidates();
+  ASSERT_EQ(found.size(), 2u);
+  EXPECT_EQ(found[0].path, "emu:usage");
+  EXPECT_EQ(found[1].path, "emu:id");
+  EXPECT_EQ(found[0].product, "HaptiCAD emulated 3-DOF device");
+}
+
+TEST_F(HidOnEmulator, ListsTheSimulatedHandThenEachDeviceWithItsLimitsOrWhyNot) {
+  const int good = hidemu::AddDevice(FirmwareConfig{});
+  FirmwareConfig newer;
+  newer.path = "emu:1";
+  newer.version_min = 0x0200;
+  newer.version_max = 0x0201;
+  hidemu::AddDevice(newer);
+  const auto list = ListDevices();
+  ASSERT_EQ(list.size(), 3u);
+  EXPECT_EQ(list[0].info.kind, "sim");
+  EXPECT_EQ(list[0].info.path, "sim:hand");
+  EXPECT_TRUE(list[0].has_limits);
+  EXPECT_EQ(list[1].info.kind, "hid");
+  EXPECT_EQ(list[1].info.path, "emu:0");
+  EXPECT_TRUE(list[1].has_limits);
+  EXPECT_DOUBLE_EQ(list[1].info.limits.max_force_n, 8.0);
+  EXPECT_DOUBLE_EQ(list[1].info.limits.workspace_max_d.z(), 0.08);
+  EXPECT_EQ(list[1].protocol, "1.0-1.0");
+  EXPECT_EQ(list[1].error, "");
+  EXPECT_FALSE(list[2].has_limits);
+  EXPECT_TRUE(Contains(list[2].error, "speaks HaptiCAD HID protocol 2.0-2.1")) << list[2].error;
+  // listing changes nothing on a device (another program may be using it)
+  EXPECT_FALSE(hidemu::GetSnapshot(good).session_open);
+  EXPECT_EQ(hidemu::GetSnapshot(good).version, 0);
+}
+
+TEST_F(HidOnEmulator, OpensNegotiatesAndRunsASession) {
+  const int id = hidemu::AddDevice(FirmwareConfig{});
+  auto d = HidDevice::Open("emu:0");
+  d->set_clock(&hidemu::Now);
+  EXPECT_EQ(d->info().kind, "hid");
+  EXPECT_EQ(d->info().name, "HaptiCAD emulated 3-DOF device");
+  EXPECT_DOUBLE_EQ(d->info().limits.max_stiffness_n_per_m, 2500.0);
+  EXPECT_DOUBLE_EQ(d->info().limits.position_resolution_m, 10e-6);
+  EXPECT_EQ(hidemu::GetSnapshot(id).version, 0x0100);
+  EXPECT_FALSE(hidemu::GetSnapshot(id).session_open);
+  d->BeginSession();
+  EXPECT_TRUE(hidemu::GetSnapshot(id).session_open);
+  d->EndSession();
+  EXPECT_FALSE(hidemu::GetSnapshot(id).session_open);
+  EXPECT_EQ(OpenDevice("emu:0")->info().kind, "hid");
+  EXPECT_EQ(OpenDevice("sim:hand")->info().kind, "sim");
+  EXPECT_THROW(OpenDevice("sim:nothing"), DeviceError);
+}
+
+TEST_F(HidOnEmulator, RefusesAWrongProtocolVersionSayingWhatToUpdate) {
+  FirmwareConfig newer;
+  newer.version_min = 0x0200;
+  newer.version_max = 0x0203;
+  EXPECT_EQ(OpenError(newer),
+            "cannot use the HID device emu:0: it speaks HaptiCAD HID protocol 2.0-2.3 and this "
+            "HaptiCAD speaks 1.0; update HaptiCAD");
+  FirmwareConfig older;
+  older.path = "emu:old";
+  older.version_min = older.version_max = 0x0009;
+  EXPECT_TRUE(Contains(OpenError(older), "update the device's firmware"));
+  // a device listing 1.x that then refuses it at negotiation
+  FirmwareConfig liar;
+  liar.path = "emu:liar";
+  liar.version_min = 0x0101;  // speaks only 1.1..1.2: lists major 1, refuses 1.0
+  liar.version_max = 0x0102;
+  EXPECT_TRUE(Contains(OpenError(liar), "refused HaptiCAD HID protocol 1.0")) << OpenError(liar);
+}
+
+TEST_F(HidOnEmulator, RefusesDevicesThatAreNotHapticOrStateImpossibleLimits) {
+  FirmwareConfig c;
+  c.max_force_n = 2000.0;  // (the wire holds up to 4294 N)
+  EXPECT_TRUE(Contains(OpenError(c), "impossible maximum force (2000")) << OpenError(c);
+  c = FirmwareConfig{};
+  c.path = "emu:box";
+  c.workspace_max_m.x() = c.workspace_min_m.x();
+  EXPECT_TRUE(Contains(OpenError(c), "impossible workspace"));
+  c = FirmwareConfig{};
+  c.path = "emu:magic";
+  c.magic = 0;
+  EXPECT_TRUE(Contains(OpenError(c), "does not identify itself as a HaptiCAD protocol device"));
+  c = FirmwareConfig{};
+  c.path = "emu:6dof";
+  c.dof = 6;
+  EXPECT_TRUE(Contains(OpenError(c), "6 degrees of freedom"));
+  hidemu::AddOtherDevice("emu:keyboard", 0x1209, 0x0001, 1, 6, "Keyboard");
+  try {
+    HidDevice::Open("emu:keyboard");
+    FAIL();
+  } catch (const DeviceError& e) {
+    EXPECT_TRUE(Contains(e.what(), "probably not a HaptiCAD protocol device")) << e.what();
+  }
+  try {
+    HidDevice::Open("emu:nowhere");
+    FAIL();
+  } catch (const DeviceError& e) {
+    EXPECT_TRUE(Contains(e.what(), "cannot open the HID device emu:nowhere")) << e.what();
+  }
+}
+
+TEST_F(HidOnEmulator, ReadsPositionsAndVelocityOnTheDeviceClock) {
+  FirmwareConfig c;
+  c.hand_times_s = {0.0, 0.2, 1.2};  // the hand sweeps x at 40 mm/s after 0.2 s
+  c.hand_positions_m = {Vec3(-0.02, 0, 0), Vec3(-0.02, 0, 0), Vec3(0.02, 0, 0)};
+  const int id = hidemu::AddDevice(c);
+  auto d = HidDevice::Open("emu:0");
+  d->set_clock(&hidemu::Now);
+  d->BeginSession();
+  DeviceState s;
+  // report 0 was sent at plug-in, before the session: flushed, so no data yet
+  EXPECT_EQ(Tick(*d, 0.0, &s), ReadStatus::kNoData);
+  for (int i = 1; i <= 700; ++i) ASSERT_EQ(Tick(*d, i * 1e-3, &s), ReadStatus::kOk) << i;
+  const hidemu::Snapshot truth = hidemu::GetSnapshot(id);
+  EXPECT_NEAR((s.position_d - truth.position_m).norm(), 0.0, 10e-6);  // one encoder step
+  EXPECT_NEAR(s.velocity_d.x(), truth.velocity_m.x(), 2e-3);
+  EXPECT_NEAR(s.velocity_d.x(), 0.04, 3e-3);
+  EXPECT_NEAR(s.time_s, 0.699, 1e-9);  // the device's clock since the session's first report
+  EXPECT_EQ(s.age_s, 0.0);
+  const HidLinkStats link = d->link_stats();
+  EXPECT_EQ(link.reports_used, 700u);
+  EXPECT_EQ(link.malformed + link.not_newer + link.dropped, 0u);
+}
+
+TEST_F(HidOnEmulator, TheDeviceAppliesTheForceClampedToItsMaximum) {
+  const int id = hidemu::AddDevice(FirmwareConfig{});
+  auto d = HidDevice::Open("emu:0");
+  d->set_clock(&hidemu::Now);
+  d->BeginSession();
+  DeviceState s;
+  Tick(*d, 0.0, &s, Vec3(1.0, -2.0, 0.5));
+  Tick(*d, 0.001, &s, Vec3(1.0, -2.0, 0.5));
+  hidemu::Snapshot snap = hidemu::GetSnapshot(id);
+  EXPECT_NEAR((snap.applied_force_n - Vec3(1.0, -2.0, 0.5)).norm(), 0.0, 1e-6);
+  Tick(*d, 0.002, &s, Vec3(0, 0, 20.0));
+  Tick(*d, 0.003, &s, Vec3(0, 0, 20.0));
+  snap = hidemu::GetSnapshot(id);
+  EXPECT_NEAR(snap.applied_force_n.z(), 8.0, 1e-9);  // the device's own clamp
+  EXPECT_EQ(snap.outputs_rejected, 0u);
+  d->EndSession();  // zero force, session closed
+  hidemu::SetTime(kPlugTime + 0.004);
+  snap = hidemu::GetSnapshot(id);
+  EXPECT_EQ(snap.applied_force_n, Vec3::Zero());
+  EXPECT_FALSE(snap.session_open);
+}
+
+TEST_F(HidOnEmulator, TheDeviceWatchdogZeroesTheForceWhenTheHostFallsSilent) {
+  const int id = hidemu::AddDevice(FirmwareConfig{});
+  auto d = HidDevice::Open("emu:0");  // asks the device for a 5 ms watchdog
+  d->set_clock(&hidemu::Now);
+  d->BeginSession();
+  DeviceState s;
+  for (int i = 0; i <= 10; ++i) Tick(*d, i * 1e-3, &s, Vec3(0, 0, 1.0));
+  hidemu::SetTime(kPlugTime + 0.0149);  // 4.9 ms without a command
+  EXPECT_NEAR(hidemu::GetSnapshot(id).applied_force_n.z(), 1.0, 1e-9);
+  hidemu::SetTime(kPlugTime + 0.0152);  // 5.2 ms
+  const hidemu::Snapshot snap = hidemu::GetSnapshot(id);
+  EXPECT_EQ(snap.applied_force_n, Vec3::Zero());
+  EXPECT_TRUE(snap.watchdog_tripped);
+  EXPECT_EQ(snap.watchdog_trips, 1u);
+  hidemu::SetTime(kPlugTime + 0.0162);  // the next report says so
+  EXPECT_EQ(d->ReadState(0.0162, &s), ReadStatus::kDeviceFault);
+  EXPECT_GT(d->link_stats().watchdog_reports, 0u);  // the host is told, too
+}
+
+// Runs 300 ticks with `window` over [100, 150) ms; returns the statuses and ages.
+struct FaultRun {
+  std::vector<ReadStatus> status;
+  std::vector<double> age_s;
+  std::vector<double> speed;
+  HidLinkStats link;
+  std::string fault;
+};
+
+class HidFaults : public HidOnEmulator {
+ protected:
+  FaultRun Run(Fault fault, double param = 0.0, double end_s = 0.15) {
+    FirmwareConfig c;
+    c.faults.push_back(FaultWindow{fault, 0.1, end_s, param});
+    c.seed = 7;
+    hidemu::AddDevice(c);
+    auto d = HidDevice::Open("emu:0");
+    d->set_clock(&hidemu::Now);
+    d->BeginSession();
+    FaultRun run;
+    DeviceState s;
+    for (int i = 0; i < 300; ++i) {
+      run.status.push_back(Tick(*d, i * 1e-3, &s, Vec3(0, 0, 0.5)));
+      run.age_s.push_back(s.age_s);
+      run.speed.push_back(s.velocity_d.norm());
+    }
+    run.link = d->link_stats();
+    run.fault = d->DescribeFault();
+    return run;
+  }
+  // tick 0 has no data (the report sent at plug-in was flushed): count from tick 1
+  static int CountOf(const FaultRun& run, ReadStatus status) {
+    return static_cast<int>(std::count(run.status.begin() + 1, run.status.end(), status));
+  }
+};
+
+TEST_F(HidFaults, TruncatedReportsAreRejectedAndTheDataAges) {
+  const FaultRun run = Run(Fault::kTruncate, 10);
+  EXPECT_EQ(run.link.malformed, 50u);
+  EXPECT_EQ(CountOf(run, ReadStatus::kOk), 299);  // the backend says "ok but old"...
+  EXPECT_NEAR(run.age_s[149], 0.050, 1e-9);       // ...and the loop's stale check zeroes it
+  EXPECT_EQ(run.age_s[150], 0.0);
+  EXPECT_TRUE(Contains(run.fault, "50 malformed")) << run.fault;
+}
+
+TEST_F(HidFaults, GarbageNeverBecomesAPosition) {
+  const FaultRun run = Run(Fault::kGarbage);
+  EXPECT_EQ(run.link.malformed, 50u);  // half had the right ID and length: the CRC caught them
+  EXPECT_EQ(run.link.out_of_range, 0u);
+  EXPECT_EQ(run.link.reports_used, 249u);
+  for (double v : run.speed) EXPECT_LT(v, 0.05);
+}
+
+TEST_F(HidFaults, ReorderedReportsNeverGoBackInTime) {
+  const FaultRun run = Run(Fault::kReorder);
+  EXPECT_EQ(run.link.not_newer, 25u);  // the older of each swapped pair
+  EXPECT_EQ(run.link.dropped, 25u);    // seen as a gap when the newer came first
+  EXPECT_EQ(CountOf(run, ReadStatus::kOk), 299);
+  for (std::size_t i = 1; i < run.age_s.size(); ++i) EXPECT_LE(run.age_s[i], 0.0011) << i;
+}
+
+TEST_F(HidFaults, DroppedReportsAreCountedAndTheRestUsed) {
+  const FaultRun run = Run(Fault::kDrop, 0.3);
+  EXPECT_GT(run.link.dropped, 5u);
+  EXPECT_LT(run.link.dropped, 30u);
+  EXPECT_EQ(run.link.reports_used + run.link.dropped, 299u);
+  EXPECT_EQ(CountOf(run, ReadStatus::kOk), 299);
+}
+
+TEST_F(HidFaults, DuplicatedReportsAreUsedOnce) {
+  const FaultRun run = Run(Fault::kDuplicate);
+  EXPECT_EQ(run.link.not_newer, 50u);
+  EXPECT_EQ(run.link.reports_used, 299u);
+}
+
+TEST_F(HidFaults, LateReportsShowTheirAge) {
+  const FaultRun run = Run(Fault::kLate, 0.02);
+  EXPECT_NEAR(run.age_s[119], 0.020, 1e-9);  // nothing newer than 99 ms until 120 ms
+  // then each report arrives 20 ms after the device sent it, in order; the reports after
+  // the window queue behind the late ones until 169 ms
+  for (int i = 120; i < 169; ++i) EXPECT_NEAR(run.age_s[i], 0.020, 0.1e-3) << i;
+  for (int i = 169; i < 300; ++i) EXPECT_LT(run.age_s[i], 0.1e-3) << i;
+  EXPECT_EQ(run.link.dropped + run.link.malformed, 0u);
+}
+
+TEST_F(HidFaults, AStallShowsAsAgeAndResumesWithoutAGap) {
+  const FaultRun run = Run(Fault::kStall);
+  EXPECT_NEAR(run.age_s[149], 0.050, 1e-9);
+  EXPECT_EQ(run.age_s[150], 0.0);
+  EXPECT_EQ(run.link.dropped, 0u);
+  EXPECT_EQ(run.link.reports_used, 249u);
+}
+
+TEST_F(HidFaults, AFrozenDeviceClockIsNotFreshData) {
+  const FaultRun run = Run(Fault::kFreezeClock);
+  EXPECT_EQ(run.link.not_newer, 49u);  // the first frozen stamp is still newer
+  EXPECT_NEAR(run.age_s[149], 0.049, 1e-9);
+}
+
+TEST_F(HidFaults, ExtremeValuesAreOutOfRangeAndNeverFiltered) {
+  const FaultRun run = Run(Fault::kExtreme);
+  EXPECT_EQ(CountOf(run, ReadStatus::kOutOfRange), 50);
+  for (int i = 100; i < 150; ++i) EXPECT_EQ(run.status[i], ReadStatus::kOutOfRange) << i;
+  EXPECT_EQ(run.link.out_of_range, 50u);
+  for (double v : run.speed) EXPECT_LT(v, 0.05);  // 2 m jumps never reached the velocity
+}
+
+TEST_F(HidFaults, ADeviceFaultOrMissingCalibrationIsReported) {
+  FaultRun run = Run(Fault::kDeviceFault);
+  EXPECT_EQ(CountOf(run, ReadStatus::kDeviceFault), 50);
+  EXPECT_EQ(run.link.device_faults, 50u);
+  hidemu::Reset();
+  hidemu::UseManualClock(kPlugTime);
+  run = Run(Fault::kNotHomed);
+  EXPECT_EQ(CountOf(run, ReadStatus::kDeviceFault), 50);
+}
+
+TEST_F(HidFaults, UnplugIsFinalAndSaysWhy) {
+  FirmwareConfig c;
+  c.faults.push_back(FaultWindow{Fault::kUnplug, 0.1});
+  hidemu::AddDevice(c);
+  auto d = HidDevice::Open("emu:0");
+  d->set_clock(&hidemu::Now);
+  d->BeginSession();
+  DeviceState s;
+  for (int i = 1; i < 100; ++i) ASSERT_EQ(Tick(*d, i * 1e-3, &s), ReadStatus::kOk);
+  for (int i = 100; i < 110; ++i) EXPECT_EQ(Tick(*d, i * 1e-3, &s), ReadStatus::kUnplugged);
+  EXPECT_TRUE(d->unplugged());
+  EXPECT_TRUE(Contains(d->DescribeFault(), "device disconnected")) << d->DescribeFault();
+  EXPECT_TRUE(FindHidCandidates().empty());
+  d->EndSession();  // must not throw or hang
+  try {
+    d->BeginSession();
+    FAIL();
+  } catch (const DeviceError& e) {
+    EXPECT_TRUE(Contains(e.what(), "was unplugged")) << e.what();
+  }
+}
+
+TEST_F(HidOnEmulator, ReadAndWriteDoNotAllocate) {
+  hidemu::AddDevice(FirmwareConfig{});
+  auto d = HidDevice::Open("emu:0");
+  d->set_clock(&hidemu::Now);
+  d->BeginSession();
+  DeviceState s;
+  Tick(*d, 0.0, &s);
+  testing::AllocationCounter counter;
+  for (int i = 1; i < 500; ++i) Tick(*d, i * 1e-3, &s, Vec3(0, 0, 0.2));
+  EXPECT_EQ(counter.count(), 0u);
+  EXPECT_EQ(d->link_stats().reports_used, 499u);
+}
+
+}  // namespace
+}  // namespace hapticad
