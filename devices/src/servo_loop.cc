@@ -103,9 +103,8 @@ ServoLoop::ServoLoop(Device& device, std::shared_ptr<ForceRenderer> renderer, Se
       trace_(config_.trace_capacity),
       latest_(TraceSample{}) {
   if (!renderer) throw std::invalid_argument("servo loop: no renderer");
-  current_ = renderer.get();
-  active_.store(current_, std::memory_order_release);
-  owned_.push_back(std::move(renderer));
+  renderers_.Publish(std::move(renderer));
+  current_ = renderers_.Take();  // no servo thread yet
   effective_mapping_.Write(mapping_);
 }
 
@@ -140,7 +139,7 @@ void ServoLoop::Stop() {
   stop_requested_.store(true);
   if (thread_.joinable()) thread_.join();
   running_.store(false, std::memory_order_release);
-  PruneRenderers();
+  renderers_.Release();
 }
 
 std::string ServoLoop::fault_message() const {
@@ -152,26 +151,8 @@ std::string ServoLoop::realtime_report() const { return realtime_report_; }
 
 void ServoLoop::SetRenderer(std::shared_ptr<ForceRenderer> renderer) {
   if (!renderer) throw std::invalid_argument("servo loop: no renderer");
-  // one swap at a time: the servo thread empties `pending_` within a tick
-  while (running() && pending_.load(std::memory_order_acquire) != nullptr) {
-    std::this_thread::sleep_for(std::chrono::microseconds(100));
-  }
-  ForceRenderer* raw = renderer.get();
-  owned_.push_back(std::move(renderer));
-  // the servo thread (or the next Tick() when none runs) takes it from here
-  pending_.store(raw, std::memory_order_release);
-  PruneRenderers();
-}
-
-void ServoLoop::PruneRenderers() {
-  // keep what the servo thread uses or is about to take (see AdoptUpdates for the order)
-  const ForceRenderer* active = active_.load(std::memory_order_acquire);
-  const ForceRenderer* pending = pending_.load(std::memory_order_acquire);
-  owned_.erase(std::remove_if(owned_.begin(), owned_.end(),
-                              [&](const std::shared_ptr<ForceRenderer>& r) {
-                                return r.get() != active && r.get() != pending;
-                              }),
-               owned_.end());
+  // the servo thread (or the next Tick() when none runs) takes it from the handoff
+  renderers_.Publish(std::move(renderer));
 }
 
 void ServoLoop::SetMapping(const WorkspaceMapping& mapping) {
@@ -180,18 +161,13 @@ void ServoLoop::SetMapping(const WorkspaceMapping& mapping) {
 }
 
 void ServoLoop::AdoptUpdates() {
-  // renderer: publish it as active before clearing pending, so the control thread
-  // always sees it in one of the two and never frees it under us
-  ForceRenderer* next = pending_.load(std::memory_order_acquire);
-  if (next != nullptr) {
-    if (next != current_) {
-      reset_from_proxy_ = had_proxy_;
-      current_ = next;
-      renderer_needs_reset_ = true;
-      safety_.RestartRamp();
-    }
-    active_.store(next, std::memory_order_release);
-    pending_.store(nullptr, std::memory_order_release);
+  // a new renderer (a new scene): it starts at the old proxy, the force ramps in again
+  ForceRenderer* next = renderers_.Take();
+  if (next != current_) {
+    reset_from_proxy_ = had_proxy_;
+    current_ = next;
+    renderer_needs_reset_ = true;
+    safety_.RestartRamp();
   }
   if (mapping_updates_.has_news()) {
     mapping_ = mapping_updates_.Read();

@@ -27,6 +27,7 @@
 #include <thread>
 #include <vector>
 
+#include "hapticad/core/handoff.h"
 #include "hapticad/core/rendering/force_renderer.h"
 #include "hapticad/devices/clutch.h"
 #include "hapticad/devices/device.h"
@@ -123,9 +124,11 @@ class ServoLoop {
   // The last tick's sample (control thread only).
   TraceSample latest() { return latest_.Read(); }
 
-  // Swaps the renderer (a new scene or new surfaces): the servo thread takes it at its
-  // next tick and ramps the force in again; the old one is released here, never on the
-  // servo thread. Blocks at most about one tick if a swap is still pending.
+  // Swaps the renderer (a new scene, built on this thread): the servo thread takes it at
+  // its next tick, starting it at the old proxy and ramping the force in again; the old
+  // one is released on this thread, never on the servo thread (core/handoff.h). Never
+  // blocks; a renderer set and not yet taken gives way to a newer one. A property edit
+  // needs no new renderer: ForceRenderer::SetSurfaces.
   void SetRenderer(std::shared_ptr<ForceRenderer> renderer);
   // Replaces the mapping (validated; throws std::invalid_argument). Taken at the next
   // tick; any clutch offset is dropped and the force ramps in again.
@@ -155,7 +158,6 @@ class ServoLoop {
   void CountFlags(std::uint32_t flags);
   void FinishSession(SessionEnd end, double loop_time_s);
   void ResetStats();
-  void PruneRenderers();
 
   Device& device_;
   ServoConfig config_;
@@ -163,11 +165,9 @@ class ServoLoop {
   SpscRing<TraceSample> trace_;
   std::thread thread_;
 
-  // renderers: `current_` is the servo thread's; the control thread owns them all
+  // renderers: `current_` is the servo thread's; the handoff keeps them alive
   ForceRenderer* current_ = nullptr;
-  std::atomic<ForceRenderer*> pending_{nullptr};
-  std::atomic<ForceRenderer*> active_{nullptr};
-  std::vector<std::shared_ptr<ForceRenderer>> owned_;
+  Handoff<ForceRenderer> renderers_;
 
   // mapping and clutch: the servo thread's copy, updated through mailboxes
   WorkspaceMapping mapping_;
