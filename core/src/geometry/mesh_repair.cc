@@ -294,13 +294,24 @@ TriangleSoup RepairSoup(const TriangleSoup& soup, const RepairOptions& options,
     if (count == 1) ++r.boundary_edges;
   }
 
+  // vertices numbered in the order the triangles first use them (CGAL's merge sorts
+  // them by coordinate): a triangle's neighbours then find their vertices nearby in
+  // memory, which the servo tick feels on big meshes; unused vertices are dropped
   TriangleSoup out;
+  std::vector<std::int32_t> renumber(points.size(), -1);
   out.vertices.reserve(points.size());
-  for (const Point& p : points) out.vertices.push_back(ToVec(p));
   out.triangles.reserve(polygons.size());
   for (const Polygon& p : polygons) {
-    out.triangles.push_back({static_cast<std::int32_t>(p[0]), static_cast<std::int32_t>(p[1]),
-                             static_cast<std::int32_t>(p[2])});
+    std::array<std::int32_t, 3> tri{};
+    for (int k = 0; k < 3; ++k) {
+      std::int32_t& id = renumber[p[k]];
+      if (id < 0) {
+        id = static_cast<std::int32_t>(out.vertices.size());
+        out.vertices.push_back(ToVec(points[p[k]]));
+      }
+      tri[k] = id;
+    }
+    out.triangles.push_back(tri);
   }
   out.cad_faces = std::move(faces);
   out.corner_normals = std::move(corner_normals);

@@ -13,8 +13,8 @@
 //
 // Temporal coherence: each tick's first sweep tests the last tick's contact triangle
 // before walking the tree, and every sweep carries the planes it cannot cross (the
-// constraints found so far, and the plane of the best contact so far): whole subtrees
-// under them are skipped. A proxy sliding over a dense convex surface then tests a
+// constraints found so far, and the plane of the best contact so far): triangles under
+// them are skipped without a contact test. A proxy sliding over a dense convex surface then tests a
 // handful of triangles per tick instead of every one within its radius.
 //
 // Frame and units: the scene's local frame, metres. Update() is servo-tick safe: no

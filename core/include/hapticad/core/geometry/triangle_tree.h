@@ -33,8 +33,8 @@ struct SurfacePoint {
 };
 
 // Half-spaces n . x <= offset that the swept query provably never comes within its
-// radius of (the proxy's constraint planes, lowered by the radius): triangles and
-// boxes entirely inside one are skipped without a contact test. On a convex surface
+// radius of (the proxy's constraint planes, lowered by the radius): triangles entirely
+// inside one are skipped without a contact test. On a convex surface
 // this discards everything under the face the proxy slides on.
 struct SweepFloors {
   static constexpr int kMax = 3;
