@@ -162,7 +162,7 @@ def plot(rows, path):
         ax.set_xlabel("triangles")
         ax.grid(True, which="both", alpha=0.3)
     axes[0].set_yscale("log")
-    axes[0].legend(fontsize=8)
+    axes[0].legend(fontsize=8, loc="center", bbox_to_anchor=(0.55, 0.45))
     fig.suptitle(f"Speed against accuracy: point proxy {DEPTH_MM:g} mm deep at {SPEED_MM_S:g} mm/s, "
                  f"k = {K_N_PER_M / 1000:g} N/mm, per accuracy preset (Draft, Normal, Fine)")
     fig.tight_layout()
