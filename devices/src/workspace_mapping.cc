@@ -25,6 +25,9 @@ RenderLimits RenderLimitsFor(const DeviceLimits& limits, const WorkspaceMapping&
   RenderLimits out;
   out.max_force_n = limits.max_force_n;
   out.max_stiffness_n_per_m = limits.max_stiffness_n_per_m / mapping.scale;
+  // a damping limit the device states (else the renderer's default), scaled as stiffness
+  if (limits.max_damping_n_s_per_m > 0.0)
+    out.max_damping_n_s_per_m = limits.max_damping_n_s_per_m / mapping.scale;
   return out;
 }
 

@@ -237,6 +237,7 @@ void DefineSurfaces(py::module_& m) {
       .def(py::init<>())
       .def_readwrite("friction", &SurfaceProperties::friction)
       .def_readwrite("stiffness_n_per_m", &SurfaceProperties::stiffness_n_per_m)
+      .def_readwrite("damping_n_s_per_m", &SurfaceProperties::damping_n_s_per_m)
       .def_readwrite("friction_mode", &SurfaceProperties::friction_mode)
       .def_readwrite("anisotropy", &SurfaceProperties::anisotropy)
       .def_readwrite("roughness", &SurfaceProperties::roughness)
@@ -491,12 +492,14 @@ void DefineDeviceTypes(py::module_& m) {
   py::class_<RenderLimits>(m, "RenderLimits")
       .def(py::init<>())
       .def_readwrite("max_force_n", &RenderLimits::max_force_n)
-      .def_readwrite("max_stiffness_n_per_m", &RenderLimits::max_stiffness_n_per_m);
+      .def_readwrite("max_stiffness_n_per_m", &RenderLimits::max_stiffness_n_per_m)
+      .def_readwrite("max_damping_n_s_per_m", &RenderLimits::max_damping_n_s_per_m);
   m.attr("FLAG_CONTACT") = static_cast<std::uint32_t>(kContact);
   m.attr("FLAG_FORCE_CLAMPED") = static_cast<std::uint32_t>(kForceClamped);
   m.attr("FLAG_STIFFNESS_CLAMPED") = static_cast<std::uint32_t>(kStiffnessClamped);
   m.attr("FLAG_INPUT_FAULT") = static_cast<std::uint32_t>(kInputFault);
   m.attr("FLAG_STICKING") = static_cast<std::uint32_t>(kSticking);
+  m.attr("FLAG_DAMPING_CLAMPED") = static_cast<std::uint32_t>(kDampingClamped);
   m.attr("FLAG_DEVICE_FAULT") = kDeviceFault;
   m.attr("FLAG_FAULT_NO_DATA") = kFaultNoData;
   m.attr("FLAG_FAULT_STALE") = kFaultStale;

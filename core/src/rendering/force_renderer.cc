@@ -47,8 +47,11 @@ ForceRenderer::ForceRenderer(std::shared_ptr<const HapticScene> scene,
       limits_(limits),
       options_(options),
       proxy_(Checked(scene_).mesh(), scene_->tree(), MakeProxyConfig(*scene_, options)) {
-  if (!(limits_.max_force_n > 0.0) || !(limits_.max_stiffness_n_per_m > 0.0)) {
-    throw std::invalid_argument("force renderer: device limits must be > 0");
+  if (!(limits_.max_force_n > 0.0) || !(limits_.max_stiffness_n_per_m > 0.0) ||
+      !(limits_.max_damping_n_s_per_m >= 0.0) || !std::isfinite(limits_.max_force_n) ||
+      !std::isfinite(limits_.max_stiffness_n_per_m) ||
+      !std::isfinite(limits_.max_damping_n_s_per_m)) {
+    throw std::invalid_argument("force renderer: device limits must be finite, > 0 (damping >= 0)");
   }
   SetSurfaces(std::move(surfaces));
   surfaces_ = surfaces_handoff_.Take();
@@ -158,10 +161,19 @@ void ForceRenderer::Render(const RenderInput& input, RenderOutput* out) {
     const Vec3 shaded = SmoothShadingNormal();
     if (shaded.squaredNorm() > 0.0) spring = std::max(spring.dot(shaded), 0.0) * shaded;
   }
-  const double spring_n = spring.norm();
+  const double spring_only_n = spring.norm();
   const Vec3 normal =
-      spring_n > 0.0 ? Vec3(spring / spring_n) : proxy_.constraints().plane(0).normal;
-  const double depth = spring_n / k;
+      spring_only_n > 0.0 ? Vec3(spring / spring_only_n) : proxy_.constraints().plane(0).normal;
+  const double depth = spring_only_n / k;
+  // the face's damping on the normal motion: resists, never pulls
+  double b = surface.damping_n_s_per_m;
+  if (b > limits_.max_damping_n_s_per_m) {
+    b = limits_.max_damping_n_s_per_m;
+    out->flags |= kDampingClamped;
+  }
+  const double damper = -b * input.velocity_w.dot(normal);
+  const double spring_n = std::max(spring_only_n + damper, 0.0);
+  spring = spring_n * normal;
   const Vec3 v_t = input.velocity_w - input.velocity_w.dot(normal) * normal;
 
   // plain faces stop here: normal spring plus seed 000 friction
@@ -189,7 +201,7 @@ void ForceRenderer::Render(const RenderInput& input, RenderOutput* out) {
   double friction_scale = 1.0;
   if (effects & kEffectRoughness) {
     const RoughnessSample r = SampleRoughness(*surface.roughness, contact_w);
-    normal_force = k * std::max(depth + r.height_m, 0.0);
+    normal_force = std::max(k * (depth + r.height_m) + damper, 0.0);
     const Vec3 slope = r.gradient_w - r.gradient_w.dot(normal) * normal;
     normal_direction = (normal - slope).normalized();
     friction_scale = r.friction_scale;

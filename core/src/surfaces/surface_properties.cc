@@ -88,6 +88,8 @@ void ValidateSurfaceProperties(const SurfaceProperties& s) {
   Require(NonNegative(f.stribeck_speed_mps), "Stribeck speed", f.stribeck_speed_mps,
           "finite and >= 0 m/s");
   Require(Positive(s.stiffness_n_per_m), "stiffness", s.stiffness_n_per_m, "finite and > 0 N/m");
+  Require(NonNegative(s.damping_n_s_per_m), "damping", s.damping_n_s_per_m,
+          "finite and >= 0 N s/m");
   ValidatePattern(s);
   if (s.roughness) {
     ValidateFrame(s.roughness->frame, "roughness frame");

@@ -113,6 +113,7 @@ def compile_surface(surface, face):
     friction.stribeck_speed_mps = surface.StribeckSpeed * MM
     props.friction = friction
     props.stiffness_n_per_m = surface.Stiffness / MM
+    props.damping_n_s_per_m = surface.Damping
     props.friction_mode = (_core.FrictionMode.CONE if surface.FrictionModel.startswith("Friction cone")
                            else _core.FrictionMode.VELOCITY)
 

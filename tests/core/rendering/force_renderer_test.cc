@@ -378,3 +378,36 @@ TEST_F(RendererOnBox, APropertyEditIsInEffectAtTheNextTickWithoutARebuild) {
 
 }  // namespace
 }  // namespace hapticad
+
+namespace hapticad {
+namespace {
+
+TEST_F(RendererOnBox, DampingResistsPressingAndSpringingBackButNeverPulls) {
+  std::vector<SurfaceProperties> faces(6, kUntaggedSurface);
+  faces[5].stiffness_n_per_m = 300.0;
+  faces[5].friction.static_coefficient = 0.0;
+  faces[5].friction.dynamic_coefficient = 0.0;
+  faces[5].damping_n_s_per_m = 0.4;
+  ForceRenderer r(scene_, std::make_shared<SurfaceTable>(faces), limits_);
+  // pressing in at 0.1 m/s, 2 mm deep: k d + B v
+  RenderOutput out = Press(r, 0.002, Vec3(0, 0, -0.1));
+  EXPECT_NEAR(out.force_w.z(), 300.0 * 0.002 + 0.4 * 0.1, 1e-6);  // (the proxy's offset: 5e-8 N)
+  // springing back out at 0.1 m/s: k d - B v
+  r.Render({Vec3(0, 0, 0.048), Vec3(0, 0, 0.1)}, &out);
+  EXPECT_NEAR(out.force_w.z(), 300.0 * 0.002 - 0.4 * 0.1, 1e-6);
+  // out fast, barely in: the damper would pull; the force stays zero instead
+  r.Render({Vec3(0, 0, 0.0499), Vec3(0, 0, 1.0)}, &out);
+  EXPECT_TRUE(out.flags & kContact);
+  EXPECT_EQ(out.force_w.z(), 0.0);
+  // more damping than the device allows is capped, and said so
+  faces[5].damping_n_s_per_m = 5.0;
+  r.SetSurfaces(std::make_shared<SurfaceTable>(faces));
+  r.Render({Vec3(0, 0, 0.048), Vec3(0, 0, -0.1)}, &out);
+  EXPECT_TRUE(out.flags & kDampingClamped);
+  EXPECT_NEAR(out.force_w.z(), 300.0 * 0.002 + limits_.max_damping_n_s_per_m * 0.1, 1e-6);
+  faces[5].damping_n_s_per_m = -1.0;
+  EXPECT_THROW(SurfaceTable{faces}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace hapticad

@@ -53,8 +53,9 @@ class CompileTest(unittest.TestCase):
 
     def test_plain_friction_and_units(self):
         s = self.surface(FeelRoughness=False, StickSpeed=3.0, TransitionSpeed=1.0, StribeckSpeed=5.0,
-                         FrictionModel="Friction cone (stick-slip)")
+                         FrictionModel="Friction cone (stick-slip)", Damping=0.3)
         p = compile_surface(s, self.top)
+        self.assertAlmostEqual(p.damping_n_s_per_m, 0.3)
         self.assertEqual(p.friction.static_coefficient, s.StaticFriction)
         self.assertAlmostEqual(p.friction.stick_speed_mps, 0.003)
         self.assertAlmostEqual(p.friction.transition_speed_mps, 0.001)

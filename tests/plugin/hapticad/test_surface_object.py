@@ -136,7 +136,7 @@ class PersistenceTest(unittest.TestCase):
                                   Interpolation="Friction ellipse", AcrossFriction=2.5, BackwardFriction=0.7,
                                   Texture="Custom", TextureDC=0.4, TextureViscosity=-0.1, TextureBeta=0.2,
                                   TextureAlpha=1.5, TextureBetaViscosity=0.05, TextureAlphaViscosity=-0.3,
-                                  TexturePeriod=3.25, TextureFullRange=1.5)
+                                  TexturePeriod=3.25, TextureFullRange=1.5, Damping=0.35)
         s.PatternCurve = (doc.Box, ["Edge3"])
         doc.recompute()
         defaults = {p[0]: p[4] for p in surface_object.PROPERTIES}

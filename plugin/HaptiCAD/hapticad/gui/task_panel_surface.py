@@ -26,7 +26,7 @@ from .selection import selected_curve
 
 # units shown after values, by property
 UNITS = {
-    "Stiffness": " N/mm", "StickSpeed": " mm/s", "TransitionSpeed": " mm/s", "StribeckSpeed": " mm/s",
+    "Stiffness": " N/mm", "Damping": " N·s/m", "StickSpeed": " mm/s", "TransitionSpeed": " mm/s", "StribeckSpeed": " mm/s",
     "PatternAngle": " °", "PatternBlendRadius": " mm", "TexturePeriod": " mm", "TextureFullRange": " N",
     "PatternCenter": " mm",
 }

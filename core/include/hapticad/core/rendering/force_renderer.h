@@ -11,7 +11,8 @@
 //              or three constraints) it shades when the triangles' shading normals
 //              agree there (one smooth CAD face); at a crease of the CAD model the
 //              plain spring acts. With roughness, k (depth + h) along the bump-tilted
-//              normal (roughness_texture.h)
+//              normal (roughness_texture.h). The face's damping B adds -B v_n along the
+//              normal (capped at the device's limit), the sum never below zero
 //   lateral    one of
 //                seed 000 §2.1 friction, f_t = -mu_eq(|v_t|) F_n v_hat_t, with the
 //                face's mu (anisotropic along a pattern, scaled by roughness);
@@ -48,6 +49,9 @@ namespace hapticad {
 struct RenderLimits {
   double max_force_n = 3.3;              // > 0; the full range of textures that set none
   double max_stiffness_n_per_m = 400.0;  // > 0
+  // >= 0. Virtual damping beyond the device's own destabilises a sampled display
+  // (Colgate: b > K T / 2 + |B|); 0.5 N s/m is a desktop device's own (field notes).
+  double max_damping_n_s_per_m = 0.5;
 };
 
 // How the contact is computed: the shape of the proxy and whether to shade.
@@ -68,6 +72,7 @@ enum RenderFlags : std::uint32_t {
   kStiffnessClamped = 1u << 2,
   kInputFault = 1u << 3,
   kSticking = 1u << 4,  // friction cone: the proxy is stuck to its anchor
+  kDampingClamped = 1u << 5,
 };
 
 struct RenderOutput {

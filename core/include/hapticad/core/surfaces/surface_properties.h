@@ -54,6 +54,9 @@ struct ViscousGrating {
 struct SurfaceProperties {
   FrictionParams friction;           // with a pattern: along the stripes (mu_a)
   double stiffness_n_per_m = 400.0;  // contact stiffness asked for, N/m (> 0)
+  // Viscous damping of the normal motion while in contact, N s/m (>= 0): resists
+  // pressing in and springing back, never pulls (the normal force stays >= 0).
+  double damping_n_s_per_m = 0.0;
   FrictionMode friction_mode = FrictionMode::kVelocity;
   StripePattern pattern;
   AnisotropicFriction anisotropy;  // used with a pattern
