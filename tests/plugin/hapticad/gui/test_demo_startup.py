@@ -17,7 +17,7 @@ from hapticad import demo
 
 SHOTS = os.environ.get("HAPTICAD_SCREENSHOT_DIR", "/tmp")
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from test_workbench_gui import non_white_fraction  # noqa: E402
+from gui_helpers import non_white_fraction  # noqa: E402
 
 
 class DemoStartupTest(unittest.TestCase):

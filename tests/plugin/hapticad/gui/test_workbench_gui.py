@@ -18,18 +18,6 @@ import gui_helpers as h  # noqa: E402
 SHOTS = os.environ.get("HAPTICAD_SCREENSHOT_DIR", "/tmp")
 
 
-def non_white_fraction(image, x0=0.0, y0=0.0, x1=1.0, y1=1.0):
-    """Share of pixels in a region (fractions of the image) that are not white."""
-    w, h = image.width(), image.height()
-    count = total = 0
-    for y in range(int(y0 * h), int(y1 * h), 2):
-        for x in range(int(x0 * w), int(x1 * w), 2):
-            c = QtGui.QColor(image.pixel(x, y))
-            total += 1
-            count += (c.red() + c.green() + c.blue()) < 720
-    return count / max(total, 1)
-
-
 class WorkbenchGuiTest(unittest.TestCase):
     def setUp(self):
         self.doc = App.newDocument("GuiTest")
@@ -113,9 +101,9 @@ class WorkbenchGuiTest(unittest.TestCase):
         self.assertFalse(image.isNull())
         # not blank, and the part sits in the middle of the view (the overlay's legend
         # takes the top-left corner: look at the bottom-left one)
-        self.assertGreater(non_white_fraction(image), 0.10)
-        self.assertGreater(non_white_fraction(image, 0.4, 0.4, 0.6, 0.6), 0.9)
-        self.assertLess(non_white_fraction(image, 0.0, 0.9, 0.1, 1.0), 0.05)
+        self.assertGreater(h.non_white_fraction(image), 0.10)
+        self.assertGreater(h.non_white_fraction(image, 0.4, 0.4, 0.6, 0.6), 0.9)
+        self.assertLess(h.non_white_fraction(image, 0.0, 0.9, 0.1, 1.0), 0.05)
 
 
 if __name__ == "__main__":

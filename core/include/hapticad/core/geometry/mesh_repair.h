@@ -31,7 +31,7 @@
 namespace hapticad {
 
 struct RepairOptions {
-  double weld_tolerance = 1e-7;    // open-edge vertices closer than this (x diagonal) merge
+  double weld_tolerance = 1e-7;     // open-edge vertices closer than this (x diagonal) merge
   double needle_tolerance = 1e-10;  // height / longest edge below this: degenerate
 };
 
@@ -46,7 +46,7 @@ struct RepairReport {
   std::size_t reoriented = 0;          // triangles flipped to agree with their neighbours
   std::size_t non_manifold_edges = 0;  // edges of more than two triangles (split)
   std::size_t non_manifold_vertices = 0;
-  std::size_t boundary_edges = 0;      // edges of one triangle after repair: holes, cracks
+  std::size_t boundary_edges = 0;  // edges of one triangle after repair: holes, cracks
   std::size_t output_triangles = 0;
 
   // Whether every edge has exactly two triangles (a closed, manifold surface).
