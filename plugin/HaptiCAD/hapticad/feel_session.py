@@ -7,18 +7,14 @@ HID device. Python only builds the scene, starts and stops the loop, sets the ha
 target, and drains the trace for display (the GUI polls at most 60 times a second).
 Nothing here runs per servo tick, and there is no servo loop in Python.
 
-This is a thin adapter over the binding's contract, so that a change in the device
-layer's Python API is absorbed here only:
+The binding's contract (devices/README.md):
 
     _core.SimulatedHand(limits)            .set_target(p_w)   (world m; identity mapping)
     _core.ServoLoop(device, renderer, rate_hz, trace_capacity)
         .start() .stop() .drain_trace() .stats .running .set_mapping(mapping)
-    _core.list_devices()                   HID devices (optional)
-    _core.open_device(path)                a HID device by path (optional)
+    _core.list_devices(), _core.open_device(path)
 
-``missing_bindings()`` says what the compiled module lacks; a session refuses to start
-with that message rather than pretend. Units: SI (m, N) in the loop, mm in the
-document. No GUI.
+Units: SI (m, N) in the loop, mm in the document. No GUI.
 """
 from dataclasses import dataclass
 
@@ -30,29 +26,6 @@ MM = 1e-3
 SIMULATED = preferences.SIMULATED_DEVICE
 WORKSPACE_MARGIN_M = 0.05  # around the parts: the simulated hand can lift off and come back
 TRACE_SECONDS = 4.0  # ring capacity between two drains, at the servo rate
-
-
-class BindingsMissing(RuntimeError):
-    """The compiled module lacks what a live session needs."""
-
-
-def missing_bindings():
-    """Names the compiled module lacks for a live session with the simulated hand."""
-    missing = [f"_core.{name}" for name in ("SimulatedHand", "ServoLoop", "ForceRenderer")
-               if not hasattr(_core, name)]
-    loop = getattr(_core, "ServoLoop", None)
-    for method in ("start", "stop", "drain_trace"):
-        if loop is not None and not hasattr(loop, method):
-            missing.append(f"_core.ServoLoop.{method}")
-    return missing
-
-
-def missing_message():
-    missing = missing_bindings()
-    if not missing:
-        return ""
-    return ("a live Feel session needs the device layer's live servo loop, which this build of "
-            f"HaptiCAD's compiled module does not have yet ({', '.join(missing)})")
 
 
 @dataclass(frozen=True)
@@ -68,27 +41,19 @@ class DeviceChoice:
 def device_choices():
     """The simulated probe first, then every HID device the core finds now."""
     choices = [DeviceChoice("Simulated probe (mouse)", SIMULATED)]
-    lister = getattr(_core, "list_devices", None)
-    if lister is not None:
-        try:
-            for info in lister():
-                # a dict per device (issue 5's binding), or an object with the same fields
-                field = info.get if isinstance(info, dict) else (lambda key, default=None: getattr(info, key, default))
-                path, kind = field("path", "") or "", field("kind", "hid") or "hid"
-                if path and kind != "sim":
-                    choices.append(DeviceChoice(f"{field('name', 'HID device')} ({path})", path))
-        except Exception:  # a device that fails to enumerate must not hide the simulated one
-            pass
+    try:
+        for info in _core.list_devices():
+            if info["kind"] != "sim" and info["path"]:
+                choices.append(DeviceChoice(f"{info['name'] or 'HID device'} ({info['path']})", info["path"]))
+    except RuntimeError:  # a device that fails to enumerate must not hide the simulated one
+        pass
     return choices
 
 
 def _limits_workspace(limits, low_m, high_m):
-    """Sets a DeviceLimits' workspace box, whatever the binding names it."""
-    for low, high in (("workspace_min_d", "workspace_max_d"), ("workspace_min_w", "workspace_max_w")):
-        if hasattr(limits, low):
-            setattr(limits, low, np.asarray(low_m, float))
-            setattr(limits, high, np.asarray(high_m, float))
-            return
+    """Sets a DeviceLimits' workspace box (device frame = world for the simulated hand)."""
+    limits.workspace_min_d = np.asarray(low_m, float)
+    limits.workspace_max_d = np.asarray(high_m, float)
 
 
 def scene_box_m(doc_scene):
@@ -102,39 +67,27 @@ def scene_box_m(doc_scene):
 
 
 class LiveSession:
-    """One Feel session on a document scene. Raises BindingsMissing, or RuntimeError /
-    ValueError with the device layer's message when the device cannot be opened."""
+    """One Feel session on a document scene. Raises RuntimeError / ValueError with the
+    device layer's message when the device cannot be opened."""
 
     def __init__(self, doc_scene, device=SIMULATED, prefs=None):
-        message = missing_message()
-        if message:
-            raise BindingsMissing(message)
         prefs = prefs or preferences.load()
         self.doc_scene = doc_scene
         self.simulated = device == SIMULATED
         self.rate_hz = float(prefs.servo_rate_hz)
         low, high = scene_box_m(doc_scene)
         if self.simulated:
-            limits = _core.simulated_hand_limits() if hasattr(_core, "simulated_hand_limits") \
-                else _core.simulated_probe_limits()
+            limits = _core.simulated_hand_limits()
             limits.max_force_n = min(limits.max_force_n, prefs.force_limit_n)
             _limits_workspace(limits, low - WORKSPACE_MARGIN_M, high + WORKSPACE_MARGIN_M)
             self.device = _core.SimulatedHand(limits)
             mapping = None  # identity: the hand's frame is the world
         else:
-            opener = getattr(_core, "open_device", None)
-            if opener is None:
-                raise BindingsMissing("opening a HID device needs _core.open_device, which this build lacks")
-            self.device = opener(device)
+            self.device = _core.open_device(device)
             limits = self.device.info.limits
             mapping = self._mapping(limits, low, high, prefs)
         self.limits = limits
-        if mapping is not None and hasattr(_core, "render_limits_for"):
-            render = _core.render_limits_for(limits, mapping)
-        else:
-            render = _core.RenderLimits()
-            render.max_stiffness_n_per_m = limits.max_stiffness_n_per_m
-            render.max_force_n = limits.max_force_n
+        render = _core.render_limits_for(limits, mapping or _core.WorkspaceMapping())
         render.max_force_n = min(render.max_force_n, prefs.force_limit_n)
         self.renderer = _core.ForceRenderer(doc_scene.scene, doc_scene.surfaces, render)
         self.loop = _core.ServoLoop(self.device, self.renderer, rate_hz=self.rate_hz,
@@ -144,7 +97,7 @@ class LiveSession:
 
     @staticmethod
     def _mapping(limits, low, high, prefs):
-        if prefs.workspace_mapping == "Fit part" and hasattr(_core, "fit_workspace"):
+        if prefs.workspace_mapping == "Fit part":
             return _core.fit_workspace(limits, low, high)
         mapping = _core.WorkspaceMapping()
         mapping.scale = prefs.workspace_scale

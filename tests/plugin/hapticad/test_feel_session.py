@@ -51,18 +51,7 @@ class FeelSessionTest(unittest.TestCase):
         self.assertEqual([c.path for c in choices], ["simulated", "/dev/hidraw7"])
         self.assertEqual(choices[1].label, "Prototype (/dev/hidraw7)")
 
-    def test_without_live_bindings_a_session_refuses_and_says_why(self):
-        missing = feel_session.missing_bindings()
-        if not missing:
-            self.skipTest("the compiled module has the live bindings: see test_the_hand_is_held_at_the_surface")
-        with self.assertRaises(feel_session.BindingsMissing) as caught:
-            feel_session.LiveSession(self.scene)
-        for name in missing:
-            self.assertIn(name, str(caught.exception))
-
     def test_the_hand_is_held_at_the_surface(self):
-        if feel_session.missing_bindings():
-            self.skipTest(feel_session.missing_message())
         prefs = preferences.Preferences(servo_rate_hz=1000, force_limit_n=3.0)
         session = feel_session.LiveSession(self.scene, prefs=prefs)
         above = np.array([20, 15, 30]) * MM
