@@ -12,6 +12,7 @@ import json
 
 import FreeCAD as App
 
+from .proxy_state import SchemaState
 from . import face_references, materials, textures
 
 TYPE = "HaptiCAD::HapticSurface"
@@ -115,8 +116,10 @@ def _is_restoring(obj):
     return "Restore" in obj.State or obj.Document.Restoring
 
 
-class HapticSurface:
+class HapticSurface(SchemaState):
     """Proxy of a HapticSurface object."""
+
+    SCHEMA = SCHEMA_VERSION
 
     def __init__(self, obj):
         obj.Proxy = self
@@ -202,18 +205,6 @@ class HapticSurface:
         if problems:
             App.Console.PrintError(f"{obj.Label}: {'; '.join(problems)}\n")
 
-    # FreeCAD 0.20 with Python 3.11 pickles proxies through both protocols
-    def dumps(self):
-        return {"schema": SCHEMA_VERSION}
-
-    def loads(self, state):
-        self.schema = (state or {}).get("schema", SCHEMA_VERSION)
-
-    def __getstate__(self):
-        return self.dumps()
-
-    def __setstate__(self, state):
-        self.loads(state)
 
 
 def validate(obj, compile_faces=True):

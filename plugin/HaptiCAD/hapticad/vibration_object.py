@@ -11,6 +11,8 @@ import math
 
 import FreeCAD as App
 
+from .proxy_state import SchemaState
+
 TYPE = "HaptiCAD::HapticVibration"
 SCHEMA_VERSION = 1
 FREQUENCY_RANGE_HZ = (1.0, 1000.0)  # what a servo loop up to 10 kHz can render
@@ -18,7 +20,11 @@ AMPLITUDE_RANGE_N = (0.0, 10.0)
 ZERO_AXIS = "the vibration axis cannot be zero; kept +Z"
 
 
-class HapticVibration:
+class HapticVibration(SchemaState):
+    """Proxy of a HapticVibration object."""
+
+    SCHEMA = SCHEMA_VERSION
+
     def __init__(self, obj):
         obj.Proxy = self
         self.setup(obj, new=True)
@@ -63,17 +69,6 @@ class HapticVibration:
         if problems:
             App.Console.PrintError(f"{obj.Label}: {'; '.join(problems)}\n")
 
-    def dumps(self):
-        return {"schema": SCHEMA_VERSION}
-
-    def loads(self, state):
-        self.schema = (state or {}).get("schema", SCHEMA_VERSION)
-
-    def __getstate__(self):
-        return self.dumps()
-
-    def __setstate__(self, state):
-        self.loads(state)
 
 
 def validate(obj):

@@ -10,12 +10,13 @@ opens the task panel.
 """
 from .. import icon, overlay, preferences
 from ..face_references import BROKEN
+from ..proxy_state import NoState
 
 # stripe texture: black, face colour, white, face colour (one stripe pair per period)
 _STRIPE_TEXELS = 4
 
 
-class ViewProviderHapticSurface:
+class ViewProviderHapticSurface(NoState):
     def __init__(self, vobj):
         vobj.Proxy = self
 
@@ -197,18 +198,6 @@ class ViewProviderHapticSurface:
         overlay_legend.refresh(vobj.Object.Document, exclude=vobj.Object)
         return True
 
-    # the view provider keeps no state of its own in the document
-    def dumps(self):
-        return None
-
-    def loads(self, state):
-        return None
-
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
 
 
 def _face_node(face):

@@ -2,9 +2,10 @@
 """View provider of HapticVibration objects: icon; double-click edits the surface panel's
 vibration through the properties (a vibration draws nothing of its own)."""
 from .. import icon
+from ..proxy_state import NoState
 
 
-class ViewProviderHapticVibration:
+class ViewProviderHapticVibration(NoState):
     def __init__(self, vobj):
         vobj.Proxy = self
 
@@ -23,14 +24,3 @@ class ViewProviderHapticVibration:
     def getIcon(self):
         return icon("HaptiCAD_Vibration")
 
-    def dumps(self):
-        return None
-
-    def loads(self, state):
-        return None
-
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
