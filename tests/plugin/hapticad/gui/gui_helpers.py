@@ -16,6 +16,15 @@ def process_events(rounds=3):
         Gui.updateGui()
 
 
+def show_workbench():
+    """Switches to the HaptiCAD workbench and shows the active document isometric, fitted."""
+    Gui.activateWorkbench("HaptiCADWorkbench")
+    view = Gui.ActiveDocument.ActiveView
+    view.viewIsometric()
+    view.fitAll()
+    process_events()
+
+
 def gl_widget():
     """The widget that receives the 3D view's mouse events (its OpenGL viewport)."""
     view = Gui.ActiveDocument.ActiveView

@@ -39,11 +39,7 @@ class FeelGuiTest(unittest.TestCase):
         self.doc.recompute()
         HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS", pattern="Linear")
         self.doc.recompute()
-        Gui.activateWorkbench("HaptiCADWorkbench")
-        view = Gui.ActiveDocument.ActiveView
-        view.viewIsometric()
-        view.fitAll()
-        h.process_events()
+        h.show_workbench()
 
     def tearDown(self):
         if Gui.Control.activeDialog():

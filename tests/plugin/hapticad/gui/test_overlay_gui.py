@@ -34,11 +34,7 @@ class OverlayTest(unittest.TestCase):
                                          AcrossFriction=1.5)
         self.side = HaptiCAD.make_surface(self.doc, [(self.box, "Face2")], material="Rubber")
         self.doc.recompute()
-        Gui.activateWorkbench("HaptiCADWorkbench")
-        view = Gui.ActiveDocument.ActiveView
-        view.viewIsometric()
-        view.fitAll()
-        h.process_events()
+        h.show_workbench()
 
     def tearDown(self):
         preferences.update(overlay_visible=True, overlay_colour_by="Material")

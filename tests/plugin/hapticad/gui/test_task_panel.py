@@ -25,12 +25,8 @@ class TaskPanelTest(unittest.TestCase):
         self.box.Length, self.box.Width, self.box.Height = 40, 30, 20
         self.doc.recompute()
         self.doc.UndoMode = 1
-        Gui.activateWorkbench("HaptiCADWorkbench")
         Gui.Selection.clearSelection()
-        view = Gui.ActiveDocument.ActiveView
-        view.viewIsometric()
-        view.fitAll()
-        h.process_events()
+        h.show_workbench()
 
     def tearDown(self):
         if Gui.Control.activeDialog():
