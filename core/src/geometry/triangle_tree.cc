@@ -15,7 +15,7 @@
 #include <boost/iterator/counting_iterator.hpp>
 
 #include "hapticad/core/geometry/segment_triangle.h"
-#include "hapticad/core/geometry/sphere_triangle.h"
+#include "hapticad/core/geometry/sweep_search.h"
 
 namespace hapticad {
 namespace {
@@ -32,8 +32,14 @@ class TrianglePrimitive {
   using Shared_data = const TriangleMesh*;
 
   TrianglePrimitive() = default;
+  // The reference point (the first vertex, in floats: it only chooses the splits) is
+  // kept here: the build compares it n log n times, and reading it through the mesh
+  // costs two cache misses each time.
   template <class Iterator>
-  TrianglePrimitive(Iterator it, Shared_data) : id_(*it) {}
+  TrianglePrimitive(Iterator it, Shared_data mesh) : id_(*it) {
+    const Vec3& p = mesh->vertex(mesh->triangle(id_)[0]);
+    for (int k = 0; k < 3; ++k) reference_[k] = static_cast<float>(p[k]);
+  }
 
   static Shared_data construct_shared_data(Shared_data mesh) { return mesh; }
 
@@ -43,96 +49,63 @@ class TrianglePrimitive {
     return Datum(ToPoint(mesh->vertex(t[0])), ToPoint(mesh->vertex(t[1])),
                  ToPoint(mesh->vertex(t[2])));
   }
-  Point reference_point(Shared_data mesh) const {
-    return ToPoint(mesh->vertex(mesh->triangle(id_)[0]));
+  Point reference_point(Shared_data) const {
+    return Point(reference_[0], reference_[1], reference_[2]);
   }
 
  private:
   static Point ToPoint(const Vec3& p) { return Point(p.x(), p.y(), p.z()); }
   Id id_ = 0;
+  float reference_[3] = {0.0f, 0.0f, 0.0f};
 };
 
 // Bounding boxes straight from the vertex array: CGAL's default builds a Triangle_3
-// for every box it computes, and it computes one per primitive per tree level.
+// for every box it computes. The build computes one per triangle per tree level, so
+// while it runs they are read from `cached`, computed once per triangle.
+CGAL::Bbox_3 CalcTriangleBox(const TriangleMesh& mesh, std::uint32_t id) {
+  const auto& t = mesh.triangle(id);
+  const Vec3& a = mesh.vertex(t[0]);
+  const Vec3& b = mesh.vertex(t[1]);
+  const Vec3& c = mesh.vertex(t[2]);
+  const Vec3 lo = a.cwiseMin(b).cwiseMin(c);
+  const Vec3 hi = a.cwiseMax(b).cwiseMax(c);
+  return CGAL::Bbox_3(lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z());
+}
+
 struct TriangleBboxMap {
   using key_type = std::uint32_t;
   using value_type = CGAL::Bbox_3;
   using reference = CGAL::Bbox_3;
   using category = boost::readable_property_map_tag;
   const TriangleMesh* mesh = nullptr;
+  const std::vector<CGAL::Bbox_3>* cached = nullptr;  // empty but during the build
 
   friend CGAL::Bbox_3 get(const TriangleBboxMap& map, std::uint32_t id) {
-    const auto& t = map.mesh->triangle(id);
-    const Vec3& a = map.mesh->vertex(t[0]);
-    const Vec3& b = map.mesh->vertex(t[1]);
-    const Vec3& c = map.mesh->vertex(t[2]);
-    const Vec3 lo = a.cwiseMin(b).cwiseMin(c);
-    const Vec3 hi = a.cwiseMax(b).cwiseMax(c);
-    return CGAL::Bbox_3(lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z());
+    if (!map.cached->empty()) return (*map.cached)[id];
+    return CalcTriangleBox(*map.mesh, id);
   }
 };
 
 using Traits = CGAL::AABB_traits<Kernel, TrianglePrimitive, TriangleBboxMap>;
 using Tree = CGAL::AABB_tree<Traits>;
 
-// Traversal that keeps the nearest contact so far and prunes every box entered beyond
-// it. Children are visited nearest entry first (CGAL's traversal_with_priority). A
-// sphere query grows every box by its radius: the swept sphere meets a box only if its
-// centre's segment meets the box grown by r. Triangles inside a floor are skipped; so
-// are those behind the best contact so far: until it, the query stays at least r in
-// front of the plane through the contact point across the contact normal. (Testing the
-// boxes against the floors too was measured slower: it costs every box, and the boxes
-// it would prune are mostly pruned by the segment already.)
+// CGAL's walk over the boxes, nearest entry first (traversal_with_priority), feeding the
+// triangles to a SweepSearch and pruning every box entered beyond its nearest contact
+// so far. A sphere query grows every box by its radius: the swept sphere meets a box
+// only if its centre's segment meets the box grown by r. (Testing the boxes against the
+// floors too was measured slower: it costs every box, and the boxes it would prune are
+// mostly pruned by the segment already.)
 class FirstHitTraversal {
  public:
   using Priority = double;
 
-  FirstHitTraversal(const TriangleMesh& mesh, const SweepQuery& q, double pad)
-      : mesh_(mesh),
-        a_(q.a),
-        d_(q.b - q.a),
-        ray_(q.a, q.b - q.a),
-        radius_(q.radius),
-        pad_(pad + q.radius),
-        bary_tol_(q.bary_tol) {
-    if (q.floors != nullptr) {
-      for (int i = 0; i < q.floors->count; ++i) AddFloor(q.floors->normal[i], q.floors->offset[i]);
-    }
-    given_floors_ = floor_count_;
-    if (q.hint >= 0 && static_cast<std::size_t>(q.hint) < mesh.num_triangles()) {
-      Test(static_cast<std::uint32_t>(q.hint));
-    }
-  }
+  FirstHitTraversal(SweepSearch* search, double pad)
+      : search_(*search), ray_(search->a(), search->d()), pad_(pad + search->radius()) {}
 
   bool go_further() const { return true; }
 
-  void intersection(const Vec3&, const TrianglePrimitive& primitive) { Test(primitive.id()); }
-
-  void Test(std::uint32_t id) {
-    const auto& t = mesh_.triangle(id);
-    const Vec3& v0 = mesh_.vertex(t[0]);
-    const Vec3& v1 = mesh_.vertex(t[1]);
-    const Vec3& v2 = mesh_.vertex(t[2]);
-    for (int i = 0; i < floor_count_; ++i) {
-      const Vec3& f = floor_normal_[i];
-      if (f.dot(v0) <= floor_offset_[i] && f.dot(v1) <= floor_offset_[i] &&
-          f.dot(v2) <= floor_offset_[i]) {
-        return;
-      }
-    }
-    const Vec3& n = mesh_.face_normal(id);
-    if (radius_ > 0.0) {
-      SphereTriangleHit hit;
-      if (SweepSphereTriangle(a_, d_, best_s_, radius_, v0, v1, v2, n, bary_tol_, &hit)) {
-        Keep(id, hit.s, hit.normal);
-      }
-      return;
-    }
-    SegmentTriangleHit hit;
-    if (IntersectSegmentTriangle(a_, d_, best_s_, v0, v1, v2, bary_tol_, &hit)) {
-      // a point meets the side it comes from
-      Keep(id, hit.s, n.dot(d_) > 0.0 ? Vec3(-n) : n);
-    }
+  void intersection(const Vec3&, const TrianglePrimitive& primitive) {
+    search_.Test(primitive.id());
   }
 
   template <class Node>
@@ -148,60 +121,16 @@ class FirstHitTraversal {
     return {hit, -entry};
   }
 
-  bool found() const { return found_; }
-  void Report(SweepHit* hit) const {
-    hit->triangle = best_triangle_;
-    hit->s = best_s_;
-    hit->point = a_ + best_s_ * d_;
-    hit->normal = best_normal_;
-  }
-
  private:
-  void Keep(std::uint32_t id, double s, const Vec3& normal) {
-    // equal s on a shared edge: keep the first found, so the result is deterministic
-    if (!found_ || s < best_s_) {
-      best_s_ = s;
-      best_triangle_ = id;
-      best_normal_ = normal;
-      found_ = true;
-      // the plane through the contact point, across the contact normal: before s the
-      // query is at least r in front of it
-      const Vec3 contact = a_ + s * d_ - radius_ * normal;
-      floor_count_ = given_floors_;  // the new contact's plane replaces the last one's
-      AddFloor(normal, normal.dot(contact));
-    }
-  }
-
-  void AddFloor(const Vec3& normal, double offset) {
-    if (floor_count_ == kMaxFloors) return;
-    floor_normal_[floor_count_] = normal;
-    floor_offset_[floor_count_] = offset;
-    ++floor_count_;
-  }
-
   bool Enter(const CGAL::Bbox_3& box, double* entry) const {
     const double lo[3] = {box.xmin(), box.ymin(), box.zmin()};
     const double hi[3] = {box.xmax(), box.ymax(), box.zmax()};
-    return IntersectSegmentBox(ray_, best_s_, lo, hi, pad_, entry);
+    return IntersectSegmentBox(ray_, search_.best_s(), lo, hi, pad_, entry);
   }
 
-  static constexpr int kMaxFloors = SweepFloors::kMax + 1;
-
-  const TriangleMesh& mesh_;
-  const Vec3 a_;
-  const Vec3 d_;
+  SweepSearch& search_;
   const SegmentRay ray_;
-  const double radius_;
   const double pad_;
-  const double bary_tol_;
-  double best_s_ = 1.0;
-  std::uint32_t best_triangle_ = 0;
-  Vec3 best_normal_ = Vec3::Zero();
-  bool found_ = false;
-  Vec3 floor_normal_[kMaxFloors];
-  double floor_offset_[kMaxFloors];
-  int floor_count_ = 0;
-  int given_floors_ = 0;
 };
 
 }  // namespace
@@ -209,6 +138,7 @@ class FirstHitTraversal {
 struct TriangleTree::Impl {
   const TriangleMesh* mesh = nullptr;
   double pad = 0.0;
+  std::vector<CGAL::Bbox_3> build_boxes;  // only while building
   TriangleBboxMap boxes;
   Tree tree;
 };
@@ -221,13 +151,18 @@ std::unique_ptr<TriangleTree> TriangleTree::Build(const TriangleMesh& mesh, doub
   impl->mesh = &mesh;
   impl->pad = pad;
   impl->boxes.mesh = &mesh;
+  impl->boxes.cached = &impl->build_boxes;
   impl->tree.~Tree();
   new (&impl->tree) Tree(Traits(impl->boxes));
   const auto n = static_cast<std::uint32_t>(mesh.num_triangles());
   impl->tree.insert(boost::counting_iterator<std::uint32_t>(0),
                     boost::counting_iterator<std::uint32_t>(n), &mesh);
+  impl->build_boxes.resize(n);
+  for (std::uint32_t t = 0; t < n; ++t) impl->build_boxes[t] = CalcTriangleBox(mesh, t);
   // CGAL defers both to the first query: do them now, off the servo thread
   impl->tree.build();
+  impl->build_boxes.clear();
+  impl->build_boxes.shrink_to_fit();
   // The kd-tree only supplies starting hints for closest-point searches (never on the
   // servo tick): one vertex in 8 is plenty and builds 8 times faster.
   std::vector<Kernel::Point_3> hints;
@@ -241,10 +176,11 @@ std::unique_ptr<TriangleTree> TriangleTree::Build(const TriangleMesh& mesh, doub
 }
 
 bool TriangleTree::FirstHit(const SweepQuery& query, SweepHit* hit) const {
-  FirstHitTraversal traversal(*impl_->mesh, query, impl_->pad);
+  SweepSearch search(*impl_->mesh, query);
+  FirstHitTraversal traversal(&search, impl_->pad);
   impl_->tree.traversal_with_priority(query.a, traversal);
-  if (!traversal.found()) return false;
-  traversal.Report(hit);
+  if (!search.found()) return false;
+  search.Report(hit);
   return true;
 }
 

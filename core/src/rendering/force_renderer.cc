@@ -38,6 +38,14 @@ constexpr double kStickReentry = 0.6;
 // is shaded across it. A CAD crease is not.
 constexpr double kSmoothEdgeCos = 0.99939;
 
+// A point proxy sweeps through the grid, a sphere through the tree: the scene builds
+// the one asked for now, off the servo thread.
+GodObjectProxy MakeProxy(const HapticScene& scene, const ContactOptions& options) {
+  const ProxyConfig config = MakeProxyConfig(scene, options);
+  if (config.radius_m == 0.0) return GodObjectProxy(scene.mesh(), scene.BuildGrid(), config);
+  return GodObjectProxy(scene.mesh(), scene.BuildTree(), config);
+}
+
 }  // namespace
 
 ForceRenderer::ForceRenderer(std::shared_ptr<const HapticScene> scene,
@@ -46,7 +54,7 @@ ForceRenderer::ForceRenderer(std::shared_ptr<const HapticScene> scene,
     : scene_(std::move(scene)),
       limits_(limits),
       options_(options),
-      proxy_(Checked(scene_).mesh(), scene_->tree(), MakeProxyConfig(*scene_, options)) {
+      proxy_(MakeProxy(Checked(scene_), options)) {
   if (!(limits_.max_force_n > 0.0) || !(limits_.max_stiffness_n_per_m > 0.0) ||
       !(limits_.max_damping_n_s_per_m >= 0.0) || !std::isfinite(limits_.max_force_n) ||
       !std::isfinite(limits_.max_stiffness_n_per_m) ||

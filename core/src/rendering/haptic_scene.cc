@@ -55,13 +55,40 @@ std::shared_ptr<const HapticScene> HapticScene::Build(const TriangleSoup& input,
   scene->repair_report_ = report;
   if (!(scene->size_m_ > 0.0)) throw std::invalid_argument("haptic scene: all vertices coincide");
   scene->mesh_ = TriangleMesh::Build(local, soup.triangles, soup.cad_faces, soup.corner_normals);
-  // node boxes grow by a hair so a segment along a box face is not lost to rounding
-  scene->tree_ = TriangleTree::Build(*scene->mesh_, 1e-9 * scene->size_m_);
   return scene;
 }
 
+// Boxes and cells grow by a hair (relative to the scene), so a segment along a box face
+// or a cell wall is not lost to rounding.
+const TriangleTree& HapticScene::BuildTree() const {
+  std::call_once(tree_once_, [this] {
+    tree_ = TriangleTree::Build(*mesh_, 1e-9 * size_m_);
+    tree_built_.store(tree_.get(), std::memory_order_release);
+  });
+  return *tree_;
+}
+
+const TriangleGrid& HapticScene::BuildGrid() const {
+  std::call_once(grid_once_, [this] {
+    grid_ = TriangleGrid::Build(*mesh_, 1e-9 * size_m_);
+    grid_built_.store(grid_.get(), std::memory_order_release);
+  });
+  return *grid_;
+}
+
+std::size_t HapticScene::CalcMemoryBytes() const {
+  std::size_t bytes = mesh_->CalcMemoryBytes();
+  if (const TriangleTree* tree = tree_built_.load(std::memory_order_acquire)) {
+    bytes += tree->CalcMemoryBytes();
+  }
+  if (const TriangleGrid* grid = grid_built_.load(std::memory_order_acquire)) {
+    bytes += grid->CalcMemoryBytes();
+  }
+  return bytes;
+}
+
 SurfaceSample HapticScene::CalcClosestPoint(const Vec3& p_w) const {
-  const SurfacePoint closest = tree_->CalcClosestPoint(ToLocal(p_w));
+  const SurfacePoint closest = BuildTree().CalcClosestPoint(ToLocal(p_w));
   SurfaceSample out;
   out.point_w = ToWorld(closest.point);
   out.triangle = closest.triangle;

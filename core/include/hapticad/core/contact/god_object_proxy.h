@@ -12,7 +12,7 @@
 // can never pass through anything, however far the device moves in one tick.
 //
 // Temporal coherence: each tick's first sweep tests the last tick's contact triangle
-// before walking the tree, and every sweep carries the planes it cannot cross (the
+// before walking the tree or the grid, every sweep carries the planes it cannot cross (the
 // constraints found so far, and the plane of the best contact so far): triangles under
 // them are skipped without a contact test. A proxy sliding over a dense convex surface then tests a
 // handful of triangles per tick instead of every one within its radius.
@@ -22,6 +22,7 @@
 #pragma once
 
 #include "hapticad/core/contact/constraint_set.h"
+#include "hapticad/core/geometry/triangle_grid.h"
 #include "hapticad/core/geometry/triangle_mesh.h"
 #include "hapticad/core/geometry/triangle_tree.h"
 #include "hapticad/core/vec3.h"
@@ -38,9 +39,14 @@ class GodObjectProxy {
  public:
   static constexpr int kMaxIterations = 4;
 
-  // `mesh` and `tree` must outlive the proxy. Throws std::invalid_argument for a
-  // negative or non-finite radius or a non-positive offset.
+  // A proxy of any radius whose sweeps walk CGAL's tree. `mesh` and `tree` must outlive
+  // the proxy. Throws std::invalid_argument for a negative or non-finite radius or a
+  // non-positive offset.
   GodObjectProxy(const TriangleMesh& mesh, const TriangleTree& tree, ProxyConfig config);
+  // A point proxy (radius 0) whose sweeps walk the grid's cells: the same contacts, at
+  // a cost that does not grow with the model. Throws std::invalid_argument as above and
+  // for a radius other than 0.
+  GodObjectProxy(const TriangleMesh& mesh, const TriangleGrid& grid, ProxyConfig config);
 
   // Places the proxy at `position_l` without collision (the caller knows it is free).
   void Reset(const Vec3& position_l);
@@ -63,11 +69,13 @@ class GodObjectProxy {
 
  private:
   const TriangleMesh& mesh_;
-  const TriangleTree& tree_;
+  const TriangleTree* tree_ = nullptr;  // exactly one of the two
+  const TriangleGrid* grid_ = nullptr;
   ProxyConfig config_;
   Vec3 position_ = Vec3::Zero();
   ConstraintSet constraints_;
   std::int64_t last_triangle_ = -1;  // the last tick's first contact: tested first
+  TriangleGrid::Prefetch warm_up_;   // the cell ahead of the proxy, being loaded
 };
 
 }  // namespace hapticad

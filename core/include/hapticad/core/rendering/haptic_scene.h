@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // HapticScene: the immutable geometry the servo loop touches — the mesh in a local
-// frame, its AABB tree (fully built), and the frame's placement.
+// frame, the structures that find contacts on it, and the frame's placement.
 //
 // Frames and units: the input soup is in model units (FreeCAD: mm); the scene stores it
 // in metres relative to a local origin (the centre of the soup's bounding box), so a
@@ -9,16 +9,23 @@
 // Tolerances are relative to the scene's size (size_m()), so the same part behaves the
 // same in mm, in m, or far away.
 //
-// Build() runs before the loop starts (it repairs the soup, builds the mesh and the
-// tree, allocates and can take seconds on large meshes); everything else is a cheap
-// accessor.
+// Build() runs before the loop starts (it repairs the soup and builds the mesh,
+// allocates and can take seconds on large meshes). The contact structures are built on
+// first request, BuildTree() and BuildGrid(), since a scene needs only what its users
+// ask for: a point proxy sweeps through the grid, a sphere proxy and closest-point
+// queries through CGAL's AABB tree, and a point proxy on a 1M-triangle part need never
+// pay for the tree. A ForceRenderer builds what its proxy uses when it is made, so the
+// servo tick never builds. Everything else is a cheap accessor.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 
 #include "hapticad/core/geometry/mesh_refine.h"
 #include "hapticad/core/geometry/mesh_repair.h"
+#include "hapticad/core/geometry/triangle_grid.h"
 #include "hapticad/core/geometry/triangle_mesh.h"
 #include "hapticad/core/geometry/triangle_soup.h"
 #include "hapticad/core/geometry/triangle_tree.h"
@@ -52,7 +59,10 @@ class HapticScene {
                                                   const SceneOptions& options = {});
 
   const TriangleMesh& mesh() const { return *mesh_; }
-  const TriangleTree& tree() const { return *tree_; }
+  // The structure, built by the first call (whichever thread makes it; the others
+  // wait), the same one returned by every later call. Not for the servo tick.
+  const TriangleTree& BuildTree() const;
+  const TriangleGrid& BuildGrid() const;
 
   const Vec3& origin_w() const { return origin_w_; }
   double metres_per_unit() const { return metres_per_unit_; }
@@ -64,7 +74,8 @@ class HapticScene {
   double surface_offset_m() const { return 1e-9 * size_m_; }
 
   // Closest surface point to `p_w` (world, m). Not for the servo tick (CGAL's kd-tree
-  // search allocates); used to set up strokes and to label points.
+  // search allocates, and the first call builds the tree); used to set up strokes and
+  // to label points.
   SurfaceSample CalcClosestPoint(const Vec3& p_w) const;
 
   Vec3 ToLocal(const Vec3& p_w) const { return p_w - origin_w_; }
@@ -73,15 +84,20 @@ class HapticScene {
   // What the repair did and left undone (all zero when it was skipped).
   const RepairReport& repair_report() const { return repair_report_; }
 
-  std::size_t CalcMemoryBytes() const {
-    return mesh_->CalcMemoryBytes() + tree_->CalcMemoryBytes();
-  }
+  // The mesh and the structures built so far.
+  std::size_t CalcMemoryBytes() const;
 
  private:
   HapticScene() = default;
 
   std::unique_ptr<TriangleMesh> mesh_;
-  std::unique_ptr<TriangleTree> tree_;  // declared after mesh_: destroyed first
+  // declared after mesh_: destroyed first; published through the atomics once built
+  mutable std::once_flag tree_once_;
+  mutable std::once_flag grid_once_;
+  mutable std::unique_ptr<TriangleTree> tree_;
+  mutable std::unique_ptr<TriangleGrid> grid_;
+  mutable std::atomic<const TriangleTree*> tree_built_{nullptr};
+  mutable std::atomic<const TriangleGrid*> grid_built_{nullptr};
   Vec3 origin_w_ = Vec3::Zero();
   double metres_per_unit_ = 1.0;
   double size_m_ = 0.0;

@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// TriangleGrid: hashed uniform grids of triangles, for the point proxy's sweeps.
+//
+// A sweep of a point proxy is short (the proxy moves a fraction of a millimetre per
+// tick, and the last contact, tested first, ends the search within one cell): a grid
+// answers it from the one or two cells the segment starts in, in a time that does not
+// depend on how many triangles the model has, where a tree walks log2(n) levels from
+// its root every time. The tree stays for the sphere proxy and closest points.
+//
+// Every triangle is filed in one level of cells: level L has cells of side h0 2^L, and a
+// triangle goes to the finest level whose cells are at least as big as its box (plus
+// the pad), so it lies in at most 2 x 2 x 2 cells. h0 is the 90th percentile of the
+// triangles' sizes, so most triangles share level 0 and a cell holds about a dozen.
+// Cells are found by hashing (level, cell): only cells that hold triangles use memory.
+// A query walks each occupied level's cells along the segment (a 3D DDA), the levels
+// merged in order of distance, and stops at the first cell entered beyond the nearest
+// contact found so far.
+//
+// Units and frame: the mesh's. FirstHit is servo-tick safe: no allocation, no lock.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "hapticad/core/geometry/sweep_search.h"
+#include "hapticad/core/geometry/triangle_mesh.h"
+
+namespace hapticad {
+
+class TriangleGrid {
+ public:
+  static constexpr int kMaxLevels = 15;
+
+  // `mesh` must outlive the grid. `pad` (model units) grows every triangle's box, so a
+  // segment that meets a triangle within rounding of a cell's face finds it in the cell
+  // on either side.
+  static std::unique_ptr<TriangleGrid> Build(const TriangleMesh& mesh, double pad);
+
+  // First contact of a point query (query.radius must be 0: a sphere is the tree's).
+  // The segment is clipped to the box around every triangle first, so a device far
+  // away costs nothing; inside it the walk is as long as the segment up to its first
+  // contact. Servo-tick safe.
+  bool FirstHit(const SweepQuery& query, SweepHit* hit) const;
+
+  // Warms the caches for the cell of level `level` around `point`, one dependent step
+  // per call, so the servo tick that reaches that cell finds its data loaded: the hash
+  // slot, then the cell's references, then its triangles (indices, normals), then their
+  // vertices. A proxy calls it every tick with a point ahead of itself. Prefetch
+  // instructions only: no waiting on memory, servo-tick safe.
+  struct Prefetch {
+    std::uint64_t key = kEmpty;
+    int stage = 0;
+  };
+  void WarmUp(const Vec3& point, Prefetch* state) const;
+
+  double cell_size() const { return h0_; }                       // level 0, model units
+  std::uint32_t occupied_levels() const { return level_mask_; }  // bit L: level L has cells
+  std::size_t num_cells() const { return num_cells_; }
+  std::size_t num_references() const { return refs_.size(); }
+  std::size_t CalcMemoryBytes() const;
+
+ private:
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  struct Cell {
+    std::uint64_t key;  // kEmpty, or (level, ix, iy, iz) packed
+    std::uint32_t begin;
+    std::uint32_t count;
+  };
+  TriangleGrid() = default;
+  static std::uint64_t Key(int level, std::int64_t ix, std::int64_t iy, std::int64_t iz);
+  std::size_t Slot(std::uint64_t key) const;
+  const Cell* Find(std::uint64_t key) const;
+  void Walk(double s0, SweepSearch* search) const;
+
+  const TriangleMesh* mesh_ = nullptr;
+  int first_level_ = 0;  // the finest occupied level
+  double h0_ = 0.0;
+  Vec3 lo_ = Vec3::Zero();  // the box around every (padded) triangle
+  Vec3 hi_ = Vec3::Zero();
+  double inv_h_[kMaxLevels] = {};
+  std::uint32_t level_mask_ = 0;
+  std::size_t num_cells_ = 0;
+  std::vector<Cell> table_;  // open addressing, linear probing, a power of two long
+  std::uint64_t mask_ = 0;
+  std::vector<std::uint32_t> refs_;
+};
+
+}  // namespace hapticad

@@ -1,0 +1,331 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// HOT PATH: TriangleGrid::Search runs on the servo thread every tick.
+#include "hapticad/core/geometry/triangle_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace hapticad {
+namespace {
+
+constexpr int kAxisBits = 20;
+constexpr std::int64_t kAxisOffset = std::int64_t{1} << (kAxisBits - 1);
+constexpr std::uint64_t kAxisMask = (std::uint64_t{1} << kAxisBits) - 1;
+
+std::size_t NextPowerOfTwo(std::size_t n) {
+  std::size_t p = 16;
+  while (p < n) p <<= 1;
+  return p;
+}
+
+// Cells of one triangle: its level and the range of cells its padded box covers.
+struct Filing {
+  std::int32_t lo[3];
+  std::int32_t hi[3];
+  std::int32_t level;
+};
+
+}  // namespace
+
+std::uint64_t TriangleGrid::Key(int level, std::int64_t ix, std::int64_t iy, std::int64_t iz) {
+  return (static_cast<std::uint64_t>(level) << (3 * kAxisBits)) |
+         (static_cast<std::uint64_t>(ix + kAxisOffset) & kAxisMask) << (2 * kAxisBits) |
+         (static_cast<std::uint64_t>(iy + kAxisOffset) & kAxisMask) << kAxisBits |
+         (static_cast<std::uint64_t>(iz + kAxisOffset) & kAxisMask);
+}
+
+std::size_t TriangleGrid::Slot(std::uint64_t key) const {
+  // Fibonacci hashing: the top bits of the product
+  return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 32) & mask_;
+}
+
+const TriangleGrid::Cell* TriangleGrid::Find(std::uint64_t key) const {
+  for (std::size_t i = Slot(key);; i = (i + 1) & mask_) {
+    const Cell& cell = table_[i];
+    if (cell.key == key) return &cell;
+    if (cell.key == kEmpty) return nullptr;
+  }
+}
+
+std::unique_ptr<TriangleGrid> TriangleGrid::Build(const TriangleMesh& mesh, double pad) {
+  std::unique_ptr<TriangleGrid> grid(new TriangleGrid());
+  grid->mesh_ = &mesh;
+  const std::size_t n = mesh.num_triangles();
+  if (n == 0) return grid;
+  auto box = [&](std::size_t t, Vec3* lo, Vec3* hi) {
+    const auto& tri = mesh.triangle(static_cast<std::uint32_t>(t));
+    const Vec3& a = mesh.vertex(tri[0]);
+    const Vec3& b = mesh.vertex(tri[1]);
+    const Vec3& c = mesh.vertex(tri[2]);
+    *lo = a.cwiseMin(b).cwiseMin(c) - Vec3::Constant(pad);
+    *hi = a.cwiseMax(b).cwiseMax(c) + Vec3::Constant(pad);
+  };
+  // level 0's cell: the 90th percentile of the triangles' sizes, from a sample
+  const std::size_t stride = std::max<std::size_t>(1, n / 65536);
+  std::vector<double> sizes;
+  sizes.reserve(n / stride + 1);
+  double reach = 0.0;  // the largest coordinate, for the index range
+  for (std::size_t t = 0; t < n; t += stride) {
+    Vec3 lo, hi;
+    box(t, &lo, &hi);
+    sizes.push_back((hi - lo).maxCoeff());
+  }
+  for (std::size_t v = 0; v < mesh.num_vertices(); ++v) {
+    reach = std::max(reach, mesh.vertex(static_cast<std::uint32_t>(v)).cwiseAbs().maxCoeff());
+  }
+  const auto p90 = sizes.begin() + static_cast<std::ptrdiff_t>(0.9 * (sizes.size() - 1));
+  std::nth_element(sizes.begin(), p90, sizes.end());
+  // every cell index must fit its 20 bits, with room for a query a little outside
+  const double h_min = (reach + pad) / static_cast<double>(kAxisOffset / 4);
+  grid->h0_ = std::max(2.0 * *p90, h_min);
+  for (int level = 0; level < kMaxLevels; ++level) {
+    grid->inv_h_[level] = 1.0 / std::ldexp(grid->h0_, level);
+  }
+
+  // the cells of every triangle, and how many references they make
+  std::vector<Filing> filings(n);
+  std::size_t total = 0;
+  grid->lo_ = Vec3::Constant(std::numeric_limits<double>::infinity());
+  grid->hi_ = -grid->lo_;
+  for (std::size_t t = 0; t < n; ++t) {
+    Vec3 lo, hi;
+    box(t, &lo, &hi);
+    grid->lo_ = grid->lo_.cwiseMin(lo);
+    grid->hi_ = grid->hi_.cwiseMax(hi);
+    const double size = (hi - lo).maxCoeff();
+    int level = 0;
+    while (level + 1 < kMaxLevels && std::ldexp(grid->h0_, level + 1) < size) ++level;
+    Filing& f = filings[t];
+    f.level = level;
+    std::size_t cells = 1;
+    for (int k = 0; k < 3; ++k) {
+      f.lo[k] = static_cast<std::int32_t>(std::floor(lo[k] * grid->inv_h_[level]));
+      f.hi[k] = static_cast<std::int32_t>(std::floor(hi[k] * grid->inv_h_[level]));
+      cells *= static_cast<std::size_t>(f.hi[k] - f.lo[k] + 1);
+    }
+    total += cells;
+    grid->level_mask_ |= 1u << level;
+  }
+
+  while (grid->first_level_ + 1 < kMaxLevels && !(grid->level_mask_ & (1u << grid->first_level_))) {
+    ++grid->first_level_;
+  }
+  // Count per cell, remembering each reference's slot so the fill needs no hashing.
+  // The table starts at a quarter of the references (cells hold several each) and
+  // doubles if it passes half full; a doubling moves the slots, and the fill then
+  // hashes again.
+  std::vector<Cell>& table = grid->table_;
+  table.assign(NextPowerOfTwo(total / 4), Cell{kEmpty, 0, 0});
+  grid->mask_ = table.size() - 1;
+  auto insert = [&](std::uint64_t key) -> std::size_t {
+    for (std::size_t i = grid->Slot(key);; i = (i + 1) & grid->mask_) {
+      if (table[i].key == key) return i;
+      if (table[i].key == kEmpty) {
+        table[i].key = key;
+        ++grid->num_cells_;
+        return i;
+      }
+    }
+  };
+  auto rehash = [&](std::size_t size) {
+    std::vector<Cell> old(size, Cell{kEmpty, 0, 0});
+    old.swap(table);
+    grid->mask_ = table.size() - 1;
+    for (const Cell& cell : old) {
+      if (cell.key == kEmpty) continue;
+      std::size_t i = grid->Slot(cell.key);
+      while (table[i].key != kEmpty) i = (i + 1) & grid->mask_;
+      table[i] = cell;
+    }
+  };
+  auto for_each_cell = [&](const Filing& f, auto&& visit) {
+    for (std::int32_t x = f.lo[0]; x <= f.hi[0]; ++x) {
+      for (std::int32_t y = f.lo[1]; y <= f.hi[1]; ++y) {
+        for (std::int32_t z = f.lo[2]; z <= f.hi[2]; ++z) visit(Key(f.level, x, y, z));
+      }
+    }
+  };
+  std::vector<std::uint32_t> slot_of(total);
+  bool slots_moved = false;
+  std::size_t r = 0;
+  for (std::size_t t = 0; t < n; ++t) {
+    for_each_cell(filings[t], [&](std::uint64_t key) {
+      if (2 * (grid->num_cells_ + 1) > table.size()) {
+        rehash(2 * table.size());
+        slots_moved = true;
+      }
+      const std::size_t i = insert(key);
+      ++table[i].count;
+      slot_of[r++] = static_cast<std::uint32_t>(i);
+    });
+  }
+  // each cell's references in one run of refs_, in triangle order
+  std::uint32_t begin = 0;
+  for (Cell& cell : table) {
+    cell.begin = begin;
+    begin += cell.count;
+    cell.count = 0;
+  }
+  grid->refs_.resize(total);
+  r = 0;
+  for (std::size_t t = 0; t < n; ++t) {
+    for_each_cell(filings[t], [&](std::uint64_t key) {
+      Cell& cell = table[slots_moved ? insert(key) : slot_of[r]];
+      ++r;
+      grid->refs_[cell.begin + cell.count++] = static_cast<std::uint32_t>(t);
+    });
+  }
+  // the table the servo keeps: at most half full
+  if (table.size() > NextPowerOfTwo(2 * grid->num_cells_))
+    rehash(NextPowerOfTwo(2 * grid->num_cells_));
+  return grid;
+}
+
+namespace {
+
+// Amanatides and Woo's walk through one level's cells along the segment, in order.
+struct CellWalk {
+  int level;
+  std::int64_t cell[3];
+  std::int64_t step[3];
+  double next[3];   // s at which the segment crosses into the next cell along each axis
+  double delta[3];  // s between crossings along each axis
+  double entry;     // s at which the segment entered the current cell
+
+  // From `start` = a + s0 d, the segment's point at s0.
+  void Start(int l, double inv_h, const Vec3& start, double s0, const Vec3& d) {
+    level = l;
+    entry = s0;
+    for (int k = 0; k < 3; ++k) {
+      const double x = start[k] * inv_h;
+      const double fx = std::floor(x);
+      cell[k] = static_cast<std::int64_t>(fx);
+      const double dx = d[k] * inv_h;
+      if (dx > 0.0) {
+        step[k] = 1;
+        delta[k] = 1.0 / dx;
+        next[k] = s0 + (fx + 1.0 - x) * delta[k];
+      } else if (dx < 0.0) {
+        step[k] = -1;
+        delta[k] = -1.0 / dx;
+        next[k] = s0 + (x - fx) * delta[k];
+      } else {
+        step[k] = 0;
+        delta[k] = 0.0;
+        next[k] = std::numeric_limits<double>::infinity();
+      }
+    }
+  }
+
+  void Advance() {
+    const int k = next[0] < next[1] ? (next[0] < next[2] ? 0 : 2) : (next[1] < next[2] ? 1 : 2);
+    entry = next[k];
+    cell[k] += step[k];
+    next[k] += delta[k];
+  }
+};
+
+}  // namespace
+
+bool TriangleGrid::FirstHit(const SweepQuery& query, SweepHit* hit) const {
+  SweepSearch search(*mesh_, query);
+  if (!table_.empty()) {
+    // the part of the segment inside the box around every triangle: [s0, s1]
+    double s0 = 0.0;
+    double s1 = 1.0;
+    const Vec3 d = query.b - query.a;
+    for (int k = 0; k < 3 && s0 <= s1; ++k) {
+      if (d[k] == 0.0) {
+        if (query.a[k] < lo_[k] || query.a[k] > hi_[k]) s0 = 2.0;
+        continue;
+      }
+      double t0 = (lo_[k] - query.a[k]) / d[k];
+      double t1 = (hi_[k] - query.a[k]) / d[k];
+      if (t0 > t1) std::swap(t0, t1);
+      s0 = std::max(s0, t0);
+      s1 = std::min(s1, t1);
+    }
+    if (s0 <= s1 && s0 <= search.best_s()) Walk(s0, &search);
+  }
+  if (!search.found()) return false;
+  search.Report(hit);
+  return true;
+}
+
+// The levels' walks merged in order of s, so the nearest contact, whatever its level,
+// is found first and ends every walk early.
+void TriangleGrid::Walk(double s0, SweepSearch* search) const {
+  CellWalk walks[kMaxLevels];
+  int count = 0;
+  const Vec3 start = search->a() + s0 * search->d();
+  for (int level = 0; level < kMaxLevels; ++level) {
+    if (level_mask_ & (1u << level)) {
+      walks[count++].Start(level, inv_h_[level], start, s0, search->d());
+    }
+  }
+  while (count > 0) {
+    int i = 0;
+    for (int j = 1; j < count; ++j) {
+      if (walks[j].entry < walks[i].entry) i = j;
+    }
+    CellWalk& walk = walks[i];
+    if (!(walk.entry <= search->best_s())) return;  // every other walk is further still
+    if (const Cell* c = Find(Key(walk.level, walk.cell[0], walk.cell[1], walk.cell[2]))) {
+      const std::uint32_t* ref = refs_.data() + c->begin;
+      for (std::uint32_t r = 0; r < c->count; ++r) search->Test(ref[r]);
+    }
+    walk.Advance();
+  }
+}
+
+void TriangleGrid::WarmUp(const Vec3& point, Prefetch* state) const {
+  if (table_.empty() || !(point.cwiseMax(lo_) == point && point.cwiseMin(hi_) == point)) return;
+  const double inv_h = inv_h_[first_level_];
+  const std::uint64_t key =
+      Key(first_level_, static_cast<std::int64_t>(std::floor(point.x() * inv_h)),
+          static_cast<std::int64_t>(std::floor(point.y() * inv_h)),
+          static_cast<std::int64_t>(std::floor(point.z() * inv_h)));
+  if (key != state->key) {
+    state->key = key;
+    state->stage = 0;
+  }
+  // each stage reads only what the stage before it prefetched
+  switch (state->stage) {
+    case 0:
+      __builtin_prefetch(&table_[Slot(key)]);
+      break;
+    case 1:
+      if (const Cell* c = Find(key)) {
+        __builtin_prefetch(refs_.data() + c->begin);
+        __builtin_prefetch(refs_.data() + c->begin + c->count - 1);
+      }
+      break;
+    case 2:
+      if (const Cell* c = Find(key)) {
+        for (std::uint32_t i = 0; i < c->count; ++i) {
+          const std::uint32_t t = refs_[c->begin + i];
+          __builtin_prefetch(&mesh_->triangle(t));
+          __builtin_prefetch(&mesh_->face_normal(t));
+        }
+      }
+      break;
+    case 3:
+      if (const Cell* c = Find(key)) {
+        for (std::uint32_t i = 0; i < c->count; ++i) {
+          const auto& t = mesh_->triangle(refs_[c->begin + i]);
+          for (int k = 0; k < 3; ++k) __builtin_prefetch(&mesh_->vertex(t[k]));
+        }
+      }
+      break;
+    default:
+      return;
+  }
+  ++state->stage;
+}
+
+std::size_t TriangleGrid::CalcMemoryBytes() const {
+  return table_.capacity() * sizeof(Cell) + refs_.capacity() * sizeof(std::uint32_t);
+}
+
+}  // namespace hapticad
