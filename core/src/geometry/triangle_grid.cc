@@ -307,6 +307,7 @@ void TriangleGrid::WarmUp(const Vec3& point, Prefetch* state) const {
           const std::uint32_t t = refs_[c->begin + i];
           __builtin_prefetch(&mesh_->triangle(t));
           __builtin_prefetch(&mesh_->face_normal(t));
+          __builtin_prefetch(mesh_->cad_faces() + t);
         }
       }
       break;

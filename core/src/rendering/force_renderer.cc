@@ -105,9 +105,16 @@ Vec3 ForceRenderer::ApplyFrictionCone(const SurfaceProperties& surface, double f
     // slide: the anchor trails the proxy on the dynamic cone
     anchor_l_ = proxy + offset * (dynamic_radius / lag);
   }
-  // never pull the spring's end through geometry between the proxy and the anchor
+  // Never pull the spring's end through geometry between the proxy and the anchor.
+  // Both lie on or near the contact plane: whatever is the proxy's radius (and half its
+  // offset) below the lower of the two cannot be in the way, and is skipped untested.
+  SweepFloors floors;
+  floors.count = 1;
+  floors.normal[0] = plane.normal;
+  floors.offset[0] = std::min(plane.normal.dot(proxy), plane.normal.dot(anchor_l_)) -
+                     proxy_.config().radius_m - 0.5 * proxy_.config().surface_offset_m;
   SweepHit hit;
-  if (proxy_.FirstHit(proxy, anchor_l_, &hit)) anchor_l_ = proxy;
+  if (proxy_.FirstHit(proxy, anchor_l_, &hit, &floors, plane.triangle)) anchor_l_ = proxy;
   if (sticking_) out->flags |= kSticking;
   return anchor_l_;
 }

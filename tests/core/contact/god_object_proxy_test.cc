@@ -10,23 +10,46 @@
 namespace hapticad {
 namespace {
 
-class ProxyOnBox : public ::testing::Test {
+// Every test runs twice: the point proxy sweeping CGAL's tree, then the grid (a sphere
+// always sweeps the tree).
+class ProxyOnBox : public ::testing::TestWithParam<bool> {
  protected:
   void Make(const TriangleSoup& s, double radius = 0.0) {
+    proxy_.reset();
     mesh_ = TriangleMesh::Build(s.vertices, s.triangles, s.cad_faces, s.corner_normals);
     tree_ = TriangleTree::Build(*mesh_, 1e-12);
+    grid_ = TriangleGrid::Build(*mesh_, 1e-12);
     ProxyConfig config;
     config.surface_offset_m = kOffset;
     config.radius_m = radius;
-    proxy_ = std::make_unique<GodObjectProxy>(*mesh_, *tree_, config);
+    if (GetParam() && radius == 0.0) {
+      proxy_ = std::make_unique<GodObjectProxy>(*mesh_, *grid_, config);
+    } else {
+      proxy_ = std::make_unique<GodObjectProxy>(*mesh_, *tree_, config);
+    }
   }
   static constexpr double kOffset = 1e-8;
   std::unique_ptr<TriangleMesh> mesh_;
   std::unique_ptr<TriangleTree> tree_;
+  std::unique_ptr<TriangleGrid> grid_;
   std::unique_ptr<GodObjectProxy> proxy_;
 };
 
-TEST_F(ProxyOnBox, FollowsTheDeviceInFreeSpace) {
+INSTANTIATE_TEST_SUITE_P(TreeAndGrid, ProxyOnBox, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "Grid" : "Tree"; });
+
+TEST(GodObjectProxy, TheGridAnswersAPointProxyOnly) {
+  const TriangleSoup s = testing::MakeBoxSoup(Vec3(-1, -1, -1), Vec3(1, 1, 1));
+  const auto mesh = TriangleMesh::Build(s.vertices, s.triangles, s.cad_faces, s.corner_normals);
+  const auto grid = TriangleGrid::Build(*mesh, 1e-12);
+  ProxyConfig config;
+  config.radius_m = 0.01;
+  EXPECT_THROW(GodObjectProxy(*mesh, *grid, config), std::invalid_argument);
+  config.radius_m = 0.0;
+  EXPECT_NO_THROW(GodObjectProxy(*mesh, *grid, config));
+}
+
+TEST_P(ProxyOnBox, FollowsTheDeviceInFreeSpace) {
   Make(testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05)));
   proxy_->Reset(Vec3(0, 0, 0.2));
   proxy_->Update(Vec3(0.01, 0.02, 0.1));
@@ -34,7 +57,7 @@ TEST_F(ProxyOnBox, FollowsTheDeviceInFreeSpace) {
   EXPECT_EQ(proxy_->position(), Vec3(0.01, 0.02, 0.1));
 }
 
-TEST_F(ProxyOnBox, StaysOnTheSurfaceWhileTheDevicePressesAndSlides) {
+TEST_P(ProxyOnBox, StaysOnTheSurfaceWhileTheDevicePressesAndSlides) {
   Make(testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05)));
   proxy_->Reset(Vec3(0, 0, 0.06));
   // press 2 mm into the top, then slide across it in 1 ms steps at 50 mm/s
@@ -49,7 +72,7 @@ TEST_F(ProxyOnBox, StaysOnTheSurfaceWhileTheDevicePressesAndSlides) {
   }
 }
 
-TEST_F(ProxyOnBox, ReleasesWhenTheDeviceLeaves) {
+TEST_P(ProxyOnBox, ReleasesWhenTheDeviceLeaves) {
   Make(testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05)));
   proxy_->Reset(Vec3(0, 0, 0.06));
   proxy_->Update(Vec3(0, 0, 0.04));
@@ -59,7 +82,7 @@ TEST_F(ProxyOnBox, ReleasesWhenTheDeviceLeaves) {
   EXPECT_EQ(proxy_->position(), Vec3(0, 0, 0.07));
 }
 
-TEST_F(ProxyOnBox, NeitherAPointNorASphereEverEntersTheBoxUnderRandomMotion) {
+TEST_P(ProxyOnBox, NeitherAPointNorASphereEverEntersTheBoxUnderRandomMotion) {
   for (double r : {0.0, 0.003}) {
     Make(testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05)), r);
     std::mt19937 rng(1234);
@@ -77,7 +100,7 @@ TEST_F(ProxyOnBox, NeitherAPointNorASphereEverEntersTheBoxUnderRandomMotion) {
   }
 }
 
-TEST_F(ProxyOnBox, ResolvesAConcaveCornerWithThreePlanes) {
+TEST_P(ProxyOnBox, ResolvesAConcaveCornerWithThreePlanes) {
   // inside a box every wall faces the proxy: pushing past a corner binds three walls
   Make(testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05)));
   proxy_->Reset(Vec3(0, 0, 0));
@@ -89,7 +112,7 @@ TEST_F(ProxyOnBox, ResolvesAConcaveCornerWithThreePlanes) {
   EXPECT_NEAR((proxy_->position() - Vec3(0.05 - kOffset, 0.05 - kOffset, 0.01)).norm(), 0.0, 1e-12);
 }
 
-TEST_F(ProxyOnBox, FeelsAZeroThicknessSheetFromBothSides) {
+TEST_P(ProxyOnBox, FeelsAZeroThicknessSheetFromBothSides) {
   Make(testing::MakeSheetSoup(0.05, 0.0));
   proxy_->Reset(Vec3(0, 0, 0.01));
   proxy_->Update(Vec3(0.001, 0, -0.003));
@@ -99,7 +122,7 @@ TEST_F(ProxyOnBox, FeelsAZeroThicknessSheetFromBothSides) {
   EXPECT_NEAR(proxy_->position().z(), -kOffset, 1e-15);
 }
 
-TEST_F(ProxyOnBox, ASphereRestsOneRadiusAboveTheFaceAndRollsOverTheEdge) {
+TEST_P(ProxyOnBox, ASphereRestsOneRadiusAboveTheFaceAndRollsOverTheEdge) {
   const double r = 0.004;
   Make(testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05)), r);
   proxy_->Reset(Vec3(0, 0, 0.07));

@@ -55,6 +55,7 @@ class TriangleMesh {
   const std::array<std::uint32_t, 3>& triangle(std::uint32_t t) const { return triangles_[t]; }
   const std::array<std::uint32_t, 3>* triangles() const { return triangles_.data(); }
   std::int32_t cad_face(std::uint32_t t) const { return cad_faces_[t]; }
+  const std::int32_t* cad_faces() const { return cad_faces_; }
   std::int32_t num_cad_faces() const { return num_cad_faces_; }
 
   // Unit normal from the winding (v1 - v0) x (v2 - v0); zero for a degenerate triangle.
