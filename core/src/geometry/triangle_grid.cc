@@ -12,6 +12,8 @@ namespace {
 constexpr int kAxisBits = 20;
 constexpr std::int64_t kAxisOffset = std::int64_t{1} << (kAxisBits - 1);
 constexpr std::uint64_t kAxisMask = (std::uint64_t{1} << kAxisBits) - 1;
+// A sliver along an axis may stay in fine cells; a large face goes up a level or more.
+constexpr std::size_t kMaxCellsPerTriangle = 32;
 
 std::size_t NextPowerOfTwo(std::size_t n) {
   std::size_t p = 16;
@@ -61,24 +63,29 @@ std::unique_ptr<TriangleGrid> TriangleGrid::Build(const TriangleMesh& mesh, doub
     *lo = a.cwiseMin(b).cwiseMin(c) - Vec3::Constant(pad);
     *hi = a.cwiseMax(b).cwiseMax(c) + Vec3::Constant(pad);
   };
-  // level 0's cell: the 90th percentile of the triangles' sizes, from a sample
+  // Level 0's cell: a little over twice the 90th percentile of the triangles' widths
+  // (the height over the longest edge), from a sample, so a cell meets about a dozen
+  // triangles whether they are compact or long slivers (a cylinder's sides).
   const std::size_t stride = std::max<std::size_t>(1, n / 65536);
-  std::vector<double> sizes;
-  sizes.reserve(n / stride + 1);
-  double reach = 0.0;  // the largest coordinate, for the index range
+  std::vector<double> widths;
+  widths.reserve(n / stride + 1);
   for (std::size_t t = 0; t < n; t += stride) {
-    Vec3 lo, hi;
-    box(t, &lo, &hi);
-    sizes.push_back((hi - lo).maxCoeff());
+    const auto& tri = mesh.triangle(static_cast<std::uint32_t>(t));
+    const Vec3& a = mesh.vertex(tri[0]);
+    const Vec3& b = mesh.vertex(tri[1]);
+    const Vec3& c = mesh.vertex(tri[2]);
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    widths.push_back(longest > 0.0 ? (b - a).cross(c - a).norm() / longest : 0.0);
   }
+  double reach = 0.0;  // the largest coordinate, for the index range
   for (std::size_t v = 0; v < mesh.num_vertices(); ++v) {
     reach = std::max(reach, mesh.vertex(static_cast<std::uint32_t>(v)).cwiseAbs().maxCoeff());
   }
-  const auto p90 = sizes.begin() + static_cast<std::ptrdiff_t>(0.9 * (sizes.size() - 1));
-  std::nth_element(sizes.begin(), p90, sizes.end());
+  const auto p90 = widths.begin() + static_cast<std::ptrdiff_t>(0.9 * (widths.size() - 1));
+  std::nth_element(widths.begin(), p90, widths.end());
   // every cell index must fit its 20 bits, with room for a query a little outside
   const double h_min = (reach + pad) / static_cast<double>(kAxisOffset / 4);
-  grid->h0_ = std::max(2.0 * *p90, h_min);
+  grid->h0_ = std::max(2.3 * *p90 + 2.0 * pad, h_min);
   for (int level = 0; level < kMaxLevels; ++level) {
     grid->inv_h_[level] = 1.0 / std::ldexp(grid->h0_, level);
   }
@@ -93,17 +100,20 @@ std::unique_ptr<TriangleGrid> TriangleGrid::Build(const TriangleMesh& mesh, doub
     box(t, &lo, &hi);
     grid->lo_ = grid->lo_.cwiseMin(lo);
     grid->hi_ = grid->hi_.cwiseMax(hi);
-    const double size = (hi - lo).maxCoeff();
-    int level = 0;
-    while (level + 1 < kMaxLevels && std::ldexp(grid->h0_, level + 1) < size) ++level;
+    // the finest level where the box covers at most kMaxCellsPerTriangle cells
     Filing& f = filings[t];
-    f.level = level;
-    std::size_t cells = 1;
-    for (int k = 0; k < 3; ++k) {
-      f.lo[k] = static_cast<std::int32_t>(std::floor(lo[k] * grid->inv_h_[level]));
-      f.hi[k] = static_cast<std::int32_t>(std::floor(hi[k] * grid->inv_h_[level]));
-      cells *= static_cast<std::size_t>(f.hi[k] - f.lo[k] + 1);
+    std::size_t cells = 0;
+    for (int level = 0; level < kMaxLevels; ++level) {
+      f.level = level;
+      cells = 1;
+      for (int k = 0; k < 3; ++k) {
+        f.lo[k] = static_cast<std::int32_t>(std::floor(lo[k] * grid->inv_h_[level]));
+        f.hi[k] = static_cast<std::int32_t>(std::floor(hi[k] * grid->inv_h_[level]));
+        cells *= static_cast<std::size_t>(f.hi[k] - f.lo[k] + 1);
+      }
+      if (cells <= kMaxCellsPerTriangle) break;
     }
+    const int level = f.level;
     total += cells;
     grid->level_mask_ |= 1u << level;
   }

@@ -80,7 +80,6 @@ def measure(shape, stroke, accuracy, shading):
     vertices, triangles, faces, normals = tessellate(shape, accuracy)
     t1 = time.perf_counter()
     scene = _core.HapticScene.build(vertices, triangles, faces, MM, corner_normals=normals)
-    t2 = time.perf_counter()
     surface = _core.SurfaceProperties()
     surface.stiffness_n_per_m = K_N_PER_M
     surface.friction.static_coefficient = 0.0
@@ -91,7 +90,8 @@ def measure(shape, stroke, accuracy, shading):
     limits.max_stiffness_n_per_m = 1e6
     options = _core.ContactOptions()
     options.force_shading = shading
-    renderer = _core.ForceRenderer(scene, table, limits, options)
+    renderer = _core.ForceRenderer(scene, table, limits, options)  # builds the point grid
+    t2 = time.perf_counter()
     surface_mm, normal = stroke()
     positions, velocities, times = _inputs(surface_mm, normal)
     run = _core.run_stroke(renderer, positions, velocities, list(times))

@@ -8,9 +8,11 @@
 // its root every time. The tree stays for the sphere proxy and closest points.
 //
 // Every triangle is filed in one level of cells: level L has cells of side h0 2^L, and a
-// triangle goes to the finest level whose cells are at least as big as its box (plus
-// the pad), so it lies in at most 2 x 2 x 2 cells. h0 is the 90th percentile of the
-// triangles' sizes, so most triangles share level 0 and a cell holds about a dozen.
+// triangle goes to the finest level where its box (plus the pad) covers at most 32
+// cells: a compact triangle or a sliver along an axis stays in level 0, a large face
+// climbs. h0 is a little over twice the 90th percentile of the triangles' widths (the
+// height over the longest edge), so most triangles share level 0 and a cell meets
+// about a dozen, compact or sliver.
 // Cells are found by hashing (level, cell): only cells that hold triangles use memory.
 // A query walks each occupied level's cells along the segment (a 3D DDA), the levels
 // merged in order of distance, and stops at the first cell entered beyond the nearest
