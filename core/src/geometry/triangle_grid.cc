@@ -125,7 +125,7 @@ std::unique_ptr<TriangleGrid> TriangleGrid::Build(const TriangleMesh& mesh, doub
   // The table starts at a quarter of the references (cells hold several each) and
   // doubles if it passes half full; a doubling moves the slots, and the fill then
   // hashes again.
-  std::vector<Cell>& table = grid->table_;
+  HugePageVector<Cell>& table = grid->table_;
   table.assign(NextPowerOfTwo(total / 4), Cell{kEmpty, 0, 0});
   grid->mask_ = table.size() - 1;
   auto insert = [&](std::uint64_t key) -> std::size_t {
@@ -139,7 +139,7 @@ std::unique_ptr<TriangleGrid> TriangleGrid::Build(const TriangleMesh& mesh, doub
     }
   };
   auto rehash = [&](std::size_t size) {
-    std::vector<Cell> old(size, Cell{kEmpty, 0, 0});
+    HugePageVector<Cell> old(size, Cell{kEmpty, 0, 0});
     old.swap(table);
     grid->mask_ = table.size() - 1;
     for (const Cell& cell : old) {

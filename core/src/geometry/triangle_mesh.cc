@@ -69,6 +69,7 @@ std::unique_ptr<TriangleMesh> TriangleMesh::Build(
   OpenMeshTriMesh& om = mesh->mesh_;
   om.reserve(vertices_l.size(), triangles.size() * 3 / 2 + 3, triangles.size());
   for (const Vec3& p : vertices_l) om.add_vertex(p);
+  mesh->points_.assign(vertices_l.begin(), vertices_l.end());
 
   om.add_property(mesh->cad_face_prop_, "cad_face");
   mesh->triangles_.reserve(triangles.size());
@@ -108,7 +109,7 @@ std::unique_ptr<TriangleMesh> TriangleMesh::Build(
 Vec3 TriangleMesh::CalcShadingNormal(std::uint32_t t, const Vec3& point_l) const {
   if (corner_normals_.empty()) return face_normals_[t];
   const auto& tri = triangles_[t];
-  const Vec3* p = mesh_.points();
+  const Vec3* p = points_.data();
   const Vec3 e1 = p[tri[1]] - p[tri[0]];
   const Vec3 e2 = p[tri[2]] - p[tri[0]];
   const Vec3 w = point_l - p[tri[0]];
@@ -134,6 +135,7 @@ std::size_t TriangleMesh::CalcMemoryBytes() const {
   // OpenMesh's connectivity: per vertex one halfedge handle, per halfedge next/prev/
   // vertex/face handles, per face one halfedge handle.
   std::size_t bytes = mesh_.n_vertices() * (sizeof(Vec3) + sizeof(int));
+  bytes += points_.capacity() * sizeof(Vec3);
   bytes += mesh_.n_halfedges() * 4 * sizeof(int);
   bytes += mesh_.n_faces() * (sizeof(int) + sizeof(std::int32_t));
   bytes += triangles_.capacity() * sizeof(triangles_[0]);

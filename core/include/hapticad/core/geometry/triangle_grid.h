@@ -28,6 +28,7 @@
 
 #include "hapticad/core/geometry/sweep_search.h"
 #include "hapticad/core/geometry/triangle_mesh.h"
+#include "hapticad/core/huge_page_allocator.h"
 
 namespace hapticad {
 
@@ -84,9 +85,9 @@ class TriangleGrid {
   double inv_h_[kMaxLevels] = {};
   std::uint32_t level_mask_ = 0;
   std::size_t num_cells_ = 0;
-  std::vector<Cell> table_;  // open addressing, linear probing, a power of two long
+  HugePageVector<Cell> table_;  // open addressing, linear probing, a power of two long
   std::uint64_t mask_ = 0;
-  std::vector<std::uint32_t> refs_;
+  HugePageVector<std::uint32_t> refs_;
 };
 
 }  // namespace hapticad

@@ -24,6 +24,7 @@
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
+#include "hapticad/core/huge_page_allocator.h"
 #include "hapticad/core/vec3.h"
 
 namespace hapticad {
@@ -50,8 +51,8 @@ class TriangleMesh {
   std::size_t num_triangles() const { return triangles_.size(); }
   std::size_t num_vertices() const { return mesh_.n_vertices(); }
 
-  const Vec3& vertex(std::uint32_t v) const { return mesh_.points()[v]; }
-  const Vec3* points() const { return mesh_.points(); }
+  const Vec3& vertex(std::uint32_t v) const { return points_[v]; }
+  const Vec3* points() const { return points_.data(); }
   const std::array<std::uint32_t, 3>& triangle(std::uint32_t t) const { return triangles_[t]; }
   const std::array<std::uint32_t, 3>* triangles() const { return triangles_.data(); }
   std::int32_t cad_face(std::uint32_t t) const { return cad_faces_[t]; }
@@ -89,10 +90,13 @@ class TriangleMesh {
   // A view into the face property's storage: face i is triangle i, since faces are
   // added in input order and none is skipped.
   const std::int32_t* cad_faces_ = nullptr;
-  // Vertex triples per triangle, so queries read them without circulating halfedges.
-  std::vector<std::array<std::uint32_t, 3>> triangles_;
-  std::vector<Vec3> face_normals_;
-  std::vector<Eigen::Vector3f> corner_normals_;  // 3 per triangle, or none
+  // What the servo tick reads, in flat arrays on huge pages (huge_page_allocator.h): the
+  // vertices (a copy of OpenMesh's, whose array it cannot place) and, per triangle, its
+  // vertex triple (read without circulating halfedges), normal and corner normals.
+  HugePageVector<Vec3> points_;
+  HugePageVector<std::array<std::uint32_t, 3>> triangles_;
+  HugePageVector<Vec3> face_normals_;
+  HugePageVector<Eigen::Vector3f> corner_normals_;  // 3 per triangle, or none
   std::int32_t num_cad_faces_ = 0;
 };
 
