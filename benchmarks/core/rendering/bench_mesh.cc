@@ -171,7 +171,7 @@ int Run(const Options& o) {
   double speed = 0.075, depth = 0.5 * (depth_lo + depth_hi);
   std::vector<RenderInput> path(static_cast<std::size_t>(o.ticks));
   std::vector<Vec3> surface_points(path.size()), surface_normals(path.size());
-  Vec3 previous_goal;
+  Vec3 previous_goal = Vec3::Zero();
   for (std::size_t k = 0; k < path.size(); ++k) {
     speed = std::clamp(speed + 0.002 * gauss(rng), 0.05, 0.1);
     depth = std::clamp(depth + 0.00002 * gauss(rng), depth_lo, depth_hi);

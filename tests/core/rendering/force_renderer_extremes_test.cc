@@ -201,7 +201,9 @@ void ExpectLipschitzInCorner(const TriangleSoup& soup, const Vec3& corner_w, int
     previous_force = out.force_w;
     previous_device = device;
   }
-  if (planes > 1) EXPECT_GT(bound, 100);  // the walk did reach the corner's line
+  if (planes > 1) {
+    EXPECT_GT(bound, 100);  // the walk did reach the corner's line
+  }
 }
 
 // The inside of a box seen from within: its walls, edges and corners are concave.
