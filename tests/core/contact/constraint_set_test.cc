@@ -64,7 +64,9 @@ TEST(ConstraintSet, ProjectionIsTheQpOptimumAgainstSampling) {
       const Vec3 y = x + 0.2 * Vec3(g(rng), g(rng), g(rng));
       bool feasible = true;
       for (int i = 0; i < set.count(); ++i) feasible &= set.plane(i).normal.dot(y) >= 0.0;
-      if (feasible) EXPECT_GE((y - goal).norm(), (x - goal).norm() - 1e-12);
+      if (feasible) {
+        EXPECT_GE((y - goal).norm(), (x - goal).norm() - 1e-12);
+      }
     }
   }
 }

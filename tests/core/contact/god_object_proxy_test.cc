@@ -36,7 +36,7 @@ class ProxyOnBox : public ::testing::TestWithParam<bool> {
 };
 
 INSTANTIATE_TEST_SUITE_P(TreeAndGrid, ProxyOnBox, ::testing::Values(false, true),
-                         [](const auto& info) { return info.param ? "Grid" : "Tree"; });
+                         [](const auto& test) { return test.param ? "Grid" : "Tree"; });
 
 TEST(GodObjectProxy, TheGridAnswersAPointProxyOnly) {
   const TriangleSoup s = testing::MakeBoxSoup(Vec3(-1, -1, -1), Vec3(1, 1, 1));

@@ -96,7 +96,9 @@ TEST(MeshRepair, OrientsConsistentlyAndFlipsTheCornerNormalsWithTheTriangle) {
     for (int k = 0; k < 3; ++k) {
       const Vec3& p = out.vertices[out.triangles[t][k]];
       const Vec3& q = s.vertices[s.triangles[t][0]];
-      if ((p - q).norm() == 0.0) EXPECT_EQ(out.corner_normals[t][k], s.corner_normals[t][0]) << t;
+      if ((p - q).norm() == 0.0) {
+        EXPECT_EQ(out.corner_normals[t][k], s.corner_normals[t][0]) << t;
+      }
     }
   }
   // and the winding agrees: every edge is used once each way

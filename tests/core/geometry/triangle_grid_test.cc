@@ -120,7 +120,9 @@ TEST_F(BoxGrid, SegmentsAlongCellWallsFindWhatTheTreeFinds) {
         query.b = q;
         const bool grid_found = grid_->FirstHit(query, &from_grid);
         ASSERT_EQ(grid_found, tree->FirstHit(query, &from_tree)) << i << ' ' << j;
-        if (grid_found) EXPECT_EQ(from_grid.s, from_tree.s) << i << ' ' << j;
+        if (grid_found) {
+          EXPECT_EQ(from_grid.s, from_tree.s) << i << ' ' << j;
+        }
       }
     }
   }
@@ -154,7 +156,9 @@ TEST(TriangleGrid, RandomSegmentsOnAnIcosphereAgreeWithBruteForce) {
     SweepHit hit;
     const bool found = FirstHit(*grid, a, b, &hit);
     ASSERT_EQ(found, best <= 1.0) << i;
-    if (found) EXPECT_EQ(hit.s, best) << i;
+    if (found) {
+      EXPECT_EQ(hit.s, best) << i;
+    }
   }
 }
 
