@@ -212,8 +212,10 @@ int Run(const Options& o) {
   }
 
   // after the run: did the proxy pass through the surface between two ticks (its
-  // centre's path crossed a triangle), and did a sphere ever overlap it?
+  // centre's path crossed or touched a triangle; counted strictly, with how far behind
+  // the triangle it ended), and did a sphere ever overlap it?
   std::size_t pop_through = 0;
+  double max_far_side = 0.0;  // m
   double max_penetration = 0.0;
   for (std::size_t k = 1; k < proxies.size(); ++k) {
     SweepHit hit;
@@ -222,6 +224,15 @@ int Run(const Options& o) {
     crossing.b = scene->ToLocal(proxies[k]);
     if (scene->BuildTree().FirstHit(crossing, &hit)) {
       ++pop_through;
+      // how far behind the crossed triangle's plane the proxy ended, seen from where it
+      // started (from on the plane: from the outside, the winding's side). 0: it only
+      // touched the plane, as a proxy resting on one face does on the next face's plane
+      // at an edge.
+      const Vec3& n = scene->mesh().face_normal(hit.triangle);
+      const Vec3& v0 = scene->mesh().vertex(scene->mesh().triangle(hit.triangle)[0]);
+      const double from = n.dot(crossing.a - v0);
+      const double to = n.dot(crossing.b - v0);
+      max_far_side = std::max(max_far_side, from < 0.0 ? to : -to);
     }
     if (r_proxy > 0.0 && k % (proxies.size() > 200000 ? 5 : 1) == 0) {
       max_penetration =
@@ -250,6 +261,7 @@ int Run(const Options& o) {
   std::printf("  \"all_tick_us\": {\"p50\": %.3f, \"p99\": %.3f},\n", Percentile(tick_us, 0.5),
               Percentile(tick_us, 0.99));
   std::printf("  \"pop_through\": %zu,\n", pop_through);
+  std::printf("  \"max_far_side_nm\": %.3f,\n", max_far_side * 1e9);
   std::printf("  \"max_penetration_mm\": %.9f,\n", max_penetration * 1e3);
   std::printf("  \"max_force_n\": %.6f,\n", max_force);
   std::printf("  \"expected_force_n\": [%.6f, %.6f]\n", 400.0 * depth_lo,
