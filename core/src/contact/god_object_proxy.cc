@@ -91,7 +91,7 @@ void GodObjectProxy::Update(const Vec3& goal_l) {
   }
   last_triangle_ = in_contact() ? constraints_.plane(0).triangle : -1;
   // Load the cell the proxy is heading for while it is still a few ticks away (at
-  // 0.1 mm a tick on a 1M-triangle model a new cell comes every 3-4 ticks).
+  // 0.05-0.1 mm a tick on a 1M-triangle model a new cell comes every 5 ticks or so).
   const Vec3 step = position_ - start;
   const double length = step.norm();
   if (grid_ != nullptr && length > 0.0) {

@@ -3,6 +3,8 @@
 
 #include <limits>
 #include <stdexcept>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -24,6 +26,31 @@ TEST(HapticScene, StoresMetresAroundALocalOrigin) {
   }
   EXPECT_NEAR(nearest, 0.0, 1e-15);
   EXPECT_TRUE(scene->repair_report().watertight()) << scene->repair_report().Describe();
+}
+
+TEST(HapticScene, BuildsEachContactStructureOnceOnFirstRequestFromAnyThread) {
+  const auto scene =
+      HapticScene::Build(testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(20, 40, 60)), 1e-3);
+  const std::size_t mesh_only = scene->CalcMemoryBytes();
+  // four threads ask at once: one builds, all get the same structure
+  std::vector<const TriangleGrid*> grids(4);
+  std::vector<const TriangleTree*> trees(4);
+  std::vector<std::thread> threads;
+  for (int i = 0; i < 4; ++i) {
+    threads.emplace_back([&, i] {
+      grids[i] = &scene->BuildGrid();
+      trees[i] = &scene->BuildTree();
+    });
+  }
+  for (auto& t : threads) t.join();
+  for (int i = 1; i < 4; ++i) {
+    EXPECT_EQ(grids[i], grids[0]);
+    EXPECT_EQ(trees[i], trees[0]);
+  }
+  EXPECT_EQ(&scene->BuildGrid(), grids[0]);
+  EXPECT_EQ(scene->CalcMemoryBytes(),
+            mesh_only + grids[0]->CalcMemoryBytes() + trees[0]->CalcMemoryBytes());
+  EXPECT_GT(grids[0]->CalcMemoryBytes(), 0u);
 }
 
 TEST(HapticScene, ClosestPointGivesFaceAndOutwardNormalInWorld) {

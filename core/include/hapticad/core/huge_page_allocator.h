@@ -6,7 +6,7 @@
 // already faulted in as small pages), 2 MiB-aligned, rounded up to whole 2 MiB pages and
 // advised as transparent huge pages before anything touches it, so the first write
 // faults in huge pages. A tick on a 1M-triangle model then needs far fewer
-// TLB entries: its p99 drops by about 15 % (BENCHMARKS.md). Smaller blocks, and
+// TLB entries: its p99 drops by about 12 % (BENCHMARKS.md). Smaller blocks, and
 // systems where THP is off, get ordinary pages; nothing else changes.
 //
 // Not for the servo tick: it allocates (the arrays are built before the loop starts).

@@ -12,7 +12,7 @@
 // can never pass through anything, however far the device moves in one tick.
 //
 // Temporal coherence: each tick's first sweep tests the last tick's contact triangle
-// before walking the tree or the grid, every sweep carries the planes it cannot cross (the
+// before walking the tree or the grid, and every sweep carries the planes it cannot cross (the
 // constraints found so far, and the plane of the best contact so far): triangles under
 // them are skipped without a contact test. A proxy sliding over a dense convex surface then tests a
 // handful of triangles per tick instead of every one within its radius.
