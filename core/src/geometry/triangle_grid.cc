@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// HOT PATH: TriangleGrid::Search runs on the servo thread every tick.
+// HOT PATH: TriangleGrid::FirstHit and WarmUp run on the servo thread every tick.
 #include "hapticad/core/geometry/triangle_grid.h"
 
 #include <algorithm>
@@ -38,7 +38,7 @@ std::uint64_t TriangleGrid::Key(int level, std::int64_t ix, std::int64_t iy, std
 }
 
 std::size_t TriangleGrid::Slot(std::uint64_t key) const {
-  // Fibonacci hashing: the top bits of the product
+  // Fibonacci hashing: bits of the product above the 32 that mix the least
   return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 32) & mask_;
 }
 
