@@ -42,6 +42,19 @@ double BruteForce(const TriangleMesh& mesh, const Vec3& a, const Vec3& b) {
   return best;
 }
 
+// Whether the grid finds what checking every triangle finds; true for a hit.
+bool AgreesWithBruteForce(const TriangleMesh& mesh, const TriangleGrid& grid, const Vec3& a,
+                          const Vec3& b, int i) {
+  const double best = BruteForce(mesh, a, b);
+  SweepHit hit;
+  const bool found = FirstHit(grid, a, b, &hit);
+  EXPECT_EQ(found, best <= 1.0) << i;
+  if (found) {
+    EXPECT_EQ(hit.s, best) << i;
+  }
+  return found;
+}
+
 // Triangles from 1e-3 to 1 across, most of them small, scattered in a 4-unit cube:
 // the large ones are filed in coarser levels.
 TriangleSoup MakeMixedSoup(int count, unsigned seed) {
@@ -152,13 +165,7 @@ TEST(TriangleGrid, RandomSegmentsOnAnIcosphereAgreeWithBruteForce) {
     const Vec3 b =
         i % 2 == 0 ? Vec3(u(rng), u(rng), u(rng))
                    : Vec3(a.normalized() + Vec3(short_step(rng), short_step(rng), short_step(rng)));
-    const double best = BruteForce(*mesh, a, b);
-    SweepHit hit;
-    const bool found = FirstHit(*grid, a, b, &hit);
-    ASSERT_EQ(found, best <= 1.0) << i;
-    if (found) {
-      EXPECT_EQ(hit.s, best) << i;
-    }
+    AgreesWithBruteForce(*mesh, *grid, a, b, i);
   }
 }
 
@@ -174,14 +181,7 @@ TEST(TriangleGrid, TrianglesOfEverySizeAreFiledInSeveralLevelsAndAllFound) {
   for (int i = 0; i < 3000; ++i) {
     const Vec3 a(u(rng), u(rng), u(rng));
     const Vec3 b(u(rng), u(rng), u(rng));
-    const double best = BruteForce(*mesh, a, b);
-    SweepHit hit;
-    const bool found = FirstHit(*grid, a, b, &hit);
-    ASSERT_EQ(found, best <= 1.0) << i;
-    if (found) {
-      EXPECT_EQ(hit.s, best) << i;
-      ++hits;
-    }
+    if (AgreesWithBruteForce(*mesh, *grid, a, b, i)) ++hits;
   }
   EXPECT_GT(hits, 300);  // the segments do meet triangles, small and large
 }
