@@ -121,10 +121,8 @@ std::unique_ptr<TriangleGrid> TriangleGrid::Build(const TriangleMesh& mesh, doub
   while (grid->first_level_ + 1 < kMaxLevels && !(grid->level_mask_ & (1u << grid->first_level_))) {
     ++grid->first_level_;
   }
-  // Count per cell, remembering each reference's slot so the fill needs no hashing.
-  // The table starts at a quarter of the references (cells hold several each) and
-  // doubles if it passes half full; a doubling moves the slots, and the fill then
-  // hashes again.
+  // Count per cell. The table starts at a quarter of the references (cells hold several
+  // each) and doubles whenever it passes half full.
   HugePageVector<Cell>& table = grid->table_;
   table.assign(NextPowerOfTwo(total / 4), Cell{kEmpty, 0, 0});
   grid->mask_ = table.size() - 1;
@@ -156,18 +154,10 @@ std::unique_ptr<TriangleGrid> TriangleGrid::Build(const TriangleMesh& mesh, doub
       }
     }
   };
-  std::vector<std::uint32_t> slot_of(total);
-  bool slots_moved = false;
-  std::size_t r = 0;
   for (std::size_t t = 0; t < n; ++t) {
     for_each_cell(filings[t], [&](std::uint64_t key) {
-      if (2 * (grid->num_cells_ + 1) > table.size()) {
-        rehash(2 * table.size());
-        slots_moved = true;
-      }
-      const std::size_t i = insert(key);
-      ++table[i].count;
-      slot_of[r++] = static_cast<std::uint32_t>(i);
+      if (2 * (grid->num_cells_ + 1) > table.size()) rehash(2 * table.size());
+      ++table[insert(key)].count;
     });
   }
   // each cell's references in one run of refs_, in triangle order
@@ -178,11 +168,9 @@ std::unique_ptr<TriangleGrid> TriangleGrid::Build(const TriangleMesh& mesh, doub
     cell.count = 0;
   }
   grid->refs_.resize(total);
-  r = 0;
   for (std::size_t t = 0; t < n; ++t) {
     for_each_cell(filings[t], [&](std::uint64_t key) {
-      Cell& cell = table[slots_moved ? insert(key) : slot_of[r]];
-      ++r;
+      Cell& cell = table[insert(key)];
       grid->refs_[cell.begin + cell.count++] = static_cast<std::uint32_t>(t);
     });
   }

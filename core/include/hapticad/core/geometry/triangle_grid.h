@@ -61,8 +61,6 @@ class TriangleGrid {
 
   double cell_size() const { return h0_; }                       // level 0, model units
   std::uint32_t occupied_levels() const { return level_mask_; }  // bit L: level L has cells
-  std::size_t num_cells() const { return num_cells_; }
-  std::size_t num_references() const { return refs_.size(); }
   std::size_t CalcMemoryBytes() const;
 
  private:
