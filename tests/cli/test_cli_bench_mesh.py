@@ -49,6 +49,19 @@ class BenchMeshCommandTest(unittest.TestCase):
         self.assertAlmostEqual(mm["max_force_n"], m["max_force_n"], places=9)
         self.assertEqual(mm["contact_ticks"], m["contact_ticks"])
 
+    def test_warming_ahead_times_the_same_stroke(self):
+        # the diagnostic's second renderer runs each block first; the timed one must
+        # feel exactly what it feels without it
+        plain = json.loads(bench("--icosphere", "9680", "--ticks", "2000").stdout)
+        warmed = json.loads(bench("--icosphere", "9680", "--ticks", "2000", "--warm-ahead", "4").stdout)
+        self.assertEqual((plain["warm_ahead"], warmed["warm_ahead"]), (0, 4))
+        self.assertEqual(warmed["max_force_n"], plain["max_force_n"])
+        self.assertEqual(warmed["contact_ticks"], plain["contact_ticks"])
+        self.assertEqual(warmed["pop_through"], 0)
+        done = bench("--icosphere", "9680", "--warm-ahead", "-1")
+        self.assertEqual(done.returncode, 2)
+        self.assertIn("--warm-ahead", done.stderr)
+
     def test_a_mesh_file(self):
         with tempfile.TemporaryDirectory() as tmp:
             path = os.path.join(tmp, "tet.off")
