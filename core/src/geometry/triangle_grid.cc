@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace hapticad {
 namespace {
@@ -38,8 +39,15 @@ std::uint64_t TriangleGrid::Key(int level, std::int64_t ix, std::int64_t iy, std
 }
 
 std::size_t TriangleGrid::Slot(std::uint64_t key) const {
-  // Fibonacci hashing: bits of the product above the 32 that mix the least
-  return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 32) & mask_;
+  // Fibonacci hashing: the top bits of the product, the only ones every bit of the key
+  // (level, x, y and z) reaches
+  return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
+}
+
+void TriangleGrid::SetTableSize(std::size_t size) {
+  mask_ = size - 1;
+  shift_ = 64;
+  for (std::size_t n = size; n > 1; n >>= 1) --shift_;
 }
 
 const TriangleGrid::Cell* TriangleGrid::Find(std::uint64_t key) const {
@@ -51,6 +59,9 @@ const TriangleGrid::Cell* TriangleGrid::Find(std::uint64_t key) const {
 }
 
 std::unique_ptr<TriangleGrid> TriangleGrid::Build(const TriangleMesh& mesh, double pad) {
+  if (!(pad > 0.0) || !std::isfinite(pad)) {
+    throw std::invalid_argument("TriangleGrid: the pad must be finite and > 0");
+  }
   std::unique_ptr<TriangleGrid> grid(new TriangleGrid());
   grid->mesh_ = &mesh;
   const std::size_t n = mesh.num_triangles();
@@ -95,6 +106,14 @@ std::unique_ptr<TriangleGrid> TriangleGrid::Build(const TriangleMesh& mesh, doub
   std::size_t total = 0;
   grid->lo_ = Vec3::Constant(std::numeric_limits<double>::infinity());
   grid->hi_ = -grid->lo_;
+  for (int level = 0; level < kMaxLevels; ++level) {
+    grid->level_lo_[level] = grid->lo_;
+    grid->level_hi_[level] = grid->hi_;
+    for (int k = 0; k < 3; ++k) {
+      grid->cell_lo_[level][k] = std::numeric_limits<std::int32_t>::max();
+      grid->cell_hi_[level][k] = std::numeric_limits<std::int32_t>::min();
+    }
+  }
   for (std::size_t t = 0; t < n; ++t) {
     Vec3 lo, hi;
     box(t, &lo, &hi);
@@ -116,8 +135,18 @@ std::unique_ptr<TriangleGrid> TriangleGrid::Build(const TriangleMesh& mesh, doub
     const int level = f.level;
     total += cells;
     grid->level_mask_ |= 1u << level;
+    grid->level_lo_[level] = grid->level_lo_[level].cwiseMin(lo);
+    grid->level_hi_[level] = grid->level_hi_[level].cwiseMax(hi);
+    for (int k = 0; k < 3; ++k) {
+      grid->cell_lo_[level][k] = std::min(grid->cell_lo_[level][k], f.lo[k]);
+      grid->cell_hi_[level][k] = std::max(grid->cell_hi_[level][k], f.hi[k]);
+    }
   }
 
+  for (int level = 0; level < kMaxLevels; ++level) {
+    grid->level_is_whole_[level] =
+        grid->level_lo_[level] == grid->lo_ && grid->level_hi_[level] == grid->hi_;
+  }
   while (grid->first_level_ + 1 < kMaxLevels && !(grid->level_mask_ & (1u << grid->first_level_))) {
     ++grid->first_level_;
   }
@@ -125,7 +154,7 @@ std::unique_ptr<TriangleGrid> TriangleGrid::Build(const TriangleMesh& mesh, doub
   // each) and doubles whenever it passes half full.
   HugePageVector<Cell>& table = grid->table_;
   table.assign(NextPowerOfTwo(total / 4), Cell{kEmpty, 0, 0});
-  grid->mask_ = table.size() - 1;
+  grid->SetTableSize(table.size());
   auto insert = [&](std::uint64_t key) -> std::size_t {
     for (std::size_t i = grid->Slot(key);; i = (i + 1) & grid->mask_) {
       if (table[i].key == key) return i;
@@ -139,7 +168,7 @@ std::unique_ptr<TriangleGrid> TriangleGrid::Build(const TriangleMesh& mesh, doub
   auto rehash = [&](std::size_t size) {
     HugePageVector<Cell> old(size, Cell{kEmpty, 0, 0});
     old.swap(table);
-    grid->mask_ = table.size() - 1;
+    grid->SetTableSize(table.size());
     for (const Cell& cell : old) {
       if (cell.key == kEmpty) continue;
       std::size_t i = grid->Slot(cell.key);
@@ -222,29 +251,47 @@ struct CellWalk {
     cell[k] += step[k];
     next[k] += delta[k];
   }
+
+  // Whether the walk has gone past the cells [lo, hi] for good: beyond them on an axis
+  // it moves away along, or beside them on an axis it does not move along.
+  bool Past(const std::int32_t lo[3], const std::int32_t hi[3]) const {
+    for (int k = 0; k < 3; ++k) {
+      if (cell[k] > hi[k] && step[k] >= 0) return true;
+      if (cell[k] < lo[k] && step[k] <= 0) return true;
+    }
+    return false;
+  }
 };
+
+// The part [*s0, *s1] of a + s d inside the box [lo, hi], narrowing what is given; false
+// when none is.
+bool ClipToBox(const Vec3& a, const Vec3& d, const Vec3& lo, const Vec3& hi, double* s0,
+               double* s1) {
+  for (int k = 0; k < 3 && *s0 <= *s1; ++k) {
+    if (d[k] == 0.0) {
+      if (a[k] < lo[k] || a[k] > hi[k]) return false;
+      continue;
+    }
+    double t0 = (lo[k] - a[k]) / d[k];
+    double t1 = (hi[k] - a[k]) / d[k];
+    if (t0 > t1) std::swap(t0, t1);
+    *s0 = std::max(*s0, t0);
+    *s1 = std::min(*s1, t1);
+  }
+  return *s0 <= *s1;
+}
 
 }  // namespace
 
-bool TriangleGrid::FirstHit(const SweepQuery& query, SweepHit* hit) const {
+bool TriangleGrid::FirstHit(const SweepQuery& query, SweepHit* hit,
+                            std::size_t* cells_visited) const {
   SweepSearch search(*mesh_, query);
-  if (!table_.empty()) {
-    // the part of the segment inside the box around every triangle: [s0, s1]
-    double s0 = 0.0;
-    double s1 = 1.0;
-    const Vec3 d = query.b - query.a;
-    for (int k = 0; k < 3 && s0 <= s1; ++k) {
-      if (d[k] == 0.0) {
-        if (query.a[k] < lo_[k] || query.a[k] > hi_[k]) s0 = 2.0;
-        continue;
-      }
-      double t0 = (lo_[k] - query.a[k]) / d[k];
-      double t1 = (hi_[k] - query.a[k]) / d[k];
-      if (t0 > t1) std::swap(t0, t1);
-      s0 = std::max(s0, t0);
-      s1 = std::min(s1, t1);
-    }
-    if (s0 <= s1 && s0 <= search.best_s()) Walk(s0, &search);
+  double s0 = 0.0;
+  double s1 = 1.0;
+  if (!table_.empty() && ClipToBox(query.a, query.b - query.a, lo_, hi_, &s0, &s1) &&
+      s0 <= search.best_s()) {
+    const std::size_t cells = Walk(s0, &search);
+    if (cells_visited != nullptr) *cells_visited += cells;
   }
   if (!search.found()) return false;
   search.Report(hit);
@@ -252,29 +299,41 @@ bool TriangleGrid::FirstHit(const SweepQuery& query, SweepHit* hit) const {
 }
 
 // The levels' walks merged in order of s, so the nearest contact, whatever its level,
-// is found first and ends every walk early.
-void TriangleGrid::Walk(double s0, SweepSearch* search) const {
+// is found first and ends every walk early. Each starts where the segment enters its
+// level's box and ends when it leaves its level's cells. Returns the cells looked up.
+std::size_t TriangleGrid::Walk(double s0, SweepSearch* search) const {
   CellWalk walks[kMaxLevels];
   int count = 0;
-  const Vec3 start = search->a() + s0 * search->d();
+  const Vec3& a = search->a();
+  const Vec3& d = search->d();
   for (int level = 0; level < kMaxLevels; ++level) {
-    if (level_mask_ & (1u << level)) {
-      walks[count++].Start(level, inv_h_[level], start, s0, search->d());
+    if (!(level_mask_ & (1u << level))) continue;
+    double l0 = s0;
+    double l1 = 1.0;
+    // (a level spread over the whole model starts where the model's box does)
+    if (!level_is_whole_[level] && !ClipToBox(a, d, level_lo_[level], level_hi_[level], &l0, &l1)) {
+      continue;
     }
+    walks[count].Start(level, inv_h_[level], a + l0 * d, l0, d);
+    if (!walks[count].Past(cell_lo_[level], cell_hi_[level])) ++count;
   }
+  std::size_t cells = 0;
   while (count > 0) {
     int i = 0;
     for (int j = 1; j < count; ++j) {
       if (walks[j].entry < walks[i].entry) i = j;
     }
     CellWalk& walk = walks[i];
-    if (!(walk.entry <= search->best_s())) return;  // every other walk is further still
+    if (!(walk.entry <= search->best_s())) break;  // every other walk is further still
+    ++cells;
     if (const Cell* c = Find(Key(walk.level, walk.cell[0], walk.cell[1], walk.cell[2]))) {
       const std::uint32_t* ref = refs_.data() + c->begin;
       for (std::uint32_t r = 0; r < c->count; ++r) search->Test(ref[r]);
     }
     walk.Advance();
+    if (walk.Past(cell_lo_[walk.level], cell_hi_[walk.level])) walk = walks[--count];
   }
+  return cells;
 }
 
 void TriangleGrid::WarmUp(const Vec3& point, Prefetch* state) const {
@@ -321,6 +380,14 @@ void TriangleGrid::WarmUp(const Vec3& point, Prefetch* state) const {
       return;
   }
   ++state->stage;
+}
+
+double TriangleGrid::CalcMeanProbeLength() const {
+  std::size_t probes = 0;
+  for (std::size_t i = 0; i < table_.size(); ++i) {
+    if (table_[i].key != kEmpty) probes += ((i - Slot(table_[i].key)) & mask_) + 1;
+  }
+  return num_cells_ > 0 ? static_cast<double>(probes) / static_cast<double>(num_cells_) : 0.0;
 }
 
 std::size_t TriangleGrid::CalcMemoryBytes() const {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -211,6 +212,109 @@ TEST(TriangleGrid, FloorsAndHintsGiveTheTreesAnswer) {
       EXPECT_EQ(from_grid.s, from_tree.s) << i;
       EXPECT_EQ(from_grid.normal, from_tree.normal) << i;
     }
+  }
+}
+
+// Small triangles scattered in a cube of side `size` around `centre`, added to `soup`.
+void AddCluster(const Vec3& centre, double size, double triangle, int count, unsigned seed,
+                TriangleSoup* soup) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-0.5 * size, 0.5 * size);
+  for (int t = 0; t < count; ++t) {
+    const Vec3 p = centre + Vec3(u(rng), u(rng), u(rng));
+    const int first = static_cast<int>(soup->vertices.size());
+    soup->vertices.insert(soup->vertices.end(),
+                          {p, p + Vec3(triangle, 0, 0), p + Vec3(0, triangle, triangle)});
+    soup->triangles.push_back({first, first + 1, first + 2});
+    soup->cad_faces.push_back(0);
+  }
+}
+
+TEST(TriangleGrid, AFreeSweepEndsWhereItLeavesTheModelHoweverFarItsGoal) {
+  // two clusters at opposite corners of a 2-unit box; sweeps from the middle, touching
+  // nothing, toward goals from 1 to 1e12 units away: the walk stops at the box's side
+  TriangleSoup soup;
+  AddCluster(Vec3(-0.95, -0.95, -0.95), 0.1, 1e-3, 2000, 1, &soup);
+  AddCluster(Vec3(0.95, 0.95, 0.95), 0.1, 1e-3, 2000, 2, &soup);
+  const auto mesh = MeshOf(soup);
+  const auto grid = TriangleGrid::Build(*mesh, 1e-9);
+  const Vec3 a(0.0, 0.0, 0.001234);
+  const Vec3 direction = Vec3(1.0, 0.01, 0.002).normalized();
+  std::size_t across = 0;  // the cells from a to the box's side
+  SweepHit unused;
+  ASSERT_FALSE(grid->FirstHit({a, a + 2.0 * direction}, &unused, &across));
+  EXPECT_LE(across, static_cast<std::size_t>(3.0 * 1.1 / grid->cell_size()));
+  for (const double far : {1e3, 1e6, 1e12}) {
+    std::size_t cells = 0;
+    SweepHit hit;
+    SweepQuery query;
+    query.a = a;
+    query.b = a + far * direction;
+    EXPECT_FALSE(grid->FirstHit(query, &hit, &cells)) << far;
+    ASSERT_LE(cells, across + 2) << far;
+    // and from far outside, across the box
+    cells = 0;
+    query.a = a - far * direction;
+    EXPECT_FALSE(grid->FirstHit(query, &hit, &cells)) << far;
+    ASSERT_LE(cells, 2 * across + 4) << far;
+  }
+}
+
+TEST(TriangleGrid, ASweepPastAClusterOfTinyTrianglesDoesNotWalkItsFineCells) {
+  // one large face and a cluster of triangles 1e-5 across: level 0's cells are tiny, but
+  // only where the cluster is; a sweep across the box elsewhere looks up a few cells
+  TriangleSoup soup;
+  soup.vertices = {Vec3(-1, -1, -1), Vec3(1, -1, -1), Vec3(-1, 1, -1)};
+  soup.triangles = {{0, 1, 2}};
+  soup.cad_faces = {0};
+  AddCluster(Vec3(0, 0, 1), 0.02, 1e-5, 3000, 3, &soup);
+  const auto mesh = MeshOf(soup);
+  const auto grid = TriangleGrid::Build(*mesh, 1e-9);
+  ASSERT_GT(grid->occupied_levels(), 1u);
+  const Vec3 a(-0.99, -0.99, -0.5);
+  const Vec3 b(0.99, 0.99, 0.5);
+  ASSERT_GT((b - a).lpNorm<1>() / grid->cell_size(), 1e5);  // what walking level 0 would cost
+  std::size_t cells = 0;
+  SweepHit hit;
+  EXPECT_FALSE(grid->FirstHit({a, b}, &hit, &cells));
+  EXPECT_LT(cells, 100u);
+  // the cluster and the face are still found
+  EXPECT_TRUE(AgreesWithBruteForce(*mesh, *grid, Vec3(-0.5, -0.5, 0), Vec3(-0.5, -0.5, -2), 0));
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 through = soup.vertices[3 + 3 * i] + Vec3(2e-6, 2e-6, 0);
+    AgreesWithBruteForce(*mesh, *grid, through + Vec3(0, 0, 0.05), through - Vec3(0, 0, 0.05), i);
+  }
+}
+
+TEST(TriangleGrid, CellsInARowAlongAnyAxisDoNotCrowdTheirSlots) {
+  // a thin rod of triangles along x, y or z: a row of cells along one axis. Every bit of
+  // the key must reach the slot, or a row piles onto few slots and look-ups probe long.
+  for (int axis = 0; axis < 3; ++axis) {
+    TriangleSoup soup;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-0.5, 0.5);
+    for (int t = 0; t < 20000; ++t) {
+      Vec3 p = Vec3::Zero();
+      p[axis] = u(rng);
+      Vec3 a = p, b = p, c = p;
+      a[(axis + 1) % 3] += 1e-4;
+      b[(axis + 2) % 3] += 1e-4;
+      c[axis] += 1e-4;
+      soup.vertices.insert(soup.vertices.end(), {a, b, c});
+      soup.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
+      soup.cad_faces.push_back(0);
+    }
+    const auto mesh = MeshOf(soup);
+    const auto grid = TriangleGrid::Build(*mesh, 1e-9);
+    EXPECT_LT(grid->CalcMeanProbeLength(), 1.5) << "axis " << axis;
+  }
+}
+
+TEST(TriangleGrid, APadThatIsNotAPositiveNumberIsRefused) {
+  const auto mesh = MeshOf(testing::MakeBoxSoup(Vec3(-1, -1, -1), Vec3(1, 1, 1)));
+  for (const double pad : {0.0, -1e-9, std::numeric_limits<double>::quiet_NaN(),
+                           std::numeric_limits<double>::infinity()}) {
+    EXPECT_THROW(TriangleGrid::Build(*mesh, pad), std::invalid_argument) << pad;
   }
 }
 

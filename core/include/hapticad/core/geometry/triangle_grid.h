@@ -16,7 +16,9 @@
 // Cells are found by hashing (level, cell): only cells that hold triangles use memory.
 // A query walks each occupied level's cells along the segment (a 3D DDA), the levels
 // merged in order of distance, and stops at the first cell entered beyond the nearest
-// contact found so far.
+// contact found so far. Each level's walk starts where the segment enters the box around
+// that level's triangles and ends where it leaves their range of cells, so a segment
+// however long, from however far, walks at most across the model.
 //
 // Units and frame: the mesh's. FirstHit is servo-tick safe: no allocation, no lock.
 #pragma once
@@ -36,16 +38,17 @@ class TriangleGrid {
  public:
   static constexpr int kMaxLevels = 15;
 
-  // `mesh` must outlive the grid. `pad` (model units) grows every triangle's box, so a
-  // segment that meets a triangle within rounding of a cell's face finds it in the cell
-  // on either side.
+  // `mesh` must outlive the grid. `pad` (model units, finite, > 0) grows every triangle's
+  // box, so a segment that meets a triangle within rounding of a cell's face finds it in
+  // the cell on either side. Throws std::invalid_argument for any other pad.
   static std::unique_ptr<TriangleGrid> Build(const TriangleMesh& mesh, double pad);
 
   // First contact of a point query (query.radius must be 0: a sphere is the tree's).
   // The segment is clipped to the box around every triangle first, so a device far
   // away costs nothing; inside it the walk is as long as the segment up to its first
-  // contact. Servo-tick safe.
-  bool FirstHit(const SweepQuery& query, SweepHit* hit) const;
+  // contact or its exit. Servo-tick safe. `cells_visited`, if given, is increased by the
+  // number of cells looked up (for tests and benchmarks).
+  bool FirstHit(const SweepQuery& query, SweepHit* hit, std::size_t* cells_visited = nullptr) const;
 
   // Warms the caches for the cell around `point` (in the finest occupied level), one
   // dependent step per call, so the servo tick that reaches that cell finds its data
@@ -62,6 +65,8 @@ class TriangleGrid {
   double cell_size() const { return h0_; }                       // level 0, model units
   std::uint32_t occupied_levels() const { return level_mask_; }  // bit L: level L has cells
   std::size_t CalcMemoryBytes() const;
+  // Slots a look-up of a stored cell reads, on average over every cell (1 is ideal).
+  double CalcMeanProbeLength() const;
 
  private:
   static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
@@ -73,19 +78,26 @@ class TriangleGrid {
   TriangleGrid() = default;
   static std::uint64_t Key(int level, std::int64_t ix, std::int64_t iy, std::int64_t iz);
   std::size_t Slot(std::uint64_t key) const;
+  void SetTableSize(std::size_t size);  // a power of two
   const Cell* Find(std::uint64_t key) const;
-  void Walk(double s0, SweepSearch* search) const;
+  std::size_t Walk(double s0, SweepSearch* search) const;
 
   const TriangleMesh* mesh_ = nullptr;
   int first_level_ = 0;  // the finest occupied level
   double h0_ = 0.0;
   Vec3 lo_ = Vec3::Zero();  // the box around every (padded) triangle
   Vec3 hi_ = Vec3::Zero();
+  Vec3 level_lo_[kMaxLevels];  // the same per level
+  Vec3 level_hi_[kMaxLevels];
+  bool level_is_whole_[kMaxLevels] = {};      // its box is the model's
+  std::int32_t cell_lo_[kMaxLevels][3] = {};  // the range of each level's occupied cells
+  std::int32_t cell_hi_[kMaxLevels][3] = {};
   double inv_h_[kMaxLevels] = {};
   std::uint32_t level_mask_ = 0;
   std::size_t num_cells_ = 0;
   HugePageVector<Cell> table_;  // open addressing, linear probing, a power of two long
   std::uint64_t mask_ = 0;
+  int shift_ = 64;  // 64 - log2(table size): the slot is the top bits of the hash
   HugePageVector<std::uint32_t> refs_;
 };
 
