@@ -381,6 +381,7 @@ void ServoLoop::ResetStats() {
   fault_time_s_ = -1.0;
   last_faults_ = 0;
   had_proxy_ = false;
+  reset_from_proxy_ = false;  // a renderer adopted in the last session starts at the hand
 }
 
 std::size_t ServoLoop::DrainTrace(std::vector<TraceSample>* out) {

@@ -304,6 +304,56 @@ TEST_F(HandOnBox, ASwappedRendererTakesOverWithoutAJolt) {
   EXPECT_NEAR(trace.back().force_n[2], 1.0, 0.05);
 }
 
+// Reports the position the test sets, or the status it sets; keeps the last force.
+class ScriptedDevice : public Device {
+ public:
+  const DeviceInfo& info() const override { return info_; }
+  ReadStatus ReadState(double loop_time_s, DeviceState* state) override {
+    if (status != ReadStatus::kOk) return status;
+    state->time_s = loop_time_s;
+    state->position_d = position;
+    state->velocity_d = Vec3::Zero();
+    state->age_s = 0.0;
+    return ReadStatus::kOk;
+  }
+  void WriteForce(const Vec3& force_d) override { force = force_d; }
+
+  Vec3 position = Vec3::Zero();
+  ReadStatus status = ReadStatus::kOk;
+  Vec3 force = Vec3::Zero();
+
+ private:
+  DeviceInfo info_{"sim", "scripted", "sim:scripted", DeviceLimits{}};
+};
+
+TEST(ServoLoopSessions, ARendererSwappedDuringAFaultDoesNotStartTheNextSessionAtTheOldProxy) {
+  ScriptedDevice device;
+  ServoLoop loop(device, BoxRenderer(device.info().limits), Config(1000.0, 1 << 12));
+  // a session with the hand above the part (a 0.1 m box), in free space
+  device.position = Vec3(0, 0, 0.06);
+  loop.BeginTicks();
+  double t = 0.0;
+  for (int i = 0; i < 300; ++i, t += 1e-3) loop.Tick(t, 1e-3);
+  // the device stops answering, and a new scene is adopted during the fault; the
+  // session ends there
+  device.status = ReadStatus::kNoData;
+  loop.SetRenderer(BoxRenderer(device.info().limits));
+  for (int i = 0; i < 10; ++i, t += 1e-3) loop.Tick(t, 1e-3);
+  // the next session starts with the hand below the part, in free space: no force. (The
+  // old proxy, above the part, would be held by the top face and push the hand up.)
+  device.status = ReadStatus::kOk;
+  device.position = Vec3(0, 0, -0.06);
+  loop.BeginTicks();
+  t = 0.0;
+  for (int i = 0; i < 400; ++i, t += 1e-3) {
+    loop.Tick(t, 1e-3);
+    ASSERT_EQ(device.force, Vec3::Zero()) << t;
+  }
+  const TraceSample last = loop.latest();
+  EXPECT_FALSE(last.flags & kContact);
+  EXPECT_NEAR(last.proxy_m[2], -0.06, 1e-9);
+}
+
 TEST_F(HandOnBox, ARendererSwapReachesARunningLoop) {
   ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 14));
   loop.Start();
