@@ -50,6 +50,22 @@ TEST(Handoff, TheServoSideTakesTheNewestAndTheOldOnesAreFreedOffIt) {
   EXPECT_EQ(Table::live.load(), 0);
 }
 
+TEST(Handoff, APublishThatRunsOutOfMemoryPublishesNothing) {
+  Handoff<const Table> handoff;
+  handoff.Publish(std::make_shared<Table>(1));
+  const Table* first = handoff.Take();
+  auto next = std::make_shared<Table>(2);
+  {
+    testing::AllocationFailure fail(1);  // the entry is made; keeping it fails
+    EXPECT_THROW(handoff.Publish(next), std::bad_alloc);
+  }
+  // the servo side still has the first table, alive, and nothing freed is published
+  EXPECT_EQ(handoff.Take(), first);
+  EXPECT_EQ(first->canary, 0x5AFE);
+  handoff.Publish(std::make_shared<Table>(3));
+  EXPECT_EQ(handoff.Take()->value, 3);
+}
+
 TEST(Handoff, NeverFreesWhatTheServoThreadUsesUnderContention) {
   Handoff<const Table> handoff;
   handoff.Publish(std::make_shared<Table>(0));

@@ -31,9 +31,11 @@ class Handoff {
   // Control thread: `next` (non-null) is taken at the servo thread's next Take(). An
   // object published before and not yet taken is skipped (the newest wins).
   void Publish(std::shared_ptr<T> next) {
-    auto entry = std::make_unique<Entry>(Entry{std::move(next), ++published_});
-    pending_.store(entry.get(), std::memory_order_release);
-    owned_.push_back(std::move(entry));
+    auto entry = std::make_unique<Entry>(Entry{std::move(next), published_ + 1});
+    const Entry* raw = entry.get();
+    owned_.push_back(std::move(entry));  // may throw: then nothing is published
+    ++published_;
+    pending_.store(raw, std::memory_order_release);
     Release();
   }
 
