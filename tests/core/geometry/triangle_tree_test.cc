@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hapticad/core/geometry/triangle_tree.h"
 
+#include "hapticad/core/geometry/icosphere.h"
 #include "hapticad/core/geometry/segment_triangle.h"
 
 #include <random>
@@ -89,6 +90,34 @@ TEST_F(BoxTree, ClosestPointIsOnTheNearestFace) {
   EXPECT_EQ(mesh_->cad_face(p.triangle), 1);
   EXPECT_NEAR((p.point - Vec3(1, 0.5, 0.25)).norm(), 0.0, 1e-12);
   EXPECT_NEAR(p.distance, 2.0, 1e-12);
+}
+
+TEST(TriangleTree, ClosestPointAtAVertexNamesATriangleThatHasIt) {
+  // off a convex vertex the closest point is the vertex itself, where the search's
+  // starting hints lie: the answer's triangle must be one of the vertex's
+  const TriangleSoup s = MakeIcosphere(IcosphereFrequencyFor(2000), 1.0);
+  const auto mesh = TriangleMesh::Build(s.vertices, s.triangles, s.cad_faces, s.corner_normals);
+  const auto tree = TriangleTree::Build(*mesh, 1e-12);
+  int checked = 0;
+  for (std::uint32_t v = 0; v < mesh->num_vertices(); ++v) {
+    const Vec3 q = 1.5 * mesh->vertex(v);
+    const SurfacePoint p = tree->CalcClosestPoint(q);
+    ASSERT_NEAR((p.point - mesh->vertex(v)).norm(), 0.0, 1e-12) << v;
+    const auto& t = mesh->triangle(p.triangle);
+    EXPECT_TRUE(t[0] == v || t[1] == v || t[2] == v)
+        << "vertex " << v << ", triangle " << p.triangle;
+    EXPECT_GT(mesh->face_normal(p.triangle).dot(q - p.point), 0.0) << v;
+    ++checked;
+  }
+  EXPECT_GT(checked, 900);
+}
+
+TEST_F(BoxTree, ClosestPointOffACornerIsOnAFaceAtThatCorner) {
+  const SurfacePoint p = tree_->CalcClosestPoint(Vec3(-2, -2, -2));
+  EXPECT_NEAR((p.point - Vec3(-1, -1, -1)).norm(), 0.0, 1e-12);
+  const Vec3& n = mesh_->face_normal(p.triangle);
+  EXPECT_NEAR(n.minCoeff(), -1.0, 1e-12);  // -x, -y or -z: facing the query
+  EXPECT_GT(n.dot(Vec3(-2, -2, -2) - p.point), 0.0);
 }
 
 }  // namespace
