@@ -96,6 +96,28 @@ TEST_F(RendererOnBox, NonFiniteInputGivesZeroForceAndAFault) {
   EXPECT_NEAR(out.normal_force_n, 0.6, 1e-6);
 }
 
+TEST_F(RendererOnBox, FiniteButAbsurdInputGivesZeroForceAndAFaultNotNaN) {
+  ForceRenderer r(scene_, surfaces_, limits_);
+  Press(r, 0.002);
+  RenderOutput pressed;
+  r.Render({Vec3(0, 0, 0.048), Vec3::Zero()}, &pressed);
+  ASSERT_GT(pressed.force_w.z(), 0.0);
+  // 1e306 m and 1e5 m away, 1e306 m/s: the spring or the damper would overflow
+  for (const RenderInput& input :
+       {RenderInput{Vec3(0, 0, -1e306), Vec3::Zero()}, RenderInput{Vec3(1e5, 0, 0), Vec3::Zero()},
+        RenderInput{Vec3(0, 0, 0.048), Vec3(0, 0, -1e306)}}) {
+    RenderOutput out;
+    r.Render(input, &out);
+    EXPECT_EQ(out.force_w, Vec3::Zero()) << input.position_w.transpose();
+    EXPECT_TRUE(out.flags & kInputFault);
+    EXPECT_TRUE(out.proxy_w.allFinite());
+  }
+  // the proxy was not disturbed
+  RenderOutput out;
+  r.Render({Vec3(0, 0, 0.048), Vec3::Zero()}, &out);
+  EXPECT_EQ(out.force_w, pressed.force_w);
+}
+
 TEST_F(RendererOnBox, RenderDoesNotAllocate) {
   ForceRenderer r(scene_, surfaces_, limits_);
   Press(r, 0.002);

@@ -26,8 +26,10 @@
 // A face runs only the effects it compiled into (SurfaceTable::effects).
 //
 // Frames and units: world frame, SI (m, m/s, N, N/m, s). Render() is servo-tick safe:
-// no allocation, no lock, no I/O. Non-finite device input yields zero force and the
-// kInputFault flag; it never reaches the proxy.
+// no allocation, no lock, no I/O. Device input that is not finite, lies over 1 km (or a
+// thousand part sizes) from the part or moves over 1 km/s yields zero force and the
+// kInputFault flag, and never reaches the proxy; a force that would not be finite is
+// replaced by zero with the same flag.
 //
 // Threads: Render() runs on the servo thread; SetSurfaces() on one control thread
 // (a property edit: the new table is in effect at the next Render(), the scene and its
@@ -112,6 +114,7 @@ class ForceRenderer {
   const GodObjectProxy& proxy() const { return proxy_; }
 
  private:
+  void RenderContact(const RenderInput& input, RenderOutput* out);
   // The shading normal at the contact, or zero where the constraints' triangles meet at
   // a crease of the CAD model.
   Vec3 SmoothShadingNormal() const;
