@@ -599,7 +599,9 @@ void DefineDevices(py::module_& m) {
              return std::make_shared<ForceRenderer>(scene, surfaces, limits, options);
            }),
            py::arg("scene"), py::arg("surfaces"), py::arg("limits"),
-           py::arg("options") = ContactOptions{});
+           py::arg("options") = ContactOptions{})
+      .def("set_surfaces", &ForceRenderer::SetSurfaces, py::arg("surfaces"),
+           "The surface properties from the next tick on; the scene is not rebuilt.");
 
   py::class_<ServoLoop>(m, "ServoLoop")
       .def(py::init([](Device& device, std::shared_ptr<ForceRenderer> renderer, double rate_hz,

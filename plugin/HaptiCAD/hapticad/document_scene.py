@@ -11,7 +11,7 @@ could not mend: ``DocumentScene.repair`` says it in one line. CAD face ids are n
 across objects in document order; ``face_names[id]`` is "Object.FaceN". Lengths in the
 document are mm; the core gets metres through ``metres_per_unit = 1e-3``. No GUI.
 """
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -128,12 +128,8 @@ def _normal_at(face, point):
     return (n.x / length, n.y / length, n.z / length) if length > 0 else None
 
 
-def build_document_scene(doc, accuracy=None):
-    """The haptic scene of every HapticSurface and HapticVibration in ``doc``, at the
-    given accuracy.Accuracy (the default preset when None). Raises ValueError when there
-    is nothing to feel, a face is tagged by two surfaces, or a surface's values cannot
-    be compiled (the message names the surface)."""
-    accuracy = accuracy or accuracy_presets.preset()
+def _tagging(doc):
+    """({"Object.FaceN": surface}, [vibration], [tagged or vibrating object]) of doc."""
     surfaces = surfaces_of(doc)
     vibrating = [v for v in vibrations_of(doc) if v.Part is not None]
     if not surfaces and not vibrating:
@@ -152,6 +148,53 @@ def build_document_scene(doc, accuracy=None):
     for vibration in vibrating:
         if vibration.Part not in objects:
             objects.append(vibration.Part)
+    return tagged, vibrating, objects
+
+
+def _surface_table(tagged, vibrating, face_names, shapes):
+    """The SurfaceTable of the scene's faces: each tagged face's compiled surface, the
+    vibration of each vibrating part's faces, plain properties elsewhere."""
+    table = [_core.SurfaceProperties() for _ in face_names]
+    for name, surface in tagged.items():
+        obj_name, sub = name.split(".", 1)
+        table[face_names.index(name)] = compile_surface(surface, shapes[obj_name].getElement(sub))
+    for index, vibration in enumerate(vibrating):
+        prefix = vibration.Part.Name + "."
+        for face_id, name in enumerate(face_names):
+            if name.startswith(prefix):
+                table[face_id].vibration = index
+    return _core.SurfaceTable(table, [compile_vibration(v) for v in vibrating])
+
+
+def recompile_surfaces(doc, doc_scene):
+    """doc_scene with its surfaces compiled again from doc's HapticSurfaces and
+    HapticVibrations as they are now: what a property edit (material, friction,
+    roughness, pattern, texture, vibration) or a retag among the scene's faces changes,
+    without tessellating again. The scene itself is shared, not copied. Raises
+    ValueError, naming the surface, when a value cannot be compiled or when the edit
+    tags or shakes a part the scene does not hold (that needs a new scene)."""
+    tagged, vibrating, objects = _tagging(doc)
+    for obj in objects:
+        if obj.Name not in doc_scene.shapes:
+            raise ValueError(f"{obj.Label} is not in the scene being felt: start the session again to feel it")
+    for name, surface in tagged.items():
+        if name not in doc_scene.face_names:
+            raise ValueError(f"{surface.Label} references {name}, which the scene being felt does not have")
+    return replace(
+        doc_scene,
+        surfaces=_surface_table(tagged, vibrating, doc_scene.face_names, doc_scene.shapes),
+        face_surface={name: s.Name for name, s in tagged.items()},
+        face_material={name: s.Material for name, s in tagged.items()},
+    )
+
+
+def build_document_scene(doc, accuracy=None):
+    """The haptic scene of every HapticSurface and HapticVibration in ``doc``, at the
+    given accuracy.Accuracy (the default preset when None). Raises ValueError when there
+    is nothing to feel, a face is tagged by two surfaces, or a surface's values cannot
+    be compiled (the message names the surface)."""
+    accuracy = accuracy or accuracy_presets.preset()
+    tagged, vibrating, objects = _tagging(doc)
     if not objects:
         raise ValueError(f"document {doc.Label}: every tagged face reference is broken; pick the faces again")
 
@@ -176,15 +219,7 @@ def build_document_scene(doc, accuracy=None):
         face_names.extend(f"{obj.Name}.Face{i + 1}" for i in range(len(shape.Faces)))
         offset += len(vertices)
 
-    table = [_core.SurfaceProperties() for _ in face_names]
-    for name, surface in tagged.items():
-        obj_name, sub = name.split(".", 1)
-        table[face_names.index(name)] = compile_surface(surface, shapes[obj_name].getElement(sub))
-    for index, vibration in enumerate(vibrating):
-        prefix = vibration.Part.Name + "."
-        for face_id, name in enumerate(face_names):
-            if name.startswith(prefix):
-                table[face_id].vibration = index
+    surface_table = _surface_table(tagged, vibrating, face_names, shapes)
     scene = _core.HapticScene.build(
         np.vstack(all_vertices), np.vstack(all_triangles), np.concatenate(all_faces), MM,
         corner_normals=np.vstack(all_normals), refine_edge=accuracy.refine_edge_mm,
@@ -192,7 +227,7 @@ def build_document_scene(doc, accuracy=None):
     report = scene.repair_report
     return DocumentScene(
         scene=scene,
-        surfaces=_core.SurfaceTable(table, [compile_vibration(v) for v in vibrating]),
+        surfaces=surface_table,
         face_names=face_names,
         face_surface={name: s.Name for name, s in tagged.items()},
         face_material={name: s.Material for name, s in tagged.items()},

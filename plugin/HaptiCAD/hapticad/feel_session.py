@@ -12,6 +12,7 @@ The binding's contract (devices/README.md):
     _core.SimulatedHand(limits)            .set_target(p_w)   (world m; identity mapping)
     _core.ServoLoop(device, renderer, rate_hz, trace_capacity)
         .start() .stop() .drain_trace() .stats .running .set_mapping(mapping)
+    _core.ForceRenderer(scene, surfaces, limits) .set_surfaces(surfaces)
     _core.list_devices(), _core.open_device(path)
 
 Units: SI (m, N) in the loop, mm in the document. No GUI.
@@ -116,6 +117,17 @@ class LiveSession:
     def stop(self):
         if self.loop.running:
             self.loop.stop()
+
+    def update_surfaces(self, doc):
+        """Compiles doc's surfaces again and hands them to the loop: a property edit is
+        felt from the next tick on, the scene is not rebuilt and the session goes on.
+        Raises ValueError (naming the surface) when the edit cannot be compiled or needs
+        a new scene; the loop then keeps what it had."""
+        from .document_scene import recompile_surfaces  # FreeCAD's: only when used
+
+        doc_scene = recompile_surfaces(doc, self.doc_scene)
+        self.renderer.set_surfaces(doc_scene.surfaces)
+        self.doc_scene = doc_scene
 
     def set_target(self, target_w):
         """Where the simulated hand aims, world metres (lock-free in the device)."""

@@ -79,6 +79,54 @@ class FeelSessionTest(unittest.TestCase):
         self.assertIn("Box.Face6", session.describe_face(int(last["cad_face"][-1])))
         self.assertIn("Steel", session.describe_face(int(last["cad_face"][-1])))
 
+    def test_a_property_edit_is_felt_in_the_running_session_without_a_rebuild(self):
+        prefs = preferences.Preferences(servo_rate_hz=1000, force_limit_n=3.0)
+        session = feel_session.LiveSession(self.scene, prefs=prefs)
+        scene_before = session.doc_scene.scene
+        surface = self.doc.getObject("HapticSurface")
+        session.start(np.array([20, 15, 30]) * MM)
+        try:
+            time.sleep(0.3)  # the hand starts above the part
+            session.set_target(np.array([20, 15, 18]) * MM)  # 2 mm into the top face
+            time.sleep(0.6)
+            steel = session.drain()[-50:]
+            # a much softer face, while the loop runs
+            surface.Stiffness = 0.05  # N/mm
+            self.doc.recompute()
+            session.update_surfaces(self.doc)
+            time.sleep(0.6)
+            soft = session.drain()[-50:]
+            # an edit that cannot be compiled is refused with its name; the loop keeps the soft face
+            surface.Pattern = "Curve"  # with no curve to follow
+            with self.assertRaises(ValueError) as raised:
+                session.update_surfaces(self.doc)
+            self.assertIn(surface.Label, str(raised.exception))
+            time.sleep(0.1)
+            still_soft = session.drain()[-50:]
+            running = session.running
+        finally:
+            session.stop()
+        self.assertTrue(running)
+        self.assertIs(session.doc_scene.scene, scene_before)  # nothing was rebuilt
+        f_steel = float(np.median(steel["force_n"][:, 2]))
+        f_soft = float(np.median(soft["force_n"][:, 2]))
+        self.assertTrue((soft["flags"] & _core.FLAG_CONTACT).all())
+        # the hand's grip and the face's spring in series: 50 N/m is felt much softer
+        self.assertGreater(f_steel, 0.3)
+        self.assertLess(f_soft, 0.5 * f_steel)
+        self.assertAlmostEqual(float(np.median(still_soft["force_n"][:, 2])), f_soft, delta=0.02)
+        self.assertAlmostEqual(session.doc_scene.surfaces.surface(self.scene.face_id("Box.Face6")).stiffness_n_per_m,
+                               50.0)
+
+    def test_an_edit_that_tags_a_part_outside_the_scene_asks_for_a_new_session(self):
+        session = feel_session.LiveSession(self.scene)
+        other = self.doc.addObject("Part::Box", "Other")
+        self.doc.recompute()
+        HaptiCAD.make_surface(self.doc, [(other, "Face1")], material="Steel")
+        with self.assertRaises(ValueError) as raised:
+            session.update_surfaces(self.doc)
+        self.assertIn("start the session again", str(raised.exception))
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -91,6 +91,44 @@ class FeelGuiTest(unittest.TestCase):
         self.assertNotIn("HaptiCAD_Feel", names)
         h.press_task_button("Close")
 
+    def test_editing_the_surface_during_a_session_is_felt_at_once(self):
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        stop = h.widget(QtWidgets.QPushButton, "feelStop")
+        self.assertTrue(stop.isEnabled(), h.widget(QtWidgets.QLabel, "feelMessage").text())
+        chart = h.widget(QtWidgets.QWidget, "stripChart")
+        h.mouse("move", h.screen_pos(np.array([20.0, 15.0, 20.0])))
+        wait(0.3)
+        h.wheel(h.screen_pos(np.array([20.0, 15.0, 20.0])), 4)  # press well in
+        wait(0.8)
+        abs_normal = float(chart.values["normal_force_n"][-200:].mean())
+        # the designer softens the face in the property editor while feeling it
+        surface = self.doc.getObject("HapticSurface")
+        surface.Stiffness = 0.03  # N/mm
+        self.doc.recompute()
+        wait(0.8)
+        soft_normal = float(chart.values["normal_force_n"][-200:].mean())
+        message = h.widget(QtWidgets.QLabel, "feelMessage").text()
+        h.grab_screen("feel_surface_edit.png")
+        self.assertTrue(stop.isEnabled())  # the session went on
+        self.assertIn("Surface edited", message)
+        self.assertGreater(abs_normal, 0.2)
+        self.assertLess(soft_normal, 0.5 * abs_normal)
+        # an edit that cannot be compiled: named, and the soft face stays
+        surface.Pattern = "Curve"
+        self.doc.recompute()
+        wait(0.3)
+        self.assertIn("PatternCurve", h.widget(QtWidgets.QLabel, "feelMessage").text())
+        self.assertTrue(stop.isEnabled())
+        stop.click()
+        h.process_events()
+        # once stopped, edits no longer reach the closed session
+        surface.Pattern = "None"
+        self.doc.recompute()
+        h.process_events()
+        self.assertNotIn("Surface edited", h.widget(QtWidgets.QLabel, "feelMessage").text())
+        h.press_task_button("Close")
+
 
 def probe_mm():
     """The probe position (mm) in the Feel panel's last displayed sample."""
