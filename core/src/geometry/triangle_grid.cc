@@ -306,13 +306,18 @@ std::size_t TriangleGrid::Walk(double s0, SweepSearch* search) const {
   int count = 0;
   const Vec3& a = search->a();
   const Vec3& d = search->d();
+  const SegmentRay ray(a, d);  // the divisions once for every level's box
   for (int level = 0; level < kMaxLevels; ++level) {
     if (!(level_mask_ & (1u << level))) continue;
     double l0 = s0;
-    double l1 = 1.0;
     // (a level spread over the whole model starts where the model's box does)
-    if (!level_is_whole_[level] && !ClipToBox(a, d, level_lo_[level], level_hi_[level], &l0, &l1)) {
-      continue;
+    if (!level_is_whole_[level]) {
+      double entry = 0.0;
+      if (!IntersectSegmentBox(ray, 1.0, level_lo_[level].data(), level_hi_[level].data(), 0.0,
+                               &entry)) {
+        continue;
+      }
+      l0 = std::max(l0, entry);
     }
     walks[count].Start(level, inv_h_[level], a + l0 * d, l0, d);
     if (!walks[count].Past(cell_lo_[level], cell_hi_[level])) ++count;
