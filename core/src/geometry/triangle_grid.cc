@@ -263,34 +263,16 @@ struct CellWalk {
   }
 };
 
-// The part [*s0, *s1] of a + s d inside the box [lo, hi], narrowing what is given; false
-// when none is.
-bool ClipToBox(const Vec3& a, const Vec3& d, const Vec3& lo, const Vec3& hi, double* s0,
-               double* s1) {
-  for (int k = 0; k < 3 && *s0 <= *s1; ++k) {
-    if (d[k] == 0.0) {
-      if (a[k] < lo[k] || a[k] > hi[k]) return false;
-      continue;
-    }
-    double t0 = (lo[k] - a[k]) / d[k];
-    double t1 = (hi[k] - a[k]) / d[k];
-    if (t0 > t1) std::swap(t0, t1);
-    *s0 = std::max(*s0, t0);
-    *s1 = std::min(*s1, t1);
-  }
-  return *s0 <= *s1;
-}
-
 }  // namespace
 
 bool TriangleGrid::FirstHit(const SweepQuery& query, SweepHit* hit,
                             std::size_t* cells_visited) const {
   SweepSearch search(*mesh_, query);
-  double s0 = 0.0;
-  double s1 = 1.0;
-  if (!table_.empty() && ClipToBox(query.a, query.b - query.a, lo_, hi_, &s0, &s1) &&
+  const SegmentRay ray(query.a, query.b - query.a);  // the divisions once per query
+  double s0 = 0.0;  // where the segment enters the box around every triangle
+  if (!table_.empty() && IntersectSegmentBox(ray, 1.0, lo_.data(), hi_.data(), 0.0, &s0) &&
       s0 <= search.best_s()) {
-    const std::size_t cells = Walk(s0, &search);
+    const std::size_t cells = Walk(ray, s0, &search);
     if (cells_visited != nullptr) *cells_visited += cells;
   }
   if (!search.found()) return false;
@@ -301,12 +283,11 @@ bool TriangleGrid::FirstHit(const SweepQuery& query, SweepHit* hit,
 // The levels' walks merged in order of s, so the nearest contact, whatever its level,
 // is found first and ends every walk early. Each starts where the segment enters its
 // level's box and ends when it leaves its level's cells. Returns the cells looked up.
-std::size_t TriangleGrid::Walk(double s0, SweepSearch* search) const {
+std::size_t TriangleGrid::Walk(const SegmentRay& ray, double s0, SweepSearch* search) const {
   CellWalk walks[kMaxLevels];
   int count = 0;
   const Vec3& a = search->a();
   const Vec3& d = search->d();
-  const SegmentRay ray(a, d);  // the divisions once for every level's box
   for (int level = 0; level < kMaxLevels; ++level) {
     if (!(level_mask_ & (1u << level))) continue;
     double l0 = s0;

@@ -28,6 +28,7 @@
 #include <memory>
 #include <vector>
 
+#include "hapticad/core/geometry/segment_triangle.h"
 #include "hapticad/core/geometry/sweep_search.h"
 #include "hapticad/core/geometry/triangle_mesh.h"
 #include "hapticad/core/huge_page_allocator.h"
@@ -80,7 +81,7 @@ class TriangleGrid {
   std::size_t Slot(std::uint64_t key) const;
   void SetTableSize(std::size_t size);  // a power of two
   const Cell* Find(std::uint64_t key) const;
-  std::size_t Walk(double s0, SweepSearch* search) const;
+  std::size_t Walk(const SegmentRay& ray, double s0, SweepSearch* search) const;
 
   const TriangleMesh* mesh_ = nullptr;
   int first_level_ = 0;  // the finest occupied level
