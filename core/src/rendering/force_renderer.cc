@@ -143,21 +143,15 @@ void ForceRenderer::Render(const RenderInput& input, RenderOutput* out) {
   // or faster than anything a hand does (1 km/s): not a reading. Finite but absurd input
   // would overflow the spring or the damper.
   const double reach_m = std::max(1e3, 1e3 * scene_->size_m());
-  if (!input.position_w.allFinite() || !input.velocity_w.allFinite() ||
-      !std::isfinite(input.time_s) || !(scene_->ToLocal(input.position_w).norm() < reach_m) ||
-      !(input.velocity_w.norm() < 1e3)) {
-    *out = RenderOutput{};
-    out->flags = kInputFault;
-    out->proxy_w = scene_->ToWorld(proxy_.position());
-    return;
+  if (input.position_w.allFinite() && input.velocity_w.allFinite() && std::isfinite(input.time_s) &&
+      scene_->ToLocal(input.position_w).norm() < reach_m && input.velocity_w.norm() < 1e3) {
+    RenderContact(input, out);
+    // a backstop for whatever else could overflow: never a NaN or infinite force
+    if (out->force_w.allFinite()) return;
   }
-  RenderContact(input, out);
-  // and whatever else could overflow (extreme properties): no NaN or infinite force
-  if (!out->force_w.allFinite()) {
-    *out = RenderOutput{};
-    out->flags = kInputFault;
-    out->proxy_w = scene_->ToWorld(proxy_.position());
-  }
+  *out = RenderOutput{};
+  out->flags = kInputFault;
+  out->proxy_w = scene_->ToWorld(proxy_.position());
 }
 
 void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
