@@ -89,7 +89,11 @@ class SimulatedHandSession(unittest.TestCase):
         self.assertAlmostEqual(hand.true_state.position_d[2], 0.0475, delta=1e-4)
         self.assertGreater(stats.achieved_rate_hz, 0)
         self.assertLessEqual(stats.period_jitter_p50_us, stats.period_jitter_p99_us)
-        self.assertEqual(stats.faults.zero_force_ticks, 0)
+        f = stats.faults
+        self.assertEqual(f.zero_force_ticks, 0,
+                         f"no_data {f.no_data}, stale {f.stale}, out_of_range {f.out_of_range}, "
+                         f"non_finite {f.non_finite}, reported {f.reported}, watchdog {f.watchdog}, "
+                         f"unplugged {f.unplugged}")
         self.assertEqual(stats.ticks, len(trace))
 
     def test_the_servo_thread_runs_while_python_holds_the_gil(self):
