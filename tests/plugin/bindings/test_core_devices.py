@@ -70,8 +70,8 @@ class SimulatedHandSession(unittest.TestCase):
         while time.monotonic() < deadline:
             chunks.append(loop.drain_trace())  # never blocks
             time.sleep(0.05)
-        stats = loop.stats
         loop.stop()
+        stats = loop.stats  # after the stop: the trace below holds every tick it counted
         chunks.append(loop.drain_trace())
         trace = np.concatenate(chunks)
         self.assertFalse(loop.running)
