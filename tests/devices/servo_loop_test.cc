@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hapticad/devices/servo_loop.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -27,9 +28,11 @@ ServoConfig Config(double rate_hz, std::size_t trace_capacity) {
   return c;
 }
 
-std::shared_ptr<ForceRenderer> BoxRenderer(const DeviceLimits& limits, double shift_x = 0.0) {
+// A 100 mm box (mm in the soup) shifted along x, its top at `top` mm.
+std::shared_ptr<ForceRenderer> BoxRenderer(const DeviceLimits& limits, double shift_x = 0.0,
+                                           double top = 50.0) {
   auto scene = HapticScene::Build(
-      testing::MakeBoxSoup(Vec3(-50 + shift_x, -50, -50), Vec3(50 + shift_x, 50, 50)), 1e-3);
+      testing::MakeBoxSoup(Vec3(-50 + shift_x, -50, -50), Vec3(50 + shift_x, 50, top)), 1e-3);
   return std::make_shared<ForceRenderer>(
       scene, std::make_shared<SurfaceTable>(),
       RenderLimits{limits.max_force_n, limits.max_stiffness_n_per_m});
@@ -170,6 +173,15 @@ class HandOnBox : public ::testing::Test {
     *t = (first + n) * 1e-3;
     loop.DrainTrace(out);
   }
+  // From the start of a session: the hand comes down on the top face and rests on it,
+  // aiming 5 mm in.
+  void RestOnTheTop(ServoLoop& loop, double* t, std::vector<TraceSample>* trace) {
+    loop.BeginTicks();
+    RunTicks(loop, t, 0.3, trace);
+    hand_->SetTarget(Vec3(0, 0, 0.045));
+    RunTicks(loop, t, 1.0, trace);
+    ASSERT_TRUE(trace->back().flags & kContact);
+  }
   DeviceLimits limits_;
   std::unique_ptr<SimulatedHand> hand_;
   std::shared_ptr<ForceRenderer> renderer_;
@@ -195,14 +207,24 @@ TEST_F(HandOnBox, TheForceStopsAHandAimingIntoThePart) {
 }
 
 TEST_F(HandOnBox, ForceRampsInAtTheStartOfASession) {
-  hand_->SetTarget(Vec3(0, 0, 0.0485));  // starts 1.5 mm inside... the proxy starts there
+  hand_->SetTarget(Vec3(0, 0, 0.0485));  // starts 1.5 mm inside the box
   ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 14));
   loop.BeginTicks();
   double t = 0.0;
   std::vector<TraceSample> trace;
   RunTicks(loop, &t, 0.3, &trace);
-  // started inside, the proxy starts with the handle: no force, no jolt
-  for (const auto& s : trace) EXPECT_EQ(s.force_n[2], 0.0) << s.time_s;
+  // started inside the solid: the proxy starts on the top face, and the force that
+  // pushes the hand out follows the ramp, so there is no jolt
+  ASSERT_FALSE(trace.empty());
+  for (const auto& s : trace) {
+    ASSERT_GE(s.proxy_m[2], 0.05) << s.time_s;
+    ASSERT_TRUE(s.flags & kContact) << s.time_s;
+    ASSERT_GE(s.force_n[2], 0.0) << s.time_s;
+    ASSERT_LE(s.force_n[2], s.normal_force_n * std::min(1.0, s.time_s / 0.2) + 1e-9) << s.time_s;
+  }
+  // the grip (400 N/m toward 1.5 mm inside) and the face (400 N/m) meet halfway
+  EXPECT_NEAR(trace.back().handle_d_m[2], 0.04925, 0.05e-3);
+  EXPECT_NEAR(trace.back().force_n[2], 0.3, 0.02);
 
   // start above and press: the force follows the ramp during the first 0.2 s
   auto hand2 = std::make_unique<SimulatedHand>(limits_);
@@ -285,13 +307,9 @@ TEST_F(HandOnBox, TickWithHandMappingClutchAndSwapMakesNoSystemCall) {
 
 TEST_F(HandOnBox, ASwappedRendererTakesOverWithoutAJolt) {
   ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 14));
-  loop.BeginTicks();
   double t = 0.0;
   std::vector<TraceSample> trace;
-  RunTicks(loop, &t, 0.3, &trace);
-  hand_->SetTarget(Vec3(0, 0, 0.045));
-  RunTicks(loop, &t, 1.0, &trace);
-  ASSERT_TRUE(trace.back().flags & kContact);
+  RestOnTheTop(loop, &t, &trace);
   // the same box again, as after a material edit: contact carries on from the old proxy
   loop.SetRenderer(BoxRenderer(limits_));
   trace.clear();
@@ -302,6 +320,29 @@ TEST_F(HandOnBox, ASwappedRendererTakesOverWithoutAJolt) {
   }
   EXPECT_TRUE(trace[10].flags & kRamping);
   EXPECT_NEAR(trace.back().force_n[2], 1.0, 0.05);
+}
+
+TEST_F(HandOnBox, ASceneThatGrewOverTheProxyPushesTheHandOutOfIt) {
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 14));
+  double t = 0.0;
+  std::vector<TraceSample> trace;
+  RestOnTheTop(loop, &t, &trace);
+  ASSERT_NEAR(trace.back().proxy_m[2], 0.05, 1e-6);
+  // the top face is extruded 5 mm while the hand rests on it: the old proxy and the hand
+  // are now inside the part. The proxy restarts on the new top and the force, ramping
+  // in, pushes the hand out (it used to restart inside: no force, the hand held in)
+  loop.SetRenderer(BoxRenderer(limits_, 0.0, 55.0));
+  trace.clear();
+  RunTicks(loop, &t, 1.0, &trace);
+  for (const auto& s : trace) {
+    ASSERT_GE(s.proxy_m[2], 0.055) << s.time_s;
+    ASSERT_GE(s.force_n[2], 0.0) << s.time_s;
+  }
+  EXPECT_TRUE(trace[10].flags & kRamping);
+  // the grip toward 0.045 and the new face at 0.055, both 400 N/m, meet halfway
+  EXPECT_TRUE(trace.back().flags & kContact);
+  EXPECT_NEAR(trace.back().handle_d_m[2], 0.05, 0.1e-3);
+  EXPECT_NEAR(trace.back().force_n[2], 2.0, 0.05);
 }
 
 // Reports the position the test sets, or the status it sets; keeps the last force.

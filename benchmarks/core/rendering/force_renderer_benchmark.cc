@@ -1,13 +1,16 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // One servo tick of the renderer in sliding contact on a box face: a plain face
 // against one with each effect and one with every effect ("model only what the scene
-// requires": a plain face must not pay for effects it does not use).
+// requires": a plain face must not pay for effects it does not use). And what a reset
+// costs (ForceRenderer::Reset: a swap, a fault, the clutch), where the device may be
+// inside a part and the proxy is moved out.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <memory>
 #include <vector>
 
+#include "hapticad/core/geometry/icosphere.h"
 #include "hapticad/core/rendering/force_renderer.h"
 #include "test_meshes.h"
 
@@ -66,6 +69,50 @@ void BM_RenderTick(benchmark::State& state) {
   state.SetLabel(kNames[setup]);
 }
 BENCHMARK(BM_RenderTick)->DenseRange(kPlain, kEverything);
+
+// A reset 2 mm inside an icosphere of radius 50 mm, moved out: the six rays' sweeps
+// through the grid (point) or the tree (1 mm sphere). (A point outside every vertex's
+// distance from the centre returns at once.)
+void BM_ResetInside(benchmark::State& state) {
+  const int frequency = static_cast<int>(state.range(0));
+  const bool sphere = state.range(1) != 0;
+  const auto scene = HapticScene::Build(MakeIcosphere(frequency, 50.0), 1e-3, {false});
+  ContactOptions options;
+  options.proxy_radius_m = sphere ? 0.001 : 0.0;
+  ForceRenderer renderer(scene, std::make_shared<SurfaceTable>(), RenderLimits{8.9, 3000.0},
+                         options);
+  const Vec3 at = Vec3(0.3, 0.5, 0.8).normalized() * 0.048;
+  for (auto _ : state) {
+    renderer.Reset(at);
+    benchmark::DoNotOptimize(renderer.proxy().position());
+  }
+  if (renderer.proxy().position() == at) state.SkipWithError("not moved out");
+  state.SetLabel(std::to_string(scene->mesh().num_triangles()) + (sphere ? " sphere:1" : " point"));
+}
+BENCHMARK(BM_ResetInside)->ArgsProduct({{22, 71, 224}, {0, 1}})->Unit(benchmark::kMicrosecond);
+
+// The worst case known for the grid: small dense parts far apart (one grid level of
+// tiny cells, whose rays walk the empty cells between the parts). Two icospheres of
+// radius 5 mm, 100,820 triangles each, 500 mm apart; a point proxy reset 0.5 mm inside
+// one of them.
+void BM_ResetInsideOneOfTwoFarApart(benchmark::State& state) {
+  TriangleSoup soup = MakeIcosphere(71, 5.0, Vec3(-250.0, 0.0, 0.0));
+  const TriangleSoup other = MakeIcosphere(71, 5.0, Vec3(250.0, 0.0, 0.0));
+  const auto base = static_cast<std::int32_t>(soup.vertices.size());
+  soup.vertices.insert(soup.vertices.end(), other.vertices.begin(), other.vertices.end());
+  for (const auto& t : other.triangles)
+    soup.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+  soup.cad_faces.resize(soup.triangles.size(), 0);
+  const auto scene = HapticScene::Build(soup, 1e-3, {false});
+  ForceRenderer renderer(scene, std::make_shared<SurfaceTable>(), RenderLimits{8.9, 3000.0});
+  const Vec3 at = Vec3(-0.25, 0.0, 0.0) + Vec3(0.3, 0.5, 0.8).normalized() * 0.0045;
+  for (auto _ : state) {
+    renderer.Reset(at);
+    benchmark::DoNotOptimize(renderer.proxy().position());
+  }
+  if (renderer.proxy().position() == at) state.SkipWithError("not moved out");
+}
+BENCHMARK(BM_ResetInsideOneOfTwoFarApart)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace hapticad

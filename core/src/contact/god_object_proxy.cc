@@ -42,6 +42,65 @@ void GodObjectProxy::Reset(const Vec3& position_l) {
   last_triangle_ = -1;
 }
 
+bool GodObjectProxy::ResetOutside(const Vec3& position_l) {
+  Reset(position_l);
+  // beyond every vertex (or not a point): outside whatever the mesh bounds
+  if (!mesh_.closed() || !(position_l.norm() < mesh_.bounding_radius())) return false;
+  // three orthonormal directions (15 times the rows of a rotation) and their opposites,
+  // askew to every axis and axis plane, so no ray runs along an axis-aligned CAD
+  // model's faces (constexpr: a function-local static would take a guard on first use)
+  static constexpr double kAxes[3][3] = {{-11.0, -2.0, 10.0}, {10.0, -5.0, 10.0}, {2.0, 14.0, 5.0}};
+  int inside = 0;
+  int outside = 0;
+  double nearest = 0.0;
+  Vec3 exit = position_l;
+  for (int ray = 0; ray < kExitRays; ++ray) {
+    const double* axis = kAxes[ray / 2];
+    const Vec3 u = (ray % 2 == 0 ? 1.0 : -1.0) / 15.0 * Vec3(axis[0], axis[1], axis[2]);
+    SweepHit first;
+    const int crossings = CountCrossings(position_l, u, &first);
+    if (crossings < 0) continue;
+    if (crossings % 2 == 0) {
+      ++outside;
+      continue;
+    }
+    ++inside;
+    const double distance = (first.point - position_l).norm();
+    if (inside == 1 || distance < nearest) {
+      nearest = distance;
+      // off the face it crossed, on the far side (the hit's normal faces the inside)
+      exit = first.point - (config_.radius_m + config_.surface_offset_m) * first.normal;
+    }
+  }
+  if (inside <= outside) return false;
+  Reset(exit);
+  return true;
+}
+
+int GodObjectProxy::CountCrossings(const Vec3& p, const Vec3& u, SweepHit* first) const {
+  const Vec3 end = p + 2.0 * mesh_.bounding_radius() * u;  // |p| < the radius
+  // past each crossing by the surface offset, so the next sweep does not meet it (or
+  // its neighbour across an edge it went through) again
+  const double step = config_.surface_offset_m;
+  Vec3 a = p;
+  for (int crossings = 0; crossings <= kMaxCrossings; ++crossings) {
+    SweepHit hit;
+    if (!PointHit(a, end, &hit)) return crossings;
+    if (crossings == 0) *first = hit;
+    a = hit.point + step * u;
+    if ((end - a).dot(u) <= 0.0) return crossings + 1;
+  }
+  return -1;
+}
+
+bool GodObjectProxy::PointHit(const Vec3& a, const Vec3& b, SweepHit* hit) const {
+  SweepQuery query;
+  query.bary_tol = config_.bary_tolerance;
+  query.a = a;
+  query.b = b;
+  return grid_ != nullptr ? grid_->FirstHit(query, hit) : tree_->FirstHit(query, hit);
+}
+
 bool GodObjectProxy::FirstHit(const Vec3& a, const Vec3& b, SweepHit* hit,
                               const SweepFloors* floors, std::int64_t hint) {
   SweepQuery query;

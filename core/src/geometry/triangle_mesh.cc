@@ -103,6 +103,11 @@ std::unique_ptr<TriangleMesh> TriangleMesh::Build(
   }
   mesh->cad_faces_ = om.property(mesh->cad_face_prop_).data();
   mesh->num_cad_faces_ = max_face + 1;
+  mesh->closed_ = std::none_of(om.edges_begin(), om.edges_end(),
+                               [&om](OpenMeshTriMesh::EdgeHandle e) { return om.is_boundary(e); });
+  for (const Vec3& p : mesh->points_) {
+    mesh->bounding_radius_ = std::max(mesh->bounding_radius_, p.norm());
+  }
   return mesh;
 }
 

@@ -71,7 +71,7 @@ void ForceRenderer::SetSurfaces(std::shared_ptr<const SurfaceTable> surfaces) {
 }
 
 void ForceRenderer::Reset(const Vec3& device_w) {
-  proxy_.Reset(scene_->ToLocal(device_w));
+  proxy_.ResetOutside(scene_->ToLocal(device_w));
   anchored_ = false;
   started_ = true;
 }

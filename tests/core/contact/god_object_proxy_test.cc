@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hapticad/core/contact/god_object_proxy.h"
 
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
 
+#include "alloc_counter.h"
 #include "test_meshes.h"
 
 namespace hapticad {
@@ -140,6 +142,84 @@ TEST_P(ProxyOnBox, ASphereRestsOneRadiusAboveTheFaceAndRollsOverTheEdge) {
     ASSERT_GE((c - nearest).norm(), r - 1e-12) << i << " " << c.transpose();
   }
   EXPECT_GT(proxy_->position().x(), 0.05 + r - 1e-9);
+}
+
+// A hollow part: the box [-0.05, 0.05]^3 round a cavity [-0.04, 0.04]^3 (10 mm walls).
+TriangleSoup MakeHollowBoxSoup() {
+  TriangleSoup soup = testing::MakeBoxSoup(Vec3::Constant(-0.05), Vec3::Constant(0.05));
+  const TriangleSoup cavity = testing::MakeBoxSoup(Vec3::Constant(-0.04), Vec3::Constant(0.04));
+  const auto base = static_cast<std::int32_t>(soup.vertices.size());
+  soup.vertices.insert(soup.vertices.end(), cavity.vertices.begin(), cavity.vertices.end());
+  for (std::size_t t = 0; t < cavity.triangles.size(); ++t) {
+    const auto& c = cavity.triangles[t];
+    soup.triangles.push_back({base + c[0], base + c[2], base + c[1]});  // facing the cavity
+    soup.cad_faces.push_back(6 + cavity.cad_faces[t]);
+  }
+  return soup;
+}
+
+bool InsideBox(const Vec3& p, double half) { return p.cwiseAbs().maxCoeff() < half; }
+
+TEST_P(ProxyOnBox, AResetInsideASolidMovesThePointProxyOutOverTheNearestFace) {
+  Make(testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05)));
+  ASSERT_TRUE(mesh_->closed());
+  const Vec3 inside(0.01, -0.01, 0.045);  // 5 mm under the top, 35 mm or more from the rest
+  testing::AllocationCounter counter;
+  EXPECT_TRUE(proxy_->ResetOutside(inside));
+  EXPECT_EQ(counter.count(), 0u);
+  const Vec3 p = proxy_->position();
+  EXPECT_NEAR(p.z(), 0.05 + kOffset, 1e-12) << p.transpose();  // just above the top face
+  EXPECT_LT((p - inside).norm(), 0.01);                        // along one of the rays, 7.5 mm away
+  EXPECT_FALSE(proxy_->in_contact());
+  // the device is still inside: the top face holds the proxy, the spring pushes it out
+  proxy_->Update(inside);
+  ASSERT_TRUE(proxy_->in_contact());
+  EXPECT_EQ(mesh_->cad_face(proxy_->constraints().plane(0).triangle), 5);
+  EXPECT_NEAR(proxy_->position().z(), 0.05 + kOffset, 1e-12);
+  // a plain Reset puts it where it is told, inside
+  proxy_->Reset(inside);
+  EXPECT_EQ(proxy_->position(), inside);
+}
+
+TEST_P(ProxyOnBox, AResetInsideASolidPutsASphereOneRadiusOffTheNearestFace) {
+  const double r = 0.002;
+  Make(testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05)), r);
+  EXPECT_TRUE(proxy_->ResetOutside(Vec3(0.01, -0.01, 0.045)));
+  EXPECT_NEAR(proxy_->position().z(), 0.05 + r + kOffset, 1e-12);
+  proxy_->Update(Vec3(0.01, -0.01, 0.045));
+  ASSERT_TRUE(proxy_->in_contact());
+  EXPECT_NEAR(proxy_->position().z(), 0.05 + r + kOffset, 1e-12);
+}
+
+TEST_P(ProxyOnBox, AResetOutsideASolidOrInItsCavityStaysPut) {
+  Make(MakeHollowBoxSoup());
+  ASSERT_TRUE(mesh_->closed());
+  // outside, in the cavity (inside both boxes: an even number of crossings), far away
+  for (const Vec3& free : {Vec3(0.0, 0.0, 0.06), Vec3(0.01, 0.02, -0.03), Vec3(0.0, 0.0, 0.0),
+                           Vec3(0.0, 0.0, 1e6), Vec3(1e300, 0.0, 0.0)}) {
+    EXPECT_FALSE(proxy_->ResetOutside(free)) << free.transpose();
+    EXPECT_EQ(proxy_->position(), free);
+  }
+  const Vec3 nan(std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0);
+  EXPECT_FALSE(proxy_->ResetOutside(nan));
+  // in the wall: out to the cavity or to the outside, whichever a ray finds nearer
+  for (const Vec3& wall :
+       {Vec3(0.0, 0.0, 0.042), Vec3(0.0, 0.0, 0.048), Vec3(0.045, 0.03, -0.02)}) {
+    EXPECT_TRUE(proxy_->ResetOutside(wall)) << wall.transpose();
+    const Vec3 p = proxy_->position();
+    EXPECT_TRUE(InsideBox(p, 0.04) || !InsideBox(p, 0.05)) << p.transpose();
+    EXPECT_LT((p - wall).norm(), 0.01) << p.transpose();
+  }
+}
+
+TEST_P(ProxyOnBox, OnAnOpenSurfaceAResetIsAReset) {
+  TriangleSoup cup = testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05));
+  cup.triangles.resize(10);  // no lid: face 5 is the last two triangles
+  cup.cad_faces.resize(10);
+  Make(cup);
+  ASSERT_FALSE(mesh_->closed());
+  EXPECT_FALSE(proxy_->ResetOutside(Vec3(0.0, 0.0, 0.045)));
+  EXPECT_EQ(proxy_->position(), Vec3(0.0, 0.0, 0.045));
 }
 
 }  // namespace

@@ -125,7 +125,8 @@ class ServoLoop {
   TraceSample latest() { return latest_.Read(); }
 
   // Swaps the renderer (a new scene, built on this thread): the servo thread takes it at
-  // its next tick, starting it at the old proxy and ramping the force in again; the old
+  // its next tick, starting it at the old proxy (or just outside the new scene's solid,
+  // if that grew over it: ForceRenderer::Reset) and ramping the force in again; the old
   // one is released on this thread, never on the servo thread (core/handoff.h). Never
   // blocks; a renderer set and not yet taken gives way to a newer one. A property edit
   // needs no new renderer: ForceRenderer::SetSurfaces.

@@ -51,6 +51,18 @@ class GodObjectProxy {
   // Places the proxy at `position_l` without collision (the caller knows it is free).
   void Reset(const Vec3& position_l);
 
+  // Places the proxy at `position_l` unless that point lies inside the scene's closed
+  // surface (TriangleMesh::closed(); on an open one, inside means nothing and this is
+  // Reset): then just outside it, off the face where the nearest of six fixed rays
+  // leaves it (a sphere's centre one radius off). Inside is decided by the parity of each ray's
+  // crossings, by majority, so a ray through a silhouette edge cannot decide alone. Returns whether
+  // the proxy was moved out. No allocation and bounded (at most kExitRays * (kMaxCrossings + 1)
+  // point sweeps across the scene), but not per-tick work: for a new scene, a fault or the clutch,
+  // where the device may be anywhere.
+  bool ResetOutside(const Vec3& position_l);
+  static constexpr int kExitRays = 6;
+  static constexpr int kMaxCrossings = 15;  // a ray crossing more abstains
+
   // Moves the proxy toward `goal_l`, constrained by the surface.
   void Update(const Vec3& goal_l);
 
@@ -68,6 +80,11 @@ class GodObjectProxy {
   Vec3 contact_point() const { return position_ - config_.radius_m * constraints_.plane(0).normal; }
 
  private:
+  // The surface crossings of the ray from p along unit u out of the mesh, and the
+  // first one in *first; -1 for more than kMaxCrossings.
+  int CountCrossings(const Vec3& p, const Vec3& u, SweepHit* first) const;
+  bool PointHit(const Vec3& a, const Vec3& b, SweepHit* hit) const;
+
   const TriangleMesh& mesh_;
   const TriangleTree* tree_ = nullptr;  // exactly one of the two
   const TriangleGrid* grid_ = nullptr;

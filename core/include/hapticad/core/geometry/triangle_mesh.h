@@ -58,6 +58,12 @@ class TriangleMesh {
   std::int32_t cad_face(std::uint32_t t) const { return cad_faces_[t]; }
   const std::int32_t* cad_faces() const { return cad_faces_; }
   std::int32_t num_cad_faces() const { return num_cad_faces_; }
+  // Whether every edge has two triangles: the surface bounds a volume, so a point is
+  // inside or outside it (an odd or even number of crossings on a ray out).
+  bool closed() const { return closed_; }
+  // The largest distance of a vertex from the local origin (metres): a ray from p
+  // longer than |p| plus this has left the mesh.
+  double bounding_radius() const { return bounding_radius_; }
 
   // Unit normal from the winding (v1 - v0) x (v2 - v0); zero for a degenerate triangle.
   const Vec3& face_normal(std::uint32_t t) const { return face_normals_[t]; }
@@ -98,6 +104,8 @@ class TriangleMesh {
   HugePageVector<Vec3> face_normals_;
   HugePageVector<Eigen::Vector3f> corner_normals_;  // 3 per triangle, or none
   std::int32_t num_cad_faces_ = 0;
+  bool closed_ = false;
+  double bounding_radius_ = 0.0;
 };
 
 }  // namespace hapticad
