@@ -13,6 +13,7 @@ The binding's contract (devices/README.md):
     _core.ServoLoop(device, renderer, rate_hz, trace_capacity)
         .start() .stop() .drain_trace() .stats .running .set_mapping(mapping)
     _core.ForceRenderer(scene, surfaces, limits) .set_surfaces(surfaces)
+    loop.set_renderer(renderer)            (a new scene, taken at the next tick)
     _core.list_devices(), _core.open_device(path)
 
 Units: SI (m, N) in the loop, mm in the document. No GUI.
@@ -90,6 +91,7 @@ class LiveSession:
         self.limits = limits
         render = _core.render_limits_for(limits, mapping or _core.WorkspaceMapping())
         render.max_force_n = min(render.max_force_n, prefs.force_limit_n)
+        self.render_limits = render
         self.renderer = _core.ForceRenderer(doc_scene.scene, doc_scene.surfaces, render)
         self.loop = _core.ServoLoop(self.device, self.renderer, rate_hz=self.rate_hz,
                                     trace_capacity=int(self.rate_hz * TRACE_SECONDS) + 1024)
@@ -127,6 +129,22 @@ class LiveSession:
 
         doc_scene = recompile_surfaces(doc, self.doc_scene)
         self.renderer.set_surfaces(doc_scene.surfaces)
+        self.doc_scene = doc_scene
+
+    def update_scene(self, doc):
+        """Tessellates doc's tagged parts again, at the session's accuracy, and swaps the
+        new scene into the loop: a change of shape is felt from the next tick on, the
+        session goes on. The loop takes the new renderer at its next tick (built here,
+        never on the servo thread); the proxy restarts where it was, or on the nearest
+        face if the part grew over it, and the force ramps in again. Raises ValueError
+        (naming the part or surface) when the new shape cannot be felt (a tagged face
+        gone, nothing left to touch); the loop then keeps the old scene."""
+        from .document_scene import build_document_scene  # FreeCAD's: only when used
+
+        doc_scene = build_document_scene(doc, self.doc_scene.accuracy)
+        renderer = _core.ForceRenderer(doc_scene.scene, doc_scene.surfaces, self.render_limits)
+        self.loop.set_renderer(renderer)
+        self.renderer = renderer
         self.doc_scene = doc_scene
 
     def set_target(self, target_w):

@@ -9,6 +9,7 @@ import unittest
 import numpy as np
 
 import FreeCAD as App
+import Part
 
 import HaptiCAD
 from hapticad import _core, feel_session, preferences
@@ -28,6 +29,21 @@ class FeelSessionTest(unittest.TestCase):
 
     def tearDown(self):
         App.closeDocument(self.doc.Name)
+
+    def press_on_the_top(self):
+        """A running session whose hand came down from above and now presses 2 mm into
+        the top face, and the last 50 samples of that."""
+        prefs = preferences.Preferences(servo_rate_hz=1000, force_limit_n=3.0)
+        session = feel_session.LiveSession(self.scene, prefs=prefs)
+        session.start(np.array([20, 15, 30]) * MM)
+        try:
+            time.sleep(0.3)  # the hand starts above the part
+            session.set_target(np.array([20, 15, 18]) * MM)
+            time.sleep(0.6)
+            return session, session.drain()[-50:]
+        except BaseException:
+            session.stop()
+            raise
 
     def test_device_choices_start_with_the_simulated_probe(self):
         choices = feel_session.device_choices()
@@ -80,16 +96,10 @@ class FeelSessionTest(unittest.TestCase):
         self.assertIn("Steel", session.describe_face(int(last["cad_face"][-1])))
 
     def test_a_property_edit_is_felt_in_the_running_session_without_a_rebuild(self):
-        prefs = preferences.Preferences(servo_rate_hz=1000, force_limit_n=3.0)
-        session = feel_session.LiveSession(self.scene, prefs=prefs)
-        scene_before = session.doc_scene.scene
         surface = self.doc.getObject("HapticSurface")
-        session.start(np.array([20, 15, 30]) * MM)
+        session, steel = self.press_on_the_top()
+        scene_before = session.doc_scene.scene
         try:
-            time.sleep(0.3)  # the hand starts above the part
-            session.set_target(np.array([20, 15, 18]) * MM)  # 2 mm into the top face
-            time.sleep(0.6)
-            steel = session.drain()[-50:]
             # a much softer face, while the loop runs
             surface.Stiffness = 0.05  # N/mm
             self.doc.recompute()
@@ -117,6 +127,57 @@ class FeelSessionTest(unittest.TestCase):
         self.assertAlmostEqual(float(np.median(still_soft["force_n"][:, 2])), f_soft, delta=0.02)
         self.assertAlmostEqual(session.doc_scene.surfaces.surface(self.scene.face_id("Box.Face6")).stiffness_n_per_m,
                                50.0)
+
+    def test_a_geometry_edit_is_felt_in_the_running_session(self):
+        session, before = self.press_on_the_top()
+        scene_before = session.doc_scene.scene
+        try:
+            # the box grows 5 mm while the hand rests on its top: hand and proxy are now
+            # inside the part, and the new top pushes the hand out of it
+            self.box.Height = 25
+            self.doc.recompute()
+            session.update_scene(self.doc)
+            time.sleep(0.6)
+            after = session.drain()[-50:]
+            running = session.running
+        finally:
+            session.stop()
+        self.assertTrue(running)
+        self.assertIsNot(session.doc_scene.scene, scene_before)
+        for trace, top in ((before, 20), (after, 25)):
+            self.assertTrue((trace["flags"] & _core.FLAG_CONTACT).all(), top)
+            self.assertTrue((trace["cad_face"] == session.doc_scene.face_id("Box.Face6")).all(), top)
+            self.assertTrue(np.allclose(trace["proxy_m"][:, 2], top * MM, atol=0.05 * MM), top)
+        # the hand still aims at 18 mm: 7 mm under the new top instead of 2, so it is
+        # pushed up harder (the grip and the face in series), within the force limit
+        f_before = float(np.median(before["force_n"][:, 2]))
+        f_after = float(np.median(after["force_n"][:, 2]))
+        self.assertGreater(f_before, 0.3)
+        self.assertGreater(f_after, 2.0 * f_before)
+        self.assertLessEqual(float(np.linalg.norm(after["force_n"], axis=1).max()), 3.0 + 1e-9)
+
+    def test_a_geometry_edit_that_cannot_be_felt_leaves_the_old_scene_running(self):
+        self.doc.removeObject("HapticSurface")  # the plate's surface is the only one
+        part = self.doc.addObject("Part::Feature", "Plate")
+        part.Shape = self.box.Shape.copy()
+        self.doc.recompute()
+        HaptiCAD.make_surface(self.doc, [(part, "Face3")], material="Steel")
+        scene = build_document_scene(self.doc)
+        session = feel_session.LiveSession(scene)
+        session.start(np.array([20, 15, 30]) * MM)
+        try:
+            # the plate becomes a ball: one face, its tagged Face3 gone, nothing to feel
+            part.Shape = Part.makeSphere(5)
+            self.doc.recompute()
+            with self.assertRaises(ValueError) as raised:
+                session.update_scene(self.doc)
+            time.sleep(0.1)
+            running = session.running
+        finally:
+            session.stop()
+        self.assertTrue(running)
+        self.assertIn("broken", str(raised.exception))
+        self.assertIs(session.doc_scene, scene)
 
     def test_an_edit_that_tags_a_part_outside_the_scene_asks_for_a_new_session(self):
         session = feel_session.LiveSession(self.scene)

@@ -16,7 +16,7 @@ from PySide2 import QtCore, QtGui, QtWidgets
 from .. import _core, feel_session, icon, preferences
 from .feel_view import FeelView, MouseSteering
 from .strip_chart import StripChart
-from .surface_edit_observer import SurfaceEditObserver
+from .session_edit_observer import SessionEditObserver
 
 DISPLAY_HZ = 60
 _ACTIVE = []  # the open panel, for tests and for the Stop of a closing document
@@ -34,7 +34,7 @@ class FeelTaskPanel:
         self.session = None
         self.view_nodes = None
         self.steering = None
-        self.edits = None  # the SurfaceEditObserver of a running session
+        self.edits = None  # the SessionEditObserver of a running session
         self.doc_scene = None
         self.frames = 0  # display updates with new samples
         self.last_sample = None
@@ -155,23 +155,31 @@ class FeelTaskPanel:
             return False
         self.chart.clear()
         self.timer.start()
-        self.edits = SurfaceEditObserver(self.doc, self.surfaces_edited)
+        self.edits = SessionEditObserver(self.doc, self.edited, lambda: self.doc_scene.shapes)
         self.set_running(True)
         self.show_message("Move the mouse over the part; the wheel or the slider sets how hard you press."
                           if self.session.simulated else "The device drives the probe.")
         return True
 
-    def surfaces_edited(self):
-        """A surface was edited while the session runs: felt from the next tick on."""
+    def edited(self, geometry):
+        """The designer edited the document while the session runs: a surface (felt from
+        the next tick on) or the shape of a part (tessellated again and swapped in)."""
         if self.session is None:
             return
         try:
-            self.session.update_surfaces(self.doc)
+            if geometry:
+                self.session.update_scene(self.doc)
+            else:
+                self.session.update_surfaces(self.doc)
         except ValueError as exc:
-            self.show_message(f"{exc} (still feeling the surfaces as they were)", error=True)
+            kept = "the part" if geometry else "the surfaces"
+            self.show_message(f"{exc} (still feeling {kept} as it was)", error=True)
             return
         self.doc_scene = self.session.doc_scene
-        self.show_message("Surface edited: you feel the change now.")
+        if self.steering is not None:
+            self.steering.doc_scene = self.doc_scene
+        self.show_message("Geometry edited: you feel the new shape now." if geometry else
+                          "Surface edited: you feel the change now.")
 
     def update_display(self):
         """Drains the trace and shows it (the display timer, at most DISPLAY_HZ)."""

@@ -91,16 +91,21 @@ class FeelGuiTest(unittest.TestCase):
         self.assertNotIn("HaptiCAD_Feel", names)
         h.press_task_button("Close")
 
-    def test_editing_the_surface_during_a_session_is_felt_at_once(self):
+    def press_on_the_top(self):
+        """Starts a session and presses the probe well into the middle of the top face;
+        the panel's Stop button and strip chart."""
         Gui.runCommand("HaptiCAD_Feel")
         h.process_events()
         stop = h.widget(QtWidgets.QPushButton, "feelStop")
         self.assertTrue(stop.isEnabled(), h.widget(QtWidgets.QLabel, "feelMessage").text())
-        chart = h.widget(QtWidgets.QWidget, "stripChart")
         h.mouse("move", h.screen_pos(np.array([20.0, 15.0, 20.0])))
         wait(0.3)
-        h.wheel(h.screen_pos(np.array([20.0, 15.0, 20.0])), 4)  # press well in
+        h.wheel(h.screen_pos(np.array([20.0, 15.0, 20.0])), 4)
         wait(0.8)
+        return stop, h.widget(QtWidgets.QWidget, "stripChart")
+
+    def test_editing_the_surface_during_a_session_is_felt_at_once(self):
+        stop, chart = self.press_on_the_top()
         abs_normal = float(chart.values["normal_force_n"][-200:].mean())
         # the designer softens the face in the property editor while feeling it
         surface = self.doc.getObject("HapticSurface")
@@ -130,12 +135,34 @@ class FeelGuiTest(unittest.TestCase):
         h.press_task_button("Close")
 
 
-def probe_mm():
-    """The probe position (mm) in the Feel panel's last displayed sample."""
+    def test_reshaping_the_part_during_a_session_is_felt_at_once(self):
+        stop, chart = self.press_on_the_top()
+        self.assertAlmostEqual(probe_mm("proxy_m")[2], 20.0, delta=0.05)
+        before = float(chart.values["normal_force_n"][-200:].mean())
+        # the designer makes the box 3 mm taller while resting on its top: the probe is
+        # now inside the part, and the new top pushes it out
+        self.box.Height = 23
+        self.doc.recompute()
+        wait(0.8)
+        message = h.widget(QtWidgets.QLabel, "feelMessage").text()
+        h.grab_screen("feel_geometry_edit.png")
+        self.assertTrue(stop.isEnabled())  # the session went on
+        self.assertIn("Geometry edited", message)
+        self.assertAlmostEqual(probe_mm("proxy_m")[2], 23.0, delta=0.05)
+        after = float(chart.values["normal_force_n"][-200:].mean())
+        self.assertGreater(before, 0.2)
+        self.assertGreater(after, 1.5 * before)
+        stop.click()
+        h.process_events()
+        h.press_task_button("Close")
+
+def probe_mm(field="device_m"):
+    """The probe position (mm; or the proxy's, field "proxy_m") in the Feel panel's last
+    displayed sample."""
     from hapticad.gui import task_panel_feel
 
     sample = task_panel_feel.active_panel().last_sample
-    return np.asarray(sample["device_m"], float) / MM if sample is not None else np.full(3, np.nan)
+    return np.asarray(sample[field], float) / MM if sample is not None else np.full(3, np.nan)
 
 
 if __name__ == "__main__":
