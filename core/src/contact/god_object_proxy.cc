@@ -149,12 +149,13 @@ void GodObjectProxy::Update(const Vec3& goal_l) {
     target = constraints_.Project(goal_l, position_, slack);
   }
   last_triangle_ = in_contact() ? constraints_.plane(0).triangle : -1;
-  // Load the cell the proxy is heading for while it is still a few ticks away (at
-  // 0.05-0.1 mm a tick on a 1M-triangle model a new cell comes every 5 ticks or so).
+  // Load the cells the proxy is heading for while they are still a few ticks away (at
+  // 0.05-0.1 mm a tick on a 1M-triangle model a new cell comes every 5 ticks or so):
+  // every cell on the next 0.75 cell of its path.
   const Vec3 step = position_ - start;
   const double length = step.norm();
   if (grid_ != nullptr && length > 0.0) {
-    grid_->WarmUp(position_ + (0.75 * grid_->cell_size() / length) * step, &warm_up_);
+    grid_->WarmUp(position_, position_ + (0.75 * grid_->cell_size() / length) * step, &warm_up_);
   }
 }
 

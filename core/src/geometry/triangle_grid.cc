@@ -322,19 +322,61 @@ std::size_t TriangleGrid::Walk(const SegmentRay& ray, double s0, SweepSearch* se
   return cells;
 }
 
-void TriangleGrid::WarmUp(const Vec3& point, Prefetch* state) const {
-  if (table_.empty() || !(point.cwiseMax(lo_) == point && point.cwiseMin(hi_) == point)) return;
+void TriangleGrid::WarmUp(const Vec3& from, const Vec3& to, Prefetch* state) const {
+  const auto inside = [this](const Vec3& p) {
+    return p.cwiseMax(lo_) == p && p.cwiseMin(hi_) == p;
+  };
+  if (table_.empty() || !inside(from) || !inside(to)) return;
   const double inv_h = inv_h_[first_level_];
-  const std::uint64_t key =
-      Key(first_level_, static_cast<std::int64_t>(std::floor(point.x() * inv_h)),
-          static_cast<std::int64_t>(std::floor(point.y() * inv_h)),
-          static_cast<std::int64_t>(std::floor(point.z() * inv_h)));
-  if (key != state->key) {
-    state->key = key;
-    state->stage = 0;
+  const Vec3 a = from * inv_h;
+  const Vec3 b = to * inv_h;
+  std::int64_t cell[3];
+  std::int64_t end[3];
+  for (int k = 0; k < 3; ++k) {
+    cell[k] = static_cast<std::int64_t>(std::floor(a[k]));
+    end[k] = static_cast<std::int64_t>(std::floor(b[k]));
   }
+  // the cells after the first, in the order the segment enters them: at most one
+  // boundary per axis, crossed at parameter t
+  double t[3];
+  int axis[3];
+  int crossings = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (cell[k] == end[k]) continue;
+    const double boundary = static_cast<double>(b[k] > a[k] ? cell[k] + 1 : cell[k]);
+    const double tk = (boundary - a[k]) / (b[k] - a[k]);
+    int i = crossings++;
+    for (; i > 0 && t[i - 1] > tk; --i) {
+      t[i] = t[i - 1];
+      axis[i] = axis[i - 1];
+    }
+    t[i] = tk;
+    axis[i] = k;
+  }
+  std::uint64_t key[Prefetch::kCells] = {kEmpty, kEmpty, kEmpty};
+  for (int i = 0; i < crossings; ++i) {
+    cell[axis[i]] += b[axis[i]] > a[axis[i]] ? 1 : -1;
+    key[i] = Key(first_level_, cell[0], cell[1], cell[2]);
+  }
+  if (!std::equal(key, key + Prefetch::kCells, state->key)) {
+    // new cells ahead: those still ahead keep their progress
+    Prefetch next;
+    for (int i = 0; i < crossings; ++i) {
+      next.key[i] = key[i];
+      for (int j = 0; j < Prefetch::kCells; ++j) {
+        if (state->key[j] == key[i]) next.stage[i] = state->stage[j];
+      }
+    }
+    *state = next;
+  }
+  for (int i = 0; i < crossings; ++i) {
+    if (state->stage[i] < 4) AdvanceWarmUp(state->key[i], &state->stage[i]);
+  }
+}
+
+void TriangleGrid::AdvanceWarmUp(std::uint64_t key, int* stage) const {
   // each stage reads only what the stage before it prefetched
-  switch (state->stage) {
+  switch (*stage) {
     case 0:
       __builtin_prefetch(&table_[Slot(key)]);
       break;
@@ -365,7 +407,7 @@ void TriangleGrid::WarmUp(const Vec3& point, Prefetch* state) const {
     default:
       return;
   }
-  ++state->stage;
+  ++*stage;
 }
 
 double TriangleGrid::CalcMeanProbeLength() const {

@@ -149,9 +149,51 @@ TEST_F(BoxGrid, FirstHitAndWarmUpDoNotAllocate) {
   testing::AllocationCounter counter;
   for (int i = 0; i < 100; ++i) {
     FirstHit(*grid_, Vec3(0.01 * i, 0, 3), Vec3(0, 0.01 * i, -3), &hit);
-    grid_->WarmUp(Vec3(0.01 * i, 0.5, 1.0), &prefetch);
+    grid_->WarmUp(Vec3(0.01 * i, 0.5, 1.0), Vec3(0.01 * i + 0.3, 0.6, 0.9), &prefetch);
   }
   EXPECT_EQ(counter.count(), 0u);
+}
+
+// The warm-up loads every cell the stretch ahead enters, in the order it enters them,
+// one step a call each, and a cell still ahead keeps its progress.
+TEST(TriangleGrid, WarmUpFollowsEveryCellTheStretchAheadEnters) {
+  const auto mesh = MeshOf(MakeIcosphere(IcosphereFrequencyFor(20000), 1.0));
+  const auto grid = TriangleGrid::Build(*mesh, 1e-9);
+  const double h = grid->cell_size();
+  // the middle of a cell on the surface
+  const Vec3 c = ((Vec3(0.6, 0.6, 0.52).normalized() / h).array().floor() + 0.5).matrix() * h;
+  TriangleGrid::Prefetch state;
+  const auto ahead = [&state] {
+    return static_cast<int>(std::count_if(std::begin(state.key), std::end(state.key),
+                                          [](std::uint64_t k) { return k != ~std::uint64_t{0}; }));
+  };
+  grid->WarmUp(c, c + Vec3(0.3, 0.2, -0.1) * h, &state);  // stays in the cell
+  EXPECT_EQ(ahead(), 0);
+  for (int call = 1; call <= 6; ++call) {  // into the cell at +x: four steps, then done
+    grid->WarmUp(c, c + Vec3(0.7, 0.1, 0.0) * h, &state);
+    ASSERT_EQ(ahead(), 1);
+    EXPECT_EQ(state.stage[0], std::min(call, 4));
+  }
+  const std::uint64_t plus_x = state.key[0];
+  // +x, then +y (the x boundary comes first): the +x cell keeps its progress
+  grid->WarmUp(c, c + Vec3(0.7, 0.6, 0.0) * h, &state);
+  ASSERT_EQ(ahead(), 2);
+  EXPECT_EQ(state.key[0], plus_x);
+  EXPECT_EQ(state.stage[0], 4);
+  EXPECT_EQ(state.stage[1], 1);
+  // +y first, then the diagonal cell: the +x cell is no longer on the way
+  grid->WarmUp(c, c + Vec3(0.6, 0.7, 0.0) * h, &state);
+  ASSERT_EQ(ahead(), 2);
+  EXPECT_NE(state.key[0], plus_x);
+  EXPECT_EQ(state.stage[0], 1);
+  EXPECT_EQ(state.stage[1], 2);  // the diagonal cell, entered last both times
+  // through a corner region: three cells
+  grid->WarmUp(c, c + Vec3(0.7, -0.6, 0.55) * h, &state);
+  EXPECT_EQ(ahead(), 3);
+  // a stretch that leaves the grid's box is not followed: the state stays
+  const TriangleGrid::Prefetch before = state;
+  grid->WarmUp(c, Vec3(5.0, 0.0, 0.0), &state);
+  EXPECT_TRUE(std::equal(std::begin(before.key), std::end(before.key), std::begin(state.key)));
 }
 
 TEST(TriangleGrid, RandomSegmentsOnAnIcosphereAgreeWithBruteForce) {
