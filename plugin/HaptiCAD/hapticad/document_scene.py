@@ -27,6 +27,12 @@ from .vibration_object import vibrations_of
 MM = 1e-3  # metres per FreeCAD length unit
 
 
+class NeedsNewScene(ValueError):
+    """An edit the scene being felt cannot take by recompiling its surfaces: it tags or
+    shakes a part, or a face, the scene does not hold. Tessellating the document again
+    (LiveSession.update_scene) takes it."""
+
+
 @dataclass
 class DocumentScene:
     scene: object  # _core.HapticScene
@@ -171,15 +177,15 @@ def recompile_surfaces(doc, doc_scene):
     HapticVibrations as they are now: what a property edit (material, friction,
     roughness, pattern, texture, vibration) or a retag among the scene's faces changes,
     without tessellating again. The scene itself is shared, not copied. Raises
-    ValueError, naming the surface, when a value cannot be compiled or when the edit
-    tags or shakes a part the scene does not hold (that needs a new scene)."""
+    ValueError, naming the surface, when a value cannot be compiled, and NeedsNewScene
+    (a ValueError) when the edit tags or shakes a part the scene does not hold."""
     tagged, vibrating, objects = _tagging(doc)
     for obj in objects:
         if obj.Name not in doc_scene.shapes:
-            raise ValueError(f"{obj.Label} is not in the scene being felt: start the session again to feel it")
+            raise NeedsNewScene(f"{obj.Label} is not in the scene being felt")
     for name, surface in tagged.items():
         if name not in doc_scene.face_names:
-            raise ValueError(f"{surface.Label} references {name}, which the scene being felt does not have")
+            raise NeedsNewScene(f"{surface.Label} references {name}, which the scene being felt does not have")
     return replace(
         doc_scene,
         surfaces=_surface_table(tagged, vibrating, doc_scene.face_names, doc_scene.shapes),

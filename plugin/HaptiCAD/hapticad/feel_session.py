@@ -123,8 +123,9 @@ class LiveSession:
     def update_surfaces(self, doc):
         """Compiles doc's surfaces again and hands them to the loop: a property edit is
         felt from the next tick on, the scene is not rebuilt and the session goes on.
-        Raises ValueError (naming the surface) when the edit cannot be compiled or needs
-        a new scene; the loop then keeps what it had."""
+        Raises ValueError (naming the surface) when the edit cannot be compiled, and
+        document_scene.NeedsNewScene when it needs a new scene (update_scene); the loop
+        then keeps what it had."""
         from .document_scene import recompile_surfaces  # FreeCAD's: only when used
 
         doc_scene = recompile_surfaces(doc, self.doc_scene)
@@ -146,6 +147,24 @@ class LiveSession:
         self.loop.set_renderer(renderer)
         self.renderer = renderer
         self.doc_scene = doc_scene
+
+    def apply_edit(self, doc, geometry):
+        """What the Feel panel calls after the designer edits doc: with ``geometry``
+        (a part changed shape) the scene is built again (update_scene); otherwise the
+        surfaces are recompiled (update_surfaces), and if the edit tags a part or face
+        the scene does not hold, the scene is built again after all. Returns "scene" or
+        "surfaces", what was handed to the loop. Raises ValueError as those do; the loop
+        then keeps what it had."""
+        from .document_scene import NeedsNewScene
+
+        if not geometry:
+            try:
+                self.update_surfaces(doc)
+                return "surfaces"
+            except NeedsNewScene:
+                pass
+        self.update_scene(doc)
+        return "scene"
 
     def set_target(self, target_w):
         """Where the simulated hand aims, world metres (lock-free in the device)."""

@@ -13,7 +13,7 @@ import Part
 
 import HaptiCAD
 from hapticad import _core, feel_session, preferences
-from hapticad.document_scene import build_document_scene
+from hapticad.document_scene import NeedsNewScene, build_document_scene
 
 MM = 1e-3
 
@@ -179,14 +179,29 @@ class FeelSessionTest(unittest.TestCase):
         self.assertIn("broken", str(raised.exception))
         self.assertIs(session.doc_scene, scene)
 
-    def test_an_edit_that_tags_a_part_outside_the_scene_asks_for_a_new_session(self):
+    def test_tagging_a_part_outside_the_scene_builds_a_new_scene(self):
         session = feel_session.LiveSession(self.scene)
         other = self.doc.addObject("Part::Box", "Other")
+        other.Placement.Base = App.Vector(100, 0, 0)
         self.doc.recompute()
         HaptiCAD.make_surface(self.doc, [(other, "Face1")], material="Steel")
-        with self.assertRaises(ValueError) as raised:
+        # recompiling the surfaces alone cannot take it
+        with self.assertRaises(NeedsNewScene) as raised:
             session.update_surfaces(self.doc)
-        self.assertIn("start the session again", str(raised.exception))
+        self.assertIn("not in the scene being felt", str(raised.exception))
+        self.assertIs(session.doc_scene, self.scene)
+        # the panel's edit handler builds the scene again instead
+        self.assertEqual(session.apply_edit(self.doc, geometry=False), "scene")
+        self.assertIn("Other", session.doc_scene.shapes)
+        face = session.doc_scene.face_id("Other.Face1")
+        self.assertEqual(session.doc_scene.surfaces.surface(face).stiffness_n_per_m,
+                         session.doc_scene.surfaces.surface(session.doc_scene.face_id("Box.Face6")).stiffness_n_per_m)
+        # a plain property edit is still only a recompile
+        self.doc.getObject("HapticSurface").Stiffness = 0.05
+        self.doc.recompute()
+        scene = session.doc_scene.scene
+        self.assertEqual(session.apply_edit(self.doc, geometry=False), "surfaces")
+        self.assertIs(session.doc_scene.scene, scene)
 
 
 if __name__ == "__main__":

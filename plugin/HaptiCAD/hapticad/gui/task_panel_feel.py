@@ -163,14 +163,12 @@ class FeelTaskPanel:
 
     def edited(self, geometry):
         """The designer edited the document while the session runs: a surface (felt from
-        the next tick on) or the shape of a part (tessellated again and swapped in)."""
+        the next tick on) or the shape of a part, or a part newly tagged (tessellated
+        again and swapped in)."""
         if self.session is None:
             return
         try:
-            if geometry:
-                self.session.update_scene(self.doc)
-            else:
-                self.session.update_surfaces(self.doc)
+            applied = self.session.apply_edit(self.doc, geometry)
         except ValueError as exc:
             kept = "the part" if geometry else "the surfaces"
             self.show_message(f"{exc} (still feeling {kept} as it was)", error=True)
@@ -178,8 +176,13 @@ class FeelTaskPanel:
         self.doc_scene = self.session.doc_scene
         if self.steering is not None:
             self.steering.doc_scene = self.doc_scene
-        self.show_message("Geometry edited: you feel the new shape now." if geometry else
-                          "Surface edited: you feel the change now.")
+        if applied == "surfaces":
+            self.show_message("Surface edited: you feel the change now.")
+        elif geometry:
+            self.show_message("Geometry edited: you feel the new shape now.")
+        else:
+            self.show_message("Surface edited on a part the session did not hold: the scene was "
+                              "built again and you feel it now.")
 
     def update_display(self):
         """Drains the trace and shows it (the display timer, at most DISPLAY_HZ)."""

@@ -152,9 +152,26 @@ class FeelGuiTest(unittest.TestCase):
         after = float(chart.values["normal_force_n"][-200:].mean())
         self.assertGreater(before, 0.2)
         self.assertGreater(after, 1.5 * before)
+        # a second part, tagged while feeling: the scene is built again to hold it
+        other = self.doc.addObject("Part::Box", "Other")
+        other.Placement.Base = App.Vector(60, 0, 0)
+        self.doc.recompute()
+        HaptiCAD.make_surface(self.doc, [(other, "Face6")], material="Steel")
+        self.doc.recompute()
+        wait(0.3)
+        self.assertIn("built again", h.widget(QtWidgets.QLabel, "feelMessage").text())
+        self.assertIn("Other", task_panel_feel_scene().shapes)
+        self.assertTrue(stop.isEnabled())
         stop.click()
         h.process_events()
         h.press_task_button("Close")
+
+def task_panel_feel_scene():
+    """The document scene the open Feel panel's session feels."""
+    from hapticad.gui import task_panel_feel
+
+    return task_panel_feel.active_panel().session.doc_scene
+
 
 def probe_mm(field="device_m"):
     """The probe position (mm; or the proxy's, field "proxy_m") in the Feel panel's last
