@@ -44,16 +44,22 @@ void GodObjectProxy::Reset(const Vec3& position_l) {
 
 bool GodObjectProxy::ResetOutside(const Vec3& position_l) {
   Reset(position_l);
-  // beyond every vertex (or not a point): outside whatever the mesh bounds
-  if (!mesh_.closed() || !(position_l.norm() < mesh_.bounding_radius())) return false;
+  const SolidAnalysis* solids = config_.solids;
+  // outside every piece's box (or not a point): outside every solid
+  if (solids == nullptr || !solids->bounds_solids || !position_l.allFinite() ||
+      !solids->InAnyPiece(position_l)) {
+    return false;
+  }
   // three orthonormal directions (15 times the rows of a rotation) and their opposites,
   // askew to every axis and axis plane, so no ray runs along an axis-aligned CAD
   // model's faces (constexpr: a function-local static would take a guard on first use)
   static constexpr double kAxes[3][3] = {{-11.0, -2.0, 10.0}, {10.0, -5.0, 10.0}, {2.0, 14.0, 5.0}};
   int inside = 0;
   int outside = 0;
-  double nearest = 0.0;
-  Vec3 exit = position_l;
+  struct Exit {
+    double distance;
+    SweepHit hit;
+  } exits[kExitRays];
   for (int ray = 0; ray < kExitRays; ++ray) {
     const double* axis = kAxes[ray / 2];
     const Vec3 u = (ray % 2 == 0 ? 1.0 : -1.0) / 15.0 * Vec3(axis[0], axis[1], axis[2]);
@@ -64,21 +70,29 @@ bool GodObjectProxy::ResetOutside(const Vec3& position_l) {
       ++outside;
       continue;
     }
-    ++inside;
-    const double distance = (first.point - position_l).norm();
-    if (inside == 1 || distance < nearest) {
-      nearest = distance;
-      // off the face it crossed, on the far side (the hit's normal faces the inside)
-      exit = first.point - (config_.radius_m + config_.surface_offset_m) * first.normal;
-    }
+    exits[inside++] = {(first.point - position_l).norm(), first};
   }
   if (inside <= outside) return false;
-  Reset(exit);
-  return true;
+  std::sort(exits, exits + inside,
+            [](const Exit& a, const Exit& b) { return a.distance < b.distance; });
+  const double r = config_.radius_m;
+  const double offset = config_.surface_offset_m;
+  for (int i = 0; i < inside; ++i) {
+    // off the face it crossed, on the far side (the hit's normal faces the inside)
+    const Vec3& face = exits[i].hit.point;
+    const Vec3 out = -exits[i].hit.normal;
+    SweepHit blocked;
+    if (r > 0.0 && PointHit(face + offset * out, face + (2.0 * r + offset) * out, &blocked)) {
+      continue;  // a sphere there would stick into something else
+    }
+    Reset(face + (r + offset) * out);
+    return true;
+  }
+  return false;
 }
 
 int GodObjectProxy::CountCrossings(const Vec3& p, const Vec3& u, SweepHit* first) const {
-  const Vec3 end = p + 2.0 * mesh_.bounding_radius() * u;  // |p| < the radius
+  const Vec3 end = p + (p.norm() + mesh_.bounding_radius()) * u;  // beyond every vertex
   // past each crossing by the surface offset, so the next sweep does not meet it (or
   // its neighbour across an edge it went through) again
   const double step = config_.surface_offset_m;

@@ -25,6 +25,7 @@ ProxyConfig MakeProxyConfig(const HapticScene& scene, const ContactOptions& opti
   ProxyConfig config;
   config.radius_m = options.proxy_radius_m;
   config.surface_offset_m = scene.surface_offset_m();
+  config.solids = &scene.BuildSolids();
   return config;
 }
 

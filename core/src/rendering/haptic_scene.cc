@@ -76,6 +76,11 @@ const TriangleGrid& HapticScene::BuildGrid() const {
   return *grid_;
 }
 
+const SolidAnalysis& HapticScene::BuildSolids() const {
+  std::call_once(solids_once_, [this] { solids_ = AnalyseSolids(*mesh_); });
+  return solids_;
+}
+
 std::size_t HapticScene::CalcMemoryBytes() const {
   std::size_t bytes = mesh_->CalcMemoryBytes();
   if (const TriangleTree* tree = tree_built_.load(std::memory_order_acquire)) {

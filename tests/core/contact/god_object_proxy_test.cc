@@ -21,9 +21,11 @@ class ProxyOnBox : public ::testing::TestWithParam<bool> {
     mesh_ = TriangleMesh::Build(s.vertices, s.triangles, s.cad_faces, s.corner_normals);
     tree_ = TriangleTree::Build(*mesh_, 1e-12);
     grid_ = TriangleGrid::Build(*mesh_, 1e-12);
+    solids_ = AnalyseSolids(*mesh_);
     ProxyConfig config;
     config.surface_offset_m = kOffset;
     config.radius_m = radius;
+    config.solids = &solids_;
     if (GetParam() && radius == 0.0) {
       proxy_ = std::make_unique<GodObjectProxy>(*mesh_, *grid_, config);
     } else {
@@ -34,6 +36,7 @@ class ProxyOnBox : public ::testing::TestWithParam<bool> {
   std::unique_ptr<TriangleMesh> mesh_;
   std::unique_ptr<TriangleTree> tree_;
   std::unique_ptr<TriangleGrid> grid_;
+  SolidAnalysis solids_;
   std::unique_ptr<GodObjectProxy> proxy_;
 };
 
@@ -144,18 +147,27 @@ TEST_P(ProxyOnBox, ASphereRestsOneRadiusAboveTheFaceAndRollsOverTheEdge) {
   EXPECT_GT(proxy_->position().x(), 0.05 + r - 1e-9);
 }
 
-// A hollow part: the box [-0.05, 0.05]^3 round a cavity [-0.04, 0.04]^3 (10 mm walls).
-TriangleSoup MakeHollowBoxSoup() {
-  TriangleSoup soup = testing::MakeBoxSoup(Vec3::Constant(-0.05), Vec3::Constant(0.05));
-  const TriangleSoup cavity = testing::MakeBoxSoup(Vec3::Constant(-0.04), Vec3::Constant(0.04));
+// Two boxes in one soup (the second one's CAD faces 6-11; `inward`: wound inward).
+TriangleSoup MakeTwoBoxesSoup(const Vec3& lo0, const Vec3& hi0, const Vec3& lo1, const Vec3& hi1,
+                              bool inward = false) {
+  TriangleSoup soup = testing::MakeBoxSoup(lo0, hi0);
+  const TriangleSoup other = testing::MakeBoxSoup(lo1, hi1);
   const auto base = static_cast<std::int32_t>(soup.vertices.size());
-  soup.vertices.insert(soup.vertices.end(), cavity.vertices.begin(), cavity.vertices.end());
-  for (std::size_t t = 0; t < cavity.triangles.size(); ++t) {
-    const auto& c = cavity.triangles[t];
-    soup.triangles.push_back({base + c[0], base + c[2], base + c[1]});  // facing the cavity
-    soup.cad_faces.push_back(6 + cavity.cad_faces[t]);
+  soup.vertices.insert(soup.vertices.end(), other.vertices.begin(), other.vertices.end());
+  for (std::size_t t = 0; t < other.triangles.size(); ++t) {
+    const auto& c = other.triangles[t];
+    soup.triangles.push_back(
+        inward ? std::array<std::int32_t, 3>{base + c[0], base + c[2], base + c[1]}
+               : std::array<std::int32_t, 3>{base + c[0], base + c[1], base + c[2]});
+    soup.cad_faces.push_back(6 + other.cad_faces[t]);
   }
   return soup;
+}
+
+// A hollow part: the box [-0.05, 0.05]^3 round a cavity [-0.04, 0.04]^3 (10 mm walls).
+TriangleSoup MakeHollowBoxSoup() {
+  return MakeTwoBoxesSoup(Vec3::Constant(-0.05), Vec3::Constant(0.05), Vec3::Constant(-0.04),
+                          Vec3::Constant(0.04), true);
 }
 
 bool InsideBox(const Vec3& p, double half) { return p.cwiseAbs().maxCoeff() < half; }
@@ -212,12 +224,75 @@ TEST_P(ProxyOnBox, AResetOutsideASolidOrInItsCavityStaysPut) {
   }
 }
 
+TEST_P(ProxyOnBox, OneRayWithAnOddCountDoesNotDecideAlone) {
+  // in the hollow part's cavity, where one ray (along (-11, -2, 10) / 15) also passes a
+  // fin thinner than the step past a crossing: it counts the fin once, an odd count, as
+  // a ray through a silhouette edge does. The five other rays outvote it.
+  TriangleSoup soup = MakeHollowBoxSoup();
+  const Vec3 centre = 0.02 / 15.0 * Vec3(-11.0, -2.0, 10.0);
+  const TriangleSoup fin =
+      testing::MakeBoxSoup(centre - Vec3(0.002, 0.002, 5e-10), centre + Vec3(0.002, 0.002, 5e-10));
+  const auto base = static_cast<std::int32_t>(soup.vertices.size());
+  soup.vertices.insert(soup.vertices.end(), fin.vertices.begin(), fin.vertices.end());
+  for (const auto& t : fin.triangles)
+    soup.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+  soup.cad_faces.resize(soup.triangles.size(), 12);
+  Make(soup);
+  ASSERT_TRUE(solids_.bounds_solids);
+  EXPECT_FALSE(proxy_->ResetOutside(Vec3::Zero()));
+  EXPECT_EQ(proxy_->position(), Vec3::Zero());
+}
+
+TEST_P(ProxyOnBox, PartsThatTouchOrOverlapAreNotSolidsAndMoveNothing) {
+  // two boxes face to face, and two that overlap: their surface crosses itself, so the
+  // parity of crossings means nothing; nothing is moved
+  for (const double gap : {0.0, -0.01}) {
+    Make(MakeTwoBoxesSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.0, 0.05, 0.05), Vec3(gap, -0.04, -0.04),
+                          Vec3(0.05 + gap, 0.04, 0.04)));
+    EXPECT_TRUE(solids_.closed) << gap;
+    EXPECT_TRUE(solids_.self_intersecting) << gap;
+    EXPECT_FALSE(solids_.bounds_solids) << gap;
+    EXPECT_FALSE(proxy_->ResetOutside(Vec3(-0.01, 0.0, 0.0))) << gap;
+  }
+  // apart, they are two solids: each is left over its nearest face
+  Make(MakeTwoBoxesSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.0, 0.05, 0.05), Vec3(0.01, -0.04, -0.04),
+                        Vec3(0.06, 0.04, 0.04)));
+  ASSERT_TRUE(solids_.bounds_solids);
+  EXPECT_EQ(solids_.piece_lo.size(), 2u);
+  EXPECT_TRUE(proxy_->ResetOutside(Vec3(-0.01, 0.0, -0.045)));
+  EXPECT_NEAR(proxy_->position().z(), -0.05 - kOffset, 1e-12);
+  EXPECT_TRUE(proxy_->ResetOutside(Vec3(0.058, 0.0, 0.0)));
+  EXPECT_NEAR(proxy_->position().x(), 0.06 + kOffset, 1e-12);
+  // between them, in neither box: stays
+  EXPECT_FALSE(proxy_->ResetOutside(Vec3(0.005, 0.0, 0.0)));
+}
+
+TEST_P(ProxyOnBox, ASphereIsNotLeftWhereItWouldStickIntoAnotherPart) {
+  const double r = 0.002;
+  // a 1 mm slot between two boxes, narrower than the sphere
+  Make(MakeTwoBoxesSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.0, 0.05, 0.05), Vec3(0.001, -0.05, -0.05),
+                        Vec3(0.051, 0.05, 0.05)),
+       r);
+  ASSERT_TRUE(solids_.bounds_solids);
+  const Vec3 start(-0.0003, 0.0, 0.0);  // 0.3 mm inside the left box, by the slot
+  EXPECT_TRUE(proxy_->ResetOutside(start));
+  const Vec3 c = proxy_->position();
+  // the sphere there touches neither box: outside the left one by r, and clear of the right
+  const auto distance_to_box = [](const Vec3& p, const Vec3& lo, const Vec3& hi) {
+    return (p - p.cwiseMax(lo).cwiseMin(hi)).norm();
+  };
+  EXPECT_GE(distance_to_box(c, Vec3::Constant(-0.05), Vec3(0.0, 0.05, 0.05)), r) << c.transpose();
+  EXPECT_GE(distance_to_box(c, Vec3(0.001, -0.05, -0.05), Vec3(0.051, 0.05, 0.05)), r)
+      << c.transpose();
+}
+
 TEST_P(ProxyOnBox, OnAnOpenSurfaceAResetIsAReset) {
   TriangleSoup cup = testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05));
   cup.triangles.resize(10);  // no lid: face 5 is the last two triangles
   cup.cad_faces.resize(10);
   Make(cup);
   ASSERT_FALSE(mesh_->closed());
+  ASSERT_FALSE(solids_.bounds_solids);
   EXPECT_FALSE(proxy_->ResetOutside(Vec3(0.0, 0.0, 0.045)));
   EXPECT_EQ(proxy_->position(), Vec3(0.0, 0.0, 0.045));
 }

@@ -22,6 +22,7 @@
 #pragma once
 
 #include "hapticad/core/contact/constraint_set.h"
+#include "hapticad/core/geometry/solid_analysis.h"
 #include "hapticad/core/geometry/triangle_grid.h"
 #include "hapticad/core/geometry/triangle_mesh.h"
 #include "hapticad/core/geometry/triangle_tree.h"
@@ -33,6 +34,9 @@ struct ProxyConfig {
   double radius_m = 0.0;           // 0: a point proxy; > 0: a sphere of this radius
   double surface_offset_m = 1e-8;  // how far off the surface the proxy rests (> 0)
   double bary_tolerance = 1e-9;    // inclusive edge tolerance of the triangle test
+  // Whether (and where) the surface bounds solids, for ResetOutside; must outlive the
+  // proxy. Null: it never moves the proxy.
+  const SolidAnalysis* solids = nullptr;
 };
 
 class GodObjectProxy {
@@ -51,14 +55,17 @@ class GodObjectProxy {
   // Places the proxy at `position_l` without collision (the caller knows it is free).
   void Reset(const Vec3& position_l);
 
-  // Places the proxy at `position_l` unless that point lies inside the scene's closed
-  // surface (TriangleMesh::closed(); on an open one, inside means nothing and this is
-  // Reset): then just outside it, off the face where the nearest of six fixed rays
-  // leaves it (a sphere's centre one radius off). Inside is decided by the parity of each ray's
-  // crossings, by majority, so a ray through a silhouette edge cannot decide alone. Returns whether
-  // the proxy was moved out. No allocation and bounded (at most kExitRays * (kMaxCrossings + 1)
-  // point sweeps across the scene), but not per-tick work: for a new scene, a fault or the clutch,
-  // where the device may be anywhere.
+  // Places the proxy at `position_l` unless that point lies inside a solid of the
+  // scene (config.solids: a closed surface free of self-intersections; otherwise, or
+  // when the point lies in no piece's box, this is Reset): then just outside it, off the
+  // face where the nearest of six fixed rays leaves it. Inside is decided by the parity
+  // of each ray's crossings, by majority, so a ray through a silhouette edge cannot
+  // decide alone. A sphere goes one radius off the face, and only where a point swept
+  // across its diameter from that face meets nothing (else the next nearest ray, else
+  // it stays). Returns whether the proxy was moved out. No allocation and bounded (at
+  // most kExitRays * (kMaxCrossings + 1) + kExitRays point sweeps across the scene),
+  // but not per-tick work: for a new scene, or the start of a session, where the device
+  // may be anywhere.
   bool ResetOutside(const Vec3& position_l);
   static constexpr int kExitRays = 6;
   static constexpr int kMaxCrossings = 15;  // a ray crossing more abstains

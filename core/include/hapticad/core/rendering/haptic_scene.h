@@ -25,6 +25,7 @@
 
 #include "hapticad/core/geometry/mesh_refine.h"
 #include "hapticad/core/geometry/mesh_repair.h"
+#include "hapticad/core/geometry/solid_analysis.h"
 #include "hapticad/core/geometry/triangle_grid.h"
 #include "hapticad/core/geometry/triangle_mesh.h"
 #include "hapticad/core/geometry/triangle_soup.h"
@@ -63,6 +64,9 @@ class HapticScene {
   // wait), the same one returned by every later call. Not for the servo tick.
   const TriangleTree& BuildTree() const;
   const TriangleGrid& BuildGrid() const;
+  // Whether the surface bounds solids, and its pieces (solid_analysis.h): what a proxy
+  // restarting inside a part needs. Built like the structures, by the first call.
+  const SolidAnalysis& BuildSolids() const;
 
   const Vec3& origin_w() const { return origin_w_; }
   double metres_per_unit() const { return metres_per_unit_; }
@@ -94,6 +98,8 @@ class HapticScene {
   // declared after mesh_: destroyed first; published through the atomics once built
   mutable std::once_flag tree_once_;
   mutable std::once_flag grid_once_;
+  mutable std::once_flag solids_once_;
+  mutable SolidAnalysis solids_;
   mutable std::unique_ptr<TriangleTree> tree_;
   mutable std::unique_ptr<TriangleGrid> grid_;
   mutable std::atomic<const TriangleTree*> tree_built_{nullptr};
