@@ -178,11 +178,15 @@ def recompile_surfaces(doc, doc_scene):
     roughness, pattern, texture, vibration) or a retag among the scene's faces changes,
     without tessellating again. The scene itself is shared, not copied. Raises
     ValueError, naming the surface, when a value cannot be compiled, and NeedsNewScene
-    (a ValueError) when the edit tags or shakes a part the scene does not hold."""
+    (a ValueError) when the edit tags or shakes a part the scene does not hold, or
+    leaves a part of the scene untagged (or deletes it)."""
     tagged, vibrating, objects = _tagging(doc)
     for obj in objects:
         if obj.Name not in doc_scene.shapes:
             raise NeedsNewScene(f"{obj.Label} is not in the scene being felt")
+    gone = set(doc_scene.shapes) - {obj.Name for obj in objects}
+    if gone:
+        raise NeedsNewScene(f"{', '.join(sorted(gone))} no longer tagged or gone from the document")
     for name, surface in tagged.items():
         if name not in doc_scene.face_names:
             raise NeedsNewScene(f"{surface.Label} references {name}, which the scene being felt does not have")

@@ -78,10 +78,12 @@ class LiveSession:
         self.simulated = device == SIMULATED
         self.rate_hz = float(prefs.servo_rate_hz)
         low, high = scene_box_m(doc_scene)
+        self.reach_m = None  # the world box the probe reaches, where the session knows it
         if self.simulated:
             limits = _core.simulated_hand_limits()
             limits.max_force_n = min(limits.max_force_n, prefs.force_limit_n)
-            _limits_workspace(limits, low - WORKSPACE_MARGIN_M, high + WORKSPACE_MARGIN_M)
+            self.reach_m = (low - WORKSPACE_MARGIN_M, high + WORKSPACE_MARGIN_M)
+            _limits_workspace(limits, *self.reach_m)
             self.device = _core.SimulatedHand(limits)
             mapping = None  # identity: the hand's frame is the world
         else:
@@ -139,10 +141,16 @@ class LiveSession:
         never on the servo thread); the proxy restarts where it was, or on the nearest
         face if the part grew over it, and the force ramps in again. Raises ValueError
         (naming the part or surface) when the new shape cannot be felt (a tagged face
-        gone, nothing left to touch); the loop then keeps the old scene."""
+        gone, nothing left to touch, parts beyond the simulated probe's workspace, which
+        was set at the start); the loop then keeps the old scene."""
         from .document_scene import build_document_scene  # FreeCAD's: only when used
 
         doc_scene = build_document_scene(doc, self.doc_scene.accuracy)
+        if self.reach_m is not None:
+            low, high = scene_box_m(doc_scene)
+            if (low < self.reach_m[0]).any() or (high > self.reach_m[1]).any():
+                raise ValueError("the parts now reach beyond the simulated probe's workspace, "
+                                 "which was set when the session started: start it again")
         renderer = _core.ForceRenderer(doc_scene.scene, doc_scene.surfaces, self.render_limits)
         self.loop.set_renderer(renderer)
         self.renderer = renderer

@@ -182,7 +182,7 @@ class FeelSessionTest(unittest.TestCase):
     def test_tagging_a_part_outside_the_scene_builds_a_new_scene(self):
         session = feel_session.LiveSession(self.scene)
         other = self.doc.addObject("Part::Box", "Other")
-        other.Placement.Base = App.Vector(100, 0, 0)
+        other.Placement.Base = App.Vector(45, 0, 0)  # within the probe's reach (to x = 90 mm)
         self.doc.recompute()
         HaptiCAD.make_surface(self.doc, [(other, "Face1")], material="Steel")
         # recompiling the surfaces alone cannot take it
@@ -202,6 +202,22 @@ class FeelSessionTest(unittest.TestCase):
         scene = session.doc_scene.scene
         self.assertEqual(session.apply_edit(self.doc, geometry=False), "surfaces")
         self.assertIs(session.doc_scene.scene, scene)
+        # deleting the tagged part: the scene is built without it
+        self.doc.removeObject("Other")
+        self.doc.recompute()
+        with self.assertRaises(NeedsNewScene):
+            session.update_surfaces(self.doc)
+        self.assertEqual(session.apply_edit(self.doc, geometry=False), "scene")
+        self.assertEqual(sorted(session.doc_scene.shapes), ["Box"])
+
+    def test_a_part_grown_beyond_the_simulated_probes_reach_asks_for_a_new_session(self):
+        session = feel_session.LiveSession(self.scene)
+        self.box.Height = 200  # the workspace was set to 50 mm round the 20 mm box
+        self.doc.recompute()
+        with self.assertRaises(ValueError) as raised:
+            session.update_scene(self.doc)
+        self.assertIn("workspace", str(raised.exception))
+        self.assertIs(session.doc_scene, self.scene)
 
 
 if __name__ == "__main__":

@@ -6,14 +6,17 @@ back once, after FreeCAD has finished the edit (the changes of one edit, and of 
 recompute that reshapes several objects, are gathered into one call):
 
 - callback(geometry=True) when a part in the session's scene changed shape (a new
-  dimension, a new feature, a moved placement): the scene must be tessellated again
-  and swapped into the loop (LiveSession.update_scene);
+  dimension, a new feature), moved (its placement, or that of a Body or App::Part
+  holding it) or was deleted: the scene must be tessellated again and swapped into the
+  loop (LiveSession.update_scene);
 - callback(geometry=False) when only a HapticSurface or HapticVibration changed (any
   property: material, friction, roughness, pattern, texture, vibration, the faces it
   tags), or one was created or deleted: the surfaces are compiled again and handed to
   the loop without a new scene (LiveSession.update_surfaces).
 
-Either way the edit is felt without stopping the session.
+Either way the edit is felt without stopping the session. Changes during a recompute
+wait for its end (the shapes and the face references are then all up to date), so one
+recompute makes one call.
 """
 import FreeCAD as App
 from PySide2 import QtCore
@@ -28,8 +31,10 @@ class SessionEditObserver:
         self.doc = doc
         self.callback = callback
         self.parts = parts
-        self.pending = False
+        self.pending = False  # a call is queued
+        self.dirty = False  # something changed since the last call
         self.geometry = False
+        self.recomputing = False
         App.addDocumentObserver(self)
 
     def remove(self):
@@ -47,28 +52,64 @@ class SessionEditObserver:
 
         return self._ours(obj) and (is_haptic_surface(obj) or is_haptic_vibration(obj))
 
+    def _reshapes(self, obj, prop):
+        """A change of shape or placement of a part in the scene, or of a container
+        that places one (a Body, an App::Part)."""
+        if prop not in ("Shape", "Placement") or not self._ours(obj):
+            return False
+        parts = self.parts()
+        if obj.Name in parts:
+            return True
+        if prop != "Placement":
+            return False
+        for name in parts:
+            part = self.doc.getObject(name)
+            if part is not None and obj in part.InListRecursive:
+                return True
+        return False
+
+    def _changed(self, geometry=False):
+        self.dirty = True
+        self.geometry = self.geometry or geometry
+        if not self.recomputing:  # else once the recompute is done: it may change more
+            self._later()
+
     def _later(self):
         if not self.pending:
             self.pending = True
             QtCore.QTimer.singleShot(0, self._fire)
 
     def _fire(self):
-        geometry = self.geometry
         self.pending = False
+        # a long recompute lets Qt run queued calls (FreeCAD's progress bar): wait for
+        # its end, when the shapes and the face references are all up to date
+        if self.recomputing or not self.dirty:
+            return
+        geometry = self.geometry
+        self.dirty = False
         self.geometry = False
         self.callback(geometry)
 
+    def slotBeforeRecomputeDocument(self, doc):
+        if doc is self.doc:
+            self.recomputing = True
+
+    def slotRecomputedDocument(self, doc):
+        if doc is self.doc:
+            self.recomputing = False
+            if self.dirty:
+                self._later()
+
     def slotChangedObject(self, obj, prop):
-        if prop == "Shape" and self._ours(obj) and obj.Name in self.parts():
-            self.geometry = True
-            self._later()
+        if self._reshapes(obj, prop):
+            self._changed(geometry=True)
         elif prop not in IGNORED and self._haptic(obj):
-            self._later()
+            self._changed()
 
     def slotCreatedObject(self, obj):
         if self._haptic(obj):
-            self._later()
+            self._changed()
 
     def slotDeletedObject(self, obj):
-        if self._haptic(obj):
-            self._later()
+        if self._haptic(obj) or (self._ours(obj) and obj.Name in self.parts()):
+            self._changed(geometry=True)

@@ -169,7 +169,7 @@ class FeelTaskPanel:
             return
         try:
             applied = self.session.apply_edit(self.doc, geometry)
-        except ValueError as exc:
+        except Exception as exc:  # noqa: BLE001 (OCC and core errors too: named, and the loop keeps what it had)
             kept = "the part" if geometry else "the surfaces"
             self.show_message(f"{exc} (still feeling {kept} as it was)", error=True)
             return

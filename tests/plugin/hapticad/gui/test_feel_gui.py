@@ -152,6 +152,24 @@ class FeelGuiTest(unittest.TestCase):
         after = float(chart.values["normal_force_n"][-200:].mean())
         self.assertGreater(before, 0.2)
         self.assertGreater(after, 1.5 * before)
+        # moved up 2 mm (its placement only: no new shape), then made 1 mm taller: one
+        # rebuild each
+        from hapticad.gui import task_panel_feel
+
+        edits = task_panel_feel.active_panel().edits
+        calls = []
+        handler = edits.callback
+        edits.callback = lambda geometry: (calls.append(geometry), handler(geometry))
+        self.box.Placement.Base = App.Vector(0, 0, 2)
+        self.doc.recompute()
+        wait(0.8)
+        self.assertEqual(calls, [True])
+        self.assertAlmostEqual(probe_mm("proxy_m")[2], 25.0, delta=0.05)
+        self.box.Height = 24
+        self.doc.recompute()
+        wait(0.8)
+        self.assertEqual(calls, [True, True])
+        self.assertAlmostEqual(probe_mm("proxy_m")[2], 26.0, delta=0.05)
         # a second part, tagged while feeling: the scene is built again to hold it
         other = self.doc.addObject("Part::Box", "Other")
         other.Placement.Base = App.Vector(60, 0, 0)
