@@ -323,19 +323,41 @@ std::size_t TriangleGrid::Walk(const SegmentRay& ray, double s0, SweepSearch* se
 }
 
 void TriangleGrid::WarmUp(const Vec3& from, const Vec3& to, Prefetch* state) const {
+  if (table_.empty() || !from.allFinite() || !to.allFinite()) return;
+  // the part of the segment inside the grid's box: a proxy coming down onto the model
+  // from outside it warms the cell it will land in
+  const Vec3 d = to - from;
+  double s0 = 0.0;
+  double s1 = 1.0;
   const auto inside = [this](const Vec3& p) {
     return p.cwiseMax(lo_) == p && p.cwiseMin(hi_) == p;
   };
-  if (table_.empty() || !inside(from) || !inside(to)) return;
+  if (!(inside(from) && inside(to))) {  // the usual case needs no clipping
+    for (int k = 0; k < 3; ++k) {
+      if (d[k] == 0.0) {
+        if (from[k] < lo_[k] || from[k] > hi_[k]) return;
+        continue;
+      }
+      double t0 = (lo_[k] - from[k]) / d[k];
+      double t1 = (hi_[k] - from[k]) / d[k];
+      if (t0 > t1) std::swap(t0, t1);
+      s0 = std::max(s0, t0);
+      s1 = std::min(s1, t1);
+      if (s0 > s1) return;
+    }
+  }
   const double inv_h = inv_h_[first_level_];
-  const Vec3 a = from * inv_h;
-  const Vec3 b = to * inv_h;
+  const Vec3 a = (from + s0 * d) * inv_h;
+  const Vec3 b = (from + s1 * d) * inv_h;
   std::int64_t cell[3];
   std::int64_t end[3];
   for (int k = 0; k < 3; ++k) {
     cell[k] = static_cast<std::int64_t>(std::floor(a[k]));
     end[k] = static_cast<std::int64_t>(std::floor(b[k]));
   }
+  std::uint64_t key[Prefetch::kCells] = {kEmpty, kEmpty, kEmpty, kEmpty};
+  int count = 0;
+  if (s0 > 0.0) key[count++] = Key(first_level_, cell[0], cell[1], cell[2]);  // entered
   // the cells after the first, in the order the segment enters them: at most one
   // boundary per axis, crossed at parameter t
   double t[3];
@@ -353,15 +375,14 @@ void TriangleGrid::WarmUp(const Vec3& from, const Vec3& to, Prefetch* state) con
     t[i] = tk;
     axis[i] = k;
   }
-  std::uint64_t key[Prefetch::kCells] = {kEmpty, kEmpty, kEmpty};
   for (int i = 0; i < crossings; ++i) {
     cell[axis[i]] += b[axis[i]] > a[axis[i]] ? 1 : -1;
-    key[i] = Key(first_level_, cell[0], cell[1], cell[2]);
+    key[count++] = Key(first_level_, cell[0], cell[1], cell[2]);
   }
   if (!std::equal(key, key + Prefetch::kCells, state->key)) {
     // new cells ahead: those still ahead keep their progress
     Prefetch next;
-    for (int i = 0; i < crossings; ++i) {
+    for (int i = 0; i < count; ++i) {
       next.key[i] = key[i];
       for (int j = 0; j < Prefetch::kCells; ++j) {
         if (state->key[j] == key[i]) next.stage[i] = state->stage[j];
@@ -369,9 +390,16 @@ void TriangleGrid::WarmUp(const Vec3& from, const Vec3& to, Prefetch* state) con
     }
     *state = next;
   }
-  for (int i = 0; i < crossings; ++i) {
+  for (int i = 0; i < count; ++i) {
     if (state->stage[i] < 4) AdvanceWarmUp(state->key[i], &state->stage[i]);
   }
+}
+
+std::uint64_t TriangleGrid::CellKey(const Vec3& point) const {
+  const double inv_h = inv_h_[first_level_];
+  return Key(first_level_, static_cast<std::int64_t>(std::floor(point.x() * inv_h)),
+             static_cast<std::int64_t>(std::floor(point.y() * inv_h)),
+             static_cast<std::int64_t>(std::floor(point.z() * inv_h)));
 }
 
 void TriangleGrid::AdvanceWarmUp(std::uint64_t key, int* stage) const {

@@ -160,40 +160,54 @@ TEST(TriangleGrid, WarmUpFollowsEveryCellTheStretchAheadEnters) {
   const auto mesh = MeshOf(MakeIcosphere(IcosphereFrequencyFor(20000), 1.0));
   const auto grid = TriangleGrid::Build(*mesh, 1e-9);
   const double h = grid->cell_size();
-  // the middle of a cell on the surface
+  // the middle of a cell on the surface, and the cells round it
   const Vec3 c = ((Vec3(0.6, 0.6, 0.52).normalized() / h).array().floor() + 0.5).matrix() * h;
-  TriangleGrid::Prefetch state;
-  const auto ahead = [&state] {
-    return static_cast<int>(std::count_if(std::begin(state.key), std::end(state.key),
-                                          [](std::uint64_t k) { return k != ~std::uint64_t{0}; }));
+  const auto at = [&](double x, double y, double z) {
+    return grid->CellKey(c + h * Vec3(x, y, z));
   };
+  constexpr std::uint64_t kNone = ~std::uint64_t{0};
+  TriangleGrid::Prefetch state;
+  const auto keys = [&state] { return std::vector<std::uint64_t>(state.key, state.key + 4); };
   grid->WarmUp(c, c + Vec3(0.3, 0.2, -0.1) * h, &state);  // stays in the cell
-  EXPECT_EQ(ahead(), 0);
+  EXPECT_EQ(keys(), std::vector<std::uint64_t>(4, kNone));
   for (int call = 1; call <= 6; ++call) {  // into the cell at +x: four steps, then done
     grid->WarmUp(c, c + Vec3(0.7, 0.1, 0.0) * h, &state);
-    ASSERT_EQ(ahead(), 1);
+    ASSERT_EQ(keys(), (std::vector<std::uint64_t>{at(1, 0, 0), kNone, kNone, kNone}));
     EXPECT_EQ(state.stage[0], std::min(call, 4));
   }
-  const std::uint64_t plus_x = state.key[0];
   // +x, then +y (the x boundary comes first): the +x cell keeps its progress
   grid->WarmUp(c, c + Vec3(0.7, 0.6, 0.0) * h, &state);
-  ASSERT_EQ(ahead(), 2);
-  EXPECT_EQ(state.key[0], plus_x);
+  EXPECT_EQ(keys(), (std::vector<std::uint64_t>{at(1, 0, 0), at(1, 1, 0), kNone, kNone}));
   EXPECT_EQ(state.stage[0], 4);
   EXPECT_EQ(state.stage[1], 1);
   // +y first, then the diagonal cell: the +x cell is no longer on the way
   grid->WarmUp(c, c + Vec3(0.6, 0.7, 0.0) * h, &state);
-  ASSERT_EQ(ahead(), 2);
-  EXPECT_NE(state.key[0], plus_x);
+  EXPECT_EQ(keys(), (std::vector<std::uint64_t>{at(0, 1, 0), at(1, 1, 0), kNone, kNone}));
   EXPECT_EQ(state.stage[0], 1);
-  EXPECT_EQ(state.stage[1], 2);  // the diagonal cell, entered last both times
-  // through a corner region: three cells
+  EXPECT_EQ(state.stage[1], 2);
+  // backwards, and through a corner region: x, then -y, then z
+  grid->WarmUp(c, c + Vec3(-0.7, 0.1, 0.0) * h, &state);
+  EXPECT_EQ(keys(), (std::vector<std::uint64_t>{at(-1, 0, 0), kNone, kNone, kNone}));
   grid->WarmUp(c, c + Vec3(0.7, -0.6, 0.55) * h, &state);
-  EXPECT_EQ(ahead(), 3);
-  // a stretch that leaves the grid's box is not followed: the state stays
-  const TriangleGrid::Prefetch before = state;
-  grid->WarmUp(c, Vec3(5.0, 0.0, 0.0), &state);
-  EXPECT_TRUE(std::equal(std::begin(before.key), std::end(before.key), std::begin(state.key)));
+  EXPECT_EQ(keys(), (std::vector<std::uint64_t>{at(1, 0, 0), at(1, -1, 0), at(1, -1, 1), kNone}));
+  // a stretch that misses the grid's box, or is not a number: the state stays
+  const std::vector<std::uint64_t> before = keys();
+  grid->WarmUp(Vec3(5.0, 0.0, 0.0), Vec3(5.0, 0.5, 0.0), &state);
+  grid->WarmUp(c, Vec3(std::nan(""), 0.0, 0.0), &state);
+  EXPECT_EQ(keys(), before);
+}
+
+TEST_F(BoxGrid, WarmUpFromOutsideWarmsTheCellWhereTheProxyWillLand) {
+  // coming down onto the top face z = 1 from above the grid's box
+  const double h = grid_->cell_size();
+  TriangleGrid::Prefetch state;
+  grid_->WarmUp(Vec3(0.2, 0.3, 1.0 + 0.3 * h), Vec3(0.2, 0.3, 1.0 - 0.45 * h), &state);
+  const std::uint64_t landing = grid_->CellKey(Vec3(0.2, 0.3, 1.0));
+  EXPECT_EQ(state.key[0], landing);
+  EXPECT_EQ(state.stage[0], 1);
+  // and the cell below it, if the stretch reaches it
+  const std::uint64_t below = grid_->CellKey(Vec3(0.2, 0.3, 1.0 - 0.45 * h));
+  EXPECT_EQ(state.key[1], below == landing ? ~std::uint64_t{0} : below);
 }
 
 TEST(TriangleGrid, RandomSegmentsOnAnIcosphereAgreeWithBruteForce) {

@@ -53,7 +53,9 @@ class TriangleGrid {
 
   // Warms the caches for the cells the segment `from` -> `to` enters after the one it
   // starts in (in the finest occupied level; the segment no longer than a cell, so at
-  // most one step along each axis: three cells), one dependent step per cell and call,
+  // most one step along each axis: three cells; a segment that starts outside the
+  // grid's box is clipped to it, and the cell where it enters is warmed too), one
+  // dependent step per cell and call,
   // so the servo tick that reaches a cell finds its data loaded: the hash slot, then the
   // cell's references, then its triangles (indices, normals, CAD faces), then their
   // vertices. A proxy calls it every tick with the stretch of its path just ahead: every
@@ -61,13 +63,16 @@ class TriangleGrid {
   // cell is in it for a tick or two, too soon for a cell first warmed then (1M
   // triangles, p99: 2.3 us unwarmed, 1.1 us warming the cell at the end, 0.97 us every
   // cell; BENCHMARKS.md). Prefetch instructions only: no waiting on memory, servo-tick
-  // safe. Does nothing unless both ends lie in the grid's box.
+  // safe. Does nothing for a segment that misses the grid's box or is not finite.
   struct Prefetch {
-    static constexpr int kCells = 3;
-    std::uint64_t key[kCells] = {kEmpty, kEmpty, kEmpty};  // the cells after the first
+    static constexpr int kCells = 4;
+    std::uint64_t key[kCells] = {kEmpty, kEmpty, kEmpty, kEmpty};  // CellKey()s, in order
     int stage[kCells] = {};
   };
   void WarmUp(const Vec3& from, const Vec3& to, Prefetch* state) const;
+  // The key of the cell of the finest occupied level that holds `point` (what
+  // Prefetch::key holds).
+  std::uint64_t CellKey(const Vec3& point) const;
 
   double cell_size() const { return h0_; }                       // level 0, model units
   std::uint32_t occupied_levels() const { return level_mask_; }  // bit L: level L has cells
