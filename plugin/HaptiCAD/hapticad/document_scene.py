@@ -102,22 +102,28 @@ def corner_normals(shape, vertices, triangles, face_of):
     length = np.linalg.norm(facet, axis=1, keepdims=True)
     facet = np.divide(facet, length, out=np.zeros_like(facet), where=length > 0)
     normals = np.repeat(facet, 3, axis=0).reshape(-1, 3, 3)
-    cache = {}  # (face, vertex) -> normal
+    order = np.argsort(face_of, kind="stable")
+    bounds = np.searchsorted(face_of[order], np.arange(len(shape.Faces) + 1))
     for index, face in enumerate(shape.Faces):
-        rows = np.nonzero(face_of == index)[0]
+        rows = order[bounds[index]:bounds[index + 1]]
         if len(rows) == 0:
             continue
-        plane = face.Surface.TypeId == "Part::GeomPlane"
-        constant = _normal_at(face, face.CenterOfMass) if plane else None
-        for t in rows:
-            for corner in range(3):
-                v = int(triangles[t, corner])
-                key = (index, v)
-                if key not in cache:
-                    cache[key] = constant if plane else _normal_at(face, App.Vector(*vertices[v]))
-                n = cache[key]
-                if n is not None:
-                    normals[t, corner] = n
+        if face.Surface.TypeId == "Part::GeomPlane":
+            n = _normal_at(face, face.CenterOfMass)
+            if n is not None:
+                normals[rows] = n
+            continue
+        # one B-rep evaluation per vertex of the face, shared by its triangles' corners
+        corners = triangles[rows]
+        unique, inverse = np.unique(corners, return_inverse=True)
+        at = [_normal_at(face, App.Vector(*vertices[v])) for v in unique]
+        known = np.array([n is not None for n in at])
+        values = np.array([n if n is not None else (0.0, 0.0, 0.0) for n in at], dtype=float)
+        inverse = inverse.reshape(corners.shape)
+        use = known[inverse]
+        block = normals[rows]
+        block[use] = values[inverse][use]
+        normals[rows] = block
     # the facet's winding and the face's normal agree on which side is out
     flip = np.einsum("tcj,tj->tc", normals, facet) < 0
     normals[flip] *= -1

@@ -167,6 +167,11 @@ class FeelTaskPanel:
         again and swapped in)."""
         if self.session is None:
             return
+        if geometry:
+            # tessellating again takes a while on a big part: say so now (repaint draws
+            # at once, without running other events in the middle of the edit)
+            self.show_message("The part changed: building it again...")
+            self.message.repaint()
         try:
             applied = self.session.apply_edit(self.doc, geometry)
         except Exception as exc:  # noqa: BLE001 (OCC and core errors too: named, and the loop keeps what it had)
