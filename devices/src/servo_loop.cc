@@ -155,6 +155,11 @@ void ServoLoop::SetRenderer(std::shared_ptr<ForceRenderer> renderer) {
   renderers_.Publish(std::move(renderer));
 }
 
+std::size_t ServoLoop::ReleaseReplacedRenderers() {
+  renderers_.Release();
+  return renderers_.owned();
+}
+
 void ServoLoop::SetMapping(const WorkspaceMapping& mapping) {
   ValidateWorkspaceMapping(mapping);
   mapping_updates_.Write(mapping);

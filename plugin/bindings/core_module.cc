@@ -638,6 +638,8 @@ void DefineDevices(py::module_& m) {
            })
       .def("set_renderer", &ServoLoop::SetRenderer, py::arg("renderer"),
            py::call_guard<py::gil_scoped_release>())
+      .def("release_replaced_renderers", &ServoLoop::ReleaseReplacedRenderers,
+           "Frees the renderers the servo thread has moved past; how many are kept.")
       .def("set_mapping", &ServoLoop::SetMapping, py::arg("mapping"))
       .def_property_readonly("mapping", &ServoLoop::mapping)
       .def("set_clutch", &ServoLoop::SetClutch, py::arg("held"))

@@ -322,6 +322,21 @@ TEST_F(HandOnBox, ASwappedRendererTakesOverWithoutAJolt) {
   EXPECT_NEAR(trace.back().force_n[2], 1.0, 0.05);
 }
 
+TEST_F(HandOnBox, ASwappedOutSceneIsFreedWhenTheControlThreadAsks) {
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 12));
+  const std::weak_ptr<ForceRenderer> first = renderer_;
+  renderer_.reset();
+  loop.BeginTicks();
+  loop.Tick(0.0);
+  loop.SetRenderer(BoxRenderer(limits_, 5.0));
+  EXPECT_FALSE(first.expired());  // the servo thread has not taken the new one yet
+  EXPECT_EQ(loop.ReleaseReplacedRenderers(), 2u);
+  loop.Tick(1e-3, 1e-3);
+  EXPECT_FALSE(first.expired());  // freed on the control thread only
+  EXPECT_EQ(loop.ReleaseReplacedRenderers(), 1u);
+  EXPECT_TRUE(first.expired());
+}
+
 TEST_F(HandOnBox, ASceneThatGrewOverTheProxyPushesTheHandOutOfIt) {
   ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 14));
   double t = 0.0;

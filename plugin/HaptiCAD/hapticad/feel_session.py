@@ -14,6 +14,7 @@ The binding's contract (devices/README.md):
         .start() .stop() .drain_trace() .stats .running .set_mapping(mapping)
     _core.ForceRenderer(scene, surfaces, limits) .set_surfaces(surfaces)
     loop.set_renderer(renderer)            (a new scene, taken at the next tick)
+    loop.release_replaced_renderers()      (frees a scene the loop moved past)
     _core.list_devices(), _core.open_device(path)
 
 Units: SI (m, N) in the loop, mm in the document. No GUI.
@@ -180,7 +181,9 @@ class LiveSession:
             self.device.set_target(np.asarray(target_w, float))
 
     def drain(self):
-        """Trace samples since the last drain (a NumPy structured array)."""
+        """Trace samples since the last drain (a NumPy structured array). Also frees a
+        scene the loop has swapped out (the GUI polls this)."""
+        self.loop.release_replaced_renderers()
         return self.loop.drain_trace()
 
     @property

@@ -131,6 +131,11 @@ class ServoLoop {
   // blocks; a renderer set and not yet taken gives way to a newer one. A property edit
   // needs no new renderer: ForceRenderer::SetSurfaces.
   void SetRenderer(std::shared_ptr<ForceRenderer> renderer);
+  // Control thread: frees the renderers (and their scenes) the servo thread has moved
+  // past. SetRenderer() and Stop() do it too; a control thread that swaps big scenes
+  // calls it from its polling, so an old scene does not wait for the next swap.
+  // Returns how many renderers are still kept (the one in use and any set since).
+  std::size_t ReleaseReplacedRenderers();
   // Replaces the mapping (validated; throws std::invalid_argument). Taken at the next
   // tick; any clutch offset is dropped and the force ramps in again.
   void SetMapping(const WorkspaceMapping& mapping);
