@@ -107,24 +107,25 @@ int GodObjectProxy::CountCrossings(const Vec3& p, const Vec3& u, SweepHit* first
   return -1;
 }
 
-bool GodObjectProxy::PointHit(const Vec3& a, const Vec3& b, SweepHit* hit) const {
+bool GodObjectProxy::Sweep(const Vec3& a, const Vec3& b, double radius, const SweepFloors* floors,
+                           std::int64_t hint, SweepHit* hit) const {
   SweepQuery query;
-  query.bary_tol = config_.bary_tolerance;
-  query.a = a;
-  query.b = b;
-  return grid_ != nullptr ? grid_->FirstHit(query, hit) : tree_->FirstHit(query, hit);
-}
-
-bool GodObjectProxy::FirstHit(const Vec3& a, const Vec3& b, SweepHit* hit,
-                              const SweepFloors* floors, std::int64_t hint) {
-  SweepQuery query;
-  query.radius = config_.radius_m;
+  query.radius = radius;
   query.bary_tol = config_.bary_tolerance;
   query.floors = floors;
   query.hint = hint;
   query.a = a;
   query.b = b;
   return grid_ != nullptr ? grid_->FirstHit(query, hit) : tree_->FirstHit(query, hit);
+}
+
+bool GodObjectProxy::PointHit(const Vec3& a, const Vec3& b, SweepHit* hit) const {
+  return Sweep(a, b, 0.0, nullptr, -1, hit);
+}
+
+bool GodObjectProxy::FirstHit(const Vec3& a, const Vec3& b, SweepHit* hit,
+                              const SweepFloors* floors, std::int64_t hint) {
+  return Sweep(a, b, config_.radius_m, floors, hint, hit);
 }
 
 void GodObjectProxy::Update(const Vec3& goal_l) {

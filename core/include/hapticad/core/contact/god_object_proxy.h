@@ -90,7 +90,10 @@ class GodObjectProxy {
   // The surface crossings of the ray from p along unit u out of the mesh, and the
   // first one in *first; -1 for more than kMaxCrossings.
   int CountCrossings(const Vec3& p, const Vec3& u, SweepHit* first) const;
+  // A point's first contact on a -> b, through the grid or the tree.
   bool PointHit(const Vec3& a, const Vec3& b, SweepHit* hit) const;
+  bool Sweep(const Vec3& a, const Vec3& b, double radius, const SweepFloors* floors,
+             std::int64_t hint, SweepHit* hit) const;
 
   const TriangleMesh& mesh_;
   const TriangleTree* tree_ = nullptr;  // exactly one of the two
