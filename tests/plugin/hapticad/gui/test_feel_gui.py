@@ -156,14 +156,21 @@ class FeelGuiTest(unittest.TestCase):
         # rebuild each
         from hapticad.gui import task_panel_feel
 
-        edits = task_panel_feel.active_panel().edits
+        panel = task_panel_feel.active_panel()
+        edits = panel.edits
         calls = []
         handler = edits.callback
         edits.callback = lambda geometry: (calls.append(geometry), handler(geometry))
+        # what the panel shows while the part is built again
+        shown = []
+        apply_edit = panel.session.apply_edit
+        panel.session.apply_edit = lambda doc, geometry: (shown.append(panel.message.text()),
+                                                          apply_edit(doc, geometry))[1]
         self.box.Placement.Base = App.Vector(0, 0, 2)
         self.doc.recompute()
         wait(0.8)
         self.assertEqual(calls, [True])
+        self.assertIn("building it again", shown[0])
         self.assertAlmostEqual(probe_mm("proxy_m")[2], 25.0, delta=0.05)
         self.box.Height = 24
         self.doc.recompute()
