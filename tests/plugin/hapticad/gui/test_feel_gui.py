@@ -191,6 +191,63 @@ class FeelGuiTest(unittest.TestCase):
         h.process_events()
         h.press_task_button("Close")
 
+    def test_a_slow_recompute_of_two_parts_rebuilds_once_after_it(self):
+        # two parts whose recompute takes 0.3 s each: FreeCAD's progress bar runs Qt's
+        # queued events in the middle; a rebuild then would see one part new, one old
+        parts = []
+        for i in range(2):
+            part = self.doc.addObject("Part::FeaturePython", f"Slow{i}")
+            SlowBox(part, 50.0 * i)
+            parts.append(part)
+        self.doc.recompute()
+        HaptiCAD.make_surface(self.doc, [(parts[0], "Face6"), (parts[1], "Face6")], material="ABS")
+        self.doc.recompute()
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        from hapticad.gui import task_panel_feel
+
+        panel = task_panel_feel.active_panel()
+        self.assertTrue(panel.session is not None, h.widget(QtWidgets.QLabel, "feelMessage").text())
+        wait(0.2)
+        calls = []
+        handler = panel.edits.callback
+
+        def counted(geometry):
+            tops = [task_panel_feel_scene().shapes[p.Name].BoundBox.ZMax for p in parts]
+            calls.append(geometry)
+            handler(geometry)
+            calls.append(tops)
+
+        panel.edits.callback = counted
+        for part in parts:
+            part.Height = 15.0
+            part.touch()
+        self.doc.recompute()
+        wait(0.5)
+        self.assertEqual(len(calls), 2, calls)
+        self.assertTrue(calls[0])
+        tops = [task_panel_feel_scene().shapes[p.Name].BoundBox.ZMax for p in parts]
+        self.assertEqual(tops, [15.0, 15.0])
+        h.widget(QtWidgets.QPushButton, "feelStop").click()
+        h.process_events()
+        h.press_task_button("Close")
+
+
+class SlowBox:
+    """A FeaturePython box 10 x 10 x Height mm at x = `x`, whose recompute takes 0.3 s."""
+
+    def __init__(self, obj, x):
+        obj.addProperty("App::PropertyLength", "Height").Height = 10.0
+        obj.addProperty("App::PropertyFloat", "X").X = x
+        obj.Proxy = self
+
+    def execute(self, obj):
+        import Part
+
+        time.sleep(0.3)
+        obj.Shape = Part.makeBox(10.0, 10.0, float(obj.Height), App.Vector(obj.X, 0.0, 0.0))
+
+
 def task_panel_feel_scene():
     """The document scene the open Feel panel's session feels."""
     from hapticad.gui import task_panel_feel
