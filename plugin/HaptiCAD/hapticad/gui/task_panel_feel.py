@@ -175,8 +175,8 @@ class FeelTaskPanel:
         try:
             applied = self.session.apply_edit(self.doc, geometry)
         except Exception as exc:  # noqa: BLE001 (OCC and core errors too: named, and the loop keeps what it had)
-            kept = "the part" if geometry else "the surfaces"
-            self.show_message(f"{exc} (still feeling {kept} as it was)", error=True)
+            kept = "the part as it was" if geometry else "the surfaces as they were"
+            self.show_message(f"{exc} (still feeling {kept})", error=True)
             return
         self.doc_scene = self.session.doc_scene
         if self.steering is not None:

@@ -125,6 +125,20 @@ class FeelGuiTest(unittest.TestCase):
         wait(0.3)
         self.assertIn("PatternCurve", h.widget(QtWidgets.QLabel, "feelMessage").text())
         self.assertTrue(stop.isEnabled())
+        # an error of another kind (OCC's, the core's) is shown too, not lost to Qt
+        from hapticad.gui import task_panel_feel
+
+        session = task_panel_feel.active_panel().session
+
+        def fails(doc, geometry):
+            raise RuntimeError("the kernel said no")
+
+        session.apply_edit = fails
+        surface.Stiffness = 0.04
+        self.doc.recompute()
+        wait(0.3)
+        self.assertIn("the kernel said no", h.widget(QtWidgets.QLabel, "feelMessage").text())
+        self.assertTrue(stop.isEnabled())
         stop.click()
         h.process_events()
         # once stopped, edits no longer reach the closed session
