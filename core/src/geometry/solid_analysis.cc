@@ -34,8 +34,12 @@ SolidAnalysis AnalyseSolids(const TriangleMesh& mesh) {
   }
   for (std::uint32_t t = 0; t < mesh.num_triangles(); ++t) {
     const auto& tri = mesh.triangle(t);
-    // the mesh is manifold (OpenMesh took every triangle), so Surface_mesh takes them too
-    sm.add_face(Mesh::Vertex_index(tri[0]), Mesh::Vertex_index(tri[1]), Mesh::Vertex_index(tri[2]));
+    // OpenMesh took every triangle, so Surface_mesh should too; if it refuses one (a
+    // vertex it cannot join), the test below would miss that triangle: no answer then
+    if (sm.add_face(Mesh::Vertex_index(tri[0]), Mesh::Vertex_index(tri[1]),
+                    Mesh::Vertex_index(tri[2])) == Mesh::null_face()) {
+      return out;
+    }
   }
   out.self_intersecting = CGAL::Polygon_mesh_processing::does_self_intersect(sm);
   out.bounds_solids = out.closed && !out.self_intersecting;

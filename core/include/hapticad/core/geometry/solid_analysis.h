@@ -22,9 +22,10 @@ namespace hapticad {
 
 struct SolidAnalysis {
   bool closed = false;  // every edge has two triangles
-  bool self_intersecting =
-      false;  // some two triangles cross or overlap (not just share an edge or vertex)
-  bool bounds_solids = false;  // closed and not self-intersecting
+  // Some two triangles cross or overlap (not just share an edge or vertex).
+  bool self_intersecting = false;
+  // Closed and found not self-intersecting (false when the test could not be run).
+  bool bounds_solids = false;
   // When bounds_solids: the box round each connected piece of the surface; a point in
   // none of them is outside every solid.
   std::vector<Vec3> piece_lo;
