@@ -208,7 +208,8 @@ int Run(const Options& o) {
   ForceRenderer ahead(scene, table, RenderLimits{1e6, 400.0}, options);  // --warm-ahead's
   RenderOutput ahead_out;
   ahead.Render(above, &ahead_out);
-  std::vector<double> tick_us, contact_us;
+  std::vector<double> tick_us, contact_us, walked_us;
+  std::size_t walked = 0;  // contact ticks where a sweep walked the grid or the tree
   tick_us.reserve(path.size());
   contact_us.reserve(path.size());
   std::vector<Vec3> proxies(path.size());
@@ -221,6 +222,8 @@ int Run(const Options& o) {
         ahead.Render(path[j], &ahead_out);
       }
     }
+    const std::uint64_t sweeps = renderer.proxy().sweeps();
+    const std::uint64_t settled = renderer.proxy().settled_sweeps();
     const auto a = std::chrono::steady_clock::now();
     renderer.Render(path[k], &out);
     const auto b = std::chrono::steady_clock::now();
@@ -230,6 +233,10 @@ int Run(const Options& o) {
     if (out.flags & kContact) {
       ++contact;
       contact_us.push_back(us);
+      if (renderer.proxy().sweeps() - sweeps != renderer.proxy().settled_sweeps() - settled) {
+        ++walked;
+        walked_us.push_back(us);
+      }
     }
     max_force = std::max(max_force, out.force_w.norm());
   }
@@ -285,6 +292,12 @@ int Run(const Options& o) {
               contact_us.empty() ? 0.0 : *std::max_element(contact_us.begin(), contact_us.end()));
   std::printf("  \"all_tick_us\": {\"p50\": %.3f, \"p99\": %.3f},\n", Percentile(tick_us, 0.5),
               Percentile(tick_us, 0.99));
+  std::printf("  \"walked_ticks\": %zu,\n", walked);
+  std::printf("  \"walked_tick_us\": {\"p50\": %.3f, \"p99\": %.3f},\n",
+              Percentile(walked_us, 0.5), Percentile(walked_us, 0.99));
+  std::printf("  \"settled_sweeps\": %llu,\n",
+              static_cast<unsigned long long>(renderer.proxy().settled_sweeps()));
+  std::printf("  \"sweeps\": %llu,\n", static_cast<unsigned long long>(renderer.proxy().sweeps()));
   std::printf("  \"pop_through\": %zu,\n", pop_through);
   std::printf("  \"max_far_side_nm\": %.3f,\n", max_far_side * 1e9);
   std::printf("  \"max_penetration_mm\": %.9f,\n", max_penetration * 1e3);

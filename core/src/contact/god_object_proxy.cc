@@ -116,7 +116,20 @@ bool GodObjectProxy::Sweep(const Vec3& a, const Vec3& b, double radius, const Sw
   query.hint = hint;
   query.a = a;
   query.b = b;
-  return grid_ != nullptr ? grid_->FirstHit(query, hit) : tree_->FirstHit(query, hit);
+  SweepSearch search(mesh_, query);
+  ++sweeps_;
+  if (config_.pieces != nullptr && config_.pieces->Settle(query, &search)) {
+    ++settled_sweeps_;
+  } else {
+    if (grid_ != nullptr) {
+      grid_->Search(&search);
+    } else {
+      tree_->Search(&search);
+    }
+  }
+  if (!search.found()) return false;
+  search.Report(hit);
+  return true;
 }
 
 bool GodObjectProxy::PointHit(const Vec3& a, const Vec3& b, SweepHit* hit) const {
@@ -138,6 +151,7 @@ void GodObjectProxy::Update(const Vec3& goal_l) {
   // the sweeps after the first stay on the constraint planes: whatever lies r and half
   // the offset below them cannot be touched
   SweepFloors floors;
+  std::int64_t hint = last_triangle_;  // the last contact: the likeliest to be hit
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
     const Vec3 d = target - position_;
     if (d.squaredNorm() <= slack * slack) break;
@@ -147,7 +161,7 @@ void GodObjectProxy::Update(const Vec3& goal_l) {
       floors.offset[i] = constraints_.plane(i).offset - config_.radius_m - 0.5 * offset;
     }
     SweepHit hit;
-    if (!FirstHit(position_, target, &hit, &floors, iteration == 0 ? last_triangle_ : -1)) {
+    if (!FirstHit(position_, target, &hit, &floors, hint)) {
       position_ = target;
       break;
     }
@@ -160,13 +174,21 @@ void GodObjectProxy::Update(const Vec3& goal_l) {
     s = std::clamp(s, 0.0, hit.s);
     position_ += s * d;
     if (constraints_.full()) break;
+    hint = hit.triangle;
     constraints_.Add({n, plane_offset, hit.triangle}, slack);
     target = constraints_.Project(goal_l, position_, slack);
   }
   last_triangle_ = in_contact() ? constraints_.plane(0).triangle : -1;
-  // Load the cells the proxy is heading for while they are still a few ticks away (at
-  // 0.05-0.1 mm a tick on a 1M-triangle model a new cell comes every 5 ticks or so):
-  // every cell on the next 0.75 cell of its path.
+  // Load what the next ticks will read: on a convex piece the triangles round the
+  // contact, else the grid's cells the proxy is heading for.
+  if (config_.pieces != nullptr && in_contact() &&
+      config_.pieces->piece(constraints_.plane(0).triangle) != ConvexPieces::kNone) {
+    config_.pieces->WarmUp(constraints_.plane(0).triangle);
+    return;
+  }
+  // The cells ahead, while they are still a few ticks away (at 0.05-0.1 mm a tick on a
+  // 1M-triangle model a new cell comes every 5 ticks or so): every cell on the next
+  // 0.75 cell of its path.
   const Vec3 step = position_ - start;
   const double length = step.norm();
   if (grid_ != nullptr && length > 0.0) {

@@ -268,16 +268,21 @@ struct CellWalk {
 bool TriangleGrid::FirstHit(const SweepQuery& query, SweepHit* hit,
                             std::size_t* cells_visited) const {
   SweepSearch search(*mesh_, query);
-  const SegmentRay ray(query.a, query.b - query.a);  // the divisions once per query
-  double s0 = 0.0;  // where the segment enters the box around every triangle
-  if (!table_.empty() && IntersectSegmentBox(ray, 1.0, lo_.data(), hi_.data(), 0.0, &s0) &&
-      s0 <= search.best_s()) {
-    const std::size_t cells = Walk(ray, s0, &search);
-    if (cells_visited != nullptr) *cells_visited += cells;
-  }
+  const std::size_t cells = Search(&search);
+  if (cells_visited != nullptr) *cells_visited += cells;
   if (!search.found()) return false;
   search.Report(hit);
   return true;
+}
+
+std::size_t TriangleGrid::Search(SweepSearch* search) const {
+  const SegmentRay ray(search->a(), search->d());  // the divisions once per query
+  double s0 = 0.0;  // where the segment enters the box around every triangle
+  if (!table_.empty() && IntersectSegmentBox(ray, 1.0, lo_.data(), hi_.data(), 0.0, &s0) &&
+      s0 <= search->best_s()) {
+    return Walk(ray, s0, search);
+  }
+  return 0;
 }
 
 // The levels' walks merged in order of s, so the nearest contact, whatever its level,
@@ -417,19 +422,13 @@ void TriangleGrid::AdvanceWarmUp(std::uint64_t key, int* stage) const {
     case 2:
       if (const Cell* c = Find(key)) {
         for (std::uint32_t i = 0; i < c->count; ++i) {
-          const std::uint32_t t = refs_[c->begin + i];
-          __builtin_prefetch(&mesh_->triangle(t));
-          __builtin_prefetch(&mesh_->face_normal(t));
-          __builtin_prefetch(mesh_->cad_faces() + t);
+          mesh_->PrefetchTriangle(refs_[c->begin + i]);
         }
       }
       break;
     case 3:
       if (const Cell* c = Find(key)) {
-        for (std::uint32_t i = 0; i < c->count; ++i) {
-          const auto& t = mesh_->triangle(refs_[c->begin + i]);
-          for (int k = 0; k < 3; ++k) __builtin_prefetch(&mesh_->vertex(t[k]));
-        }
+        for (std::uint32_t i = 0; i < c->count; ++i) mesh_->PrefetchVertices(refs_[c->begin + i]);
       }
       break;
     default:

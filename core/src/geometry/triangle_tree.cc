@@ -191,11 +191,15 @@ std::unique_ptr<TriangleTree> TriangleTree::Build(const TriangleMesh& mesh, doub
 
 bool TriangleTree::FirstHit(const SweepQuery& query, SweepHit* hit) const {
   SweepSearch search(*impl_->mesh, query);
-  FirstHitTraversal traversal(&search, impl_->pad);
-  impl_->tree.traversal_with_priority(query.a, traversal);
+  Search(&search);
   if (!search.found()) return false;
   search.Report(hit);
   return true;
+}
+
+void TriangleTree::Search(SweepSearch* search) const {
+  FirstHitTraversal traversal(search, impl_->pad);
+  impl_->tree.traversal_with_priority(search->a(), traversal);
 }
 
 double TriangleTree::pad() const { return impl_->pad; }

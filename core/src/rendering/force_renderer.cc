@@ -26,6 +26,7 @@ ProxyConfig MakeProxyConfig(const HapticScene& scene, const ContactOptions& opti
   config.radius_m = options.proxy_radius_m;
   config.surface_offset_m = scene.surface_offset_m();
   config.solids = &scene.BuildSolids();
+  if (options.convex_pieces) config.pieces = &scene.BuildPieces();
   return config;
 }
 

@@ -76,6 +76,16 @@ const TriangleGrid& HapticScene::BuildGrid() const {
   return *grid_;
 }
 
+// Convex within 1e-13 of the scene: a ten-thousandth of the resting offset
+// (surface_offset_m), some thousand rounding steps of the local coordinates.
+const ConvexPieces& HapticScene::BuildPieces() const {
+  std::call_once(pieces_once_, [this] {
+    pieces_ = ConvexPieces::Build(*mesh_, 1e-13 * size_m_);
+    pieces_built_.store(pieces_.get(), std::memory_order_release);
+  });
+  return *pieces_;
+}
+
 const SolidAnalysis& HapticScene::BuildSolids() const {
   std::call_once(solids_once_, [this] { solids_ = AnalyseSolids(*mesh_); });
   return solids_;
@@ -88,6 +98,9 @@ std::size_t HapticScene::CalcMemoryBytes() const {
   }
   if (const TriangleGrid* grid = grid_built_.load(std::memory_order_acquire)) {
     bytes += grid->CalcMemoryBytes();
+  }
+  if (const ConvexPieces* pieces = pieces_built_.load(std::memory_order_acquire)) {
+    bytes += pieces->CalcMemoryBytes();
   }
   return bytes;
 }

@@ -11,17 +11,20 @@
 // repeats until the sweep is free or three planes bind (a concave corner), so the proxy
 // can never pass through anything, however far the device moves in one tick.
 //
-// Temporal coherence: each tick's first sweep tests the last tick's contact triangle
-// before walking the tree or the grid, and every sweep carries the planes it cannot cross (the
-// constraints found so far, and the plane of the best contact so far): triangles under
-// them are skipped without a contact test. A proxy sliding over a dense convex surface then tests a
-// handful of triangles per tick instead of every one within its radius.
+// Temporal coherence: each sweep tests the last contact's triangle first (the last
+// tick's, then the one the sweep before found), and on a convex piece of the surface
+// (ProxyConfig::pieces) that contact, or one round it, usually proves itself the first
+// (or the sweep provably free) without walking the tree or the grid at all: the tick then
+// costs the same on a thousand triangles as on a million. Elsewhere every sweep carries
+// the planes it cannot cross (the constraints found so far, and the plane of the best
+// contact so far): triangles under them are skipped without a contact test.
 //
 // Frame and units: the scene's local frame, metres. Update() is servo-tick safe: no
 // allocation, no lock, bounded work (at most kMaxIterations sweeps).
 #pragma once
 
 #include "hapticad/core/contact/constraint_set.h"
+#include "hapticad/core/geometry/convex_pieces.h"
 #include "hapticad/core/geometry/solid_analysis.h"
 #include "hapticad/core/geometry/triangle_grid.h"
 #include "hapticad/core/geometry/triangle_mesh.h"
@@ -37,6 +40,11 @@ struct ProxyConfig {
   // Whether (and where) the surface bounds solids, for ResetOutside; must outlive the
   // proxy. Null: it never moves the proxy.
   const SolidAnalysis* solids = nullptr;
+  // The mesh's convex pieces (convex_pieces.h), built on the same mesh; must outlive
+  // the proxy. On them a sweep is answered from the triangles round the last contact,
+  // and the tree or the grid is walked only when that proves nothing. Null: every sweep
+  // walks.
+  const ConvexPieces* pieces = nullptr;
 };
 
 class GodObjectProxy {
@@ -78,6 +86,10 @@ class GodObjectProxy {
   bool FirstHit(const Vec3& a, const Vec3& b, SweepHit* hit, const SweepFloors* floors = nullptr,
                 std::int64_t hint = -1);
 
+  // Sweeps run so far, and how many of them the convex pieces settled without a walk.
+  std::uint64_t sweeps() const { return sweeps_; }
+  std::uint64_t settled_sweeps() const { return settled_sweeps_; }
+
   const Vec3& position() const { return position_; }
   const ConstraintSet& constraints() const { return constraints_; }
   bool in_contact() const { return constraints_.count() > 0; }
@@ -103,6 +115,8 @@ class GodObjectProxy {
   ConstraintSet constraints_;
   std::int64_t last_triangle_ = -1;  // the last tick's first contact: tested first
   TriangleGrid::Prefetch warm_up_;   // the cell ahead of the proxy, being loaded
+  mutable std::uint64_t sweeps_ = 0;
+  mutable std::uint64_t settled_sweeps_ = 0;
 };
 
 }  // namespace hapticad

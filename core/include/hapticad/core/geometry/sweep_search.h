@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // SweepSearch: the state of one first-contact query while candidate triangles are fed
-// to it, whatever chooses them (TriangleTree's walk, NeighbourhoodCache's scan).
+// to it, whatever chooses them (ConvexPieces' look round the last contact, then, if that
+// proves nothing, TriangleTree's or TriangleGrid's walk).
 //
 // It keeps the nearest contact so far and what that proves: hits beyond it are not
 // looked for (`best_s`), and triangles entirely under a floor are skipped without a
@@ -75,6 +76,9 @@ class SweepSearch {
   // No contact is looked for beyond this (the nearest so far, or s_max).
   double best_s() const { return best_s_; }
   bool found() const { return found_; }
+  // The nearest contact so far (meaningful when found()).
+  std::uint32_t best_triangle() const { return best_triangle_; }
+  const Vec3& best_normal() const { return best_normal_; }
   void Report(SweepHit* hit) const {
     hit->triangle = best_triangle_;
     hit->s = best_s_;

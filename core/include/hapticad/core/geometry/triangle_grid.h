@@ -50,6 +50,9 @@ class TriangleGrid {
   // contact or its exit. Servo-tick safe. `cells_visited`, if given, is increased by the
   // number of cells looked up (for tests and benchmarks).
   bool FirstHit(const SweepQuery& query, SweepHit* hit, std::size_t* cells_visited = nullptr) const;
+  // Feeds a point query's search every triangle that could beat its nearest contact so
+  // far: its answer is then the first contact. Returns the cells looked up. Servo-tick safe.
+  std::size_t Search(SweepSearch* search) const;
 
   // Warms the caches for the cells the segment `from` -> `to` enters after the one it
   // starts in (in the finest occupied level; the segment no longer than a cell, so at

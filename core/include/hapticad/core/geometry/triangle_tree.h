@@ -13,6 +13,7 @@
 #include <memory>
 
 #include "hapticad/core/geometry/sweep_query.h"
+#include "hapticad/core/geometry/sweep_search.h"
 #include "hapticad/core/geometry/triangle_mesh.h"
 #include "hapticad/core/vec3.h"
 
@@ -28,6 +29,9 @@ class TriangleTree {
   // First contact of the query. Triangles are two-sided. Servo-tick safe: no
   // allocation, no lock.
   bool FirstHit(const SweepQuery& query, SweepHit* hit) const;
+  // Feeds the search every triangle that could beat its nearest contact so far: its
+  // answer is then the first contact. Servo-tick safe.
+  void Search(SweepSearch* search) const;
 
   // How much every node box is grown (model units).
   double pad() const;

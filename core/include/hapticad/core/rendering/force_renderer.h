@@ -60,6 +60,10 @@ struct RenderLimits {
 struct ContactOptions {
   double proxy_radius_m = 0.0;  // 0: a point proxy; > 0: a sphere (a fingertip) of this radius
   bool force_shading = true;    // needs corner normals in the scene; without them, no effect
+  // On the convex pieces of the scene, answer the proxy's sweeps from its last contact
+  // (convex_pieces.h): the same contacts, at a cost that does not grow with the model.
+  // Off: every sweep walks the grid or the tree (to compare).
+  bool convex_pieces = true;
 };
 
 struct RenderInput {

@@ -23,6 +23,7 @@
 #include <memory>
 #include <mutex>
 
+#include "hapticad/core/geometry/convex_pieces.h"
 #include "hapticad/core/geometry/mesh_refine.h"
 #include "hapticad/core/geometry/mesh_repair.h"
 #include "hapticad/core/geometry/solid_analysis.h"
@@ -67,6 +68,9 @@ class HapticScene {
   // Whether the surface bounds solids, and its pieces (solid_analysis.h): what a proxy
   // restarting inside a part needs. Built like the structures, by the first call.
   const SolidAnalysis& BuildSolids() const;
+  // The pieces that bound convex solids (convex_pieces.h), where a proxy's sweep is
+  // answered from its last contact. Built like the structures, by the first call.
+  const ConvexPieces& BuildPieces() const;
 
   const Vec3& origin_w() const { return origin_w_; }
   double metres_per_unit() const { return metres_per_unit_; }
@@ -99,11 +103,14 @@ class HapticScene {
   mutable std::once_flag tree_once_;
   mutable std::once_flag grid_once_;
   mutable std::once_flag solids_once_;
+  mutable std::once_flag pieces_once_;
   mutable SolidAnalysis solids_;
   mutable std::unique_ptr<TriangleTree> tree_;
   mutable std::unique_ptr<TriangleGrid> grid_;
+  mutable std::unique_ptr<ConvexPieces> pieces_;
   mutable std::atomic<const TriangleTree*> tree_built_{nullptr};
   mutable std::atomic<const TriangleGrid*> grid_built_{nullptr};
+  mutable std::atomic<const ConvexPieces*> pieces_built_{nullptr};
   Vec3 origin_w_ = Vec3::Zero();
   double metres_per_unit_ = 1.0;
   double size_m_ = 0.0;

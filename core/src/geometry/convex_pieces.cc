@@ -1,0 +1,366 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// HOT PATH: ConvexPieces::Settle runs on the servo thread every tick (Build does not).
+#include "hapticad/core/geometry/convex_pieces.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+namespace hapticad {
+namespace {
+
+std::uint32_t Root(std::vector<std::uint32_t>& parent, std::uint32_t v) {
+  while (parent[v] != v) v = parent[v] = parent[parent[v]];
+  return v;
+}
+
+}  // namespace
+
+std::unique_ptr<ConvexPieces> ConvexPieces::Build(const TriangleMesh& mesh, double tolerance) {
+  if (!(std::isfinite(tolerance) && tolerance >= 0.0)) {
+    throw std::invalid_argument("ConvexPieces: the tolerance must be finite and >= 0");
+  }
+  std::unique_ptr<ConvexPieces> out(new ConvexPieces());
+  out->mesh_ = &mesh;
+  out->tolerance_ = tolerance;
+  const auto n = static_cast<std::uint32_t>(mesh.num_triangles());
+  const auto num_vertices = static_cast<std::uint32_t>(mesh.num_vertices());
+
+  // pieces: triangles joined through shared vertices
+  std::vector<std::uint32_t> parent(num_vertices);
+  std::iota(parent.begin(), parent.end(), 0u);
+  for (std::uint32_t t = 0; t < n; ++t) {
+    const auto& tri = mesh.triangle(t);
+    for (int k = 1; k < 3; ++k) {
+      const std::uint32_t a = Root(parent, tri[0]);
+      const std::uint32_t b = Root(parent, tri[k]);
+      if (a != b) parent[b] = a;
+    }
+  }
+  struct Piece {
+    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+    Vec3 hi = Vec3::Constant(-std::numeric_limits<double>::infinity());
+    std::int64_t vertices = 0;
+    std::int64_t edges = 0;
+    std::int64_t faces = 0;
+    bool convex = true;
+  };
+  std::vector<Piece> pieces;
+  std::vector<std::uint32_t> piece_of_vertex(num_vertices, kNone);  // roots first
+  out->vertex_corner_.assign(num_vertices, kNone);
+  for (std::uint32_t t = 0; t < n; ++t) {
+    for (const std::uint32_t v : mesh.triangle(t)) out->vertex_corner_[v] = t;
+  }
+  for (std::uint32_t v = 0; v < num_vertices; ++v) {
+    if (out->vertex_corner_[v] == kNone) continue;  // in no triangle
+    std::uint32_t& root = piece_of_vertex[Root(parent, v)];
+    if (root == kNone) {
+      root = static_cast<std::uint32_t>(pieces.size());
+      pieces.emplace_back();
+    }
+    piece_of_vertex[v] = root;
+    Piece& piece = pieces[root];
+    piece.lo = piece.lo.cwiseMin(mesh.vertex(v));
+    piece.hi = piece.hi.cwiseMax(mesh.vertex(v));
+    ++piece.vertices;
+  }
+  parent = {};
+  const auto piece_of = [&](std::uint32_t t) -> Piece& {
+    return pieces[piece_of_vertex[mesh.triangle(t)[0]]];
+  };
+  for (std::uint32_t t = 0; t < n; ++t) {
+    Piece& piece = piece_of(t);
+    ++piece.faces;
+    if (mesh.face_normal(t).squaredNorm() == 0.0) piece.convex = false;  // degenerate
+  }
+
+  // every edge shared by two triangles, and convex or flat from the winding's side; the
+  // triangles across each edge
+  out->records_.assign(n, Record{{kNone, kNone, kNone}, kNone});
+  const auto set_across = [&](std::uint32_t t, std::uint32_t from, std::uint32_t other) {
+    const auto& tri = mesh.triangle(t);
+    out->records_[t].across[tri[0] == from ? 0 : (tri[1] == from ? 1 : 2)] = other;
+  };
+  const OpenMeshTriMesh& om = mesh.openmesh();
+  for (const auto e : om.edges()) {
+    const auto h0 = om.halfedge_handle(e, 0);
+    const auto h1 = om.halfedge_handle(e, 1);
+    const auto a = static_cast<std::uint32_t>(om.from_vertex_handle(h0).idx());
+    const auto b = static_cast<std::uint32_t>(om.to_vertex_handle(h0).idx());
+    Piece& piece = pieces[piece_of_vertex[a]];
+    ++piece.edges;
+    if (om.is_boundary(h0) || om.is_boundary(h1)) {
+      piece.convex = false;
+      continue;
+    }
+    const auto f0 = static_cast<std::uint32_t>(om.face_handle(h0).idx());
+    const auto f1 = static_cast<std::uint32_t>(om.face_handle(h1).idx());
+    set_across(f0, a, f1);  // h0 runs a -> b in f0
+    set_across(f1, b, f0);
+    const Vec3& w0 = mesh.vertex(static_cast<std::uint32_t>(
+        om.to_vertex_handle(om.next_halfedge_handle(h0)).idx()));
+    const Vec3& w1 = mesh.vertex(static_cast<std::uint32_t>(
+        om.to_vertex_handle(om.next_halfedge_handle(h1)).idx()));
+    const Vec3& p = mesh.vertex(a);
+    if (mesh.face_normal(f0).dot(w1 - p) > tolerance ||
+        mesh.face_normal(f1).dot(w0 - p) > tolerance) {
+      piece.convex = false;
+    }
+  }
+  for (std::uint32_t v = 0; v < num_vertices; ++v) {
+    if (piece_of_vertex[v] == kNone || !pieces[piece_of_vertex[v]].convex) continue;
+    if (!out->TurnsOnce(v)) pieces[piece_of_vertex[v]].convex = false;
+  }
+
+  // number the convex pieces, and give each the room between it and every other piece
+  std::vector<std::uint32_t> convex_index(pieces.size(), kNone);
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    Piece& piece = pieces[i];
+    if (piece.vertices - piece.edges + piece.faces != 2) piece.convex = false;
+    if (!piece.convex) continue;
+    convex_index[i] = static_cast<std::uint32_t>(out->clear_lo_.size());
+    double gap = std::numeric_limits<double>::infinity();  // to the nearest other box
+    for (std::size_t j = 0; j < pieces.size(); ++j) {
+      if (j == i) continue;
+      const Piece& other = pieces[j];
+      double apart = -std::numeric_limits<double>::infinity();  // boxes apart along an axis
+      for (int k = 0; k < 3; ++k) {
+        apart = std::max({apart, other.lo[k] - piece.hi[k], piece.lo[k] - other.hi[k]});
+      }
+      gap = std::min(gap, apart);
+    }
+    if (gap > 0.0) {
+      out->clear_lo_.push_back(piece.lo - Vec3::Constant(gap));
+      out->clear_hi_.push_back(piece.hi + Vec3::Constant(gap));
+    } else {  // overlapping boxes: no room at all
+      out->clear_lo_.push_back(Vec3::Constant(std::numeric_limits<double>::infinity()));
+      out->clear_hi_.push_back(Vec3::Constant(-std::numeric_limits<double>::infinity()));
+    }
+  }
+  for (std::uint32_t t = 0; t < n; ++t) {
+    Record& record = out->records_[t];
+    record.piece = convex_index[piece_of_vertex[mesh.triangle(t)[0]]];
+    if (record.piece == kNone) record.across = {kNone, kNone, kNone};
+  }
+  for (std::uint32_t v = 0; v < num_vertices; ++v) {
+    const std::uint32_t t = out->vertex_corner_[v];
+    if (t != kNone && out->records_[t].piece == kNone) out->vertex_corner_[v] = kNone;
+  }
+  return out;
+}
+
+bool ConvexPieces::TurnsOnce(std::uint32_t v) const {
+  const std::uint32_t first = vertex_corner_[v];
+  Vec3 m = Vec3::Zero();
+  if (!ForEachAround(v, first, [&](std::uint32_t t) { m += mesh_->face_normal(t); })) return false;
+  const double length = m.norm();
+  if (!(length > 0.0)) return false;
+  m /= length;
+  // Signs of triple products with m are those of the sides projected across m.
+  const Vec3& p = mesh_->vertex(v);
+  const auto sides = [&](std::uint32_t t, Vec3* e1, Vec3* e2) {
+    const auto& tri = mesh_->triangle(t);
+    const int k = tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
+    *e1 = mesh_->vertex(tri[(k + 1) % 3]) - p;
+    *e2 = mesh_->vertex(tri[(k + 2) % 3]) - p;
+  };
+  Vec3 e1, e2;
+  sides(first, &e1, &e2);
+  const Vec3 inside = e1 + e2;  // inside the first corner, which is narrower than a half turn
+  bool ok = true;
+  int turns = 0;
+  ForEachAround(v, first, [&](std::uint32_t t) {
+    sides(t, &e1, &e2);
+    // every corner counter-clockwise, so narrower than a half turn: two signs decide
+    const double turn = e1.cross(e2).dot(m);
+    const double after_first = e1.cross(inside).dot(m);
+    const double before_second = inside.cross(e2).dot(m);
+    const double scale = 1e-12 * (e1.squaredNorm() + e2.squaredNorm() + inside.squaredNorm());
+    ok = ok && mesh_->face_normal(t).dot(m) >= 0.05 && turn > scale &&
+         // along a side of a corner: the count would be ambiguous
+         !(std::abs(after_first) <= scale && e1.dot(inside) > 0.0) &&
+         !(std::abs(before_second) <= scale && e2.dot(inside) > 0.0);
+    turns += after_first > 0.0 && before_second > 0.0;
+  });
+  return ok && turns == 1;
+}
+
+bool ConvexPieces::Settle(const SweepQuery& query, SweepSearch* search) const {
+  if (query.hint < 0 || static_cast<std::size_t>(query.hint) >= records_.size()) return false;
+  const auto hint = static_cast<std::uint32_t>(query.hint);
+  const std::uint32_t piece = records_[hint].piece;
+  if (piece == kNone) return false;
+  // nothing but the piece within the sweep's reach (false for a non-finite query too)
+  const Vec3 r = Vec3::Constant(query.radius);
+  const Vec3 lo = query.a.cwiseMin(query.b) - r;
+  const Vec3 hi = query.a.cwiseMax(query.b) + r;
+  if (!((lo.array() > clear_lo_[piece].array()).all() &&
+        (hi.array() < clear_hi_[piece].array()).all())) {
+    return false;
+  }
+  if (search->found()) {
+    if (IsFirstContact(query, *search, piece, false)) return true;  // on the hint's face
+  } else if (IsClear(query, hint)) {
+    return true;
+  }
+  // The contact moved on, or lies on an edge or at a vertex: walk toward it, then prove
+  // it; failing that, test every triangle round it.
+  if (Walk(search->found() ? search->best_triangle() : hint, query, piece, search)) return true;
+  if (search->found() && IsFirstContact(query, *search, piece, true)) return true;
+  if (SearchAround(search->found() ? search->best_triangle() : hint, query, piece, search)) {
+    return true;
+  }
+  return search->found() && IsFirstContact(query, *search, piece, true);
+}
+
+bool ConvexPieces::IsClear(const SweepQuery& query, std::uint32_t hint) const {
+  const Vec3& n = mesh_->face_normal(hint);
+  const std::uint32_t corner = mesh_->triangle(hint)[0];
+  const Vec3& v0 = mesh_->vertex(corner);
+  if (n.dot(query.a - v0) >= query.radius && n.dot(query.b - v0) >= query.radius) return true;
+  if (query.floors != nullptr) {
+    for (int i = 0; i < query.floors->count; ++i) {
+      if (BoundsPiece(query.floors->normal[i], query.floors->offset[i], corner)) return true;
+    }
+  }
+  return false;
+}
+
+bool ConvexPieces::IsFirstContact(const SweepQuery& query, const SweepSearch& search,
+                                  std::uint32_t piece, bool climb) const {
+  const std::uint32_t t = search.best_triangle();
+  if (records_[t].piece != piece) return false;
+  const Vec3& n = search.best_normal();
+  const Vec3 d = query.b - query.a;
+  if (!(n.dot(d) < 0.0)) return false;  // moving into the solid there
+  // Before the contact the centre was more than its radius above the plane through the
+  // contact point across n: if no vertex is above that plane, it touched nothing.
+  // A face's own plane is such a plane (from outside: the winding's side).
+  const Vec3& face = mesh_->face_normal(t);
+  if (n == face) return true;
+  if (!climb || !(n.dot(face) > 0.0)) return false;  // not asked, or from inside the solid
+  const Vec3 contact = query.a + search.best_s() * d - query.radius * n;
+  return BoundsPiece(n, n.dot(contact), mesh_->triangle(t)[0]);
+}
+
+template <class Visit>
+bool ConvexPieces::ForEachAround(std::uint32_t v, std::uint32_t t, Visit&& visit) const {
+  std::uint32_t u = t;
+  for (int i = 0; i < kMaxFan; ++i) {
+    visit(u);
+    // across the edge from v to the next corner: the next triangle round v
+    const auto& tri = mesh_->triangle(u);
+    u = records_[u].across[tri[0] == v ? 0 : (tri[1] == v ? 1 : 2)];
+    if (u == t) return true;
+    if (u == kNone) return false;
+  }
+  return false;
+}
+
+bool ConvexPieces::BoundsPiece(const Vec3& normal, double offset, std::uint32_t start) const {
+  // on a convex polytope a vertex with no higher neighbour is the highest of all
+  const double top = offset + tolerance_;
+  std::uint32_t v = start;
+  double height = normal.dot(mesh_->vertex(v));
+  if (height > top) return false;
+  for (int step = 0; step < kMaxClimb; ++step) {
+    std::uint32_t next = v;
+    bool above = false;  // one vertex above the plane is enough
+    const bool whole = ForEachAround(v, vertex_corner_[v], [&](std::uint32_t u) {
+      for (const std::uint32_t w : mesh_->triangle(u)) {
+        const double h = normal.dot(mesh_->vertex(w));
+        above = above || h > top;
+        if (h > height) {
+          height = h;
+          next = w;
+        }
+      }
+    });
+    if (above || !whole) return false;
+    if (next == v) return true;
+    v = next;
+  }
+  return false;
+}
+
+int ConvexPieces::ExitEdge(std::uint32_t t, const SweepQuery& query) const {
+  // where the sweep reaches its radius above t's plane (or ends), in t's barycentrics
+  const auto& tri = mesh_->triangle(t);
+  const Vec3& n = mesh_->face_normal(t);
+  const Vec3& v0 = mesh_->vertex(tri[0]);
+  const Vec3 d = query.b - query.a;
+  const double h0 = n.dot(query.a - v0);
+  const double dh = n.dot(d);
+  const double s = dh < 0.0 ? std::clamp((h0 - query.radius) / -dh, 0.0, 1.0) : 0.0;
+  const Vec3 w = query.a + s * d - v0;
+  const Vec3 e1 = mesh_->vertex(tri[1]) - v0;
+  const Vec3 e2 = mesh_->vertex(tri[2]) - v0;
+  const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
+  const double det = d11 * d22 - d12 * d12;
+  if (!(det > 0.0)) return -1;
+  const double b1 = (d22 * w.dot(e1) - d12 * w.dot(e2)) / det;
+  const double b2 = (d11 * w.dot(e2) - d12 * w.dot(e1)) / det;
+  const double b0 = 1.0 - b1 - b2;
+  // edge k lies opposite corner k + 2
+  if (b0 >= 0.0 && b1 >= 0.0 && b2 >= 0.0) return -1;
+  return b2 <= b0 ? (b2 <= b1 ? 0 : 2) : (b0 <= b1 ? 1 : 2);
+}
+
+bool ConvexPieces::IsProvenOnFace(std::uint32_t u, const SweepQuery& query, std::uint32_t piece,
+                                  SweepSearch* search) const {
+  search->Test(u);
+  return search->found() && search->best_triangle() == u &&
+         IsFirstContact(query, *search, piece, false);
+}
+
+bool ConvexPieces::Walk(std::uint32_t t, const SweepQuery& query, std::uint32_t piece,
+                        SweepSearch* search) const {
+  std::uint32_t from = kNone;
+  for (int step = 0; step < kMaxWalk; ++step) {
+    const int k = ExitEdge(t, query);
+    if (k < 0) return false;  // it meets the surface over t
+    const std::uint32_t next = records_[t].across[k];
+    if (next == from) return false;  // back again: over the edge between the two
+    from = t;
+    t = next;
+    if (IsProvenOnFace(t, query, piece, search)) return true;
+  }
+  return false;
+}
+
+bool ConvexPieces::SearchAround(std::uint32_t t, const SweepQuery& query, std::uint32_t piece,
+                                SweepSearch* search) const {
+  for (const std::uint32_t v : mesh_->triangle(t)) {
+    bool done = false;
+    ForEachAround(v, t, [&](std::uint32_t u) {
+      if (!done && u != t) done = IsProvenOnFace(u, query, piece, search);
+    });
+    if (done) return true;
+  }
+  return false;
+}
+
+void ConvexPieces::WarmUp(std::uint32_t t) const {
+  if (t >= records_.size() || records_[t].piece == kNone) return;
+  for (const std::uint32_t u : records_[t].across) {
+    __builtin_prefetch(&records_[u]);
+    mesh_->PrefetchTriangle(u);
+  }
+  // (in a steady slide these were prefetched as the last contact's second ring)
+  for (const std::uint32_t u : records_[t].across) {
+    mesh_->PrefetchVertices(u);
+    for (const std::uint32_t w : records_[u].across) {
+      __builtin_prefetch(&records_[w]);
+      mesh_->PrefetchTriangle(w);
+    }
+  }
+}
+
+std::size_t ConvexPieces::CalcMemoryBytes() const {
+  return records_.capacity() * sizeof(Record) + vertex_corner_.capacity() * sizeof(std::uint32_t) +
+         2 * clear_lo_.capacity() * sizeof(Vec3);
+}
+
+}  // namespace hapticad
