@@ -62,6 +62,25 @@ class BenchMeshCommandTest(unittest.TestCase):
         self.assertEqual(done.returncode, 2)
         self.assertIn("--warm-ahead", done.stderr)
 
+    def test_convex_pieces_settle_the_stroke_and_change_nothing_felt(self):
+        # the icosphere is one convex piece: with it every contact tick is settled from
+        # the last contact; without it every sweep walks, and the stroke feels the same
+        for proxy in ("point", "sphere:1"):
+            on = json.loads(bench("--icosphere", "9680", "--ticks", "2000", "--proxy", proxy).stdout)
+            off = json.loads(bench("--icosphere", "9680", "--ticks", "2000", "--proxy", proxy,
+                                   "--convex-pieces", "off").stdout)
+            self.assertEqual((on["convex_pieces"], off["convex_pieces"]), (1, 0))
+            self.assertEqual(off["settled_sweeps"], 0)
+            self.assertEqual(off["walked_ticks"], off["contact_ticks"])
+            self.assertGreater(on["settled_sweeps"], 0.99 * on["sweeps"])
+            self.assertLessEqual(on["walked_ticks"], 1)  # the first touch, from no contact
+            self.assertAlmostEqual(on["max_force_n"], off["max_force_n"], places=12)
+            self.assertEqual(on["contact_ticks"], off["contact_ticks"])
+            self.assertEqual(on["pop_through"], 0)
+        done = bench("--icosphere", "9680", "--convex-pieces", "maybe")
+        self.assertEqual(done.returncode, 2)
+        self.assertIn("--convex-pieces", done.stderr)
+
     def test_a_mesh_file(self):
         with tempfile.TemporaryDirectory() as tmp:
             path = os.path.join(tmp, "tet.off")

@@ -2,13 +2,17 @@
 // hapticad-bench-mesh: the contact engine's speed and correctness on one mesh, as JSON.
 //
 //   hapticad-bench-mesh (MESH_FILE | --icosphere TRIANGLES) [--radius MM] [--ticks N]
-//       [--proxy point|sphere:R_MM] [--units mm|m] [--seed S] [--warm-ahead N] [--json]
+//       [--proxy point|sphere:R_MM] [--units mm|m] [--seed S] [--convex-pieces on|off]
+//       [--warm-ahead N] [--json]
 //
 // Workload (issue 4): the device strokes over the surface along a seeded path at
 // 50-100 mm/s, pressed 1-3 mm below it (for meshes under 50 mm in bounding radius,
 // 1-3 % of it), k = 0.4 N/mm, mu 0.3/0.2, 1 kHz. The path is computed before the timed
 // loop; each tick is timed on its own (steady clock, about 20 ns of overhead included).
 // One thread: the tick never waits on anything else.
+//
+// --convex-pieces off: every sweep walks the grid or the tree (ContactOptions::convex_pieces),
+// to compare; `walked_ticks` counts the contact ticks where a sweep walked either way.
 //
 // --warm-ahead N (a diagnostic, not a mode to quote): before each block of N ticks, a
 // second renderer that has followed the same inputs runs that block untimed, so the
@@ -41,14 +45,16 @@ struct Options {
   bool metres = false;
   unsigned seed = 1;
   long long warm_ahead = 0;  // 0: off
+  bool convex_pieces = true;
 };
 
 [[noreturn]] void Usage(const std::string& problem) {
   std::cerr << "hapticad-bench-mesh: " << problem << "\n"
             << "usage: hapticad-bench-mesh (MESH_FILE | --icosphere TRIANGLES) [--radius MM] "
                "[--ticks N]\n"
-               "           [--proxy point|sphere:R_MM] [--units mm|m] [--seed S] [--warm-ahead N] "
-               "[--json]\n";
+               "           [--proxy point|sphere:R_MM] [--units mm|m] [--seed S] "
+               "[--convex-pieces on|off]\n"
+               "           [--warm-ahead N] [--json]\n";
   std::exit(2);
 }
 
@@ -83,7 +89,11 @@ Options Parse(int argc, char** argv) {
       o.warm_ahead = static_cast<long long>(Number(next(), "--warm-ahead"));
     else if (a == "--json")
       continue;
-    else if (a == "--units") {
+    else if (a == "--convex-pieces") {
+      const std::string v = next();
+      if (v != "on" && v != "off") Usage("--convex-pieces must be on or off");
+      o.convex_pieces = v == "on";
+    } else if (a == "--units") {
       const std::string u = next();
       if (u != "mm" && u != "m") Usage("--units must be mm or m");
       o.metres = u == "m";
@@ -143,6 +153,8 @@ int Run(const Options& o) {
   } else {
     scene->BuildTree();
   }
+  const auto t_structure = std::chrono::steady_clock::now();
+  if (o.convex_pieces) scene->BuildPieces();
   const auto t3 = std::chrono::steady_clock::now();
   // whether the surface bounds solids (a reset inside a part): the renderer asks for it
   scene->BuildSolids();
@@ -150,6 +162,7 @@ int Run(const Options& o) {
   const double repair_ms = Ms(t1 - t0).count();
   const double build_ms = Ms(t3 - t1).count();
   const double mesh_ms = Ms(t2 - t1).count();
+  const double pieces_ms = Ms(t3 - t_structure).count();
   const std::size_t triangles = scene->mesh().num_triangles();
   // before the stroke set-up below builds the tree for its closest points
   const std::size_t bytes = scene->CalcMemoryBytes();
@@ -163,6 +176,7 @@ int Run(const Options& o) {
   // no force cap: a spike must show, not be clipped
   ContactOptions options;
   options.proxy_radius_m = o.sphere_radius_mm * 1e-3;
+  options.convex_pieces = o.convex_pieces;
   ForceRenderer renderer(scene, table, RenderLimits{1e6, 400.0}, options);
 
   // the path, before any timing: a seeded walk over the surface, re-projected each tick
@@ -208,7 +222,7 @@ int Run(const Options& o) {
   ForceRenderer ahead(scene, table, RenderLimits{1e6, 400.0}, options);  // --warm-ahead's
   RenderOutput ahead_out;
   ahead.Render(above, &ahead_out);
-  std::vector<double> tick_us, contact_us, walked_us;
+  std::vector<double> tick_us, contact_us;
   std::size_t walked = 0;  // contact ticks where a sweep walked the grid or the tree
   tick_us.reserve(path.size());
   contact_us.reserve(path.size());
@@ -233,10 +247,7 @@ int Run(const Options& o) {
     if (out.flags & kContact) {
       ++contact;
       contact_us.push_back(us);
-      if (renderer.proxy().sweeps() - sweeps != renderer.proxy().settled_sweeps() - settled) {
-        ++walked;
-        walked_us.push_back(us);
-      }
+      walked += renderer.proxy().sweeps() - sweeps != renderer.proxy().settled_sweeps() - settled;
     }
     max_force = std::max(max_force, out.force_w.norm());
   }
@@ -278,6 +289,9 @@ int Run(const Options& o) {
   std::printf("  \"triangles\": %zu,\n", triangles);
   std::printf("  \"build_ms\": %.3f,\n", build_ms);
   std::printf("  \"mesh_ms\": %.3f,\n", mesh_ms);
+  std::printf("  \"pieces_ms\": %.3f,\n", pieces_ms);
+  std::printf("  \"convex_pieces\": %zu,\n",
+              o.convex_pieces ? scene->BuildPieces().num_pieces() : std::size_t{0});
   std::printf("  \"structure\": \"%s\",\n", point ? "grid" : "tree");
   std::printf("  \"repair_ms\": %.3f,\n", repair_ms);
   std::printf("  \"solids_ms\": %.3f,\n", solids_ms);
@@ -293,8 +307,6 @@ int Run(const Options& o) {
   std::printf("  \"all_tick_us\": {\"p50\": %.3f, \"p99\": %.3f},\n", Percentile(tick_us, 0.5),
               Percentile(tick_us, 0.99));
   std::printf("  \"walked_ticks\": %zu,\n", walked);
-  std::printf("  \"walked_tick_us\": {\"p50\": %.3f, \"p99\": %.3f},\n",
-              Percentile(walked_us, 0.5), Percentile(walked_us, 0.99));
   std::printf("  \"settled_sweeps\": %llu,\n",
               static_cast<unsigned long long>(renderer.proxy().settled_sweeps()));
   std::printf("  \"sweeps\": %llu,\n", static_cast<unsigned long long>(renderer.proxy().sweeps()));

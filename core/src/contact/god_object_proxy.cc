@@ -178,7 +178,8 @@ void GodObjectProxy::Update(const Vec3& goal_l) {
     constraints_.Add({n, plane_offset, hit.triangle}, slack);
     target = constraints_.Project(goal_l, position_, slack);
   }
-  last_triangle_ = in_contact() ? constraints_.plane(0).triangle : -1;
+  // kept through a lift-off: a sweep that stays above it is proven free (ConvexPieces)
+  if (in_contact()) last_triangle_ = constraints_.plane(0).triangle;
   // Load what the next ticks will read: on a convex piece the triangles round the
   // contact, else the grid's cells the proxy is heading for.
   if (config_.pieces != nullptr && in_contact() &&

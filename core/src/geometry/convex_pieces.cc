@@ -42,9 +42,6 @@ std::unique_ptr<ConvexPieces> ConvexPieces::Build(const TriangleMesh& mesh, doub
   struct Piece {
     Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
     Vec3 hi = Vec3::Constant(-std::numeric_limits<double>::infinity());
-    std::int64_t vertices = 0;
-    std::int64_t edges = 0;
-    std::int64_t faces = 0;
     bool convex = true;
   };
   std::vector<Piece> pieces;
@@ -64,17 +61,8 @@ std::unique_ptr<ConvexPieces> ConvexPieces::Build(const TriangleMesh& mesh, doub
     Piece& piece = pieces[root];
     piece.lo = piece.lo.cwiseMin(mesh.vertex(v));
     piece.hi = piece.hi.cwiseMax(mesh.vertex(v));
-    ++piece.vertices;
   }
   parent = {};
-  const auto piece_of = [&](std::uint32_t t) -> Piece& {
-    return pieces[piece_of_vertex[mesh.triangle(t)[0]]];
-  };
-  for (std::uint32_t t = 0; t < n; ++t) {
-    Piece& piece = piece_of(t);
-    ++piece.faces;
-    if (mesh.face_normal(t).squaredNorm() == 0.0) piece.convex = false;  // degenerate
-  }
 
   // every edge shared by two triangles, and convex or flat from the winding's side; the
   // triangles across each edge
@@ -90,19 +78,16 @@ std::unique_ptr<ConvexPieces> ConvexPieces::Build(const TriangleMesh& mesh, doub
     const auto a = static_cast<std::uint32_t>(om.from_vertex_handle(h0).idx());
     const auto b = static_cast<std::uint32_t>(om.to_vertex_handle(h0).idx());
     Piece& piece = pieces[piece_of_vertex[a]];
-    ++piece.edges;
-    if (om.is_boundary(h0) || om.is_boundary(h1)) {
-      piece.convex = false;
-      continue;
-    }
+    // (an open edge leaves the fans of its ends open: TurnsOnce refuses them)
+    if (om.is_boundary(h0) || om.is_boundary(h1)) continue;
     const auto f0 = static_cast<std::uint32_t>(om.face_handle(h0).idx());
     const auto f1 = static_cast<std::uint32_t>(om.face_handle(h1).idx());
     set_across(f0, a, f1);  // h0 runs a -> b in f0
     set_across(f1, b, f0);
-    const Vec3& w0 = mesh.vertex(static_cast<std::uint32_t>(
-        om.to_vertex_handle(om.next_halfedge_handle(h0)).idx()));
-    const Vec3& w1 = mesh.vertex(static_cast<std::uint32_t>(
-        om.to_vertex_handle(om.next_halfedge_handle(h1)).idx()));
+    const Vec3& w0 = mesh.vertex(
+        static_cast<std::uint32_t>(om.to_vertex_handle(om.next_halfedge_handle(h0)).idx()));
+    const Vec3& w1 = mesh.vertex(
+        static_cast<std::uint32_t>(om.to_vertex_handle(om.next_halfedge_handle(h1)).idx()));
     const Vec3& p = mesh.vertex(a);
     if (mesh.face_normal(f0).dot(w1 - p) > tolerance ||
         mesh.face_normal(f1).dot(w0 - p) > tolerance) {
@@ -114,30 +99,40 @@ std::unique_ptr<ConvexPieces> ConvexPieces::Build(const TriangleMesh& mesh, doub
     if (!out->TurnsOnce(v)) pieces[piece_of_vertex[v]].convex = false;
   }
 
-  // number the convex pieces, and give each the room between it and every other piece
+  // Number the convex pieces, and give each its room: the box that holds no other
+  // piece's box, bounded on one side for each other piece (the side along which their
+  // boxes lie furthest apart, or overlap least).
   std::vector<std::uint32_t> convex_index(pieces.size(), kNone);
   for (std::size_t i = 0; i < pieces.size(); ++i) {
-    Piece& piece = pieces[i];
-    if (piece.vertices - piece.edges + piece.faces != 2) piece.convex = false;
+    const Piece& piece = pieces[i];
     if (!piece.convex) continue;
     convex_index[i] = static_cast<std::uint32_t>(out->clear_lo_.size());
-    double gap = std::numeric_limits<double>::infinity();  // to the nearest other box
+    Vec3 lo = Vec3::Constant(-std::numeric_limits<double>::infinity());
+    Vec3 hi = Vec3::Constant(std::numeric_limits<double>::infinity());
     for (std::size_t j = 0; j < pieces.size(); ++j) {
       if (j == i) continue;
       const Piece& other = pieces[j];
-      double apart = -std::numeric_limits<double>::infinity();  // boxes apart along an axis
+      int axis = 0;
+      bool above = true;  // the other piece's box lies above this one's along the axis
+      double apart = -std::numeric_limits<double>::infinity();
       for (int k = 0; k < 3; ++k) {
-        apart = std::max({apart, other.lo[k] - piece.hi[k], piece.lo[k] - other.hi[k]});
+        for (const bool up : {true, false}) {
+          const double gap = up ? other.lo[k] - piece.hi[k] : piece.lo[k] - other.hi[k];
+          if (gap > apart) {
+            apart = gap;
+            axis = k;
+            above = up;
+          }
+        }
       }
-      gap = std::min(gap, apart);
+      if (above) {
+        hi[axis] = std::min(hi[axis], other.lo[axis]);
+      } else {
+        lo[axis] = std::max(lo[axis], other.hi[axis]);
+      }
     }
-    if (gap > 0.0) {
-      out->clear_lo_.push_back(piece.lo - Vec3::Constant(gap));
-      out->clear_hi_.push_back(piece.hi + Vec3::Constant(gap));
-    } else {  // overlapping boxes: no room at all
-      out->clear_lo_.push_back(Vec3::Constant(std::numeric_limits<double>::infinity()));
-      out->clear_hi_.push_back(Vec3::Constant(-std::numeric_limits<double>::infinity()));
-    }
+    out->clear_lo_.push_back(lo);
+    out->clear_hi_.push_back(hi);
   }
   for (std::uint32_t t = 0; t < n; ++t) {
     Record& record = out->records_[t];

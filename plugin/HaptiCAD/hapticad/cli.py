@@ -173,7 +173,8 @@ def build_parser():
     bench = sub.add_parser(
         "bench-mesh", help="time the contact engine on a mesh file or an icosphere (JSON)",
         description="hapticad bench-mesh (MESH_FILE | --icosphere TRIANGLES) [--radius MM] "
-                    "[--proxy point|sphere:R_MM] [--ticks N] [--units mm|m] [--seed S] --json. "
+                    "[--proxy point|sphere:R_MM] [--ticks N] [--units mm|m] [--seed S] "
+                    "[--convex-pieces on|off] --json. "
                     "Strokes the surface along a seeded path at 50-100 mm/s, 1-3 mm deep, "
                     "k = 0.4 N/mm, mu 0.3/0.2, and prints build time, tick percentiles, bytes "
                     "per triangle, contact ticks, pop-through and the largest force.")

@@ -1,32 +1,43 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hapticad/core/contact/god_object_proxy.h"
 
+#include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 
 #include <gtest/gtest.h>
 
 #include "alloc_counter.h"
+#include "hapticad/core/geometry/icosphere.h"
 #include "test_meshes.h"
 
 namespace hapticad {
 namespace {
 
-// Every test runs twice: the point proxy sweeping CGAL's tree, then the grid (a sphere
-// always sweeps the tree).
-class ProxyOnBox : public ::testing::TestWithParam<bool> {
+// Every test runs four times: the point proxy sweeping CGAL's tree, then the grid (a
+// sphere always sweeps the tree), each without and with the convex pieces settling
+// what they can (most of these scenes are a box: a convex piece).
+enum class Sweeps { kTree, kGrid, kTreeAndPieces, kGridAndPieces };
+
+class ProxyOnBox : public ::testing::TestWithParam<Sweeps> {
  protected:
   void Make(const TriangleSoup& s, double radius = 0.0) {
     proxy_.reset();
     mesh_ = TriangleMesh::Build(s.vertices, s.triangles, s.cad_faces, s.corner_normals);
     tree_ = TriangleTree::Build(*mesh_, 1e-12);
     grid_ = TriangleGrid::Build(*mesh_, 1e-12);
+    pieces_ = ConvexPieces::Build(*mesh_, 1e-15);
     solids_ = AnalyseSolids(*mesh_);
     ProxyConfig config;
     config.surface_offset_m = kOffset;
     config.radius_m = radius;
     config.solids = &solids_;
-    if (GetParam() && radius == 0.0) {
+    const bool grid = GetParam() == Sweeps::kGrid || GetParam() == Sweeps::kGridAndPieces;
+    if (GetParam() == Sweeps::kTreeAndPieces || GetParam() == Sweeps::kGridAndPieces) {
+      config.pieces = pieces_.get();
+    }
+    if (grid && radius == 0.0) {
       proxy_ = std::make_unique<GodObjectProxy>(*mesh_, *grid_, config);
     } else {
       proxy_ = std::make_unique<GodObjectProxy>(*mesh_, *tree_, config);
@@ -36,12 +47,72 @@ class ProxyOnBox : public ::testing::TestWithParam<bool> {
   std::unique_ptr<TriangleMesh> mesh_;
   std::unique_ptr<TriangleTree> tree_;
   std::unique_ptr<TriangleGrid> grid_;
+  std::unique_ptr<ConvexPieces> pieces_;
   SolidAnalysis solids_;
   std::unique_ptr<GodObjectProxy> proxy_;
 };
 
-INSTANTIATE_TEST_SUITE_P(TreeAndGrid, ProxyOnBox, ::testing::Values(false, true),
-                         [](const auto& test) { return test.param ? "Grid" : "Tree"; });
+std::string SweepsName(const ::testing::TestParamInfo<Sweeps>& info) {
+  static const char* const kNames[] = {"Tree", "Grid", "TreeAndPieces", "GridAndPieces"};
+  return kNames[static_cast<int>(info.param)];
+}
+
+INSTANTIATE_TEST_SUITE_P(TreeAndGrid, ProxyOnBox,
+                         ::testing::Values(Sweeps::kTree, Sweeps::kGrid, Sweeps::kTreeAndPieces,
+                                           Sweeps::kGridAndPieces),
+                         SweepsName);
+
+// The same device path felt twice, through the tree alone and with the convex pieces:
+// every tick the same proxy, and most sweeps settled without a walk. A wandering,
+// pressing path over a box (flat faces, edges, corners) and over a ball.
+TEST(GodObjectProxy, ConvexPiecesSettleMostSweepsAndChangeNoTick) {
+  const TriangleSoup box = testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05));
+  const TriangleSoup ball = MakeIcosphere(20, 0.05);
+  for (const TriangleSoup* soup : {&box, &ball}) {
+    const auto mesh =
+        TriangleMesh::Build(soup->vertices, soup->triangles, soup->cad_faces, soup->corner_normals);
+    const auto tree = TriangleTree::Build(*mesh, 1e-12);
+    const auto pieces = ConvexPieces::Build(*mesh, 1e-15);
+    ASSERT_EQ(pieces->num_pieces(), 1u);
+    for (const double r : {0.0, 0.002}) {
+      ProxyConfig config;
+      config.surface_offset_m = 1e-10;
+      config.radius_m = r;
+      GodObjectProxy walked(*mesh, *tree, config);
+      config.pieces = pieces.get();
+      GodObjectProxy settled(*mesh, *tree, config);
+      std::mt19937 rng(99);
+      std::normal_distribution<double> turn(0.0, 0.02);
+      Vec3 direction = Vec3(1, 2, 3).normalized();
+      walked.Reset(0.08 * direction);
+      settled.Reset(0.08 * direction);
+      int touching = 0;
+      for (int i = 0; i < 20000; ++i) {
+        // wander over the surface (across the box's edges and corners), 1-3 mm deep
+        direction = (direction + Vec3(turn(rng), turn(rng), turn(rng))).normalized();
+        Vec3 on = 0.05 * direction;
+        Vec3 out = direction;
+        if (soup == &box) {
+          int k = 0;
+          direction.cwiseAbs().maxCoeff(&k);
+          on = 0.05 / std::abs(direction[k]) * direction;
+          out = Vec3::Zero();
+          out[k] = direction[k] > 0 ? 1.0 : -1.0;
+        }
+        const double depth = 0.002 + 0.001 * std::sin(i * 0.01);
+        const Vec3 pressed = on - (depth - r) * out;
+        walked.Update(pressed);
+        settled.Update(pressed);
+        ASSERT_LT((walked.position() - settled.position()).norm(), 1e-12) << i;
+        ASSERT_EQ(walked.in_contact(), settled.in_contact()) << i;
+        touching += settled.in_contact();
+      }
+      EXPECT_GT(touching, 19000);
+      EXPECT_EQ(walked.settled_sweeps(), 0u);
+      EXPECT_GT(settled.settled_sweeps(), 0.99 * settled.sweeps()) << r;
+    }
+  }
+}
 
 TEST(GodObjectProxy, TheGridAnswersAPointProxyOnly) {
   const TriangleSoup s = testing::MakeBoxSoup(Vec3(-1, -1, -1), Vec3(1, 1, 1));

@@ -114,6 +114,45 @@ TEST(ContactExtremes, TheSameSceneInMmMAndFarAwayGivesTheSameForces) {
   }
 }
 
+TEST(ContactExtremes, ConvexPiecesChangeNoContactAndSettleTheStroke) {
+  // The ball is one convex piece: its sweeps are settled from the last contact, and every
+  // tick has the proxy and the constraint planes the walk through the tree or the grid
+  // gives, and so the force. A contact on an edge or at a vertex is made by every
+  // triangle there at once, and the two searches may name different ones: then only the
+  // force shading, which blends the named triangle's corner normals, may differ.
+  const auto scene = HapticScene::Build(MakeIcosphere(30, 50.0, Vec3::Zero(), true), 1e-3);
+  const std::vector<RenderInput> path = Stroke(*scene, 3000, 13);
+  for (double radius : {0.0, 0.001}) {
+    ContactOptions options;
+    options.proxy_radius_m = radius;
+    ForceRenderer settled(scene, Rubbery(*scene), Unclamped(), options);
+    options.convex_pieces = false;
+    ForceRenderer walked(scene, Rubbery(*scene), Unclamped(), options);
+    RenderOutput a, b;
+    int named_alike = 0;
+    for (std::size_t k = 0; k < path.size(); ++k) {
+      settled.Render(path[k], &a);
+      walked.Render(path[k], &b);
+      ASSERT_LE((a.proxy_w - b.proxy_w).norm(), 1e-15) << "radius " << radius << " tick " << k;
+      const ConstraintSet& ca = settled.proxy().constraints();
+      const ConstraintSet& cb = walked.proxy().constraints();
+      ASSERT_EQ(ca.count(), cb.count()) << k;
+      bool alike = true;
+      for (int i = 0; i < ca.count(); ++i) {
+        ASSERT_LE((ca.plane(i).normal - cb.plane(i).normal).norm(), 1e-12) << k;
+        ASSERT_NEAR(ca.plane(i).offset, cb.plane(i).offset, 1e-15) << k;
+        alike = alike && ca.plane(i).triangle == cb.plane(i).triangle;
+      }
+      if (!alike) continue;
+      ++named_alike;
+      ASSERT_LE((a.force_w - b.force_w).norm(), 1e-12) << "radius " << radius << " tick " << k;
+    }
+    EXPECT_GT(named_alike, 2950) << radius;
+    EXPECT_EQ(walked.proxy().settled_sweeps(), 0u);
+    EXPECT_GT(settled.proxy().settled_sweeps(), 0.99 * settled.proxy().sweeps()) << radius;
+  }
+}
+
 // Thin things at 2 m/s: the device moves 2 mm per tick straight through them.
 void ExpectNoPopThrough(const TriangleSoup& soup, double thickness_m, double radius) {
   const auto scene = HapticScene::Build(soup, 1e-3);

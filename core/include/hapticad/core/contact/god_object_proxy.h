@@ -113,7 +113,7 @@ class GodObjectProxy {
   ProxyConfig config_;
   Vec3 position_ = Vec3::Zero();
   ConstraintSet constraints_;
-  std::int64_t last_triangle_ = -1;  // the last tick's first contact: tested first
+  std::int64_t last_triangle_ = -1;  // the last first contact (since Reset): tested first
   TriangleGrid::Prefetch warm_up_;   // the cell ahead of the proxy, being loaded
   mutable std::uint64_t sweeps_ = 0;
   mutable std::uint64_t settled_sweeps_ = 0;

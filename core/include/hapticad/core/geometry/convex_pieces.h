@@ -20,12 +20,13 @@
 // cannot prove it leaves to the tree or the grid, which continue the same SweepSearch.
 //
 // Which pieces qualify (Build, O(n)): a connected piece that is closed, has every edge
-// convex or flat seen from the side its triangles' winding faces (within `tolerance`),
-// a single turn of triangles round every vertex and Euler characteristic 2. Such a
-// surface bounds a convex solid (van Heijenoort's theorem: a closed, locally convex
-// immersed surface is convex), with the winding's normals pointing out of it. A piece
-// near another (their boxes closer than the other's box) still qualifies, but only
-// sweeps whose reach stays in the gap between their boxes are settled here.
+// convex or flat seen from the side its triangles' winding faces (within `tolerance`)
+// and a single turn of triangles round every vertex: it is locally convex everywhere,
+// so it bounds a convex solid (van Heijenoort's theorem: a closed, locally convex
+// immersed surface is convex), with the winding's normals pointing out of it. (A
+// degenerate triangle, with no normal, fails the turn test.) Other pieces, convex or
+// not, bound a piece's room: only sweeps whose reach stays in the box that holds none
+// of their boxes are settled here.
 //
 // Units and frame: the mesh's. Build allocates (before the loop); Settle is servo-tick
 // safe: no allocation, no lock, bounded work.
@@ -79,8 +80,8 @@ class ConvexPieces {
   // The convex piece triangle t belongs to, or kNone.
   std::uint32_t piece(std::uint32_t t) const { return records_[t].piece; }
   std::size_t num_pieces() const { return clear_lo_.size(); }
-  // The open box round piece p that holds no other piece's triangle (empty when
-  // another piece's box overlaps p's).
+  // Piece p's room: the open box that holds no other piece's box (infinite along the
+  // axes where nothing else lies; it may cut into p's own box where another's overlaps it).
   const Vec3& clear_lo(std::uint32_t p) const { return clear_lo_[p]; }
   const Vec3& clear_hi(std::uint32_t p) const { return clear_hi_[p]; }
   double tolerance() const { return tolerance_; }

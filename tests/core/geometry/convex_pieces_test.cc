@@ -1,0 +1,420 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "hapticad/core/geometry/convex_pieces.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include "alloc_counter.h"
+#include "hapticad/core/geometry/icosphere.h"
+#include "test_meshes.h"
+
+namespace hapticad {
+namespace {
+
+constexpr double kTolerance = 1e-13;
+
+std::unique_ptr<TriangleMesh> MeshOf(const TriangleSoup& s) {
+  return TriangleMesh::Build(s.vertices, s.triangles, s.cad_faces, s.corner_normals);
+}
+
+TriangleSoup Join(const TriangleSoup& a, const TriangleSoup& b) {
+  TriangleSoup out = a;
+  const auto base = static_cast<std::int32_t>(a.vertices.size());
+  out.vertices.insert(out.vertices.end(), b.vertices.begin(), b.vertices.end());
+  for (const auto& t : b.triangles)
+    out.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  out.cad_faces.insert(out.cad_faces.end(), b.cad_faces.begin(), b.cad_faces.end());
+  return out;
+}
+
+// A cone over a pentagram, closed by a fan from the centre of its base: every edge is
+// convex or flat, the Euler characteristic is 2, but the triangles wrap twice round the
+// apex and round the centre. It bounds no convex solid.
+TriangleSoup MakePentagramCone() {
+  TriangleSoup soup;
+  soup.vertices.push_back(Vec3(0, 0, 1));  // apex
+  soup.vertices.push_back(Vec3(0, 0, 0));  // centre of the base
+  for (int i = 0; i < 5; ++i) {
+    const double a = i * 4.0 * M_PI / 5.0;  // every second corner of a pentagon
+    soup.vertices.push_back(Vec3(std::cos(a), std::sin(a), 0));
+  }
+  for (int i = 0; i < 5; ++i) {
+    const int p = 2 + i, q = 2 + (i + 1) % 5;
+    soup.triangles.push_back({0, p, q});
+    soup.triangles.push_back({1, q, p});
+    soup.cad_faces.push_back(0);
+    soup.cad_faces.push_back(1);
+  }
+  return soup;
+}
+
+// What every triangle tested gives: the answer a settled sweep must equal.
+struct Answer {
+  bool found = false;
+  double s = 0.0;
+  Vec3 normal = Vec3::Zero();
+  std::uint32_t triangle = 0;
+};
+
+Answer Exhaustive(const TriangleMesh& mesh, SweepQuery query) {
+  query.hint = -1;
+  SweepSearch search(mesh, query);
+  for (std::uint32_t t = 0; t < mesh.num_triangles(); ++t) search.Test(t);
+  Answer out;
+  out.found = search.found();
+  out.s = search.best_s();
+  out.normal = search.best_normal();
+  out.triangle = search.best_triangle();
+  return out;
+}
+
+// Settles the query if it can; if so, checks the answer against every triangle.
+// Returns whether it settled.
+bool SettlesRightly(const TriangleMesh& mesh, const ConvexPieces& pieces, const SweepQuery& query,
+                    int i) {
+  SweepSearch search(mesh, query);
+  if (!pieces.Settle(query, &search)) return false;
+  const Answer truth = Exhaustive(mesh, query);
+  EXPECT_EQ(search.found(), truth.found) << i;
+  if (search.found() && truth.found) {
+    // the same contact; on a shared edge or vertex another triangle may report it
+    const double length = (query.b - query.a).norm();
+    EXPECT_NEAR(search.best_s() * length, truth.s * length, 1e-12) << i;
+    if (search.best_triangle() != truth.triangle) {
+      SweepQuery alone = query;
+      alone.hint = search.best_triangle();
+      SweepSearch only(mesh, alone);
+      EXPECT_TRUE(only.found()) << i;
+      EXPECT_NEAR(only.best_s() * length, truth.s * length, 1e-12) << i;
+    } else {
+      EXPECT_LT((search.best_normal() - truth.normal).norm(), 1e-9) << i;
+    }
+  }
+  return true;
+}
+
+// Proxy-like sweeps over a convex piece: from just off a random triangle (or a little
+// further, or a little inside), toward a goal a short or a long way off, mostly into
+// the solid; half of them along the triangle's plane with its floor, as a proxy slides
+// after a contact. Returns the share settled.
+double FuzzSettle(const TriangleMesh& mesh, const ConvexPieces& pieces, double radius, double size,
+                  unsigned seed, int count) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::normal_distribution<double> gauss;
+  const double offset = 1e-9 * size;
+  int settled = 0;
+  for (int i = 0; i < count; ++i) {
+    const auto t = static_cast<std::uint32_t>(unit(rng) * mesh.num_triangles());
+    const auto& tri = mesh.triangle(t);
+    double u = unit(rng), v = unit(rng);
+    if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
+    const Vec3 on =
+        (1 - u - v) * mesh.vertex(tri[0]) + u * mesh.vertex(tri[1]) + v * mesh.vertex(tri[2]);
+    const Vec3& n = mesh.face_normal(t);
+    const double edge = (mesh.vertex(tri[1]) - mesh.vertex(tri[0])).norm();
+    const Vec3 jitter(gauss(rng), gauss(rng), gauss(rng));
+    Vec3 a = on + (radius + offset) * n;
+    const int kind = i % 6;
+    if (kind == 4) a += 2.0 * edge * unit(rng) * n;  // above it
+    if (kind == 5) a -= 0.3 * edge * unit(rng) * n;  // a little inside
+    SweepQuery q;
+    q.radius = radius;
+    q.hint = t;
+    q.a = a;
+    SweepFloors floors;
+    if (kind == 0) {
+      // a slide along the triangle's plane, at rest height, with its floor
+      const Vec3 along = (jitter - jitter.dot(n) * n).normalized();
+      q.b = a + edge * (0.1 + 2.0 * unit(rng)) * along;
+      floors.count = 1;
+      floors.normal[0] = n;
+      floors.offset[0] = n.dot(on) + 0.5 * offset;
+      q.floors = &floors;
+    } else if (kind == 1) {
+      // a slide along an edge's plane (the mean of its triangles' normals), at rest height
+      // over the edge, with its floor: the triangle's own plane does not clear it
+      const std::uint32_t p = tri[0], r = tri[1];
+      Vec3 m = n;
+      for (std::uint32_t o = 0; o < mesh.num_triangles(); ++o) {
+        const auto& other = mesh.triangle(o);
+        const bool has_p = other[0] == p || other[1] == p || other[2] == p;
+        const bool has_r = other[0] == r || other[1] == r || other[2] == r;
+        if (o != t && has_p && has_r) m = (n + mesh.face_normal(o)).normalized();
+      }
+      const Vec3 mid = 0.5 * (mesh.vertex(p) + mesh.vertex(r));
+      a = mid + (radius + offset) * m;
+      q.a = a;
+      const Vec3 along = (jitter - jitter.dot(m) * m).normalized();
+      q.b = a + edge * (0.1 + 2.0 * unit(rng)) * along;
+      floors.count = 1;
+      floors.normal[0] = m;
+      floors.offset[0] = m.dot(mid) + 0.5 * offset;
+      q.floors = &floors;
+    } else {
+      // toward a goal pressed into the solid, a short or a long way across
+      const double reach = edge * std::pow(10.0, -2.0 + 2.5 * unit(rng));
+      q.b = a + reach * jitter.normalized() - (radius + size * 0.02 * unit(rng)) * n;
+    }
+    if (SettlesRightly(mesh, pieces, q, i)) ++settled;
+  }
+  return static_cast<double>(settled) / count;
+}
+
+TEST(ConvexPieces, AClosedConvexSurfaceIsOnePieceWithRoomAllRound) {
+  for (const TriangleSoup& soup :
+       {MakeIcosphere(4, 1.0), testing::MakeBoxSoup(Vec3(-1, -2, -3), Vec3(1, 2, 3)),
+        testing::MakeBoxSoup(Vec3(-5, -5, 0), Vec3(5, 5, 1e-5))}) {
+    const auto mesh = MeshOf(soup);
+    const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
+    ASSERT_EQ(pieces->num_pieces(), 1u);
+    for (std::uint32_t t = 0; t < mesh->num_triangles(); ++t) EXPECT_EQ(pieces->piece(t), 0u);
+    EXPECT_TRUE((pieces->clear_lo(0).array() == -INFINITY).all());
+    EXPECT_TRUE((pieces->clear_hi(0).array() == INFINITY).all());
+  }
+}
+
+TEST(ConvexPieces, SurfacesThatBoundNoConvexSolidAreNoPiece) {
+  TriangleSoup dented = MakeIcosphere(4, 1.0);
+  dented.vertices[5] *= 0.9;  // a dimple: the edges round it turn concave
+  TriangleSoup open = MakeIcosphere(4, 1.0);
+  open.triangles.pop_back();  // a hole
+  open.cad_faces.pop_back();
+  TriangleSoup inside_out = testing::MakeBoxSoup(Vec3(-1, -1, -1), Vec3(1, 1, 1));
+  for (auto& t : inside_out.triangles) std::swap(t[1], t[2]);
+  TriangleSoup flat = testing::MakeBoxSoup(Vec3(-1, -1, -1), Vec3(1, 1, 1));
+  flat.vertices[7] = flat.vertices[6];  // two triangles of the top collapse to lines
+  flat.vertices[7].x() += 1e-300;
+  for (const TriangleSoup* soup : {&dented, &open, &inside_out, &flat}) {
+    const auto mesh = MeshOf(*soup);
+    const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
+    EXPECT_EQ(pieces->num_pieces(), 0u);
+    for (std::uint32_t t = 0; t < mesh->num_triangles(); ++t) {
+      EXPECT_EQ(pieces->piece(t), ConvexPieces::kNone);
+    }
+  }
+}
+
+TEST(ConvexPieces, ASurfaceWrappingTwiceRoundAVertexIsNoPiece) {
+  const auto mesh = MeshOf(MakePentagramCone());
+  ASSERT_TRUE(mesh->closed());
+  // every edge convex or flat, as a convex solid's would be
+  const auto loose = ConvexPieces::Build(*mesh, 1e-9);
+  EXPECT_EQ(loose->num_pieces(), 0u);
+  EXPECT_EQ(loose->piece(0), ConvexPieces::kNone);
+}
+
+TEST(ConvexPieces, AToleranceThatIsNotAFiniteNonNegativeNumberIsRefused) {
+  const auto mesh = MeshOf(MakeIcosphere(2, 1.0));
+  EXPECT_THROW(ConvexPieces::Build(*mesh, -1.0), std::invalid_argument);
+  EXPECT_THROW(ConvexPieces::Build(*mesh, NAN), std::invalid_argument);
+  EXPECT_THROW(ConvexPieces::Build(*mesh, INFINITY), std::invalid_argument);
+}
+
+TEST(ConvexPieces, SettledSweepsOfAPointAreTheFirstContact) {
+  const auto sphere = MeshOf(MakeIcosphere(12, 1.0));
+  const auto box = MeshOf(testing::MakeBoxSoup(Vec3(-1, -2, -3), Vec3(1, 2, 3)));
+  const auto plate = MeshOf(testing::MakeBoxSoup(Vec3(-5, -5, 0), Vec3(5, 5, 1e-5)));
+  for (const TriangleMesh* mesh : {sphere.get(), box.get(), plate.get()}) {
+    const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
+    const double share = FuzzSettle(*mesh, *pieces, 0.0, 10.0, 7, 3000);
+    EXPECT_GT(share, 0.8);  // and it does settle most of them
+  }
+}
+
+TEST(ConvexPieces, SettledSweepsOfASphereAreTheFirstContact) {
+  const auto sphere = MeshOf(MakeIcosphere(12, 1.0));
+  const auto box = MeshOf(testing::MakeBoxSoup(Vec3(-1, -2, -3), Vec3(1, 2, 3)));
+  for (const TriangleMesh* mesh : {sphere.get(), box.get()}) {
+    const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
+    for (const double radius : {0.01, 0.1, 0.5}) {
+      const double share = FuzzSettle(*mesh, *pieces, radius, 6.0, 11, 2000);
+      EXPECT_GT(share, 0.7) << radius;
+    }
+  }
+}
+
+TEST(ConvexPieces, PiecesApartHaveTheRoomBetweenTheirBoxes) {
+  const auto mesh =
+      MeshOf(Join(MakeIcosphere(6, 1.0, Vec3(-3, 0, 0)), MakeIcosphere(6, 1.0, Vec3(3, 0, 0))));
+  const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
+  ASSERT_EQ(pieces->num_pieces(), 2u);
+  // boxes [-4, -2] and [2, 4] along x: each has all the room but the other's side
+  EXPECT_NEAR(pieces->clear_hi(0).x(), 2.0, 1e-12);
+  EXPECT_NEAR(pieces->clear_lo(1).x(), -2.0, 1e-12);
+  EXPECT_EQ(pieces->clear_lo(0).x(), -INFINITY);
+  EXPECT_EQ(pieces->clear_hi(1).x(), INFINITY);
+  for (int k = 1; k < 3; ++k) {
+    EXPECT_EQ(pieces->clear_lo(0)[k], -INFINITY);
+    EXPECT_EQ(pieces->clear_hi(0)[k], INFINITY);
+  }
+  // a sweep from the left sphere's top: settled while it stays in the room, not when it
+  // reaches toward the right sphere (the box it would enter is the other piece's)
+  std::uint32_t top = 0;
+  for (std::uint32_t t = 0; t < mesh->num_triangles(); ++t) {
+    if (mesh->face_normal(t).dot(Vec3(0, 0, 1)) > mesh->face_normal(top).dot(Vec3(0, 0, 1)) &&
+        pieces->piece(t) == 0) {
+      top = t;
+    }
+  }
+  SweepQuery q;
+  q.hint = top;
+  q.a = Vec3(-3, 0, 1.01);
+  q.b = Vec3(-3, 0, 0.9);
+  EXPECT_TRUE(SettlesRightly(*mesh, *pieces, q, 0));
+  q.b = Vec3(2.5, 0, 0.9);
+  SweepSearch search(*mesh, q);
+  EXPECT_FALSE(pieces->Settle(q, &search));
+  // and a sphere whose radius reaches past the room is not settled either
+  q.b = Vec3(-3, 0, 0.9);
+  q.radius = 4.9;
+  SweepSearch fat(*mesh, q);
+  EXPECT_FALSE(pieces->Settle(q, &fat));
+}
+
+TEST(ConvexPieces, ASmallPieceInsideABigOnesBoxIsNeverMissed) {
+  // a pebble beside a ball, inside the ball's box: the ball has no room to settle in
+  const auto mesh = MeshOf(Join(MakeIcosphere(10, 1.0), MakeIcosphere(3, 0.05, Vec3(0.8, 0.8, 0))));
+  const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
+  ASSERT_EQ(pieces->num_pieces(), 2u);
+  std::uint32_t facing = 0;  // the ball's triangle facing the pebble
+  for (std::uint32_t t = 0; t < mesh->num_triangles(); ++t) {
+    const Vec3 toward = Vec3(1, 1, 0).normalized();
+    if (pieces->piece(t) == pieces->piece(0) &&
+        mesh->face_normal(t).dot(toward) > mesh->face_normal(facing).dot(toward)) {
+      facing = t;
+    }
+  }
+  // from just off the ball, straight out through the pebble
+  const Vec3 out = Vec3(1, 1, 0).normalized();
+  SweepQuery q;
+  q.hint = facing;
+  q.a = 1.001 * out;
+  q.b = 1.3 * out;
+  SweepSearch search(*mesh, q);
+  EXPECT_FALSE(pieces->Settle(q, &search));
+  EXPECT_TRUE(Exhaustive(*mesh, q).found);  // (the pebble is there)
+}
+
+TEST(ConvexPieces, AFloorThatCutsTheSolidProvesNothing) {
+  // a sweep across the ball's upper half, above the plane z = 0: it stays clear of that
+  // floor, yet it goes through the ball
+  const auto mesh = MeshOf(MakeIcosphere(10, 1.0));
+  const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
+  std::uint32_t top = 0;
+  for (std::uint32_t t = 0; t < mesh->num_triangles(); ++t) {
+    if (mesh->face_normal(t).z() > mesh->face_normal(top).z()) top = t;
+  }
+  SweepFloors floors;
+  floors.count = 1;
+  floors.normal[0] = Vec3(0, 0, 1);
+  floors.offset[0] = 0.0;
+  SweepQuery q;
+  q.hint = top;
+  q.a = Vec3(-2, 0, 0.5);
+  q.b = Vec3(2, 0, 0.5);
+  q.floors = &floors;
+  SweepSearch search(*mesh, q);
+  const bool settled = pieces->Settle(q, &search);
+  EXPECT_TRUE(!settled || search.found());
+  EXPECT_TRUE(Exhaustive(*mesh, q).found);
+}
+
+TEST(ConvexPieces, PiecesWhoseBoxesOverlapSettleOnlyOutsideTheOthersBox) {
+  // two balls apart, but their boxes overlap (side by side on a diagonal): each has room
+  // up to the other's box along x, and sweeps there are settled rightly
+  const auto mesh = MeshOf(Join(MakeIcosphere(6, 1.0), MakeIcosphere(6, 1.0, Vec3(1.5, 1.5, 0))));
+  const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
+  ASSERT_EQ(pieces->num_pieces(), 2u);
+  EXPECT_NEAR(pieces->clear_hi(0).x(), 0.5, 1e-12);
+  EXPECT_NEAR(pieces->clear_lo(1).x(), 1.0, 1e-12);
+  int settled = 0, beyond = 0;
+  for (std::uint32_t t = 0; t < mesh->num_triangles(); t += 3) {
+    const auto& tri = mesh->triangle(t);
+    const Vec3 c = (mesh->vertex(tri[0]) + mesh->vertex(tri[1]) + mesh->vertex(tri[2])) / 3.0;
+    for (const double radius : {0.0, 0.05}) {
+      SweepQuery q;
+      q.hint = t;
+      q.radius = radius;
+      q.a = c + (radius + 1e-3) * mesh->face_normal(t);
+      q.b = c - 1e-2 * mesh->face_normal(t) + 0.05 * mesh->face_normal(t).cross(Vec3(0, 0, 1));
+      const bool in_room =
+          (q.a.cwiseMax(q.b).array() + radius < pieces->clear_hi(pieces->piece(t)).array()).all() &&
+          (q.a.cwiseMin(q.b).array() - radius > pieces->clear_lo(pieces->piece(t)).array()).all();
+      if (SettlesRightly(*mesh, *pieces, q, static_cast<int>(t))) {
+        ++settled;
+        beyond += !in_room;
+      }
+    }
+  }
+  EXPECT_GT(settled, 100);
+  EXPECT_EQ(beyond, 0);
+}
+
+TEST(ConvexPieces, ASweepFromInsideTheSolidIsLeftToTheWalk) {
+  const auto mesh = MeshOf(MakeIcosphere(8, 1.0));
+  const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
+  int settled = 0;
+  for (std::uint32_t t = 0; t < mesh->num_triangles(); t += 5) {
+    const auto& tri = mesh->triangle(t);
+    const Vec3 c = (mesh->vertex(tri[0]) + mesh->vertex(tri[1]) + mesh->vertex(tri[2])) / 3.0;
+    for (const double radius : {0.0, 0.05}) {
+      SweepQuery q;
+      q.hint = t;
+      q.radius = radius;
+      q.a = c - (radius + 1e-3) * mesh->face_normal(t);  // inside, under t
+      q.b = c + 0.1 * mesh->face_normal(t);              // out through t
+      SweepSearch search(*mesh, q);
+      if (pieces->Settle(q, &search)) ++settled;
+    }
+  }
+  EXPECT_EQ(settled, 0);
+}
+
+TEST(ConvexPieces, AHintOffThePiecesOrOutOfRangeSettlesNothing) {
+  const auto mesh = MeshOf(Join(MakeIcosphere(4, 1.0), testing::MakeSheetSoup(1.0, 3.0)));
+  const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
+  ASSERT_EQ(pieces->num_pieces(), 1u);
+  const auto sheet = static_cast<std::uint32_t>(mesh->num_triangles() - 1);
+  EXPECT_EQ(pieces->piece(sheet), ConvexPieces::kNone);
+  for (const std::int64_t hint :
+       {std::int64_t{-1}, std::int64_t{sheet}, static_cast<std::int64_t>(mesh->num_triangles())}) {
+    SweepQuery q;
+    q.hint = hint;
+    q.a = Vec3(0, 0, 3.1);
+    q.b = Vec3(0, 0, 2.9);
+    SweepSearch search(*mesh, q);
+    EXPECT_FALSE(pieces->Settle(q, &search)) << hint;
+  }
+}
+
+TEST(ConvexPieces, SettleAndWarmUpAllocateNothing) {
+  const auto mesh = MeshOf(MakeIcosphere(10, 1.0));
+  const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<std::uint32_t> pick(0, mesh->num_triangles() - 1);
+  testing::AllocationCounter counter;
+  int settled = 0;
+  for (int i = 0; i < 1000; ++i) {
+    const std::uint32_t t = pick(rng);
+    const Vec3& n = mesh->face_normal(t);
+    const Vec3 p = mesh->vertex(mesh->triangle(t)[0]) + 0.05 * n;
+    SweepQuery q;
+    q.hint = t;
+    q.radius = (i % 2) * 0.02;
+    q.a = p;
+    q.b = p - 0.2 * n + 0.05 * n.cross(Vec3(1, 2, 3)).normalized();
+    SweepSearch search(*mesh, q);
+    settled += pieces->Settle(q, &search);
+    pieces->WarmUp(t);
+  }
+  EXPECT_EQ(counter.count(), 0u);
+  EXPECT_GT(settled, 500);
+}
+
+}  // namespace
+}  // namespace hapticad
