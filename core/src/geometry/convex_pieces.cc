@@ -148,8 +148,23 @@ std::unique_ptr<ConvexPieces> ConvexPieces::Build(const TriangleMesh& mesh, doub
 
 bool ConvexPieces::TurnsOnce(std::uint32_t v) const {
   const std::uint32_t first = vertex_corner_[v];
+  // a direction inside the vertex's cone of normals: their sum, each plane once (the
+  // triangles of one flat face round a vertex come one after another)
+  const auto same = [](const Vec3& a, const Vec3& b) { return a.dot(b) > 1.0 - 1e-12; };
   Vec3 m = Vec3::Zero();
-  if (!ForEachAround(v, first, [&](std::uint32_t t) { m += mesh_->face_normal(t); })) return false;
+  Vec3 last = Vec3::Zero();
+  int planes = 0;
+  if (!ForEachAround(v, first, [&](std::uint32_t t) {
+        const Vec3& n = mesh_->face_normal(t);
+        if (!same(n, last)) {
+          m += n;
+          ++planes;
+        }
+        last = n;
+      })) {
+    return false;
+  }
+  if (planes > 1 && same(mesh_->face_normal(first), last)) m -= last;  // the first plane, twice
   const double length = m.norm();
   if (!(length > 0.0)) return false;
   m /= length;
@@ -161,9 +176,10 @@ bool ConvexPieces::TurnsOnce(std::uint32_t v) const {
     *e1 = mesh_->vertex(tri[(k + 1) % 3]) - p;
     *e2 = mesh_->vertex(tri[(k + 2) % 3]) - p;
   };
+  const auto flat = [&](const Vec3& e) { return Vec3(e - e.dot(m) * m); };  // projected
   Vec3 e1, e2;
   sides(first, &e1, &e2);
-  const Vec3 inside = e1 + e2;  // inside the first corner, which is narrower than a half turn
+  const Vec3 inside = flat(e1 + e2);  // inside the first corner, narrower than a half turn
   bool ok = true;
   int turns = 0;
   ForEachAround(v, first, [&](std::uint32_t t) {
@@ -173,10 +189,10 @@ bool ConvexPieces::TurnsOnce(std::uint32_t v) const {
     const double after_first = e1.cross(inside).dot(m);
     const double before_second = inside.cross(e2).dot(m);
     const double scale = 1e-12 * (e1.squaredNorm() + e2.squaredNorm() + inside.squaredNorm());
-    ok = ok && mesh_->face_normal(t).dot(m) >= 0.05 && turn > scale &&
+    ok = ok && mesh_->face_normal(t).dot(m) > 1e-6 && turn > scale &&
          // along a side of a corner: the count would be ambiguous
-         !(std::abs(after_first) <= scale && e1.dot(inside) > 0.0) &&
-         !(std::abs(before_second) <= scale && e2.dot(inside) > 0.0);
+         !(std::abs(after_first) <= scale && flat(e1).dot(inside) > 0.0) &&
+         !(std::abs(before_second) <= scale && flat(e2).dot(inside) > 0.0);
     turns += after_first > 0.0 && before_second > 0.0;
   });
   return ok && turns == 1;
@@ -214,7 +230,7 @@ bool ConvexPieces::IsClear(const SweepQuery& query, std::uint32_t hint) const {
   const Vec3& n = mesh_->face_normal(hint);
   const std::uint32_t corner = mesh_->triangle(hint)[0];
   const Vec3& v0 = mesh_->vertex(corner);
-  if (n.dot(query.a - v0) >= query.radius && n.dot(query.b - v0) >= query.radius) return true;
+  if (n.dot(query.a - v0) > query.radius && n.dot(query.b - v0) > query.radius) return true;
   if (query.floors != nullptr) {
     for (int i = 0; i < query.floors->count; ++i) {
       if (BoundsPiece(query.floors->normal[i], query.floors->offset[i], corner)) return true;
@@ -255,7 +271,9 @@ bool ConvexPieces::ForEachAround(std::uint32_t v, std::uint32_t t, Visit&& visit
 }
 
 bool ConvexPieces::BoundsPiece(const Vec3& normal, double offset, std::uint32_t start) const {
-  // on a convex polytope a vertex with no higher neighbour is the highest of all
+  // On a convex polytope a vertex that no neighbour rises above is the highest of all,
+  // if the direction points out of the solid there (at a vertex inside a flat face every
+  // neighbour ties with it, for the face's normal and for its opposite alike).
   const double top = offset + tolerance_;
   std::uint32_t v = start;
   double height = normal.dot(mesh_->vertex(v));
@@ -263,7 +281,9 @@ bool ConvexPieces::BoundsPiece(const Vec3& normal, double offset, std::uint32_t 
   for (int step = 0; step < kMaxClimb; ++step) {
     std::uint32_t next = v;
     bool above = false;  // one vertex above the plane is enough
+    bool outward = false;
     const bool whole = ForEachAround(v, vertex_corner_[v], [&](std::uint32_t u) {
+      outward = outward || normal.dot(mesh_->face_normal(u)) > 0.0;
       for (const std::uint32_t w : mesh_->triangle(u)) {
         const double h = normal.dot(mesh_->vertex(w));
         above = above || h > top;
@@ -274,7 +294,7 @@ bool ConvexPieces::BoundsPiece(const Vec3& normal, double offset, std::uint32_t 
       }
     });
     if (above || !whole) return false;
-    if (next == v) return true;
+    if (next == v) return outward;
     v = next;
   }
   return false;

@@ -2,7 +2,9 @@
 #include "hapticad/core/geometry/convex_pieces.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <random>
 #include <stdexcept>
 
@@ -49,6 +51,64 @@ TriangleSoup MakePentagramCone() {
     soup.cad_faces.push_back(0);
     soup.cad_faces.push_back(1);
   }
+  return soup;
+}
+
+// Box [lo, hi] with every face a grid of n x n squares, each split in two (the grid's
+// vertices shared between faces), outward winding: flat faces with vertices inside them.
+TriangleSoup MakeGridBox(const Vec3& lo, const Vec3& hi, int n) {
+  TriangleSoup soup;
+  std::map<std::array<int, 3>, std::int32_t> index;
+  const auto vertex = [&](std::array<int, 3> c) {
+    const auto found = index.find(c);
+    if (found != index.end()) return found->second;
+    Vec3 p;
+    for (int k = 0; k < 3; ++k) p[k] = c[k] == n ? hi[k] : lo[k] + (hi[k] - lo[k]) * c[k] / n;
+    soup.vertices.push_back(p);
+    return index[c] = static_cast<std::int32_t>(soup.vertices.size() - 1);
+  };
+  for (int axis = 0; axis < 3; ++axis) {
+    for (int side = 0; side < 2; ++side) {
+      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      const auto at = [&](int i, int j) {
+        std::array<int, 3> c{};
+        c[axis] = side * n;
+        c[u] = i;
+        c[v] = j;
+        return vertex(c);
+      };
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+          std::array<std::int32_t, 3> quad[2] = {{at(i, j), at(i + 1, j), at(i + 1, j + 1)},
+                                                 {at(i, j), at(i + 1, j + 1), at(i, j + 1)}};
+          for (auto& t : quad) {
+            if (side == 0) std::swap(t[1], t[2]);
+            soup.triangles.push_back(t);
+            soup.cad_faces.push_back(2 * axis + side);
+          }
+        }
+      }
+    }
+  }
+  return soup;
+}
+
+// A prism over the convex polygon `base` (counter-clockwise seen from +z), height h.
+TriangleSoup MakePrism(const std::vector<Vec3>& base, double h) {
+  TriangleSoup soup;
+  const int n = static_cast<int>(base.size());
+  for (const Vec3& p : base) soup.vertices.push_back(p);
+  for (const Vec3& p : base) soup.vertices.push_back(p + Vec3(0, 0, h));
+  for (int i = 1; i + 1 < n; ++i) {
+    soup.triangles.push_back({0, i + 1, i});
+    soup.triangles.push_back({n, n + i, n + i + 1});
+  }
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    soup.triangles.push_back({i, j, n + j});
+    soup.triangles.push_back({i, n + j, n + i});
+  }
+  soup.cad_faces.assign(soup.triangles.size(), 0);
   return soup;
 }
 
@@ -208,6 +268,26 @@ TEST(ConvexPieces, ASurfaceWrappingTwiceRoundAVertexIsNoPiece) {
   EXPECT_EQ(loose->piece(0), ConvexPieces::kNone);
 }
 
+TEST(ConvexPieces, ConvexSolidsWithSharpEdgesAndVerticesAreOnePiece) {
+  // a regular tetrahedron, and prisms with edges from 90 down to 10 degrees (their
+  // square sides split in two: a face counted once per triangle would tip the vertex's
+  // mean normal off the sharp faces)
+  TriangleSoup tetrahedron;
+  tetrahedron.vertices = {Vec3(1, 1, 1), Vec3(1, -1, -1), Vec3(-1, 1, -1), Vec3(-1, -1, 1)};
+  tetrahedron.triangles = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  tetrahedron.cad_faces = {0, 0, 0, 0};
+  std::vector<TriangleSoup> solids = {tetrahedron, MakeGridBox(Vec3(0, 0, 0), Vec3(1, 2, 3), 3)};
+  for (const double degrees : {90.0, 60.0, 30.0, 10.0}) {
+    const double a = degrees * M_PI / 180.0;
+    solids.push_back(
+        MakePrism({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(std::cos(a), std::sin(a), 0)}, 1));
+  }
+  for (const TriangleSoup& soup : solids) {
+    const auto mesh = MeshOf(soup);
+    EXPECT_EQ(ConvexPieces::Build(*mesh, kTolerance)->num_pieces(), 1u) << mesh->num_triangles();
+  }
+}
+
 TEST(ConvexPieces, AToleranceThatIsNotAFiniteNonNegativeNumberIsRefused) {
   const auto mesh = MeshOf(MakeIcosphere(2, 1.0));
   EXPECT_THROW(ConvexPieces::Build(*mesh, -1.0), std::invalid_argument);
@@ -322,6 +402,59 @@ TEST(ConvexPieces, AFloorThatCutsTheSolidProvesNothing) {
   const bool settled = pieces->Settle(q, &search);
   EXPECT_TRUE(!settled || search.found());
   EXPECT_TRUE(Exhaustive(*mesh, q).found);
+}
+
+TEST(ConvexPieces, AFloorUnderTheFarSideOfTheSolidProvesNothing) {
+  // The floor z >= 1 lies under the bottom of the box, yet every vertex of the top face
+  // ties with its neighbours along -z: a climb from the top face's centre stops there.
+  // A sweep well away from that floor, across the box's middle, goes through the side.
+  const auto mesh = MeshOf(MakeGridBox(Vec3(-1, -1, -1), Vec3(1, 1, 1), 2));
+  const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
+  ASSERT_EQ(pieces->num_pieces(), 1u);
+  SweepFloors floors;
+  floors.count = 1;
+  floors.normal[0] = Vec3(0, 0, -1);
+  floors.offset[0] = -1.0;  // the half-space z >= 1
+  int tried = 0;
+  for (std::uint32_t t = 0; t < mesh->num_triangles(); ++t) {
+    // a hint on the top face, whose first corner is the face's centre
+    if (mesh->face_normal(t).z() < 0.5 || mesh->vertex(mesh->triangle(t)[0]) != Vec3(0, 0, 1)) {
+      continue;
+    }
+    ++tried;
+    for (const double radius : {0.0, 0.1}) {
+      SweepQuery q;
+      q.hint = t;
+      q.radius = radius;
+      q.floors = &floors;
+      q.a = Vec3(1.5, 0.3, 0);
+      q.b = Vec3(0.5, 0.3, 0);
+      SweepSearch search(*mesh, q);
+      const bool settled = pieces->Settle(q, &search);
+      EXPECT_TRUE(!settled || search.found()) << t << " radius " << radius;
+      EXPECT_TRUE(Exhaustive(*mesh, q).found);
+    }
+  }
+  EXPECT_GT(tried, 0);
+}
+
+TEST(ConvexPieces, ASphereGrazingAnEdgeAtExactlyItsRadiusIsNotClear) {
+  // sliding exactly its radius above the top face and on over the edge x = 1: the
+  // exhaustive test touches the edge (with no depth); Settle must not call it clear
+  const auto mesh = MeshOf(testing::MakeBoxSoup(Vec3(-1, -2, -3), Vec3(1, 2, 3)));
+  const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
+  std::uint32_t top = 0;
+  for (std::uint32_t t = 0; t < mesh->num_triangles(); ++t) {
+    if (mesh->face_normal(t).z() > 0.5) top = t;
+  }
+  SweepQuery q;
+  q.hint = top;
+  q.radius = 0.25;
+  q.a = Vec3(0.5, 0.1, 3.25);
+  q.b = Vec3(1.5, 0.1, 3.25);
+  ASSERT_TRUE(Exhaustive(*mesh, q).found);
+  SweepSearch search(*mesh, q);
+  EXPECT_TRUE(!pieces->Settle(q, &search) || search.found());
 }
 
 TEST(ConvexPieces, PiecesWhoseBoxesOverlapSettleOnlyOutsideTheOthersBox) {

@@ -56,10 +56,14 @@ class ConvexPieces {
   // Steps of the walk toward where a sweep meets the surface.
   static constexpr int kMaxWalk = 4;
 
-  // `mesh` must outlive the pieces. `tolerance` (model units, finite, >= 0): how far a
+  // `mesh` must outlive the pieces. `tolerance` (model units, finite, >= 0, above the
+  // rounding of the coordinates: the scene's local frame keeps them small): how far a
   // vertex may rise above a neighbouring triangle's plane for their edge to count as
-  // flat; Settle's answers may differ from an exhaustive search by contacts this deep.
-  // Throws std::invalid_argument for any other tolerance.
+  // flat. Settle's answer may differ from an exhaustive search of every triangle by
+  // contacts no deeper than this, and by contacts of no depth at all: a sphere that
+  // grazes an edge at exactly its radius, and the strip by which the triangle test
+  // widens a triangle (SweepQuery::bary_tol, 1e-9 of it) beyond an edge, where no
+  // geometry is. Throws std::invalid_argument for any other tolerance.
   static std::unique_ptr<ConvexPieces> Build(const TriangleMesh& mesh, double tolerance);
 
   // Tries to settle the sweep `search` runs for `query` (which has tested query.hint):
@@ -122,9 +126,9 @@ class ConvexPieces {
   // comes within its radius of t's plane (or at its end), or -1 if none.
   int ExitEdge(std::uint32_t t, const SweepQuery& query) const;
   // Whether the triangles round vertex v turn once round it, each counter-clockwise
-  // seen from outside: projected on the plane across the mean of their normals (all
-  // within 87 degrees of it), a direction inside the first corner lies inside exactly
-  // one corner. A second turn (triangles wrapping round a vertex twice, every edge
+  // seen from outside: projected on the plane across the sum of their planes' normals
+  // (each plane once; every normal must lean toward it), a direction inside the first
+  // corner lies inside exactly one corner. A second turn (triangles wrapping round a vertex twice, every edge
   // convex) would make a surface that only looks convex edge by edge. For the build.
   bool TurnsOnce(std::uint32_t v) const;
   // Calls visit(u) for every triangle u round vertex v, starting from triangle t (which
