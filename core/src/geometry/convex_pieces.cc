@@ -176,10 +176,10 @@ bool ConvexPieces::TurnsOnce(std::uint32_t v) const {
     *e1 = mesh_->vertex(tri[(k + 1) % 3]) - p;
     *e2 = mesh_->vertex(tri[(k + 2) % 3]) - p;
   };
-  const auto flat = [&](const Vec3& e) { return Vec3(e - e.dot(m) * m); };  // projected
   Vec3 e1, e2;
   sides(first, &e1, &e2);
-  const Vec3 inside = flat(e1 + e2);  // inside the first corner, narrower than a half turn
+  // inside the first corner (narrower than a half turn), projected across m
+  const Vec3 inside = e1 + e2 - (e1 + e2).dot(m) * m;
   bool ok = true;
   int turns = 0;
   ForEachAround(v, first, [&](std::uint32_t t) {
@@ -190,9 +190,9 @@ bool ConvexPieces::TurnsOnce(std::uint32_t v) const {
     const double before_second = inside.cross(e2).dot(m);
     const double scale = 1e-12 * (e1.squaredNorm() + e2.squaredNorm() + inside.squaredNorm());
     ok = ok && mesh_->face_normal(t).dot(m) > 1e-6 && turn > scale &&
-         // along a side of a corner: the count would be ambiguous
-         !(std::abs(after_first) <= scale && flat(e1).dot(inside) > 0.0) &&
-         !(std::abs(before_second) <= scale && flat(e2).dot(inside) > 0.0);
+         // along a side of a corner (not opposite it; inside is across m): ambiguous
+         !(std::abs(after_first) <= scale && e1.dot(inside) > 0.0) &&
+         !(std::abs(before_second) <= scale && e2.dot(inside) > 0.0);
     turns += after_first > 0.0 && before_second > 0.0;
   });
   return ok && turns == 1;
