@@ -6,6 +6,7 @@
 and the median of each figure kept. Prints a Markdown table (and --json the runs).
 
     benchmarks/core/rendering/contact_goals.py [--hapticad build/bin/hapticad] [--repeat 3]
+        [--convex-pieces on|off]
 """
 import argparse
 import json
@@ -15,9 +16,10 @@ import subprocess
 SIZES = [9680, 100820, 1003520]
 
 
-def run(hapticad, triangles, proxy, units, ticks):
+def run(hapticad, triangles, proxy, units, ticks, convex_pieces):
     out = subprocess.run([hapticad, "bench-mesh", "--icosphere", str(triangles), "--proxy", proxy,
-                          "--units", units, "--ticks", str(ticks), "--json"],
+                          "--units", units, "--ticks", str(ticks), "--convex-pieces", convex_pieces,
+                          "--json"],
                          capture_output=True, text=True, check=True)
     return json.loads(out.stdout)
 
@@ -38,12 +40,15 @@ def main():
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--ticks", type=int, default=20000)
     parser.add_argument("--json", action="store_true")
+    parser.add_argument("--convex-pieces", choices=("on", "off"), default="on",
+                        help="off: every sweep walks the grid or the tree (to compare)")
     args = parser.parse_args()
     configs = [(n, p, "mm") for n in SIZES for p in ("point", "sphere:1")]
     configs += [(SIZES[-1], p, "m") for p in ("point", "sphere:1")]
     rows, raw = [], []
     for n, proxy, units in configs:
-        runs = [run(args.hapticad, n, proxy, units, args.ticks) for _ in range(args.repeat)]
+        runs = [run(args.hapticad, n, proxy, units, args.ticks, args.convex_pieces)
+                for _ in range(args.repeat)]
         raw.append({"triangles": n, "proxy": proxy, "units": units, "runs": runs})
         rows.append((n, proxy, units, runs))
     if args.json:

@@ -143,6 +143,10 @@ std::unique_ptr<ConvexPieces> ConvexPieces::Build(const TriangleMesh& mesh, doub
     const std::uint32_t t = out->vertex_corner_[v];
     if (t != kNone && out->records_[t].piece == kNone) out->vertex_corner_[v] = kNone;
   }
+  if (out->clear_lo_.empty()) {
+    HugePageVector<Record>().swap(out->records_);
+    HugePageVector<std::uint32_t>().swap(out->vertex_corner_);
+  }
   return out;
 }
 

@@ -256,6 +256,14 @@ TEST(ConvexPieces, SurfacesThatBoundNoConvexSolidAreNoPiece) {
     for (std::uint32_t t = 0; t < mesh->num_triangles(); ++t) {
       EXPECT_EQ(pieces->piece(t), ConvexPieces::kNone);
     }
+    EXPECT_EQ(pieces->CalcMemoryBytes(), 0u);  // keeps nothing it cannot use
+    SweepQuery q;
+    q.hint = 0;
+    q.a = Vec3(0, 0, 2);
+    q.b = Vec3(0, 0, 0.5);
+    SweepSearch search(*mesh, q);
+    EXPECT_FALSE(pieces->Settle(q, &search));
+    pieces->WarmUp(0);
   }
 }
 

@@ -82,7 +82,9 @@ class ConvexPieces {
   void WarmUp(std::uint32_t t) const;
 
   // The convex piece triangle t belongs to, or kNone.
-  std::uint32_t piece(std::uint32_t t) const { return records_[t].piece; }
+  std::uint32_t piece(std::uint32_t t) const {
+    return t < records_.size() ? records_[t].piece : kNone;
+  }
   std::size_t num_pieces() const { return clear_lo_.size(); }
   // Piece p's room: the open box that holds no other piece's box (infinite along the
   // axes where nothing else lies; it may cut into p's own box where another's overlaps it).
@@ -138,7 +140,8 @@ class ConvexPieces {
 
   const TriangleMesh* mesh_ = nullptr;
   double tolerance_ = 0.0;
-  // read at random by the servo tick: on huge pages, like the mesh's arrays
+  // read at random by the servo tick: on huge pages, like the mesh's arrays (and none
+  // at all when no piece is convex: a scene holds only what it can use)
   HugePageVector<Record> records_;               // per triangle
   HugePageVector<std::uint32_t> vertex_corner_;  // per vertex: a triangle holding it
   std::vector<Vec3> clear_lo_;                   // per convex piece
