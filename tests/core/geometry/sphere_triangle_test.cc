@@ -114,5 +114,31 @@ TEST(SweepSphereTriangle, AgreesWithBruteForceDistancesOnRandomSweeps) {
   EXPECT_GT(hits, 300);
 }
 
+TEST(SweepSphereTriangle, ASliverTouchesOnlyWhereItIs) {
+  // A sliver a million times longer than it is wide, away from the origin (a side
+  // triangle of a 0.01 mm plate 10 mm across): a sphere coming down just beyond its long
+  // edge, clear of it by a millionth of its width (a thousand times the test's
+  // tolerance), must not land on its face. Barycentrics from the sides' dot products
+  // lose 1e-4 here; from cross products, 1e-10.
+  const Vec3 v0(5.0 / 3.0, -5, 1e-5), v1(5, -5, 1e-5 * 2.0 / 3.0), v2(5, -5, 1e-5);
+  const Vec3 n = (v1 - v0).cross(v2 - v0).normalized();
+  const double r = 0.01;
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> along(0.05, 0.95);
+  int landed = 0;
+  for (int i = 0; i < 2000; ++i) {
+    // a point of the long edge v0-v1, then a millionth of the width beyond it
+    const Vec3 on_edge = v0 + along(rng) * (v1 - v0);
+    const double width = (v2 - v1).norm() * (on_edge - v0).norm() / (v1 - v0).norm();
+    const Vec3 out = n.cross(v1 - v0).normalized();  // across the edge, away from v2
+    const Vec3 beside = on_edge + (out.dot(v2 - v0) > 0 ? -1.0 : 1.0) * 1e-6 * width * out;
+    SphereTriangleHit hit;
+    if (SweepSphereTriangle(beside + 2 * r * n, -4 * r * n, 1.0, r, v0, v1, v2, n, 1e-9, &hit)) {
+      landed += hit.normal == n;  // the face's normal: landed on the face
+    }
+  }
+  EXPECT_EQ(landed, 0);
+}
+
 }  // namespace
 }  // namespace hapticad

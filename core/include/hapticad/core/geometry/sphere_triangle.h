@@ -112,13 +112,15 @@ inline bool SweepSphereTriangle(const Vec3& a, const Vec3& d, double s_max, doub
   // the face: the centre enters the slab above the triangle's interior
   const Vec3 e1 = v1 - v0;
   const Vec3 e2 = v2 - v0;
-  const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
-  const double det = d11 * d22 - d12 * d12;
-  if (!(det > 0.0)) return false;
+  // Barycentrics from cross products along n: for a sliver the Gram determinant
+  // |e1|^2 |e2|^2 - (e1.e2)^2 cancels to a relative error of eps / sin^2 of its angle
+  // (1e-4 for a triangle a million times longer than wide), the cross product to eps / sin.
+  const double area = n.dot(e1.cross(e2));  // twice the area, signed by n
+  if (!(std::abs(area) > 0.0)) return false;
   auto inside = [&](const Vec3& c) {
     const Vec3 w = c - v0;  // the in-plane part decides; the normal part is orthogonal
-    const double u = (d22 * w.dot(e1) - d12 * w.dot(e2)) / det;
-    const double v = (d11 * w.dot(e2) - d12 * w.dot(e1)) / det;
+    const double u = n.dot(w.cross(e2)) / area;
+    const double v = n.dot(e1.cross(w)) / area;
     return u >= -bary_tol && v >= -bary_tol && u + v <= 1.0 + bary_tol;
   };
   const double slope = side * dn;  // dh/ds
