@@ -183,8 +183,7 @@ void GodObjectProxy::Update(const Vec3& goal_l) {
   // Load what the next ticks will read: on a convex piece the triangles round the
   // contact, else the grid's cells the proxy is heading for.
   if (config_.pieces != nullptr && in_contact() &&
-      config_.pieces->piece(constraints_.plane(0).triangle) != ConvexPieces::kNone) {
-    config_.pieces->WarmUp(constraints_.plane(0).triangle);
+      config_.pieces->WarmUp(constraints_.plane(0).triangle)) {
     return;
   }
   // The cells ahead, while they are still a few ticks away (at 0.05-0.1 mm a tick on a

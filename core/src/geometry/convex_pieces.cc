@@ -5,18 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <stdexcept>
 
+#include "hapticad/core/geometry/connected_pieces.h"
+
 namespace hapticad {
-namespace {
-
-std::uint32_t Root(std::vector<std::uint32_t>& parent, std::uint32_t v) {
-  while (parent[v] != v) v = parent[v] = parent[parent[v]];
-  return v;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 std::unique_ptr<ConvexPieces> ConvexPieces::Build(const TriangleMesh& mesh, double tolerance) {
   if (!(std::isfinite(tolerance) && tolerance >= 0.0)) {
@@ -28,41 +22,14 @@ std::unique_ptr<ConvexPieces> ConvexPieces::Build(const TriangleMesh& mesh, doub
   const auto n = static_cast<std::uint32_t>(mesh.num_triangles());
   const auto num_vertices = static_cast<std::uint32_t>(mesh.num_vertices());
 
-  // pieces: triangles joined through shared vertices
-  std::vector<std::uint32_t> parent(num_vertices);
-  std::iota(parent.begin(), parent.end(), 0u);
-  for (std::uint32_t t = 0; t < n; ++t) {
-    const auto& tri = mesh.triangle(t);
-    for (int k = 1; k < 3; ++k) {
-      const std::uint32_t a = Root(parent, tri[0]);
-      const std::uint32_t b = Root(parent, tri[k]);
-      if (a != b) parent[b] = a;
-    }
-  }
-  struct Piece {
-    Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
-    Vec3 hi = Vec3::Constant(-std::numeric_limits<double>::infinity());
-    bool convex = true;
-  };
-  std::vector<Piece> pieces;
-  std::vector<std::uint32_t> piece_of_vertex(num_vertices, kNone);  // roots first
+  // every connected piece is convex until shown otherwise
+  const ConnectedPieces pieces = FindConnectedPieces(mesh);
+  const std::vector<std::uint32_t>& piece_of_vertex = pieces.of_vertex;
+  std::vector<char> convex(pieces.lo.size(), 1);
   out->vertex_corner_.assign(num_vertices, kNone);
   for (std::uint32_t t = 0; t < n; ++t) {
     for (const std::uint32_t v : mesh.triangle(t)) out->vertex_corner_[v] = t;
   }
-  for (std::uint32_t v = 0; v < num_vertices; ++v) {
-    if (out->vertex_corner_[v] == kNone) continue;  // in no triangle
-    std::uint32_t& root = piece_of_vertex[Root(parent, v)];
-    if (root == kNone) {
-      root = static_cast<std::uint32_t>(pieces.size());
-      pieces.emplace_back();
-    }
-    piece_of_vertex[v] = root;
-    Piece& piece = pieces[root];
-    piece.lo = piece.lo.cwiseMin(mesh.vertex(v));
-    piece.hi = piece.hi.cwiseMax(mesh.vertex(v));
-  }
-  parent = {};
 
   // every edge shared by two triangles, and convex or flat from the winding's side; the
   // triangles across each edge
@@ -77,7 +44,6 @@ std::unique_ptr<ConvexPieces> ConvexPieces::Build(const TriangleMesh& mesh, doub
     const auto h1 = om.halfedge_handle(e, 1);
     const auto a = static_cast<std::uint32_t>(om.from_vertex_handle(h0).idx());
     const auto b = static_cast<std::uint32_t>(om.to_vertex_handle(h0).idx());
-    Piece& piece = pieces[piece_of_vertex[a]];
     // (an open edge leaves the fans of its ends open: TurnsOnce refuses them)
     if (om.is_boundary(h0) || om.is_boundary(h1)) continue;
     const auto f0 = static_cast<std::uint32_t>(om.face_handle(h0).idx());
@@ -91,33 +57,32 @@ std::unique_ptr<ConvexPieces> ConvexPieces::Build(const TriangleMesh& mesh, doub
     const Vec3& p = mesh.vertex(a);
     if (mesh.face_normal(f0).dot(w1 - p) > tolerance ||
         mesh.face_normal(f1).dot(w0 - p) > tolerance) {
-      piece.convex = false;
+      convex[piece_of_vertex[a]] = 0;
     }
   }
   for (std::uint32_t v = 0; v < num_vertices; ++v) {
-    if (piece_of_vertex[v] == kNone || !pieces[piece_of_vertex[v]].convex) continue;
-    if (!out->TurnsOnce(v)) pieces[piece_of_vertex[v]].convex = false;
+    if (piece_of_vertex[v] == kNone || !convex[piece_of_vertex[v]]) continue;
+    if (!out->TurnsOnce(v)) convex[piece_of_vertex[v]] = 0;
   }
 
   // Number the convex pieces, and give each its room: the box that holds no other
   // piece's box, bounded on one side for each other piece (the side along which their
   // boxes lie furthest apart, or overlap least).
-  std::vector<std::uint32_t> convex_index(pieces.size(), kNone);
-  for (std::size_t i = 0; i < pieces.size(); ++i) {
-    const Piece& piece = pieces[i];
-    if (!piece.convex) continue;
+  std::vector<std::uint32_t> convex_index(pieces.lo.size(), kNone);
+  for (std::size_t i = 0; i < pieces.lo.size(); ++i) {
+    if (!convex[i]) continue;
     convex_index[i] = static_cast<std::uint32_t>(out->clear_lo_.size());
     Vec3 lo = Vec3::Constant(-std::numeric_limits<double>::infinity());
     Vec3 hi = Vec3::Constant(std::numeric_limits<double>::infinity());
-    for (std::size_t j = 0; j < pieces.size(); ++j) {
+    for (std::size_t j = 0; j < pieces.lo.size(); ++j) {
       if (j == i) continue;
-      const Piece& other = pieces[j];
       int axis = 0;
       bool above = true;  // the other piece's box lies above this one's along the axis
       double apart = -std::numeric_limits<double>::infinity();
       for (int k = 0; k < 3; ++k) {
         for (const bool up : {true, false}) {
-          const double gap = up ? other.lo[k] - piece.hi[k] : piece.lo[k] - other.hi[k];
+          const double gap =
+              up ? pieces.lo[j][k] - pieces.hi[i][k] : pieces.lo[i][k] - pieces.hi[j][k];
           if (gap > apart) {
             apart = gap;
             axis = k;
@@ -126,9 +91,9 @@ std::unique_ptr<ConvexPieces> ConvexPieces::Build(const TriangleMesh& mesh, doub
         }
       }
       if (above) {
-        hi[axis] = std::min(hi[axis], other.lo[axis]);
+        hi[axis] = std::min(hi[axis], pieces.lo[j][axis]);
       } else {
-        lo[axis] = std::max(lo[axis], other.hi[axis]);
+        lo[axis] = std::max(lo[axis], pieces.hi[j][axis]);
       }
     }
     out->clear_lo_.push_back(lo);
@@ -361,8 +326,8 @@ bool ConvexPieces::SearchAround(std::uint32_t t, const SweepQuery& query, std::u
   return false;
 }
 
-void ConvexPieces::WarmUp(std::uint32_t t) const {
-  if (t >= records_.size() || records_[t].piece == kNone) return;
+bool ConvexPieces::WarmUp(std::uint32_t t) const {
+  if (t >= records_.size() || records_[t].piece == kNone) return false;
   for (const std::uint32_t u : records_[t].across) {
     __builtin_prefetch(&records_[u]);
     mesh_->PrefetchTriangle(u);
@@ -375,6 +340,7 @@ void ConvexPieces::WarmUp(std::uint32_t t) const {
       mesh_->PrefetchTriangle(w);
     }
   }
+  return true;
 }
 
 std::size_t ConvexPieces::CalcMemoryBytes() const {

@@ -112,6 +112,26 @@ TriangleSoup MakePrism(const std::vector<Vec3>& base, double h) {
   return soup;
 }
 
+Vec3 Centre(const TriangleMesh& mesh, std::uint32_t t) {
+  const auto& tri = mesh.triangle(t);
+  return (mesh.vertex(tri[0]) + mesh.vertex(tri[1]) + mesh.vertex(tri[2])) / 3.0;
+}
+
+// The triangle of piece `piece` (any, for kNone) whose normal is nearest `direction`.
+std::uint32_t Facing(const TriangleMesh& mesh, const ConvexPieces& pieces, const Vec3& direction,
+                     std::uint32_t piece = ConvexPieces::kNone) {
+  std::uint32_t best = 0;
+  double best_dot = -2.0;
+  for (std::uint32_t t = 0; t < mesh.num_triangles(); ++t) {
+    const double dot = mesh.face_normal(t).dot(direction);
+    if ((piece == ConvexPieces::kNone || pieces.piece(t) == piece) && dot > best_dot) {
+      best = t;
+      best_dot = dot;
+    }
+  }
+  return best;
+}
+
 // What every triangle tested gives: the answer a settled sweep must equal.
 struct Answer {
   bool found = false;
@@ -263,7 +283,7 @@ TEST(ConvexPieces, SurfacesThatBoundNoConvexSolidAreNoPiece) {
     q.b = Vec3(0, 0, 0.5);
     SweepSearch search(*mesh, q);
     EXPECT_FALSE(pieces->Settle(q, &search));
-    pieces->WarmUp(0);
+    EXPECT_FALSE(pieces->WarmUp(0));
   }
 }
 
@@ -342,15 +362,8 @@ TEST(ConvexPieces, PiecesApartHaveTheRoomBetweenTheirBoxes) {
   }
   // a sweep from the left sphere's top: settled while it stays in the room, not when it
   // reaches toward the right sphere (the box it would enter is the other piece's)
-  std::uint32_t top = 0;
-  for (std::uint32_t t = 0; t < mesh->num_triangles(); ++t) {
-    if (mesh->face_normal(t).dot(Vec3(0, 0, 1)) > mesh->face_normal(top).dot(Vec3(0, 0, 1)) &&
-        pieces->piece(t) == 0) {
-      top = t;
-    }
-  }
   SweepQuery q;
-  q.hint = top;
+  q.hint = Facing(*mesh, *pieces, Vec3(0, 0, 1), 0);
   q.a = Vec3(-3, 0, 1.01);
   q.b = Vec3(-3, 0, 0.9);
   EXPECT_TRUE(SettlesRightly(*mesh, *pieces, q, 0));
@@ -369,18 +382,10 @@ TEST(ConvexPieces, ASmallPieceInsideABigOnesBoxIsNeverMissed) {
   const auto mesh = MeshOf(Join(MakeIcosphere(10, 1.0), MakeIcosphere(3, 0.05, Vec3(0.8, 0.8, 0))));
   const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
   ASSERT_EQ(pieces->num_pieces(), 2u);
-  std::uint32_t facing = 0;  // the ball's triangle facing the pebble
-  for (std::uint32_t t = 0; t < mesh->num_triangles(); ++t) {
-    const Vec3 toward = Vec3(1, 1, 0).normalized();
-    if (pieces->piece(t) == pieces->piece(0) &&
-        mesh->face_normal(t).dot(toward) > mesh->face_normal(facing).dot(toward)) {
-      facing = t;
-    }
-  }
   // from just off the ball, straight out through the pebble
   const Vec3 out = Vec3(1, 1, 0).normalized();
   SweepQuery q;
-  q.hint = facing;
+  q.hint = Facing(*mesh, *pieces, out, pieces->piece(0));  // the ball's triangle facing it
   q.a = 1.001 * out;
   q.b = 1.3 * out;
   SweepSearch search(*mesh, q);
@@ -393,10 +398,7 @@ TEST(ConvexPieces, AFloorThatCutsTheSolidProvesNothing) {
   // floor, yet it goes through the ball
   const auto mesh = MeshOf(MakeIcosphere(10, 1.0));
   const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
-  std::uint32_t top = 0;
-  for (std::uint32_t t = 0; t < mesh->num_triangles(); ++t) {
-    if (mesh->face_normal(t).z() > mesh->face_normal(top).z()) top = t;
-  }
+  const std::uint32_t top = Facing(*mesh, *pieces, Vec3(0, 0, 1));
   SweepFloors floors;
   floors.count = 1;
   floors.normal[0] = Vec3(0, 0, 1);
@@ -451,12 +453,8 @@ TEST(ConvexPieces, ASphereGrazingAnEdgeAtExactlyItsRadiusIsNotClear) {
   // exhaustive test touches the edge (with no depth); Settle must not call it clear
   const auto mesh = MeshOf(testing::MakeBoxSoup(Vec3(-1, -2, -3), Vec3(1, 2, 3)));
   const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
-  std::uint32_t top = 0;
-  for (std::uint32_t t = 0; t < mesh->num_triangles(); ++t) {
-    if (mesh->face_normal(t).z() > 0.5) top = t;
-  }
   SweepQuery q;
-  q.hint = top;
+  q.hint = Facing(*mesh, *pieces, Vec3(0, 0, 1));
   q.radius = 0.25;
   q.a = Vec3(0.5, 0.1, 3.25);
   q.b = Vec3(1.5, 0.1, 3.25);
@@ -475,8 +473,7 @@ TEST(ConvexPieces, PiecesWhoseBoxesOverlapSettleOnlyOutsideTheOthersBox) {
   EXPECT_NEAR(pieces->clear_lo(1).x(), 1.0, 1e-12);
   int settled = 0, beyond = 0;
   for (std::uint32_t t = 0; t < mesh->num_triangles(); t += 3) {
-    const auto& tri = mesh->triangle(t);
-    const Vec3 c = (mesh->vertex(tri[0]) + mesh->vertex(tri[1]) + mesh->vertex(tri[2])) / 3.0;
+    const Vec3 c = Centre(*mesh, t);
     for (const double radius : {0.0, 0.05}) {
       SweepQuery q;
       q.hint = t;
@@ -501,8 +498,7 @@ TEST(ConvexPieces, ASweepFromInsideTheSolidIsLeftToTheWalk) {
   const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
   int settled = 0;
   for (std::uint32_t t = 0; t < mesh->num_triangles(); t += 5) {
-    const auto& tri = mesh->triangle(t);
-    const Vec3 c = (mesh->vertex(tri[0]) + mesh->vertex(tri[1]) + mesh->vertex(tri[2])) / 3.0;
+    const Vec3 c = Centre(*mesh, t);
     for (const double radius : {0.0, 0.05}) {
       SweepQuery q;
       q.hint = t;
@@ -551,7 +547,7 @@ TEST(ConvexPieces, SettleAndWarmUpAllocateNothing) {
     q.b = p - 0.2 * n + 0.05 * n.cross(Vec3(1, 2, 3)).normalized();
     SweepSearch search(*mesh, q);
     settled += pieces->Settle(q, &search);
-    pieces->WarmUp(t);
+    EXPECT_TRUE(pieces->WarmUp(t));
   }
   EXPECT_EQ(counter.count(), 0u);
   EXPECT_GT(settled, 500);

@@ -78,8 +78,8 @@ class ConvexPieces {
   // vertices) and those across theirs (all but their vertices, whose addresses are not
   // loaded yet). A contact sliding into a neighbour finds it warm, and its neighbours'
   // vertices are prefetched on arrival. Prefetch instructions only: servo-tick safe.
-  // Does nothing for a triangle off the convex pieces.
-  void WarmUp(std::uint32_t t) const;
+  // Returns whether it warmed anything: not for a triangle off the convex pieces.
+  bool WarmUp(std::uint32_t t) const;
 
   // The convex piece triangle t belongs to, or kNone.
   std::uint32_t piece(std::uint32_t t) const {
