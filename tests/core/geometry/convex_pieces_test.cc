@@ -207,14 +207,18 @@ double FuzzSettle(const TriangleMesh& mesh, const ConvexPieces& pieces, double r
     q.hint = t;
     q.a = a;
     SweepFloors floors;
-    if (kind == 0) {
-      // a slide along the triangle's plane, at rest height, with its floor
-      const Vec3 along = (jitter - jitter.dot(n) * n).normalized();
-      q.b = a + edge * (0.1 + 2.0 * unit(rng)) * along;
+    // a slide at rest height along the plane across m through `through`, with its floor
+    const auto slide = [&](const Vec3& m, const Vec3& through) {
+      q.a = through + (radius + offset) * m;
+      const Vec3 along = (jitter - jitter.dot(m) * m).normalized();
+      q.b = q.a + edge * (0.1 + 2.0 * unit(rng)) * along;
       floors.count = 1;
-      floors.normal[0] = n;
-      floors.offset[0] = n.dot(on) + 0.5 * offset;
+      floors.normal[0] = m;
+      floors.offset[0] = m.dot(through) + 0.5 * offset;
       q.floors = &floors;
+    };
+    if (kind == 0) {
+      slide(n, on);  // along the triangle's plane
     } else if (kind == 1) {
       // a slide along an edge's plane (the mean of its triangles' normals), at rest height
       // over the edge, with its floor: the triangle's own plane does not clear it
@@ -226,15 +230,7 @@ double FuzzSettle(const TriangleMesh& mesh, const ConvexPieces& pieces, double r
         const bool has_r = other[0] == r || other[1] == r || other[2] == r;
         if (o != t && has_p && has_r) m = (n + mesh.face_normal(o)).normalized();
       }
-      const Vec3 mid = 0.5 * (mesh.vertex(p) + mesh.vertex(r));
-      a = mid + (radius + offset) * m;
-      q.a = a;
-      const Vec3 along = (jitter - jitter.dot(m) * m).normalized();
-      q.b = a + edge * (0.1 + 2.0 * unit(rng)) * along;
-      floors.count = 1;
-      floors.normal[0] = m;
-      floors.offset[0] = m.dot(mid) + 0.5 * offset;
-      q.floors = &floors;
+      slide(m, 0.5 * (mesh.vertex(p) + mesh.vertex(r)));
     } else {
       // toward a goal pressed into the solid, a short or a long way across
       const double reach = edge * std::pow(10.0, -2.0 + 2.5 * unit(rng));

@@ -130,8 +130,9 @@ class ConvexPieces {
   // Whether the triangles round vertex v turn once round it, each counter-clockwise
   // seen from outside: projected on the plane across the sum of their planes' normals
   // (each plane once; every normal must lean toward it), a direction inside the first
-  // corner lies inside exactly one corner. A second turn (triangles wrapping round a vertex twice, every edge
-  // convex) would make a surface that only looks convex edge by edge. For the build.
+  // corner lies inside exactly one corner. A second turn (triangles wrapping round a
+  // vertex twice, every edge convex) would make a surface that only looks convex edge
+  // by edge. For the build.
   bool TurnsOnce(std::uint32_t v) const;
   // Calls visit(u) for every triangle u round vertex v, starting from triangle t (which
   // holds v); false if the fan is longer than kMaxFan.
