@@ -17,6 +17,13 @@
 namespace hapticad {
 namespace {
 
+// a generated soup is clean: no repair
+SceneOptions NoRepair() {
+  SceneOptions options;
+  options.repair = false;
+  return options;
+}
+
 enum Setup { kPlain, kPattern, kCurve, kRoughness, kTexture, kVibration, kCone, kEverything };
 const char* kNames[] = {"plain",         "linear pattern",  "curve pattern (exact)",
                         "roughness",     "viscous texture", "vibration",
@@ -76,7 +83,7 @@ BENCHMARK(BM_RenderTick)->DenseRange(kPlain, kEverything);
 void BM_ResetInside(benchmark::State& state) {
   const int frequency = static_cast<int>(state.range(0));
   const bool sphere = state.range(1) != 0;
-  const auto scene = HapticScene::Build(MakeIcosphere(frequency, 50.0), 1e-3, {false});
+  const auto scene = HapticScene::Build(MakeIcosphere(frequency, 50.0), 1e-3, NoRepair());
   ContactOptions options;
   options.proxy_radius_m = sphere ? 0.001 : 0.0;
   ForceRenderer renderer(scene, std::make_shared<SurfaceTable>(), RenderLimits{8.9, 3000.0},
@@ -103,7 +110,7 @@ void BM_ResetInsideOneOfTwoFarApart(benchmark::State& state) {
   for (const auto& t : other.triangles)
     soup.triangles.push_back({base + t[0], base + t[1], base + t[2]});
   soup.cad_faces.resize(soup.triangles.size(), 0);
-  const auto scene = HapticScene::Build(soup, 1e-3, {false});
+  const auto scene = HapticScene::Build(soup, 1e-3, NoRepair());
   ForceRenderer renderer(scene, std::make_shared<SurfaceTable>(), RenderLimits{8.9, 3000.0});
   const Vec3 at = Vec3(-0.25, 0.0, 0.0) + Vec3(0.3, 0.5, 0.8).normalized() * 0.0045;
   for (auto _ : state) {

@@ -40,6 +40,7 @@ void GodObjectProxy::Reset(const Vec3& position_l) {
   position_ = position_l;
   constraints_.Clear();
   last_triangle_ = -1;
+  warmed_triangle_ = kNoTriangle;
 }
 
 bool GodObjectProxy::ResetOutside(const Vec3& position_l) {
@@ -73,8 +74,13 @@ bool GodObjectProxy::ResetOutside(const Vec3& position_l) {
     exits[inside++] = {(first.point - position_l).norm(), first};
   }
   if (inside <= outside) return false;
-  std::sort(exits, exits + inside,
-            [](const Exit& a, const Exit& b) { return a.distance < b.distance; });
+  // nearest first; an insertion sort of at most six (std::sort's path for more than 16,
+  // dead here, draws GCC 12's -Warray-bounds)
+  for (int i = 1; i < inside; ++i) {
+    for (int j = i; j > 0 && exits[j].distance < exits[j - 1].distance; --j) {
+      std::swap(exits[j], exits[j - 1]);
+    }
+  }
   const double r = config_.radius_m;
   const double offset = config_.surface_offset_m;
   for (int i = 0; i < inside; ++i) {
@@ -181,10 +187,15 @@ void GodObjectProxy::Update(const Vec3& goal_l) {
   // kept through a lift-off: a sweep that stays above it is proven free (ConvexPieces)
   if (in_contact()) last_triangle_ = constraints_.plane(0).triangle;
   // Load what the next ticks will read: on a convex piece the triangles round the
-  // contact, else the grid's cells the proxy is heading for.
-  if (config_.pieces != nullptr && in_contact() &&
-      config_.pieces->WarmUp(constraints_.plane(0).triangle)) {
-    return;
+  // contact (once per contact triangle: while it stays, they were loaded a few ticks
+  // ago), else the grid's cells the proxy is heading for.
+  if (config_.pieces != nullptr && in_contact()) {
+    const std::uint32_t t = constraints_.plane(0).triangle;
+    if (t == warmed_triangle_) return;
+    if (config_.pieces->WarmUp(t)) {
+      warmed_triangle_ = t;
+      return;
+    }
   }
   // The cells ahead, while they are still a few ticks away (at 0.05-0.1 mm a tick on a
   // 1M-triangle model a new cell comes every 5 ticks or so): every cell on the next

@@ -10,7 +10,6 @@
 #include "hapticad/core/geometry/connected_pieces.h"
 
 namespace hapticad {
-namespace {}  // namespace
 
 std::unique_ptr<ConvexPieces> ConvexPieces::Build(const TriangleMesh& mesh, double tolerance) {
   if (!(std::isfinite(tolerance) && tolerance >= 0.0)) {
@@ -328,18 +327,14 @@ bool ConvexPieces::SearchAround(std::uint32_t t, const SweepQuery& query, std::u
 
 bool ConvexPieces::WarmUp(std::uint32_t t) const {
   if (t >= records_.size() || records_[t].piece == kNone) return false;
+  std::uint32_t word = 0;
   for (const std::uint32_t u : records_[t].across) {
-    __builtin_prefetch(&records_[u]);
-    mesh_->PrefetchTriangle(u);
-  }
-  // (in a steady slide these were prefetched as the last contact's second ring)
-  for (const std::uint32_t u : records_[t].across) {
-    mesh_->PrefetchVertices(u);
+    word ^= mesh_->LoadTriangle(u, true);
     for (const std::uint32_t w : records_[u].across) {
-      __builtin_prefetch(&records_[w]);
-      mesh_->PrefetchTriangle(w);
+      word ^= records_[w].piece ^ mesh_->LoadTriangle(w, true);
     }
   }
+  TriangleMesh::KeepLoads(word);
   return true;
 }
 

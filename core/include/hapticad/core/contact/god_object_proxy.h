@@ -115,6 +115,8 @@ class GodObjectProxy {
   ConstraintSet constraints_;
   std::int64_t last_triangle_ = -1;  // the last first contact (since Reset): tested first
   TriangleGrid::Prefetch warm_up_;   // the cell ahead of the proxy, being loaded
+  static constexpr std::uint32_t kNoTriangle = ~std::uint32_t{0};
+  std::uint32_t warmed_triangle_ = kNoTriangle;  // ConvexPieces::WarmUp's last triangle
   mutable std::uint64_t sweeps_ = 0;
   mutable std::uint64_t settled_sweeps_ = 0;
 };

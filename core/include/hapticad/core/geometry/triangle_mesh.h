@@ -93,6 +93,24 @@ class TriangleMesh {
   void PrefetchVertices(std::uint32_t t) const {
     for (const std::uint32_t v : triangles_[t]) __builtin_prefetch(&points_[v]);
   }
+  // The same data read, its vertices too if `with_vertices`: the loads wait for memory,
+  // but are independent of each other, so they overlap, and unlike a prefetch none is
+  // dropped. Returns a word made of what was read; pass it to KeepLoads so the compiler
+  // keeps the loads. Servo-tick safe.
+  std::uint32_t LoadTriangle(std::uint32_t t, bool with_vertices) const {
+    const auto& tri = triangles_[t];
+    std::uint32_t word = tri[0] ^ static_cast<std::uint32_t>(cad_faces_[t]);
+    word ^= static_cast<std::uint32_t>(face_normals_[t].x() > 0.0);
+    if (!corner_normals_.empty()) {
+      word ^= static_cast<std::uint32_t>(corner_normals_[3 * t].x() > 0.0f);
+      word ^= static_cast<std::uint32_t>(corner_normals_[3 * t + 2].z() > 0.0f);
+    }
+    if (with_vertices) {
+      for (const std::uint32_t v : tri) word ^= static_cast<std::uint32_t>(points_[v].x() > 0.0);
+    }
+    return word;
+  }
+  static void KeepLoads(std::uint32_t word) { asm volatile("" : : "r"(word)); }
 
   const OpenMeshTriMesh& openmesh() const { return mesh_; }
 
