@@ -77,8 +77,8 @@ class ConvexPieces {
   // when the contact moves on: those across t's edges and those across theirs (records,
   // corners, normals and vertices), so a contact sliding on finds them loaded. It reads
   // them (some 60 independent loads, which overlap) rather than prefetching: a prefetch
-  // may be dropped, and the 1M-triangle tail was 17-19 % shorter with loads (p99 point
-  // 0.81 against 0.98 us, sphere 1.16 against 1.44; p50 0.04 us longer; BENCHMARKS.md).
+  // may be dropped, and the 1M-triangle tail was a fifth shorter with loads (p99 point
+  // 0.79 against 1.06 us, sphere 1.21 against 1.43; p50 0.03 us longer; BENCHMARKS.md).
   // No allocation, no lock: servo-tick safe. Returns whether it warmed anything: not for
   // a triangle off the convex pieces.
   bool WarmUp(std::uint32_t t) const;
