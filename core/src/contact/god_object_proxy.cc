@@ -41,6 +41,7 @@ void GodObjectProxy::Reset(const Vec3& position_l) {
   constraints_.Clear();
   last_triangle_ = -1;
   warmed_triangle_ = kNoTriangle;
+  warm_step_ = 0;
 }
 
 bool GodObjectProxy::ResetOutside(const Vec3& position_l) {
@@ -187,13 +188,17 @@ void GodObjectProxy::Update(const Vec3& goal_l) {
   // kept through a lift-off: a sweep that stays above it is proven free (ConvexPieces)
   if (in_contact()) last_triangle_ = constraints_.plane(0).triangle;
   // Load what the next ticks will read: on a convex piece the triangles round the
-  // contact (once per contact triangle: while it stays, they were loaded a few ticks
-  // ago), else the grid's cells the proxy is heading for.
+  // contact (once per contact triangle, a step a tick over its first three ticks), else
+  // the grid's cells the proxy is heading for.
   if (config_.pieces != nullptr && in_contact()) {
     const std::uint32_t t = constraints_.plane(0).triangle;
-    if (t == warmed_triangle_) return;
-    if (config_.pieces->WarmUp(t)) {
+    if (t == warmed_triangle_) {
+      if (warm_step_ < ConvexPieces::kWarmUpSteps) config_.pieces->WarmUp(t, warm_step_++);
+      return;
+    }
+    if (config_.pieces->WarmUp(t, 0)) {
       warmed_triangle_ = t;
+      warm_step_ = 1;
       return;
     }
   }

@@ -325,13 +325,17 @@ bool ConvexPieces::SearchAround(std::uint32_t t, const SweepQuery& query, std::u
   return false;
 }
 
-bool ConvexPieces::WarmUp(std::uint32_t t) const {
+bool ConvexPieces::WarmUp(std::uint32_t t, int step) const {
   if (t >= records_.size() || records_[t].piece == kNone) return false;
   std::uint32_t word = 0;
   for (const std::uint32_t u : records_[t].across) {
-    word ^= mesh_->LoadTriangle(u, true);
+    if (step == 0) {
+      word ^= mesh_->LoadTriangle(u, true);
+      continue;
+    }
     for (const std::uint32_t w : records_[u].across) {
-      word ^= records_[w].piece ^ mesh_->LoadTriangle(w, true);
+      word ^= step == 1 ? records_[w].piece ^ mesh_->LoadTriangle(w, false)
+                        : mesh_->LoadVertices(w);
     }
   }
   TriangleMesh::KeepLoads(word);

@@ -279,7 +279,9 @@ TEST(ConvexPieces, SurfacesThatBoundNoConvexSolidAreNoPiece) {
     q.b = Vec3(0, 0, 0.5);
     SweepSearch search(*mesh, q);
     EXPECT_FALSE(pieces->Settle(q, &search));
-    EXPECT_FALSE(pieces->WarmUp(0));
+    for (int step = 0; step < ConvexPieces::kWarmUpSteps; ++step) {
+      EXPECT_FALSE(pieces->WarmUp(0, step));
+    }
   }
 }
 
@@ -543,7 +545,9 @@ TEST(ConvexPieces, SettleAndWarmUpAllocateNothing) {
     q.b = p - 0.2 * n + 0.05 * n.cross(Vec3(1, 2, 3)).normalized();
     SweepSearch search(*mesh, q);
     settled += pieces->Settle(q, &search);
-    EXPECT_TRUE(pieces->WarmUp(t));
+    for (int step = 0; step < ConvexPieces::kWarmUpSteps; ++step) {
+      EXPECT_TRUE(pieces->WarmUp(t, step));
+    }
   }
   EXPECT_EQ(counter.count(), 0u);
   EXPECT_GT(settled, 500);

@@ -117,6 +117,7 @@ class GodObjectProxy {
   TriangleGrid::Prefetch warm_up_;   // the cell ahead of the proxy, being loaded
   static constexpr std::uint32_t kNoTriangle = ~std::uint32_t{0};
   std::uint32_t warmed_triangle_ = kNoTriangle;  // ConvexPieces::WarmUp's last triangle
+  int warm_step_ = 0;  // its next step (ConvexPieces::kWarmUpSteps: all done)
   mutable std::uint64_t sweeps_ = 0;
   mutable std::uint64_t settled_sweeps_ = 0;
 };

@@ -76,12 +76,16 @@ class ConvexPieces {
   // Warms the caches for the triangles a sweep from triangle t (the last contact) reads
   // when the contact moves on: those across t's edges and those across theirs (records,
   // corners, normals and vertices), so a contact sliding on finds them loaded. It reads
-  // them (some 60 independent loads, which overlap) rather than prefetching: a prefetch
-  // may be dropped, and the 1M-triangle tail was a fifth shorter with loads (p99 point
-  // 0.79 against 1.06 us, sphere 1.21 against 1.43; p50 0.03 us longer; BENCHMARKS.md).
-  // No allocation, no lock: servo-tick safe. Returns whether it warmed anything: not for
-  // a triangle off the convex pieces.
-  bool WarmUp(std::uint32_t t) const;
+  // them rather than prefetching (a prefetch may be dropped: the 1M-triangle tail was a
+  // fifth shorter with loads), in kWarmUpSteps steps, one a tick, each needing only what
+  // the step before loaded: step 0 the triangles across t's edges with their vertices,
+  // step 1 those across theirs, step 2 their vertices. A tick then waits for one round
+  // of misses, not two in a row (1M p99 point 0.72 against 0.93 us all in one tick,
+  // sphere 1.10 against 1.28; BENCHMARKS.md). `step` in [0, kWarmUpSteps). No
+  // allocation, no lock: servo-tick safe. Returns whether it warmed anything: not for a
+  // triangle off the convex pieces.
+  static constexpr int kWarmUpSteps = 3;
+  bool WarmUp(std::uint32_t t, int step) const;
 
   // The convex piece triangle t belongs to, or kNone.
   std::uint32_t piece(std::uint32_t t) const {
