@@ -112,6 +112,37 @@ struct TriangleBboxMap {
 };
 
 using Traits = CGAL::AABB_traits<Kernel, TrianglePrimitive, TriangleBboxMap>;
+
+using TreeNode = CGAL::AABB_node<Traits>;
+
+}  // namespace
+}  // namespace hapticad
+
+// CGAL keeps the tree's nodes (64 bytes a triangle) and primitives (16) in std::vectors
+// with the default allocator; these two specializations put them on huge pages, as the
+// mesh's arrays are: on this VM the first touch of ordinary pages was half of a 1M-triangle
+// tree's build (530 -> 270 ms alone in a process), and a walk of the tree needs fewer TLB
+// entries. Both types live in this file's unnamed namespace, so no other translation unit
+// can instantiate the primary std::allocator for them.
+namespace std {
+template <>
+struct allocator<hapticad::TreeNode> : hapticad::HugePageStdAllocator<hapticad::TreeNode> {
+  allocator() = default;
+  template <class U>
+  allocator(const allocator<U>&) {}  // NOLINT(google-explicit-constructor)
+};
+template <>
+struct allocator<hapticad::TrianglePrimitive>
+    : hapticad::HugePageStdAllocator<hapticad::TrianglePrimitive> {
+  allocator() = default;
+  template <class U>
+  allocator(const allocator<U>&) {}  // NOLINT(google-explicit-constructor)
+};
+}  // namespace std
+
+namespace hapticad {
+namespace {
+
 using Tree = CGAL::AABB_tree<Traits>;
 
 // CGAL's walk over the boxes, nearest entry first (traversal_with_priority), feeding the

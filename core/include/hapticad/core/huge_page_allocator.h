@@ -18,6 +18,8 @@
 #include <cstdint>
 #include <memory>
 #include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace hapticad {
@@ -74,5 +76,51 @@ struct HugePageAllocator {
 // A vector whose storage is a HugePageAllocator's.
 template <class T>
 using HugePageVector = std::vector<T, HugePageAllocator<T>>;
+
+// The members of std::allocator<T> (C++17), storage from a HugePageAllocator: the body of
+// a specialization of std::allocator for a type of ours that a library keeps in a plain
+// std::vector (CGAL's tree nodes and primitives, triangle_tree.cc). The standard allows
+// specializing std::allocator for a program-defined type if it keeps the interface.
+template <class T>
+struct HugePageStdAllocator {
+  using value_type = T;
+  using pointer = T*;
+  using const_pointer = const T*;
+  using reference = T&;
+  using const_reference = const T&;
+  using size_type = std::size_t;
+  using difference_type = std::ptrdiff_t;
+  using propagate_on_container_move_assignment = std::true_type;
+  using is_always_equal = std::true_type;
+  template <class U>
+  struct rebind {
+    using other = std::allocator<U>;
+  };
+  static_assert(alignof(T) <= __STDCPP_DEFAULT_NEW_ALIGNMENT__, "over-aligned type");
+
+  T* allocate(std::size_t n, const void* /*hint*/ = nullptr) {
+    // small blocks straight from operator new: std::allocator<T> is this very type
+    if (n * sizeof(T) < HugePageAllocator<T>::kHugePage) {
+      return static_cast<T*>(::operator new(n * sizeof(T)));
+    }
+    return HugePageAllocator<T>().allocate(n);
+  }
+  void deallocate(T* p, std::size_t n) {
+    if (n * sizeof(T) < HugePageAllocator<T>::kHugePage) {
+      ::operator delete(p);
+    } else {
+      HugePageAllocator<T>().deallocate(p, n);
+    }
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+  template <class U>
+  void destroy(U* p) {
+    p->~U();
+  }
+  std::size_t max_size() const noexcept { return std::size_t(-1) / sizeof(T); }
+};
 
 }  // namespace hapticad
