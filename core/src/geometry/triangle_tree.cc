@@ -15,6 +15,7 @@
 #include <CGAL/Simple_cartesian.h>
 #include <boost/iterator/counting_iterator.hpp>
 
+#include "hapticad/core/geometry/median_select.h"
 #include "hapticad/core/geometry/segment_triangle.h"
 #include "hapticad/core/geometry/sweep_search.h"
 #include "hapticad/core/huge_page_allocator.h"
@@ -54,6 +55,7 @@ class TrianglePrimitive {
   Point reference_point(Shared_data) const {
     return Point(reference_[0], reference_[1], reference_[2]);
   }
+  float reference(int axis) const { return reference_[axis]; }
 
  private:
   static Point ToPoint(const Vec3& p) { return Point(p.x(), p.y(), p.z()); }
@@ -145,6 +147,19 @@ namespace {
 
 using Tree = CGAL::AABB_tree<Traits>;
 
+// CGAL's split (the median of the reference points along the box's longest axis), with
+// a selection that does not branch on its comparisons (median_select.h). Any
+// permutation of the range makes a correct tree; this one makes CGAL's up to the order
+// of equal keys.
+struct MedianSplit {
+  template <class Iterator>
+  void operator()(Iterator first, Iterator beyond, const CGAL::Bbox_3& box) const {
+    const int axis = static_cast<int>(Traits::longest_axis(box));
+    const auto n = static_cast<std::size_t>(beyond - first);
+    SelectNth(&*first, n, n / 2, [axis](const TrianglePrimitive& p) { return p.reference(axis); });
+  }
+};
+
 // CGAL's walk over the boxes, nearest entry first (traversal_with_priority), feeding the
 // triangles to a SweepSearch and pruning every box entered beyond its nearest contact
 // so far. A sphere query grows every box by its radius: the swept sphere meets a box
@@ -219,8 +234,9 @@ std::unique_ptr<TriangleTree> TriangleTree::Build(const TriangleMesh& mesh, doub
     impl->build_boxes[t] = ToFloatBox(Vec3(box.xmin(), box.ymin(), box.zmin()),
                                       Vec3(box.xmax(), box.ymax(), box.zmax()));
   }
-  // CGAL defers both to the first query: do them now, off the servo thread
-  impl->tree.build();
+  // CGAL defers both to the first query: do them now, off the servo thread. custom_build
+  // (public in CGAL 5.5, though not in its manual) is build() with the split given.
+  impl->tree.custom_build(impl->tree.traits().compute_bbox_object(), MedianSplit());
   impl->build_boxes.clear();
   impl->build_boxes.shrink_to_fit();
   // The kd-tree only supplies starting hints for closest-point searches (never on the
