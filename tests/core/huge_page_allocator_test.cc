@@ -15,9 +15,7 @@ namespace std {
 template <>
 struct allocator<hapticad::test_huge_pages::Node>
     : hapticad::HugePageStdAllocator<hapticad::test_huge_pages::Node> {
-  allocator() = default;
-  template <class U>
-  allocator(const allocator<U>&) {}  // NOLINT(google-explicit-constructor)
+  using HugePageStdAllocator::HugePageStdAllocator;
 };
 }  // namespace std
 

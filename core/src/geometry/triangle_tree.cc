@@ -129,16 +129,12 @@ using TreeNode = CGAL::AABB_node<Traits>;
 namespace std {
 template <>
 struct allocator<hapticad::TreeNode> : hapticad::HugePageStdAllocator<hapticad::TreeNode> {
-  allocator() = default;
-  template <class U>
-  allocator(const allocator<U>&) {}  // NOLINT(google-explicit-constructor)
+  using HugePageStdAllocator::HugePageStdAllocator;
 };
 template <>
 struct allocator<hapticad::TrianglePrimitive>
     : hapticad::HugePageStdAllocator<hapticad::TrianglePrimitive> {
-  allocator() = default;
-  template <class U>
-  allocator(const allocator<U>&) {}  // NOLINT(google-explicit-constructor)
+  using HugePageStdAllocator::HugePageStdAllocator;
 };
 }  // namespace std
 

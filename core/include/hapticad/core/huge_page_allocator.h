@@ -80,7 +80,11 @@ using HugePageVector = std::vector<T, HugePageAllocator<T>>;
 // The members of std::allocator<T> (C++17), storage from a HugePageAllocator: the body of
 // a specialization of std::allocator for a type of ours that a library keeps in a plain
 // std::vector (CGAL's tree nodes and primitives, triangle_tree.cc). The standard allows
-// specializing std::allocator for a program-defined type if it keeps the interface.
+// specializing std::allocator for a program-defined type if it keeps the interface:
+//   template <> struct std::allocator<X> : hapticad::HugePageStdAllocator<X> {
+//     using HugePageStdAllocator::HugePageStdAllocator;
+//   };
+// declared before anything instantiates std::allocator<X>.
 template <class T>
 struct HugePageStdAllocator {
   using value_type = T;
@@ -97,6 +101,10 @@ struct HugePageStdAllocator {
     using other = std::allocator<U>;
   };
   static_assert(alignof(T) <= __STDCPP_DEFAULT_NEW_ALIGNMENT__, "over-aligned type");
+
+  HugePageStdAllocator() = default;
+  template <class U>
+  HugePageStdAllocator(const std::allocator<U>&) {}  // NOLINT(google-explicit-constructor)
 
   T* allocate(std::size_t n, const void* /*hint*/ = nullptr) {
     // small blocks straight from operator new: std::allocator<T> is this very type
