@@ -334,8 +334,8 @@ bool ConvexPieces::WarmUp(std::uint32_t t, int step) const {
       continue;
     }
     for (const std::uint32_t w : records_[u].across) {
-      word ^= step == 1 ? records_[w].piece ^ mesh_->LoadTriangle(w, false)
-                        : mesh_->LoadVertices(w);
+      word ^=
+          step == 1 ? records_[w].piece ^ mesh_->LoadTriangle(w, false) : mesh_->LoadVertices(w);
     }
   }
   TriangleMesh::KeepLoads(word);

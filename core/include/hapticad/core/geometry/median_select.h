@@ -67,8 +67,7 @@ void SelectNth(T* a, std::size_t n, std::size_t k, const Key& key) {
       continue;
     }
     // the keys equal to the pivot (its own at least) come next
-    const std::size_t equal =
-        Partition(a, less, hi, key, [pivot](float x) { return x <= pivot; });
+    const std::size_t equal = Partition(a, less, hi, key, [pivot](float x) { return x <= pivot; });
     if (k < equal) return;
     lo = equal;
   }
