@@ -14,7 +14,6 @@
 #include <vector>
 
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
-#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Simple_cartesian.h>
 
 namespace hapticad {
@@ -22,31 +21,92 @@ namespace {
 
 using Kernel = CGAL::Simple_cartesian<double>;
 using Point = Kernel::Point_3;
-using Polygon = std::vector<std::size_t>;
+using Polygon = std::array<std::size_t, 3>;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
 Vec3 ToVec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
 
-// Undirected edges with the number of triangles on each, sorted.
+// Undirected edges with the number of triangles on each, sorted. A counting sort by the
+// lower vertex, then each vertex's few edges sorted in place: O(n), where a sort of the
+// 3n edge copies was a third of a 1M-triangle repair.
 std::vector<std::pair<std::pair<std::size_t, std::size_t>, int>> CountEdges(
     const std::vector<Polygon>& polygons) {
-  std::vector<std::pair<std::size_t, std::size_t>> edges;
-  edges.reserve(3 * polygons.size());
+  std::size_t vertices = 0;
+  for (const Polygon& p : polygons) vertices = std::max({vertices, p[0] + 1, p[1] + 1, p[2] + 1});
+  // the edges whose lower vertex is v: upper[start[v], start[v + 1])
+  std::vector<std::size_t> start(vertices + 1, 0);
   for (const Polygon& p : polygons) {
-    for (int k = 0; k < 3; ++k) {
-      const std::size_t a = p[k], b = p[(k + 1) % 3];
-      edges.emplace_back(std::min(a, b), std::max(a, b));
+    for (int k = 0; k < 3; ++k) ++start[std::min(p[k], p[(k + 1) % 3]) + 1];
+  }
+  for (std::size_t v = 0; v < vertices; ++v) start[v + 1] += start[v];
+  std::vector<std::size_t> upper(start[vertices]);
+  {
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (const Polygon& p : polygons) {
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t a = p[k], b = p[(k + 1) % 3];
+        upper[fill[std::min(a, b)]++] = std::max(a, b);
+      }
     }
   }
-  std::sort(edges.begin(), edges.end());
   std::vector<std::pair<std::pair<std::size_t, std::size_t>, int>> counted;
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j] == edges[i]) ++j;
-    counted.push_back({edges[i], static_cast<int>(j - i)});
-    i = j;
+  counted.reserve(upper.size() / 2 + 1);
+  for (std::size_t v = 0; v < vertices; ++v) {
+    const auto first = upper.begin() + static_cast<std::ptrdiff_t>(start[v]);
+    const auto last = upper.begin() + static_cast<std::ptrdiff_t>(start[v + 1]);
+    std::sort(first, last);
+    for (auto i = first; i != last;) {
+      auto j = i;
+      while (j != last && *j == *i) ++j;
+      counted.push_back({{v, *i}, static_cast<int>(j - i)});
+      i = j;
+    }
   }
   return counted;
+}
+
+// Merges points with equal coordinates into the first of them and numbers the points
+// left in the order of their first appearance: what CGAL's
+// merge_duplicate_points_in_polygon_soup does, with a sort of the indices in place of
+// its std::map (a node allocated per point). Returns how many points were merged away.
+std::size_t MergeDuplicatePoints(std::vector<Point>* points, std::vector<Polygon>* polygons) {
+  const std::size_t n = points->size();
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  const std::vector<Point>& p = *points;
+  std::sort(order.begin(), order.end(), [&p](std::size_t a, std::size_t b) {
+    const Point& u = p[a];
+    const Point& v = p[b];
+    if (u.x() != v.x()) return u.x() < v.x();
+    if (u.y() != v.y()) return u.y() < v.y();
+    if (u.z() != v.z()) return u.z() < v.z();
+    return a < b;
+  });
+  std::vector<std::size_t> first(n);  // the first index with the same coordinates
+  std::size_t merged = 0;
+  for (std::size_t i = 0; i < n;) {
+    std::size_t j = i;
+    while (j < n && p[order[j]] == p[order[i]]) first[order[j++]] = order[i];
+    merged += j - i - 1;
+    i = j;
+  }
+  if (merged == 0) return 0;
+  std::vector<std::size_t> id(n);
+  std::vector<Point> unique;
+  unique.reserve(n - merged);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (first[i] == i) {
+      id[i] = unique.size();
+      unique.push_back(p[i]);
+    } else {
+      id[i] = id[first[i]];  // first[i] < i: numbered already
+    }
+  }
+  for (Polygon& polygon : *polygons) {
+    for (std::size_t& v : polygon) v = id[v];
+  }
+  points->swap(unique);
+  return merged;
 }
 
 // Counts what CGAL's orientation does, and remembers duplicated vertices.
@@ -195,7 +255,7 @@ TriangleSoup RepairSoup(const TriangleSoup& soup, const RepairOptions& options,
       ++r.removed_nonfinite;
       continue;
     }
-    Polygon p(3);
+    Polygon p{};
     for (int k = 0; k < 3; ++k) {
       std::int64_t& id = remap[tri[k]];
       if (id < 0) {
@@ -221,7 +281,7 @@ TriangleSoup RepairSoup(const TriangleSoup& soup, const RepairOptions& options,
   const double diagonal = (hi - lo).norm();
 
   // 2. duplicates, then welds across open edges
-  r.merged_vertices = PMP::merge_duplicate_points_in_polygon_soup(points, polygons);
+  r.merged_vertices = MergeDuplicatePoints(&points, &polygons);
   r.welded_vertices = WeldOpenEdges(points, &polygons, options.weld_tolerance * diagonal);
   r.merged_vertices += r.welded_vertices;
 
@@ -294,8 +354,8 @@ TriangleSoup RepairSoup(const TriangleSoup& soup, const RepairOptions& options,
     if (count == 1) ++r.boundary_edges;
   }
 
-  // vertices numbered in the order the triangles first use them (CGAL's merge sorts
-  // them by coordinate): a triangle's neighbours then find their vertices nearby in
+  // vertices numbered in the order the triangles first use them (the input's may be
+  // any, an STL's has none): a triangle's neighbours then find their vertices nearby in
   // memory, which the servo tick feels on big meshes; unused vertices are dropped
   TriangleSoup out;
   std::vector<std::int32_t> renumber(points.size(), -1);

@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hapticad/core/geometry/mesh_repair.h"
 
+#include <algorithm>
 #include <limits>
+#include <random>
 #include <stdexcept>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "hapticad/core/geometry/icosphere.h"
 #include "hapticad/core/geometry/triangle_mesh.h"
 #include "test_meshes.h"
 
@@ -47,6 +50,44 @@ TEST(MeshRepair, MergesTheVerticesOfSeparatelyTessellatedFacesIntoAClosedSurface
   // the CAD faces follow their triangles
   ASSERT_EQ(out.cad_faces.size(), 12u);
   for (std::size_t t = 0; t < 12; ++t) EXPECT_EQ(out.cad_faces[t], static_cast<int>(t / 2));
+}
+
+TEST(MeshRepair, AnIcosphereWithEveryCornerItsOwnVertexInShuffledOrderComesBackWhole) {
+  // an STL's kind of soup: no vertex shared, triangles in no order
+  const TriangleSoup sphere = MakeIcosphere(12, 50.0);
+  std::vector<std::size_t> order(sphere.triangles.size());
+  for (std::size_t t = 0; t < order.size(); ++t) order[t] = t;
+  std::mt19937 rng(7);
+  std::shuffle(order.begin(), order.end(), rng);
+  TriangleSoup soup;
+  for (const std::size_t t : order) {
+    std::array<std::int32_t, 3> tri{};
+    for (int k = 0; k < 3; ++k) {
+      tri[k] = static_cast<std::int32_t>(soup.vertices.size());
+      soup.vertices.push_back(sphere.vertices[sphere.triangles[t][k]]);
+    }
+    soup.triangles.push_back(tri);
+    soup.cad_faces.push_back(static_cast<std::int32_t>(t));
+  }
+  TriangleSoup out;
+  const RepairReport r = Repair(soup, &out);
+  EXPECT_TRUE(r.watertight()) << r.Describe();
+  EXPECT_EQ(r.output_triangles, sphere.triangles.size());
+  EXPECT_EQ(r.reoriented, 0u);
+  EXPECT_EQ(out.vertices.size(), sphere.vertices.size());
+  EXPECT_EQ(r.merged_vertices, soup.vertices.size() - sphere.vertices.size());
+  // every triangle keeps its corners, in order up to rotation, and its CAD face
+  ASSERT_EQ(out.triangles.size(), soup.triangles.size());
+  for (std::size_t t = 0; t < out.triangles.size(); ++t) {
+    const auto& in = sphere.triangles[static_cast<std::size_t>(out.cad_faces[t])];
+    const Vec3 first = out.vertices[out.triangles[t][0]];
+    int shift = 0;
+    while (shift < 3 && sphere.vertices[in[shift]] != first) ++shift;
+    ASSERT_LT(shift, 3) << "triangle " << t;
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(out.vertices[out.triangles[t][k]], sphere.vertices[in[(shift + k) % 3]]);
+    }
+  }
 }
 
 TEST(MeshRepair, WeldsCracksBetweenFacesWithinTheToleranceAndReportsWiderOnes) {
