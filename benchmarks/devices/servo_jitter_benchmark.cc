@@ -3,6 +3,7 @@
 //
 //   servo_jitter_benchmark --device sim|emulator [--seconds 60] [--rate 1000]
 //                          [--realtime-priority 70] [--transport-latency-us 0]
+//                          [--load none|rebuild:TRIANGLES|scatter:MB|scatter-huge:MB]
 //
 // The real servo thread runs for the given time on the monotonic clock while a hand
 // strokes a box's top face back and forth at 50 mm/s, pressing 3 mm in (so every tick
@@ -11,16 +12,26 @@
 // measures the round trip: from sending an input report to receiving the force computed
 // from it. Prints the loop's statistics (achieved rate, period jitter, wake-up latency,
 // tick time, overruns, faults) and, for the emulator, the round trip.
+//
+// --load runs work on another thread of the same process for the whole time, as a
+// designer's edits do in FreeCAD: `rebuild` builds a scene of an icosphere, repair
+// included, over and over (what a property edit that retessellates costs); `scatter`
+// adds one to random bytes of a block of MB megabytes, on 4 KiB pages or on huge pages:
+// no system call, no page fault, only misses of the caches and the TLB.
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <random>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "hapticad/core/geometry/icosphere.h"
+#include "hapticad/core/huge_page_allocator.h"
 #include "hapticad/devices/hid/hid_device.h"
 #include "hapticad/devices/servo_loop.h"
 #include "hapticad/devices/simulated_hand.h"
@@ -36,12 +47,15 @@ struct Options {
   double rate_hz = 1000.0;
   int realtime_priority = 70;
   double transport_latency_s = 0.0;
+  std::string load = "none";  // none, rebuild, scatter or scatter-huge
+  long long load_size = 0;    // triangles, or megabytes
 };
 
 [[noreturn]] void Usage(const char* why) {
   std::fprintf(stderr,
                "servo_jitter_benchmark: %s\nusage: servo_jitter_benchmark --device sim|emulator "
-               "[--seconds S] [--rate HZ] [--realtime-priority P] [--transport-latency-us US]\n",
+               "[--seconds S] [--rate HZ] [--realtime-priority P] [--transport-latency-us US]\n"
+               "       [--load none|rebuild:TRIANGLES|scatter:MB|scatter-huge:MB]\n",
                why);
   std::exit(2);
 }
@@ -62,6 +76,15 @@ Options Parse(int argc, char** argv) {
       o.realtime_priority = std::atoi(value);
     } else if (arg == "--transport-latency-us") {
       o.transport_latency_s = std::atof(value) * 1e-6;
+    } else if (arg == "--load") {
+      const std::string v = value;
+      const std::size_t colon = v.find(':');
+      o.load = v.substr(0, colon);
+      if (colon != std::string::npos) o.load_size = std::atoll(v.c_str() + colon + 1);
+      const bool sized = o.load == "rebuild" || o.load == "scatter" || o.load == "scatter-huge";
+      if (o.load != "none" && !(sized && o.load_size > 0)) {
+        Usage("--load is none, rebuild:TRIANGLES, scatter:MB or scatter-huge:MB");
+      }
     } else {
       Usage(("unknown option " + arg).c_str());
     }
@@ -69,6 +92,40 @@ Options Parse(int argc, char** argv) {
   if (o.device != "sim" && o.device != "emulator") Usage("--device is sim or emulator");
   if (!(o.seconds > 0.0)) Usage("--seconds must be positive");
   return o;
+}
+
+// The work --load asks for, on its own thread until `stop`: returns how many rounds it
+// made (scenes built, or millions of bytes changed).
+template <class Block>
+long long Scatter(Block* block, const std::atomic<bool>& stop) {
+  std::memset(block->data(), 1, block->size());  // every page in before the clock runs
+  std::mt19937_64 rng(5);
+  long long rounds = 0;
+  unsigned long long sum = 0;
+  while (!stop.load(std::memory_order_relaxed)) {
+    for (int i = 0; i < 1000000; ++i) sum += ++(*block)[rng() % block->size()];
+    ++rounds;
+  }
+  return sum == 0 ? -1 : rounds;  // the sum keeps the loop from being optimized away
+}
+
+long long RunLoad(const Options& o, const std::atomic<bool>& stop) {
+  if (o.load == "rebuild") {
+    const TriangleSoup soup = MakeIcosphere(IcosphereFrequencyFor(o.load_size), 50.0);
+    long long builds = 0;
+    while (!stop.load(std::memory_order_relaxed)) {
+      HapticScene::Build(soup, 1e-3);
+      ++builds;
+    }
+    return builds;
+  }
+  const auto bytes = static_cast<std::size_t>(o.load_size) << 20;
+  if (o.load == "scatter") {
+    std::vector<unsigned char> block(bytes);
+    return Scatter(&block, stop);
+  }
+  HugePageVector<unsigned char> block(bytes);
+  return Scatter(&block, stop);
 }
 
 // The hand: above the face (z = 0) for 0.2 s, down 3 mm into it, then strokes along x
@@ -141,6 +198,10 @@ int Main(int argc, char** argv) {
   std::vector<TraceSample> trace;
   trace.reserve(static_cast<std::size_t>(o.seconds * o.rate_hz) + 1024);
   loop.Start();
+  std::atomic<bool> stop_load{false};
+  long long load_rounds = 0;
+  std::thread load;
+  if (o.load != "none") load = std::thread([&] { load_rounds = RunLoad(o, stop_load); });
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(o.seconds);
   while (std::chrono::steady_clock::now() < end && loop.running()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -148,6 +209,8 @@ int Main(int argc, char** argv) {
   }
   loop.Stop();
   loop.DrainTrace(&trace);
+  stop_load.store(true);
+  if (load.joinable()) load.join();  // a build under way finishes first
   const ServoStats s = loop.stats();
   std::size_t contact = 0;
   for (const TraceSample& t : trace) contact += (t.flags & kContact) ? 1 : 0;
@@ -159,6 +222,8 @@ int Main(int argc, char** argv) {
               std::thread::hardware_concurrency(), load_before.c_str(), LoadAverage().c_str());
   std::printf("  \"realtime\": %s,\n  \"realtime_report\": \"%s\",\n",
               s.realtime ? "true" : "false", Escape(loop.realtime_report()).c_str());
+  std::printf("  \"load\": {\"kind\": \"%s\", \"size\": %lld, \"rounds\": %lld},\n", o.load.c_str(),
+              o.load_size, load_rounds);
   std::printf("  \"session_end\": \"%s\",\n", SessionEndName(loop.session_end()));
   std::printf("  \"ticks\": %llu,\n  \"achieved_rate_hz\": %.3f,\n",
               static_cast<unsigned long long>(s.ticks), s.achieved_rate_hz);
