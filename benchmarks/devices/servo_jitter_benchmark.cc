@@ -94,8 +94,7 @@ Options Parse(int argc, char** argv) {
   return o;
 }
 
-// The work --load asks for, on its own thread until `stop`: returns how many rounds it
-// made (scenes built, or millions of bytes changed).
+// Adds one to random bytes of `block` until `stop`: returns how many millions it changed.
 template <class Block>
 long long Scatter(Block* block, const std::atomic<bool>& stop) {
   std::memset(block->data(), 1, block->size());  // every page in before the clock runs
@@ -109,6 +108,8 @@ long long Scatter(Block* block, const std::atomic<bool>& stop) {
   return sum == 0 ? -1 : rounds;  // the sum keeps the loop from being optimized away
 }
 
+// The work --load asks for, on its own thread until `stop`: returns how many rounds it
+// made (scenes built, or millions of bytes changed).
 long long RunLoad(const Options& o, const std::atomic<bool>& stop) {
   if (o.load == "rebuild") {
     const TriangleSoup soup = MakeIcosphere(IcosphereFrequencyFor(o.load_size), 50.0);
