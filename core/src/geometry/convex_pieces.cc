@@ -31,32 +31,27 @@ std::unique_ptr<ConvexPieces> ConvexPieces::Build(const TriangleMesh& mesh, doub
   }
 
   // every edge shared by two triangles, and convex or flat from the winding's side; the
-  // triangles across each edge
-  out->records_.assign(n, Record{{kNone, kNone, kNone}, kNone});
-  const auto set_across = [&](std::uint32_t t, std::uint32_t from, std::uint32_t other) {
+  // triangles across each edge (an open edge leaves the fans of its ends open: TurnsOnce
+  // refuses them)
+  out->records_.resize(n);
+  for (std::uint32_t t = 0; t < n; ++t) {
     const auto& tri = mesh.triangle(t);
-    out->records_[t].across[tri[0] == from ? 0 : (tri[1] == from ? 1 : 2)] = other;
-  };
-  const OpenMeshTriMesh& om = mesh.openmesh();
-  for (const auto e : om.edges()) {
-    const auto h0 = om.halfedge_handle(e, 0);
-    const auto h1 = om.halfedge_handle(e, 1);
-    const auto a = static_cast<std::uint32_t>(om.from_vertex_handle(h0).idx());
-    const auto b = static_cast<std::uint32_t>(om.to_vertex_handle(h0).idx());
-    // (an open edge leaves the fans of its ends open: TurnsOnce refuses them)
-    if (om.is_boundary(h0) || om.is_boundary(h1)) continue;
-    const auto f0 = static_cast<std::uint32_t>(om.face_handle(h0).idx());
-    const auto f1 = static_cast<std::uint32_t>(om.face_handle(h1).idx());
-    set_across(f0, a, f1);  // h0 runs a -> b in f0
-    set_across(f1, b, f0);
-    const Vec3& w0 = mesh.vertex(
-        static_cast<std::uint32_t>(om.to_vertex_handle(om.next_halfedge_handle(h0)).idx()));
-    const Vec3& w1 = mesh.vertex(
-        static_cast<std::uint32_t>(om.to_vertex_handle(om.next_halfedge_handle(h1)).idx()));
-    const Vec3& p = mesh.vertex(a);
-    if (mesh.face_normal(f0).dot(w1 - p) > tolerance ||
-        mesh.face_normal(f1).dot(w0 - p) > tolerance) {
-      convex[piece_of_vertex[a]] = 0;
+    const auto& across = mesh.across(t);
+    out->records_[t] = Record{{across[0], across[1], across[2]}, kNone};
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t u = across[k];
+      if (u == TriangleMesh::kNone || u < t) continue;  // each shared edge once
+      // edge k runs a -> b in t, so b -> a in u; w and w_u are the corners off the edge
+      const std::uint32_t a = tri[k];
+      const auto& tri_u = mesh.triangle(u);
+      const int k_u = tri_u[0] == a ? 2 : (tri_u[1] == a ? 0 : 1);  // u's edge b -> a
+      const Vec3& w = mesh.vertex(tri[(k + 2) % 3]);
+      const Vec3& w_u = mesh.vertex(tri_u[(k_u + 2) % 3]);
+      const Vec3& p = mesh.vertex(a);
+      if (mesh.face_normal(t).dot(w_u - p) > tolerance ||
+          mesh.face_normal(u).dot(w - p) > tolerance) {
+        convex[piece_of_vertex[a]] = 0;
+      }
     }
   }
   for (std::uint32_t v = 0; v < num_vertices; ++v) {

@@ -31,7 +31,7 @@ SolidAnalysis AnalyseSolids(const TriangleMesh& mesh) {
   }
   for (std::uint32_t t = 0; t < mesh.num_triangles(); ++t) {
     const auto& tri = mesh.triangle(t);
-    // OpenMesh took every triangle, so Surface_mesh should too; if it refuses one (a
+    // TriangleMesh took every triangle (manifold), so Surface_mesh should too; if it refuses one (a
     // vertex it cannot join), the test below would miss that triangle: no answer then
     if (sm.add_face(Mesh::Vertex_index(tri[0]), Mesh::Vertex_index(tri[1]),
                     Mesh::Vertex_index(tri[2])) == Mesh::null_face()) {

@@ -29,7 +29,7 @@ std::unique_ptr<TriangleMesh> TriangleMesh::Build(
     const std::vector<Vec3>& vertices_l, const std::vector<std::array<std::int32_t, 3>>& triangles,
     const std::vector<std::int32_t>& cad_faces,
     const std::vector<std::array<Vec3, 3>>& corner_normals) {
-  // check shapes before touching OpenMesh, so a bad input leaves nothing half-built
+  // check shapes first, so a bad input leaves nothing half-built
   if (triangles.empty()) throw std::invalid_argument("triangle mesh: no triangles");
   if (cad_faces.size() != triangles.size()) {
     throw std::invalid_argument("triangle mesh: " + std::to_string(cad_faces.size()) +
@@ -53,6 +53,10 @@ std::unique_ptr<TriangleMesh> TriangleMesh::Build(
             Describe("triangle", t, "vertex index " + std::to_string(v) + " out of range"));
       }
     }
+    const auto& tri = triangles[t];
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
+      throw std::invalid_argument(Describe("triangle", t, "repeats a vertex"));
+    }
     if (cad_faces[t] < 0)
       throw std::invalid_argument(Describe("triangle", t, "negative CAD face id"));
     max_face = std::max(max_face, cad_faces[t]);
@@ -66,49 +70,118 @@ std::unique_ptr<TriangleMesh> TriangleMesh::Build(
   }
 
   std::unique_ptr<TriangleMesh> mesh(new TriangleMesh());
-  OpenMeshTriMesh& om = mesh->mesh_;
-  om.reserve(vertices_l.size(), triangles.size() * 3 / 2 + 3, triangles.size());
-  for (const Vec3& p : vertices_l) om.add_vertex(p);
   mesh->points_.assign(vertices_l.begin(), vertices_l.end());
-
-  om.add_property(mesh->cad_face_prop_, "cad_face");
-  mesh->triangles_.reserve(triangles.size());
-  mesh->face_normals_.reserve(triangles.size());
+  const auto n = static_cast<std::uint32_t>(triangles.size());
+  mesh->triangles_.resize(n);
+  mesh->cad_faces_.assign(cad_faces.begin(), cad_faces.end());
+  mesh->face_normals_.resize(n);
   mesh->corner_normals_.reserve(3 * corner_normals.size());
-
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
+  for (std::uint32_t t = 0; t < n; ++t) {
     const auto& tri = triangles[t];
-    const OpenMeshTriMesh::VertexHandle vh[3] = {om.vertex_handle(tri[0]), om.vertex_handle(tri[1]),
-                                                 om.vertex_handle(tri[2])};
-    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) {
-      throw std::invalid_argument(Describe("triangle", t, "repeats a vertex"));
-    }
-    const OpenMeshTriMesh::FaceHandle fh = om.add_face(vh[0], vh[1], vh[2]);
-    if (!fh.is_valid()) {
-      throw std::invalid_argument(Describe(
-          "triangle", t, "would make a non-manifold edge or vertex (repair the mesh first)"));
-    }
-    om.property(mesh->cad_face_prop_, fh) = cad_faces[t];
-    mesh->triangles_.push_back({static_cast<std::uint32_t>(tri[0]),
-                                static_cast<std::uint32_t>(tri[1]),
-                                static_cast<std::uint32_t>(tri[2])});
-    const Vec3 n =
+    mesh->triangles_[t] = {static_cast<std::uint32_t>(tri[0]), static_cast<std::uint32_t>(tri[1]),
+                           static_cast<std::uint32_t>(tri[2])};
+    const Vec3 normal =
         (vertices_l[tri[1]] - vertices_l[tri[0]]).cross(vertices_l[tri[2]] - vertices_l[tri[0]]);
-    const double len = n.norm();
-    mesh->face_normals_.push_back(len > 0.0 ? Vec3(n / len) : Vec3::Zero());
+    const double len = normal.norm();
+    mesh->face_normals_[t] = len > 0.0 ? Vec3(normal / len) : Vec3::Zero();
     if (!corner_normals.empty()) {
       for (const Vec3& c : corner_normals[t])
         mesh->corner_normals_.push_back(c.normalized().cast<float>());
     }
   }
-  mesh->cad_faces_ = om.property(mesh->cad_face_prop_).data();
+  mesh->BuildConnectivity();
   mesh->num_cad_faces_ = max_face + 1;
-  mesh->closed_ = std::none_of(om.edges_begin(), om.edges_end(),
-                               [&om](OpenMeshTriMesh::EdgeHandle e) { return om.is_boundary(e); });
   for (const Vec3& p : mesh->points_) {
     mesh->bounding_radius_ = std::max(mesh->bounding_radius_, p.norm());
   }
   return mesh;
+}
+
+void TriangleMesh::BuildConnectivity() {
+  const auto n = static_cast<std::uint32_t>(triangles_.size());
+  const auto num_vertices = static_cast<std::uint32_t>(points_.size());
+  // Edge k of triangle t (half-edge 3t + k) runs from corner k to corner k + 1. The
+  // half-edges grouped by the vertex they start from, by a counting sort: the edges out
+  // of v are out[first[v]] .. out[first[v + 1]], one per triangle at v.
+  std::vector<std::uint32_t> first(num_vertices + 1, 0);
+  for (const auto& tri : triangles_) {
+    for (const std::uint32_t v : tri) ++first[v + 1];
+  }
+  for (std::uint32_t v = 0; v < num_vertices; ++v) first[v + 1] += first[v];
+  std::vector<std::uint32_t> out(3 * std::size_t{n});
+  {
+    std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
+    for (std::uint32_t h = 0; h < 3 * n; ++h) out[next[triangles_[h / 3][h % 3]]++] = h;
+  }
+  const auto end_of = [this](std::uint32_t h) { return triangles_[h / 3][(h % 3 + 1) % 3]; };
+
+  // Across each edge a -> b, the triangle whose edge runs b -> a. The same edge twice
+  // (in input order, so the later triangle is named) is no manifold.
+  across_.assign(n, {kNone, kNone, kNone});
+  closed_ = true;
+  std::uint32_t worst = kNone;  // the first triangle that repeats an edge
+  std::uint32_t worst_other = kNone;
+  for (std::uint32_t h = 0; h < 3 * n; ++h) {
+    const std::uint32_t t = h / 3;
+    const std::uint32_t a = triangles_[t][h % 3];
+    const std::uint32_t b = end_of(h);
+    for (std::uint32_t i = first[a]; i < first[a + 1]; ++i) {
+      const std::uint32_t g = out[i];
+      if (g / 3 < t && end_of(g) == b && t < worst) {
+        worst = t;
+        worst_other = g / 3;
+      }
+    }
+    for (std::uint32_t i = first[b]; i < first[b + 1]; ++i) {
+      const std::uint32_t g = out[i];
+      if (end_of(g) == a) across_[t][h % 3] = g / 3;
+    }
+    closed_ = closed_ && across_[t][h % 3] != kNone;
+  }
+  if (worst != kNone) {
+    throw std::invalid_argument(Describe(
+        "triangle", worst,
+        "has an edge that runs the same way in triangle " + std::to_string(worst_other) +
+            ": a non-manifold edge or neighbours wound against each other (repair the mesh "
+            "first)"));
+  }
+
+  // Round each vertex, one fan: from a triangle at v, across the edge out of v and back
+  // across the edge into v, every triangle at v is reached.
+  for (std::uint32_t v = 0; v < num_vertices; ++v) {
+    const std::uint32_t count = first[v + 1] - first[v];
+    if (count == 0) continue;
+    const std::uint32_t start = out[first[v]] / 3;
+    const auto corner = [this, v](std::uint32_t t) {
+      const auto& tri = triangles_[t];
+      return tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
+    };
+    std::uint32_t reached = 1;
+    std::uint32_t t = start;
+    bool open = false;
+    while (reached <= count) {
+      t = across_[t][corner(t)];  // across the edge out of v
+      if (t == kNone) {
+        open = true;
+        break;
+      }
+      if (t == start) break;
+      ++reached;
+    }
+    if (open) {
+      for (t = start; reached <= count;) {
+        t = across_[t][(corner(t) + 2) % 3];  // across the edge into v
+        if (t == kNone) break;
+        ++reached;
+      }
+    }
+    if (reached != count) {
+      throw std::invalid_argument(
+          Describe("vertex", v,
+                   "its triangles form more than one fan: a non-manifold vertex (repair the mesh "
+                   "first)"));
+    }
+  }
 }
 
 Vec3 TriangleMesh::CalcShadingNormal(std::uint32_t t, const Vec3& point_l) const {
@@ -137,13 +210,10 @@ Vec3 TriangleMesh::CalcShadingNormal(std::uint32_t t, const Vec3& point_l) const
 }
 
 std::size_t TriangleMesh::CalcMemoryBytes() const {
-  // OpenMesh's connectivity: per vertex one halfedge handle, per halfedge next/prev/
-  // vertex/face handles, per face one halfedge handle.
-  std::size_t bytes = mesh_.n_vertices() * (sizeof(Vec3) + sizeof(int));
-  bytes += points_.capacity() * sizeof(Vec3);
-  bytes += mesh_.n_halfedges() * 4 * sizeof(int);
-  bytes += mesh_.n_faces() * (sizeof(int) + sizeof(std::int32_t));
+  std::size_t bytes = points_.capacity() * sizeof(Vec3);
   bytes += triangles_.capacity() * sizeof(triangles_[0]);
+  bytes += cad_faces_.capacity() * sizeof(std::int32_t);
+  bytes += across_.capacity() * sizeof(across_[0]);
   bytes += face_normals_.capacity() * sizeof(Vec3);
   bytes += corner_normals_.capacity() * sizeof(Eigen::Vector3f);
   return bytes;

@@ -159,7 +159,7 @@ TEST(MeshRepair, SplitsANonManifoldEdgeAndSaysSo) {
   EXPECT_FALSE(r.watertight());
   EXPECT_EQ(out.triangles.size(), 3u);
   EXPECT_NE(r.Describe().find("non-manifold"), std::string::npos);
-  // the result is manifold: OpenMesh takes it
+  // the result is manifold: the mesh, which checks its edges and fans, takes it
   EXPECT_NO_THROW(
       TriangleMesh::Build(out.vertices, out.triangles, out.cad_faces, out.corner_normals));
 }

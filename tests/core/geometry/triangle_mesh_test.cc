@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hapticad/core/geometry/triangle_mesh.h"
 
+#include <array>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -25,19 +27,73 @@ std::string BuildError(const TriangleSoup& s) {
   return "";
 }
 
-TEST(TriangleMesh, KeepsTheCadFaceOfEveryTriangleAsAnOpenMeshProperty) {
+TEST(TriangleMesh, KeepsTheCadFaceOfEveryTriangle) {
   const auto mesh = BuildSoup(testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(1, 2, 3)));
   ASSERT_EQ(mesh->num_triangles(), 12u);
   EXPECT_EQ(mesh->num_vertices(), 8u);
   EXPECT_EQ(mesh->num_cad_faces(), 6);
-  const auto& om = mesh->openmesh();
-  OpenMesh::FPropHandleT<std::int32_t> prop;
-  ASSERT_TRUE(om.get_property_handle(prop, "cad_face"));
   for (std::uint32_t t = 0; t < 12; ++t) {
     EXPECT_EQ(mesh->cad_face(t), static_cast<int>(t / 2));
-    EXPECT_EQ(om.property(prop, om.face_handle(t)), static_cast<int>(t / 2));
+    EXPECT_EQ(mesh->cad_faces()[t], static_cast<int>(t / 2));
   }
-  EXPECT_TRUE(om.is_boundary(om.vertex_handle(0)) == false);  // closed box
+}
+
+TEST(TriangleMesh, KnowsTheTriangleAcrossEveryEdgeOfAClosedBox) {
+  const auto mesh = BuildSoup(testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(1, 2, 3)));
+  EXPECT_TRUE(mesh->closed());
+  for (std::uint32_t t = 0; t < 12; ++t) {
+    const auto& tri = mesh->triangle(t);
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t u = mesh->across(t)[k];
+      ASSERT_LT(u, 12u) << t << ' ' << k;
+      ASSERT_NE(u, t);
+      // u holds the edge the other way round, and its own entry for it leads back to t
+      const auto& tri_u = mesh->triangle(u);
+      int back = -1;
+      for (int j = 0; j < 3; ++j) {
+        if (tri_u[j] == tri[(k + 1) % 3] && tri_u[(j + 1) % 3] == tri[k]) back = j;
+      }
+      ASSERT_GE(back, 0) << t << ' ' << k;
+      EXPECT_EQ(mesh->across(u)[back], t);
+    }
+  }
+}
+
+TEST(TriangleMesh, AnOpenSheetHasNothingAcrossItsRim) {
+  const auto mesh = BuildSoup(testing::MakeSheetSoup(1.0, 0.0));
+  EXPECT_FALSE(mesh->closed());
+  // {0, 1, 2} and {0, 2, 3} share the diagonal 0-2: edge 2 of the first, edge 0 of the second
+  using A = std::array<std::uint32_t, 3>;
+  const std::uint32_t none = TriangleMesh::kNone;
+  EXPECT_EQ(mesh->across(0), (A{none, none, 1}));
+  EXPECT_EQ(mesh->across(1), (A{0, none, none}));
+}
+
+TEST(TriangleMesh, RejectsNeighboursWoundAgainstEachOtherNamingTheLaterTriangle) {
+  TriangleSoup s = testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(1, 1, 1));
+  std::swap(s.triangles[7][1], s.triangles[7][2]);
+  const std::string error = BuildError(s);
+  EXPECT_NE(error.find("triangle 7: has an edge that runs the same way in triangle"),
+            std::string::npos)
+      << error;
+}
+
+TEST(TriangleMesh, RejectsAVertexWhereTwoFansMeet) {
+  // two closed tetrahedra sharing vertex 0 only
+  TriangleSoup s;
+  s.vertices = {Vec3(0, 0, 0),  Vec3(1, 0, 0),  Vec3(0, 1, 0), Vec3(0, 0, 1),
+                Vec3(-1, 0, 0), Vec3(0, -1, 0), Vec3(0, 0, -1)};
+  s.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3},
+                 {0, 4, 5}, {0, 6, 4}, {0, 5, 6}, {4, 6, 5}};
+  s.cad_faces.assign(8, 0);
+  EXPECT_NE(BuildError(s).find("vertex 0: its triangles form more than one fan"), std::string::npos)
+      << BuildError(s);
+  // and two triangles touching at a corner (a bow tie)
+  TriangleSoup bow;
+  bow.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(-1, 0, 0), Vec3(-1, -1, 0)};
+  bow.triangles = {{0, 1, 2}, {0, 3, 4}};
+  bow.cad_faces = {0, 0};
+  EXPECT_NE(BuildError(bow).find("non-manifold vertex"), std::string::npos) << BuildError(bow);
 }
 
 TEST(TriangleMesh, FaceNormalsPointOutOfTheBox) {

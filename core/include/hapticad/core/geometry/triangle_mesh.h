@@ -1,9 +1,17 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// TriangleMesh: the scene's surface as an OpenMesh triangle mesh whose faces carry the
-// CAD face they came from (an OpenMesh face property), plus the flat arrays the
-// collision queries read: vertex triples, unit face normals (doubles: the plane tests
-// of the proxy need them exact) and, when the tessellator gave them, the exact surface
-// normal at each triangle corner (floats: they only shade, and 1e-7 rad is plenty).
+// TriangleMesh: the scene's surface as a manifold triangle mesh in flat arrays: per
+// triangle its vertex triple, the CAD face it came from, the triangles across its edges,
+// its unit normal (doubles: the plane tests of the proxy need them exact) and, when the
+// tessellator gave them, the exact surface normal at each corner (floats: they only
+// shade, and 1e-7 rad is plenty).
+//
+// Manifold: every edge runs each way in at most one triangle (so no edge has more than
+// two, and neighbours agree on their winding), and the triangles round every vertex
+// form one fan, open or closed. That is what the contact engine relies on (a walk
+// round a vertex sees all of its triangles) and what RepairSoup produces. The
+// connectivity is built here, by a counting sort of the edges, rather than in a
+// half-edge library: a 1M-triangle scene then holds 12 bytes per triangle of it, not
+// some 70 (BENCHMARKS.md).
 //
 // Frame and units: the scene's local frame, metres (see HapticScene).
 // Built once, before the servo loop; immutable afterwards. Accessors are cheap and
@@ -16,32 +24,21 @@
 #include <memory>
 #include <vector>
 
-// vector_traits must be declared before the Eigen specialisation that lets OpenMesh
-// store Eigen vectors directly: three blocks, in this order.
-#include <OpenMesh/Core/Utils/vector_traits.hh>
-
-#include <OpenMesh/Core/Geometry/EigenVectorT.hh>
-
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
-
 #include "hapticad/core/huge_page_allocator.h"
 #include "hapticad/core/vec3.h"
 
 namespace hapticad {
 
-struct OpenMeshTraits : OpenMesh::DefaultTraits {
-  using Point = Eigen::Vector3d;
-  // OpenMesh cannot vector_cast between Eigen double and float vectors: doubles.
-  using Normal = Eigen::Vector3d;
-};
-using OpenMeshTriMesh = OpenMesh::TriMesh_ArrayKernelT<OpenMeshTraits>;
-
 class TriangleMesh {
  public:
+  static constexpr std::uint32_t kNone = ~std::uint32_t{0};
+
   // Builds the mesh. `vertices_l` in the local frame (metres); `triangles`, `cad_faces`
   // and `corner_normals` as in TriangleSoup. Throws std::invalid_argument naming the
-  // first offending triangle or vertex (index out of range, non-finite coordinate,
-  // negative CAD face id, a face OpenMesh cannot insert without a non-manifold edge).
+  // first offending triangle or vertex: index out of range, a repeated vertex,
+  // non-finite coordinate, negative CAD face id, an edge that runs the same way in two
+  // triangles (a non-manifold edge, or neighbours wound against each other), a vertex
+  // whose triangles form more than one fan (a non-manifold vertex).
   static std::unique_ptr<TriangleMesh> Build(
       const std::vector<Vec3>& vertices_l,
       const std::vector<std::array<std::int32_t, 3>>& triangles,
@@ -49,15 +46,18 @@ class TriangleMesh {
       const std::vector<std::array<Vec3, 3>>& corner_normals);
 
   std::size_t num_triangles() const { return triangles_.size(); }
-  std::size_t num_vertices() const { return mesh_.n_vertices(); }
+  std::size_t num_vertices() const { return points_.size(); }
 
   const Vec3& vertex(std::uint32_t v) const { return points_[v]; }
   const Vec3* points() const { return points_.data(); }
   const std::array<std::uint32_t, 3>& triangle(std::uint32_t t) const { return triangles_[t]; }
   const std::array<std::uint32_t, 3>* triangles() const { return triangles_.data(); }
   std::int32_t cad_face(std::uint32_t t) const { return cad_faces_[t]; }
-  const std::int32_t* cad_faces() const { return cad_faces_; }
+  const std::int32_t* cad_faces() const { return cad_faces_.data(); }
   std::int32_t num_cad_faces() const { return num_cad_faces_; }
+  // The triangles across the edges of triangle t: entry k across edge k, which runs from
+  // corner k to corner k + 1 (mod 3); kNone across an open edge.
+  const std::array<std::uint32_t, 3>& across(std::uint32_t t) const { return across_[t]; }
   // Whether every edge has two triangles: the surface bounds a volume, so a point is
   // inside or outside it (an odd or even number of crossings on a ray out).
   bool closed() const { return closed_; }
@@ -84,7 +84,7 @@ class TriangleMesh {
   void PrefetchTriangle(std::uint32_t t) const {
     __builtin_prefetch(&triangles_[t]);
     __builtin_prefetch(&face_normals_[t]);
-    __builtin_prefetch(cad_faces_ + t);
+    __builtin_prefetch(&cad_faces_[t]);
     if (!corner_normals_.empty()) {
       __builtin_prefetch(&corner_normals_[3 * t]);
       __builtin_prefetch(&corner_normals_[3 * t + 2]);
@@ -120,29 +120,23 @@ class TriangleMesh {
   }
   static void KeepLoads(std::uint32_t word) { asm volatile("" : : "r"(word)); }
 
-  const OpenMeshTriMesh& openmesh() const { return mesh_; }
-
-  // Bytes held by the mesh (OpenMesh arrays and properties plus the flat arrays).
+  // Bytes held by the mesh's arrays.
   std::size_t CalcMemoryBytes() const;
 
-  // Not movable: cad_faces_ views the OpenMesh property's storage.
   TriangleMesh(const TriangleMesh&) = delete;
   TriangleMesh& operator=(const TriangleMesh&) = delete;
   ~TriangleMesh();
 
  private:
   TriangleMesh();
+  // Fills across_ and closed_ from triangles_; throws for a non-manifold edge or vertex.
+  void BuildConnectivity();
 
-  OpenMeshTriMesh mesh_;
-  OpenMesh::FPropHandleT<std::int32_t> cad_face_prop_;
-  // A view into the face property's storage: face i is triangle i, since faces are
-  // added in input order and none is skipped.
-  const std::int32_t* cad_faces_ = nullptr;
-  // What the servo tick reads, in flat arrays on huge pages (huge_page_allocator.h): the
-  // vertices (a copy of OpenMesh's, whose array it cannot place) and, per triangle, its
-  // vertex triple (read without circulating halfedges), normal and corner normals.
+  // Read at random by the servo tick: on huge pages (huge_page_allocator.h).
   HugePageVector<Vec3> points_;
   HugePageVector<std::array<std::uint32_t, 3>> triangles_;
+  HugePageVector<std::int32_t> cad_faces_;
+  HugePageVector<std::array<std::uint32_t, 3>> across_;
   HugePageVector<Vec3> face_normals_;
   HugePageVector<Eigen::Vector3f> corner_normals_;  // 3 per triangle, or none
   std::int32_t num_cad_faces_ = 0;
