@@ -114,6 +114,16 @@ void TriangleMesh::BuildConnectivity() {
     for (std::uint32_t h = 0; h < 3 * n; ++h) out[next[triangles_[h / 3][h % 3]]++] = h;
   }
   const auto end_of = [this](std::uint32_t h) { return triangles_[h / 3][(h % 3 + 1) % 3]; };
+  // each vertex's edges sorted by where they lead (then by triangle): a repeated edge
+  // sits next to its twin, and the edge back is found by a binary search, so a vertex
+  // of high valence (the centre of a fan-tessellated disc) costs n log n, not n^2
+  const auto by_end = [&end_of](std::uint32_t g, std::uint32_t h) {
+    const std::uint32_t eg = end_of(g), eh = end_of(h);
+    return eg != eh ? eg < eh : g < h;
+  };
+  for (std::uint32_t v = 0; v < num_vertices; ++v) {
+    std::sort(out.begin() + first[v], out.begin() + first[v + 1], by_end);
+  }
 
   // Across each edge a -> b, the triangle whose edge runs b -> a. The same edge twice
   // (in input order, so the later triangle is named) is no manifold.
@@ -121,21 +131,21 @@ void TriangleMesh::BuildConnectivity() {
   closed_ = true;
   std::uint32_t worst = kNone;  // the first triangle that repeats an edge
   std::uint32_t worst_other = kNone;
+  for (std::uint32_t a = 0; a < num_vertices; ++a) {
+    for (std::uint32_t i = first[a]; i + 1 < first[a + 1]; ++i) {
+      if (end_of(out[i]) == end_of(out[i + 1]) && out[i + 1] / 3 < worst) {
+        worst = out[i + 1] / 3;
+        worst_other = out[i] / 3;
+      }
+    }
+  }
   for (std::uint32_t h = 0; h < 3 * n; ++h) {
     const std::uint32_t t = h / 3;
     const std::uint32_t a = triangles_[t][h % 3];
     const std::uint32_t b = end_of(h);
-    for (std::uint32_t i = first[a]; i < first[a + 1]; ++i) {
-      const std::uint32_t g = out[i];
-      if (g / 3 < t && end_of(g) == b && t < worst) {
-        worst = t;
-        worst_other = g / 3;
-      }
-    }
-    for (std::uint32_t i = first[b]; i < first[b + 1]; ++i) {
-      const std::uint32_t g = out[i];
-      if (end_of(g) == a) across_[t][h % 3] = g / 3;
-    }
+    const auto back = std::partition_point(out.begin() + first[b], out.begin() + first[b + 1],
+                                           [&](std::uint32_t g) { return end_of(g) < a; });
+    if (back != out.begin() + first[b + 1] && end_of(*back) == a) across_[t][h % 3] = *back / 3;
     closed_ = closed_ && across_[t][h % 3] != kNone;
   }
   if (worst != kNone) {

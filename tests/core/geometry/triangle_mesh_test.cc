@@ -2,6 +2,7 @@
 #include "hapticad/core/geometry/triangle_mesh.h"
 
 #include <array>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -67,6 +68,26 @@ TEST(TriangleMesh, AnOpenSheetHasNothingAcrossItsRim) {
   const std::uint32_t none = TriangleMesh::kNone;
   EXPECT_EQ(mesh->across(0), (A{none, none, 1}));
   EXPECT_EQ(mesh->across(1), (A{0, none, none}));
+}
+
+TEST(TriangleMesh, ADiscOfTrianglesFannedRoundItsCentreKnowsItsNeighbours) {
+  // triangle i = {centre, rim i, rim i + 1}: its spokes lead to triangles i - 1 and i + 1
+  constexpr int kRim = 500;
+  TriangleSoup s;
+  s.vertices.push_back(Vec3::Zero());
+  for (int i = 0; i < kRim; ++i) {
+    const double angle = 2.0 * M_PI * i / kRim;
+    s.vertices.emplace_back(std::cos(angle), std::sin(angle), 0.0);
+  }
+  for (int i = 0; i < kRim; ++i) s.triangles.push_back({0, 1 + i, 1 + (i + 1) % kRim});
+  s.cad_faces.assign(kRim, 0);
+  const auto mesh = BuildSoup(s);
+  EXPECT_FALSE(mesh->closed());
+  for (std::uint32_t i = 0; i < kRim; ++i) {
+    const std::array<std::uint32_t, 3> expected = {(i + kRim - 1) % kRim, TriangleMesh::kNone,
+                                                   (i + 1) % kRim};
+    ASSERT_EQ(mesh->across(i), expected) << i;
+  }
 }
 
 TEST(TriangleMesh, RejectsNeighboursWoundAgainstEachOtherNamingTheLaterTriangle) {
