@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -31,6 +32,12 @@ std::unique_ptr<TriangleMesh> TriangleMesh::Build(
     const std::vector<std::array<Vec3, 3>>& corner_normals) {
   // check shapes first, so a bad input leaves nothing half-built
   if (triangles.empty()) throw std::invalid_argument("triangle mesh: no triangles");
+  // edges are numbered 3t + k in 32 bits
+  if (triangles.size() > std::numeric_limits<std::uint32_t>::max() / 3) {
+    throw std::invalid_argument("triangle mesh: more than " +
+                                std::to_string(std::numeric_limits<std::uint32_t>::max() / 3) +
+                                " triangles");
+  }
   if (cad_faces.size() != triangles.size()) {
     throw std::invalid_argument("triangle mesh: " + std::to_string(cad_faces.size()) +
                                 " CAD face ids for " + std::to_string(triangles.size()) +
