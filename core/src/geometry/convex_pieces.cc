@@ -33,11 +33,9 @@ std::unique_ptr<ConvexPieces> ConvexPieces::Build(const TriangleMesh& mesh, doub
   // every edge shared by two triangles, and convex or flat from the winding's side; the
   // triangles across each edge (an open edge leaves the fans of its ends open: TurnsOnce
   // refuses them)
-  out->records_.resize(n);
   for (std::uint32_t t = 0; t < n; ++t) {
     const auto& tri = mesh.triangle(t);
     const auto& across = mesh.across(t);
-    out->records_[t] = Record{{across[0], across[1], across[2]}, kNone};
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t u = across[k];
       if (u == TriangleMesh::kNone || u < t) continue;  // each shared edge once
@@ -93,17 +91,16 @@ std::unique_ptr<ConvexPieces> ConvexPieces::Build(const TriangleMesh& mesh, doub
     out->clear_lo_.push_back(lo);
     out->clear_hi_.push_back(hi);
   }
+  out->piece_.resize(n);
   for (std::uint32_t t = 0; t < n; ++t) {
-    Record& record = out->records_[t];
-    record.piece = convex_index[piece_of_vertex[mesh.triangle(t)[0]]];
-    if (record.piece == kNone) record.across = {kNone, kNone, kNone};
+    out->piece_[t] = convex_index[piece_of_vertex[mesh.triangle(t)[0]]];
   }
   for (std::uint32_t v = 0; v < num_vertices; ++v) {
     const std::uint32_t t = out->vertex_corner_[v];
-    if (t != kNone && out->records_[t].piece == kNone) out->vertex_corner_[v] = kNone;
+    if (t != kNone && out->piece_[t] == kNone) out->vertex_corner_[v] = kNone;
   }
   if (out->clear_lo_.empty()) {
-    HugePageVector<Record>().swap(out->records_);
+    HugePageVector<std::uint32_t>().swap(out->piece_);
     HugePageVector<std::uint32_t>().swap(out->vertex_corner_);
   }
   return out;
@@ -162,9 +159,9 @@ bool ConvexPieces::TurnsOnce(std::uint32_t v) const {
 }
 
 bool ConvexPieces::Settle(const SweepQuery& query, SweepSearch* search) const {
-  if (query.hint < 0 || static_cast<std::size_t>(query.hint) >= records_.size()) return false;
+  if (query.hint < 0 || static_cast<std::size_t>(query.hint) >= piece_.size()) return false;
   const auto hint = static_cast<std::uint32_t>(query.hint);
-  const std::uint32_t piece = records_[hint].piece;
+  const std::uint32_t piece = piece_[hint];
   if (piece == kNone) return false;
   // nothing but the piece within the sweep's reach (false for a non-finite query too)
   const Vec3 r = Vec3::Constant(query.radius);
@@ -205,7 +202,7 @@ bool ConvexPieces::IsClear(const SweepQuery& query, std::uint32_t hint) const {
 bool ConvexPieces::IsFirstContact(const SweepQuery& query, const SweepSearch& search,
                                   std::uint32_t piece, bool climb) const {
   const std::uint32_t t = search.best_triangle();
-  if (records_[t].piece != piece) return false;
+  if (piece_[t] != piece) return false;
   const Vec3& n = search.best_normal();
   const Vec3 d = query.b - query.a;
   if (!(n.dot(d) < 0.0)) return false;  // moving into the solid there
@@ -226,7 +223,7 @@ bool ConvexPieces::ForEachAround(std::uint32_t v, std::uint32_t t, Visit&& visit
     visit(u);
     // across the edge from v to the next corner: the next triangle round v
     const auto& tri = mesh_->triangle(u);
-    u = records_[u].across[tri[0] == v ? 0 : (tri[1] == v ? 1 : 2)];
+    u = mesh_->across(u)[tri[0] == v ? 0 : (tri[1] == v ? 1 : 2)];
     if (u == t) return true;
     if (u == kNone) return false;
   }
@@ -299,7 +296,7 @@ bool ConvexPieces::Walk(std::uint32_t t, const SweepQuery& query, std::uint32_t 
   for (int step = 0; step < kMaxWalk; ++step) {
     const int k = ExitEdge(t, query);
     if (k < 0) return false;  // it meets the surface over t
-    const std::uint32_t next = records_[t].across[k];
+    const std::uint32_t next = mesh_->across(t)[k];
     if (next == from) return false;  // back again: over the edge between the two
     from = t;
     t = next;
@@ -321,16 +318,15 @@ bool ConvexPieces::SearchAround(std::uint32_t t, const SweepQuery& query, std::u
 }
 
 bool ConvexPieces::WarmUp(std::uint32_t t, int step) const {
-  if (t >= records_.size() || records_[t].piece == kNone) return false;
+  if (t >= piece_.size() || piece_[t] == kNone) return false;
   std::uint32_t word = 0;
-  for (const std::uint32_t u : records_[t].across) {
+  for (const std::uint32_t u : mesh_->across(t)) {
     if (step == 0) {
       word ^= mesh_->LoadTriangle(u, true);
       continue;
     }
-    for (const std::uint32_t w : records_[u].across) {
-      word ^=
-          step == 1 ? records_[w].piece ^ mesh_->LoadTriangle(w, false) : mesh_->LoadVertices(w);
+    for (const std::uint32_t w : mesh_->across(u)) {
+      word ^= step == 1 ? piece_[w] ^ mesh_->LoadTriangle(w, false) : mesh_->LoadVertices(w);
     }
   }
   TriangleMesh::KeepLoads(word);
@@ -338,7 +334,8 @@ bool ConvexPieces::WarmUp(std::uint32_t t, int step) const {
 }
 
 std::size_t ConvexPieces::CalcMemoryBytes() const {
-  return records_.capacity() * sizeof(Record) + vertex_corner_.capacity() * sizeof(std::uint32_t) +
+  return piece_.capacity() * sizeof(std::uint32_t) +
+         vertex_corner_.capacity() * sizeof(std::uint32_t) +
          2 * clear_lo_.capacity() * sizeof(Vec3);
 }
 

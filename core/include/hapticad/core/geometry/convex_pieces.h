@@ -74,8 +74,8 @@ class ConvexPieces {
   bool Settle(const SweepQuery& query, SweepSearch* search) const;
 
   // Warms the caches for the triangles a sweep from triangle t (the last contact) reads
-  // when the contact moves on: those across t's edges and those across theirs (records,
-  // corners, normals and vertices), so a contact sliding on finds them loaded. It reads
+  // when the contact moves on: those across t's edges and those across theirs (pieces,
+  // corners, neighbours, normals and vertices), so a contact sliding on finds them loaded. It reads
   // them rather than prefetching (a prefetch may be dropped: the 1M-triangle tail was a
   // fifth shorter with loads), in kWarmUpSteps steps, one a tick, each needing only what
   // the step before loaded: step 0 the triangles across t's edges with their vertices,
@@ -88,9 +88,7 @@ class ConvexPieces {
   bool WarmUp(std::uint32_t t, int step) const;
 
   // The convex piece triangle t belongs to, or kNone.
-  std::uint32_t piece(std::uint32_t t) const {
-    return t < records_.size() ? records_[t].piece : kNone;
-  }
+  std::uint32_t piece(std::uint32_t t) const { return t < piece_.size() ? piece_[t] : kNone; }
   std::size_t num_pieces() const { return clear_lo_.size(); }
   // Piece p's room: the open box that holds no other piece's box (infinite along the
   // axes where nothing else lies; it may cut into p's own box where another's overlaps it).
@@ -100,13 +98,6 @@ class ConvexPieces {
   std::size_t CalcMemoryBytes() const;
 
  private:
-  // What a sweep reads of one triangle, in one 16-byte record (four to a cache line):
-  // the triangles across its edges (edge k runs from corner k to corner k + 1; set on
-  // convex pieces only) and its convex piece.
-  struct Record {
-    std::array<std::uint32_t, 3> across;
-    std::uint32_t piece;
-  };
   ConvexPieces() = default;
   // Whether no vertex of the piece lies above the plane normal . x = offset (within the
   // tolerance), climbing from vertex `start`. False also when the climb is too long.
@@ -149,7 +140,7 @@ class ConvexPieces {
   double tolerance_ = 0.0;
   // read at random by the servo tick: on huge pages, like the mesh's arrays (and none
   // at all when no piece is convex: a scene holds only what it can use)
-  HugePageVector<Record> records_;               // per triangle
+  HugePageVector<std::uint32_t> piece_;          // per triangle: its convex piece, or kNone
   HugePageVector<std::uint32_t> vertex_corner_;  // per vertex: a triangle holding it
   std::vector<Vec3> clear_lo_;                   // per convex piece
   std::vector<Vec3> clear_hi_;

@@ -79,12 +79,13 @@ class TriangleMesh {
   Vec3 CalcShadingNormal(std::uint32_t t, const Vec3& point_l) const;
 
   // Cache warming for the servo tick, prefetch instructions only: everything a tick
-  // reads of triangle t but its vertices (its corners, normal, CAD face and corner
-  // normals), and, once its corners are in the cache, its vertices.
+  // reads of triangle t but its vertices (its corners, normal, CAD face, neighbours and
+  // corner normals), and, once its corners are in the cache, its vertices.
   void PrefetchTriangle(std::uint32_t t) const {
     __builtin_prefetch(&triangles_[t]);
     __builtin_prefetch(&face_normals_[t]);
     __builtin_prefetch(&cad_faces_[t]);
+    __builtin_prefetch(&across_[t]);
     if (!corner_normals_.empty()) {
       __builtin_prefetch(&corner_normals_[3 * t]);
       __builtin_prefetch(&corner_normals_[3 * t + 2]);
@@ -99,7 +100,7 @@ class TriangleMesh {
   // keeps the loads. Servo-tick safe.
   std::uint32_t LoadTriangle(std::uint32_t t, bool with_vertices) const {
     const auto& tri = triangles_[t];
-    std::uint32_t word = tri[0] ^ static_cast<std::uint32_t>(cad_faces_[t]);
+    std::uint32_t word = tri[0] ^ static_cast<std::uint32_t>(cad_faces_[t]) ^ across_[t][0];
     word ^= static_cast<std::uint32_t>(face_normals_[t].x() > 0.0);
     if (!corner_normals_.empty()) {
       word ^= static_cast<std::uint32_t>(corner_normals_[3 * t].x() > 0.0f);
