@@ -16,6 +16,8 @@
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Simple_cartesian.h>
 
+#include "hapticad/core/geometry/vertex_buckets.h"
+
 namespace hapticad {
 namespace {
 
@@ -33,27 +35,19 @@ std::vector<std::pair<std::pair<std::size_t, std::size_t>, int>> CountEdges(
     const std::vector<Polygon>& polygons) {
   std::size_t vertices = 0;
   for (const Polygon& p : polygons) vertices = std::max({vertices, p[0] + 1, p[1] + 1, p[2] + 1});
-  // the edges whose lower vertex is v: upper[start[v], start[v + 1])
-  std::vector<std::size_t> start(vertices + 1, 0);
-  for (const Polygon& p : polygons) {
-    for (int k = 0; k < 3; ++k) ++start[std::min(p[k], p[(k + 1) % 3]) + 1];
-  }
-  for (std::size_t v = 0; v < vertices; ++v) start[v + 1] += start[v];
-  std::vector<std::size_t> upper(start[vertices]);
-  {
-    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-    for (const Polygon& p : polygons) {
-      for (int k = 0; k < 3; ++k) {
-        const std::size_t a = p[k], b = p[(k + 1) % 3];
-        upper[fill[std::min(a, b)]++] = std::max(a, b);
-      }
-    }
-  }
+  // the edges whose lower vertex is v, by their upper vertex
+  const auto edge = [&polygons](std::size_t i) {
+    const Polygon& p = polygons[i / 3];
+    return std::minmax(p[i % 3], p[(i % 3 + 1) % 3]);
+  };
+  VertexBuckets<std::size_t> upper = BucketByVertex<std::size_t>(
+      vertices, 3 * polygons.size(), [&](std::size_t i) { return edge(i).first; },
+      [&](std::size_t i) { return edge(i).second; });
   std::vector<std::pair<std::pair<std::size_t, std::size_t>, int>> counted;
-  counted.reserve(upper.size() / 2 + 1);
+  counted.reserve(upper.values.size() / 2 + 1);
   for (std::size_t v = 0; v < vertices; ++v) {
-    const auto first = upper.begin() + static_cast<std::ptrdiff_t>(start[v]);
-    const auto last = upper.begin() + static_cast<std::ptrdiff_t>(start[v + 1]);
+    const auto first = upper.begin(v);
+    const auto last = upper.end(v);
     std::sort(first, last);
     for (auto i = first; i != last;) {
       auto j = i;

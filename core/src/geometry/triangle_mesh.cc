@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "hapticad/core/geometry/vertex_buckets.h"
+
 namespace hapticad {
 namespace {
 
@@ -108,18 +110,10 @@ void TriangleMesh::BuildConnectivity() {
   const auto n = static_cast<std::uint32_t>(triangles_.size());
   const auto num_vertices = static_cast<std::uint32_t>(points_.size());
   // Edge k of triangle t (half-edge 3t + k) runs from corner k to corner k + 1. The
-  // half-edges grouped by the vertex they start from, by a counting sort: the edges out
-  // of v are out[first[v]] .. out[first[v + 1]], one per triangle at v.
-  std::vector<std::uint32_t> first(num_vertices + 1, 0);
-  for (const auto& tri : triangles_) {
-    for (const std::uint32_t v : tri) ++first[v + 1];
-  }
-  for (std::uint32_t v = 0; v < num_vertices; ++v) first[v + 1] += first[v];
-  std::vector<std::uint32_t> out(3 * std::size_t{n});
-  {
-    std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
-    for (std::uint32_t h = 0; h < 3 * n; ++h) out[next[triangles_[h / 3][h % 3]]++] = h;
-  }
+  // half-edges grouped by the vertex they start from: one per triangle at the vertex.
+  VertexBuckets<std::uint32_t> out = BucketByVertex<std::uint32_t>(
+      num_vertices, 3 * std::size_t{n}, [this](std::size_t h) { return triangles_[h / 3][h % 3]; },
+      [](std::size_t h) { return static_cast<std::uint32_t>(h); });
   const auto end_of = [this](std::uint32_t h) { return triangles_[h / 3][(h % 3 + 1) % 3]; };
   // each vertex's edges sorted by where they lead (then by triangle): a repeated edge
   // sits next to its twin, and the edge back is found by a binary search, so a vertex
@@ -129,7 +123,7 @@ void TriangleMesh::BuildConnectivity() {
     return eg != eh ? eg < eh : g < h;
   };
   for (std::uint32_t v = 0; v < num_vertices; ++v) {
-    std::sort(out.begin() + first[v], out.begin() + first[v + 1], by_end);
+    std::sort(out.begin(v), out.end(v), by_end);
   }
 
   // Across each edge a -> b, the triangle whose edge runs b -> a. The same edge twice
@@ -139,10 +133,10 @@ void TriangleMesh::BuildConnectivity() {
   std::uint32_t worst = kNone;  // the first triangle that repeats an edge
   std::uint32_t worst_other = kNone;
   for (std::uint32_t a = 0; a < num_vertices; ++a) {
-    for (std::uint32_t i = first[a]; i + 1 < first[a + 1]; ++i) {
-      if (end_of(out[i]) == end_of(out[i + 1]) && out[i + 1] / 3 < worst) {
-        worst = out[i + 1] / 3;
-        worst_other = out[i] / 3;
+    for (auto i = out.begin(a); i + 1 < out.end(a); ++i) {
+      if (end_of(i[0]) == end_of(i[1]) && i[1] / 3 < worst) {
+        worst = i[1] / 3;
+        worst_other = i[0] / 3;
       }
     }
   }
@@ -150,9 +144,9 @@ void TriangleMesh::BuildConnectivity() {
     const std::uint32_t t = h / 3;
     const std::uint32_t a = triangles_[t][h % 3];
     const std::uint32_t b = end_of(h);
-    const auto back = std::partition_point(out.begin() + first[b], out.begin() + first[b + 1],
+    const auto back = std::partition_point(out.begin(b), out.end(b),
                                            [&](std::uint32_t g) { return end_of(g) < a; });
-    if (back != out.begin() + first[b + 1] && end_of(*back) == a) across_[t][h % 3] = *back / 3;
+    if (back != out.end(b) && end_of(*back) == a) across_[t][h % 3] = *back / 3;
     closed_ = closed_ && across_[t][h % 3] != kNone;
   }
   if (worst != kNone) {
@@ -166,9 +160,9 @@ void TriangleMesh::BuildConnectivity() {
   // Round each vertex, one fan: from a triangle at v, across the edge out of v and back
   // across the edge into v, every triangle at v is reached.
   for (std::uint32_t v = 0; v < num_vertices; ++v) {
-    const std::uint32_t count = first[v + 1] - first[v];
+    const auto count = static_cast<std::uint32_t>(out.end(v) - out.begin(v));
     if (count == 0) continue;
-    const std::uint32_t start = out[first[v]] / 3;
+    const std::uint32_t start = *out.begin(v) / 3;
     const auto corner = [this, v](std::uint32_t t) {
       const auto& tri = triangles_[t];
       return tri[0] == v ? 0 : (tri[1] == v ? 1 : 2);
