@@ -62,6 +62,23 @@ class BenchMeshCommandTest(unittest.TestCase):
         self.assertEqual(done.returncode, 2)
         self.assertIn("--warm-ahead", done.stderr)
 
+    def test_ticks_are_grouped_by_how_far_the_contact_moved(self):
+        # every tick after the first touches, so each is in one group; a finer mesh of
+        # the same sphere, stroked the same way, has its contact move on more often
+        moved = {}
+        for triangles in ("9680", "100820"):
+            result = json.loads(bench("--icosphere", triangles, "--ticks", "2000").stdout)
+            self.assertEqual(result["contact_ticks"], result["ticks"])
+            groups = result["tick_us_by_move"]
+            self.assertEqual(set(groups), {"stayed", "next", "second", "further"})
+            self.assertEqual(sum(g["ticks"] for g in groups.values()), result["ticks"] - 1)
+            for g in groups.values():
+                self.assertLessEqual(g["p50"], g["p99"])
+            moved[triangles] = 1 - groups["stayed"]["ticks"] / (result["ticks"] - 1)
+        # 0.05-0.1 mm a tick over triangles about 2.7 mm and 0.85 mm across
+        self.assertGreater(moved["9680"], 0.01)
+        self.assertGreater(moved["100820"], 2 * moved["9680"])
+
     def test_convex_pieces_settle_the_stroke_and_change_nothing_felt(self):
         # the icosphere is one convex piece: with it every contact tick is settled from
         # the last contact; without it every sweep walks, and the stroke feels the same

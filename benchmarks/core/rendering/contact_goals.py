@@ -3,10 +3,12 @@
 """The contact engine against issue 4's goals and CHAI3D 3.3's reference figures:
 `hapticad bench-mesh` on icospheres of 9,680, 100,820 and 1,003,520 triangles (radius
 50 mm), point and 1 mm sphere proxies, in mm and (at 1M) in metres; each run repeated
-and the median of each figure kept. Prints a Markdown table (and --json the runs).
+and the median of each figure kept. Prints a Markdown table (and --json the runs), then
+the contact ticks grouped by how far the contact moved since the tick before (bench-mesh's
+`tick_us_by_move`): what share of the ticks crossed more triangles, and what those cost.
 
     benchmarks/core/rendering/contact_goals.py [--hapticad build/bin/hapticad] [--repeat 3]
-        [--convex-pieces on|off]
+        [--convex-pieces on|off] [--warm-ahead N]
 """
 import argparse
 import json
@@ -16,10 +18,13 @@ import subprocess
 SIZES = [9680, 100820, 1003520]
 
 
-def run(hapticad, triangles, proxy, units, ticks, convex_pieces):
+MOVES = ("stayed", "next", "second", "further")
+
+
+def run(hapticad, triangles, proxy, units, ticks, convex_pieces, warm_ahead):
     out = subprocess.run([hapticad, "bench-mesh", "--icosphere", str(triangles), "--proxy", proxy,
                           "--units", units, "--ticks", str(ticks), "--convex-pieces", convex_pieces,
-                          "--json"],
+                          "--warm-ahead", str(warm_ahead), "--json"],
                          capture_output=True, text=True, check=True)
     return json.loads(out.stdout)
 
@@ -42,12 +47,15 @@ def main():
     parser.add_argument("--json", action="store_true")
     parser.add_argument("--convex-pieces", choices=("on", "off"), default="on",
                         help="off: every sweep walks the grid or the tree (to compare)")
+    parser.add_argument("--warm-ahead", type=int, default=0,
+                        help="bench-mesh's diagnostic: each block of N ticks run untimed first, so "
+                             "the timed ticks find their data in the caches")
     args = parser.parse_args()
     configs = [(n, p, "mm") for n in SIZES for p in ("point", "sphere:1")]
     configs += [(SIZES[-1], p, "m") for p in ("point", "sphere:1")]
     rows, raw = [], []
     for n, proxy, units in configs:
-        runs = [run(args.hapticad, n, proxy, units, args.ticks, args.convex_pieces)
+        runs = [run(args.hapticad, n, proxy, units, args.ticks, args.convex_pieces, args.warm_ahead)
                 for _ in range(args.repeat)]
         raw.append({"triangles": n, "proxy": proxy, "units": units, "runs": runs})
         rows.append((n, proxy, units, runs))
@@ -63,6 +71,18 @@ def main():
               f"| {median_of(runs, 'build_ms'):.0f} | {median_of(runs, 'repair_ms'):.0f} "
               f"| {runs[0]['bytes_per_triangle']:.0f} | {min(r['contact_ticks'] for r in runs)} / {runs[0]['ticks']} "
               f"| {max(r['pop_through'] for r in runs)} | {max(r['max_force_n'] for r in runs):.3f} |")
+    print()
+    print("| triangles | proxy | units | " +
+          " | ".join(f"{m}: share, p50 / p99 (us)" for m in MOVES) + " |")
+    print("|---|---|---|" + "---|" * len(MOVES))
+    for n, proxy, units, runs in rows:
+        cells = []
+        for m in MOVES:
+            total = sum(r["tick_us_by_move"][k]["ticks"] for r in runs for k in MOVES)
+            share = sum(r["tick_us_by_move"][m]["ticks"] for r in runs) / max(total, 1)
+            cells.append(f"{100 * share:.2f} %, {median_of(runs, 'tick_us_by_move', m, 'p50'):.2f} / "
+                         f"{median_of(runs, 'tick_us_by_move', m, 'p99'):.2f}")
+        print(f"| {n:,} | {proxy} | {units} | " + " | ".join(cells) + " |")
 
 
 if __name__ == "__main__":
