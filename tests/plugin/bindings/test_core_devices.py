@@ -3,7 +3,8 @@
 a SimulatedHand whose target another thread sets, a ServoLoop started and stopped
 with its trace drained while it runs, its statistics, the end of a session and why,
 the device list and HID devices (through the hidapi emulator preloaded in front of
-libhidapi, configured by HAPTICAD_HIDEMU). No FreeCAD needed.
+libhidapi, configured by HAPTICAD_HIDEMU). No FreeCAD needed. A live loop's trace that
+shows the host stalling the loop past its watchdog runs the test again (../host_stalls.py).
 
 Environment: HAPTICAD_MOD (the staged Mod folder). Runs under /usr/bin/python3."""
 import os
@@ -15,7 +16,9 @@ import unittest
 import numpy as np
 
 sys.path.insert(0, os.environ["HAPTICAD_MOD"])
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from hapticad import _core  # noqa: E402
+from host_stalls import check_host_stall, rerun_after_host_stall  # noqa: E402
 
 # a box [-50, 50] mm, top face at z = 50 mm, one CAD face per side
 V = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
@@ -46,6 +49,7 @@ def wait_until(predicate, timeout=3.0):
 
 
 class SimulatedHandSession(unittest.TestCase):
+    @rerun_after_host_stall
     def test_a_mouse_thread_presses_the_hand_onto_the_part(self):
         limits = hand_limits()
         hand = _core.SimulatedHand(limits=limits, model=_core.HandModel())
@@ -74,6 +78,7 @@ class SimulatedHandSession(unittest.TestCase):
         stats = loop.stats  # after the stop: the trace below holds every tick it counted
         chunks.append(loop.drain_trace())
         trace = np.concatenate(chunks)
+        check_host_stall(trace, _core.FLAG_FAULT_WATCHDOG)
         self.assertFalse(loop.running)
         self.assertEqual(loop.session_end, _core.SessionEnd.STOPPED)
         self.assertEqual(loop.fault_message, "")
@@ -108,16 +113,19 @@ class SimulatedHandSession(unittest.TestCase):
         loop.stop()
         self.assertGreater(after - before, 100)
 
+    @rerun_after_host_stall
     def test_follows_a_path_and_a_recorded_trajectory(self):
         hand = _core.SimulatedHand(limits=hand_limits())
         hand.follow_path([0.0, 0.2, 0.4], np.array([[0, 0, 0.07], [0.02, 0, 0.07], [0.02, 0.02, 0.07]]))
         loop = _core.ServoLoop(hand, box_renderer(hand_limits()))
         first = loop.run_for(0.6)
+        check_host_stall(first, _core.FLAG_FAULT_WATCHDOG)
         self.assertTrue(hand.following_path)
         self.assertAlmostEqual(first[-1]["handle_d_m"][0], 0.02, delta=3e-4)
         # replay what the handle did as a recording
         hand.follow_path(first["time_s"], first["handle_d_m"])
         second = loop.run_for(0.6)
+        check_host_stall(second, _core.FLAG_FAULT_WATCHDOG)
         self.assertAlmostEqual(second[-1]["handle_d_m"][1], first[-1]["handle_d_m"][1], delta=3e-4)
         hand.follow_target()
         self.assertFalse(hand.following_path)
@@ -134,6 +142,7 @@ class SimulatedHandSession(unittest.TestCase):
             _core.open_device("sim:nothing")
         self.assertTrue(issubclass(_core.DeviceError, RuntimeError))
 
+    @rerun_after_host_stall
     def test_mapping_clutch_and_scene_swap_reach_the_running_loop(self):
         limits = hand_limits()
         hand = _core.SimulatedHand(limits=limits)
@@ -151,6 +160,7 @@ class SimulatedHandSession(unittest.TestCase):
         self.assertTrue(wait_until(lambda: not loop.latest()["flags"] & _core.FLAG_CLUTCHED))
         world = loop.mapping.device_to_world(hand.true_state.position_d)
         loop.stop()
+        check_host_stall(loop.drain_trace(), _core.FLAG_FAULT_WATCHDOG)
         self.assertAlmostEqual(world[2], 0.09, delta=2e-4)
 
 

@@ -2,7 +2,10 @@
 """The live Feel session adapter, headless: with the device layer's live bindings it
 runs the real C++ servo loop with the simulated hand (the hand aims into the top face
 and is held at its surface); without them it refuses to start, naming what is missing.
-Run by freecadcmd."""
+A live session's trace that shows the host stalling the loop past its watchdog runs the
+test again (../host_stalls.py). Run by freecadcmd."""
+import os
+import sys
 import time
 import unittest
 
@@ -15,7 +18,17 @@ import HaptiCAD
 from hapticad import _core, feel_session, preferences
 from hapticad.document_scene import NeedsNewScene, build_document_scene
 
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from host_stalls import check_host_stall, rerun_after_host_stall  # noqa: E402
+
 MM = 1e-3
+
+
+def drain(session):
+    """All the session's samples since the last drain; HostStall if the host stalled it."""
+    trace = session.drain()
+    check_host_stall(trace, _core.FLAG_FAULT_WATCHDOG)
+    return trace
 
 
 class FeelSessionTest(unittest.TestCase):
@@ -38,9 +51,10 @@ class FeelSessionTest(unittest.TestCase):
         session.start(np.array([20, 15, 30]) * MM)
         try:
             time.sleep(0.3)  # the hand starts above the part
+            drain(session)
             session.set_target(np.array([20, 15, 18]) * MM)
             time.sleep(0.6)
-            return session, session.drain()[-50:]
+            return session, drain(session)[-50:]
         except BaseException:
             session.stop()
             raise
@@ -67,6 +81,7 @@ class FeelSessionTest(unittest.TestCase):
         self.assertEqual([c.path for c in choices], ["simulated", "/dev/hidraw7"])
         self.assertEqual(choices[1].label, "Prototype (/dev/hidraw7)")
 
+    @rerun_after_host_stall
     def test_the_hand_is_held_at_the_surface(self):
         prefs = preferences.Preferences(servo_rate_hz=1000, force_limit_n=3.0)
         session = feel_session.LiveSession(self.scene, prefs=prefs)
@@ -74,10 +89,10 @@ class FeelSessionTest(unittest.TestCase):
         session.start(above)
         try:
             time.sleep(0.3)
-            free = session.drain()
+            free = drain(session)
             session.set_target(np.array([20, 15, 18]) * MM)  # 2 mm into the top face
             time.sleep(0.6)
-            pressed = session.drain()
+            pressed = drain(session)
         finally:
             session.stop()
         self.assertFalse(session.running)
@@ -95,6 +110,7 @@ class FeelSessionTest(unittest.TestCase):
         self.assertIn("Box.Face6", session.describe_face(int(last["cad_face"][-1])))
         self.assertIn("Steel", session.describe_face(int(last["cad_face"][-1])))
 
+    @rerun_after_host_stall
     def test_a_property_edit_is_felt_in_the_running_session_without_a_rebuild(self):
         surface = self.doc.getObject("HapticSurface")
         session, steel = self.press_on_the_top()
@@ -105,14 +121,14 @@ class FeelSessionTest(unittest.TestCase):
             self.doc.recompute()
             session.update_surfaces(self.doc)
             time.sleep(0.6)
-            soft = session.drain()[-50:]
+            soft = drain(session)[-50:]
             # an edit that cannot be compiled is refused with its name; the loop keeps the soft face
             surface.Pattern = "Curve"  # with no curve to follow
             with self.assertRaises(ValueError) as raised:
                 session.update_surfaces(self.doc)
             self.assertIn(surface.Label, str(raised.exception))
             time.sleep(0.1)
-            still_soft = session.drain()[-50:]
+            still_soft = drain(session)[-50:]
             running = session.running
         finally:
             session.stop()
@@ -128,6 +144,7 @@ class FeelSessionTest(unittest.TestCase):
         self.assertAlmostEqual(session.doc_scene.surfaces.surface(self.scene.face_id("Box.Face6")).stiffness_n_per_m,
                                50.0)
 
+    @rerun_after_host_stall
     def test_a_geometry_edit_is_felt_in_the_running_session(self):
         session, before = self.press_on_the_top()
         scene_before = session.doc_scene.scene
@@ -138,7 +155,7 @@ class FeelSessionTest(unittest.TestCase):
             self.doc.recompute()
             session.update_scene(self.doc)
             time.sleep(0.6)
-            after = session.drain()[-50:]
+            after = drain(session)[-50:]
             running = session.running
         finally:
             session.stop()
