@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <memory>
 #include <stdexcept>
 #include <thread>
 
@@ -20,6 +22,21 @@
 
 namespace hapticad {
 namespace {
+
+// Whether the host held the loop's thread off its core past the watchdog: a watchdog
+// fault while every tick's own work took under 1 ms (a VM does that now and then, even
+// with the test alone on it). A live test about normal running then runs its scene
+// again, up to kAttempts times in all (tests/plugin/host_stalls.py, the same rule).
+constexpr int kAttempts = 3;
+bool HostStalled(const std::vector<TraceSample>& trace) {
+  bool watchdog = false;
+  double slowest_us = 0.0;
+  for (const TraceSample& s : trace) {
+    watchdog = watchdog || (s.flags & kFaultWatchdog) != 0;
+    slowest_us = std::max(slowest_us, s.tick_us);
+  }
+  return watchdog && slowest_us < 1000.0;
+}
 
 ServoConfig Config(double rate_hz, std::size_t trace_capacity) {
   ServoConfig c;
@@ -56,8 +73,18 @@ class ServoOnBox : public ::testing::Test {
 };
 
 TEST_F(ServoOnBox, RunsAtItsRateAndRecordsEveryTick) {
-  ServoLoop loop(*device_, *renderer_, Config(1000.0, 4096));
-  const auto trace = loop.RunFor(0.3);
+  std::unique_ptr<ServoLoop> run;
+  std::vector<TraceSample> trace;
+  for (int attempt = 1;; ++attempt) {
+    run = std::make_unique<ServoLoop>(*device_, *renderer_, Config(1000.0, 4096));
+    trace = run->RunFor(0.3);
+    if (!HostStalled(trace)) break;
+    ASSERT_LT(attempt, kAttempts) << "the host stalled the loop in every attempt";
+    std::fprintf(stderr, "attempt %d of %d: the host stalled the loop\n", attempt, kAttempts);
+    run.reset();
+    SetUp();  // a fresh device, its path from the start
+  }
+  ServoLoop& loop = *run;
   const ServoStats stats = loop.stats();
   EXPECT_EQ(trace.size(), stats.ticks);
   EXPECT_EQ(stats.trace_dropped, 0u);
