@@ -6,7 +6,9 @@ load). The safety layer then does what it must: zero force, a watchdog fault, a 
 ramp back. That says nothing about what the test checks (what the designer feels while
 the loop keeps time), so such a test runs its scene again, and only for such a stall:
 a watchdog fault while every tick's own work (`tick_us`) took under 1 ms, so the gap was
-not the loop's doing. A slow tick, any other fault, or stalls in every attempt fail.
+not the loop's doing (other faults in the same trace go with it: a stall can also make
+the device's data stale). A slow tick, other faults without a watchdog fault, or stalls in
+every attempt fail.
 
 Use: decorate the test method with `@rerun_after_host_stall` and pass
 every trace the test drains to `check_host_stall(trace, watchdog_flag)` before asserting

@@ -77,8 +77,8 @@ def main():
     print("|---|---|---|" + "---|" * len(MOVES))
     for n, proxy, units, runs in rows:
         cells = []
+        total = sum(r["tick_us_by_move"][k]["ticks"] for r in runs for k in MOVES)
         for m in MOVES:
-            total = sum(r["tick_us_by_move"][k]["ticks"] for r in runs for k in MOVES)
             share = sum(r["tick_us_by_move"][m]["ticks"] for r in runs) / max(total, 1)
             cells.append(f"{100 * share:.2f} %, {median_of(runs, 'tick_us_by_move', m, 'p50'):.2f} / "
                          f"{median_of(runs, 'tick_us_by_move', m, 'p99'):.2f}")
