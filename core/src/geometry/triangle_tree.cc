@@ -200,6 +200,70 @@ class FirstHitTraversal {
   const double pad_;
 };
 
+// The closest point: the nearest box first, every box farther than the nearest point
+// so far pruned. CGAL's own query walks the boxes in a fixed order from a starting hint
+// it looks up in a kd-tree of vertices; this walk needs no hint, so the tree keeps
+// nothing but its nodes and primitives.
+class ClosestPointTraversal {
+ public:
+  using Priority = double;
+
+  ClosestPointTraversal(const TriangleMesh& mesh, const Vec3& p) : mesh_(mesh), p_(p) {}
+
+  bool go_further() const { return true; }
+
+  void intersection(const Vec3&, const TrianglePrimitive& primitive) {
+    const auto& t = mesh_.triangle(primitive.id());
+    const Kernel::Triangle_3 triangle(ToPoint(mesh_.vertex(t[0])), ToPoint(mesh_.vertex(t[1])),
+                                      ToPoint(mesh_.vertex(t[2])));
+    const Kernel::Point_3 c = Kernel::Construct_projected_point_3()(triangle, ToPoint(p_));
+    const Vec3 point(c.x(), c.y(), c.z());
+    const double d2 = (point - p_).squaredNorm();
+    if (d2 < best_d2_) {
+      best_d2_ = d2;
+      best_.point = point;
+      best_.triangle = primitive.id();
+    }
+  }
+
+  template <class Node>
+  bool do_intersect(const Vec3&, const Node& node) const {
+    return CalcBoxDistance2(node.bbox()) <= best_d2_;
+  }
+
+  template <class Node>
+  std::pair<bool, Priority> do_intersect_with_priority(const Vec3&, const Node& node) const {
+    const double d2 = CalcBoxDistance2(node.bbox());
+    return {d2 <= best_d2_, -d2};
+  }
+
+  // Meaningful once a triangle was visited (the tree holds at least one).
+  SurfacePoint Result() const {
+    SurfacePoint out = best_;
+    out.distance = std::sqrt(best_d2_);
+    return out;
+  }
+
+ private:
+  static Kernel::Point_3 ToPoint(const Vec3& p) { return Kernel::Point_3(p.x(), p.y(), p.z()); }
+
+  double CalcBoxDistance2(const CGAL::Bbox_3& box) const {
+    const double lo[3] = {box.xmin(), box.ymin(), box.zmin()};
+    const double hi[3] = {box.xmax(), box.ymax(), box.zmax()};
+    double d2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double gap = std::max({lo[k] - p_[k], p_[k] - hi[k], 0.0});
+      d2 += gap * gap;
+    }
+    return d2;
+  }
+
+  const TriangleMesh& mesh_;
+  const Vec3 p_;
+  double best_d2_ = std::numeric_limits<double>::infinity();
+  SurfacePoint best_{0, Vec3::Zero(), 0.0};
+};
+
 }  // namespace
 
 struct TriangleTree::Impl {
@@ -235,29 +299,9 @@ std::unique_ptr<TriangleTree> TriangleTree::Build(const TriangleMesh& mesh, doub
   impl->tree.custom_build(impl->tree.traits().compute_bbox_object(), MedianSplit());
   impl->build_boxes.clear();
   impl->build_boxes.shrink_to_fit();
-  // The kd-tree only supplies starting hints for closest-point searches (never on the
-  // servo tick): one vertex in 8 is plenty and builds 8 times faster. Each hint names a
-  // triangle it lies on: a search whose closest point is the hint itself answers with
-  // that triangle (a bare point would answer triangle 0, wherever that is).
-  constexpr std::uint32_t kNone = ~std::uint32_t{0};
-  std::vector<std::uint32_t> on(mesh.num_vertices() / 8 + 1, kNone);
-  for (std::uint32_t t = 0; t < n; ++t) {
-    for (const std::uint32_t v : mesh.triangle(t)) {
-      if (v % 8 == 0 && on[v / 8] == kNone) on[v / 8] = t;
-    }
-  }
-  std::vector<Tree::Point_and_primitive_id> hints;
-  hints.reserve(on.size());
-  for (std::size_t i = 0; i < on.size(); ++i) {
-    if (on[i] == kNone) continue;  // a vertex no triangle uses
-    const Vec3& p = mesh.vertex(static_cast<std::uint32_t>(8 * i));
-    hints.emplace_back(Kernel::Point_3(p.x(), p.y(), p.z()), on[i]);
-  }
-  if (hints.empty()) {
-    impl->tree.accelerate_distance_queries();
-  } else {
-    impl->tree.accelerate_distance_queries(hints.begin(), hints.end());
-  }
+  // CGAL would build a kd-tree of starting hints for its closest-point query on first
+  // use; CalcClosestPoint walks the boxes nearest first instead and needs none.
+  impl->tree.do_not_accelerate_distance_queries();
   return std::unique_ptr<TriangleTree>(new TriangleTree(std::move(impl)));
 }
 
@@ -277,12 +321,9 @@ void TriangleTree::Search(SweepSearch* search) const {
 double TriangleTree::pad() const { return impl_->pad; }
 
 SurfacePoint TriangleTree::CalcClosestPoint(const Vec3& p) const {
-  const auto result = impl_->tree.closest_point_and_primitive(Kernel::Point_3(p.x(), p.y(), p.z()));
-  SurfacePoint out;
-  out.triangle = result.second;
-  out.point = Vec3(result.first.x(), result.first.y(), result.first.z());
-  out.distance = (out.point - p).norm();
-  return out;
+  ClosestPointTraversal traversal(*impl_->mesh, p);
+  impl_->tree.traversal_with_priority(p, traversal);
+  return traversal.Result();
 }
 
 std::size_t TriangleTree::num_triangles() const { return impl_->tree.size(); }

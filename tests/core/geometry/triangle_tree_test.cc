@@ -4,6 +4,8 @@
 #include "hapticad/core/geometry/icosphere.h"
 #include "hapticad/core/geometry/segment_triangle.h"
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -110,6 +112,73 @@ TEST(TriangleTree, ClosestPointAtAVertexNamesATriangleThatHasIt) {
     ++checked;
   }
   EXPECT_GT(checked, 900);
+}
+
+// The closest point of triangle abc to p, by the region p projects into (corner, edge
+// or face): an independent reference for the tree's search.
+Vec3 ClosestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
+    return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  return a + vb * denom * ab + vc * denom * ac;
+}
+
+TEST(TriangleTree, ClosestPointMatchesEveryTriangleTested) {
+  // a bumpy ball (radial noise keeps it a closed surface) and points inside, near and
+  // far: the answer is as near as the nearest of all triangles, and lies on its own
+  TriangleSoup s = MakeIcosphere(IcosphereFrequencyFor(3000), 1.0);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> bump(0.8, 1.2);
+  for (Vec3& v : s.vertices) v *= bump(rng);
+  const auto mesh = TriangleMesh::Build(s.vertices, s.triangles, s.cad_faces, s.corner_normals);
+  const auto tree = TriangleTree::Build(*mesh, 1e-12);
+  std::uniform_real_distribution<double> coord(-1.0, 1.0);
+  std::uniform_real_distribution<double> reach(0.0, 4.0);
+  for (int i = 0; i < 300; ++i) {
+    const Vec3 dir = Vec3(coord(rng), coord(rng), coord(rng)).normalized();
+    const Vec3 q = reach(rng) * dir;
+    const SurfacePoint got = tree->CalcClosestPoint(q);
+    double nearest = INFINITY;
+    for (std::uint32_t t = 0; t < mesh->num_triangles(); ++t) {
+      const auto& tri = mesh->triangle(t);
+      nearest = std::min(nearest, (ClosestOnTriangle(q, mesh->vertex(tri[0]), mesh->vertex(tri[1]),
+                                                     mesh->vertex(tri[2])) -
+                                   q)
+                                      .norm());
+    }
+    ASSERT_NEAR(got.distance, nearest, 1e-12) << i;
+    ASSERT_NEAR((got.point - q).norm(), got.distance, 1e-12) << i;
+    const auto& own = mesh->triangle(got.triangle);
+    const Vec3 on = ClosestOnTriangle(got.point, mesh->vertex(own[0]), mesh->vertex(own[1]),
+                                      mesh->vertex(own[2]));
+    ASSERT_NEAR((on - got.point).norm(), 0.0, 1e-12) << i << ": not on triangle " << got.triangle;
+  }
+}
+
+TEST(TriangleTree, ClosestPointDoesNotAllocate) {
+  const TriangleSoup s = MakeIcosphere(IcosphereFrequencyFor(2000), 1.0);
+  const auto mesh = TriangleMesh::Build(s.vertices, s.triangles, s.cad_faces, s.corner_normals);
+  const auto tree = TriangleTree::Build(*mesh, 1e-12);
+  testing::AllocationCounter counter;
+  double sum = 0.0;
+  for (int i = 0; i < 100; ++i) sum += tree->CalcClosestPoint(Vec3(0.03 * i, 0.5, 2.0)).distance;
+  EXPECT_EQ(counter.count(), 0u);
+  EXPECT_GT(sum, 0.0);
 }
 
 TEST_F(BoxTree, ClosestPointOffACornerIsOnAFaceAtThatCorner) {

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // TriangleTree: CGAL's AABB tree over a TriangleMesh, built completely before use.
 //
-// CGAL builds its tree and its distance-query kd-tree lazily on the first query; a
-// servo tick must never pay for that, so Build() does both. The CGAL types stay inside
+// CGAL builds its tree lazily on the first query; a servo tick must never pay for that,
+// so Build() does it. CGAL's distance-query kd-tree is never built (CalcClosestPoint
+// needs none). The CGAL types stay inside
 // triangle_tree.cc (licence and compile time walled off, as libigl does).
 //
 // Frame and units: those of the mesh (the scene's local frame, metres).
@@ -21,7 +22,7 @@ namespace hapticad {
 
 class TriangleTree {
  public:
-  // Builds the tree and the distance acceleration. `mesh` must outlive the tree.
+  // Builds the tree. `mesh` must outlive the tree.
   // `pad` (model units) grows every node box so a segment grazing a box edge is not
   // lost to rounding; the scene passes a small fraction of its size.
   static std::unique_ptr<TriangleTree> Build(const TriangleMesh& mesh, double pad);
@@ -36,12 +37,14 @@ class TriangleTree {
   // How much every node box is grown (model units).
   double pad() const;
 
-  // Closest surface point to `p`. Uses CGAL's accelerated distance query: not for the
-  // servo tick (CGAL's kd-tree search allocates).
+  // Closest surface point to `p`: a walk of the boxes, nearest first, pruning those
+  // farther than the nearest point so far. No allocation, but not for the servo tick:
+  // its cost grows with the query's distance from the surface. Precondition: the mesh
+  // has a triangle.
   SurfacePoint CalcClosestPoint(const Vec3& p) const;
 
   std::size_t num_triangles() const;
-  // Bytes of the node array and the primitive array (not the kd-tree).
+  // Bytes of the node array and the primitive array: all the tree keeps.
   std::size_t CalcMemoryBytes() const;
 
   ~TriangleTree();

@@ -81,9 +81,9 @@ class HapticScene {
   // a 0.2 m part at 3 N/mm.
   double surface_offset_m() const { return 1e-9 * size_m_; }
 
-  // Closest surface point to `p_w` (world, m). Not for the servo tick (CGAL's kd-tree
-  // search allocates, and the first call builds the tree); used to set up strokes and
-  // to label points.
+  // Closest surface point to `p_w` (world, m). Not for the servo tick (the first call
+  // builds the tree, and a point far from the surface visits many boxes); used to set
+  // up strokes and to label points.
   SurfaceSample CalcClosestPoint(const Vec3& p_w) const;
 
   Vec3 ToLocal(const Vec3& p_w) const { return p_w - origin_w_; }
