@@ -292,16 +292,25 @@ bool ConvexPieces::IsProvenOnFace(std::uint32_t u, const SweepQuery& query, std:
 
 bool ConvexPieces::Walk(std::uint32_t t, const SweepQuery& query, std::uint32_t piece,
                         SweepSearch* search) const {
+  // Only the triangle the sweep lands over is tested: the proof needs no other (its
+  // plane bounds the piece), and the full test of a triangle passed over is the dearest
+  // part of a tick that crosses two.
   std::uint32_t from = kNone;
   for (int step = 0; step < kMaxWalk; ++step) {
     const int k = ExitEdge(t, query);
-    if (k < 0) return false;  // it meets the surface over t
+    if (k < 0) return step > 0 && IsProvenOnFace(t, query, piece, search);
     const std::uint32_t next = mesh_->across(t)[k];
-    if (next == from) return false;  // back again: over the edge between the two
+    if (next == from) {
+      // back again: the contact is over the edge between the two; test both (the
+      // first was tested before the walk), so the caller can prove it with a climb
+      search->Test(t);
+      if (step > 1) search->Test(from);
+      return false;
+    }
     from = t;
     t = next;
-    if (IsProvenOnFace(t, query, piece, search)) return true;
   }
+  search->Test(t);  // where the walk stopped: a start for the caller's search round it
   return false;
 }
 

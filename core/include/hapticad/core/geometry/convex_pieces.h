@@ -112,9 +112,12 @@ class ConvexPieces {
   // Tests triangle u; whether it is then the best contact, on its face, proven first.
   bool IsProvenOnFace(std::uint32_t u, const SweepQuery& query, std::uint32_t piece,
                       SweepSearch* search) const;
-  // Walks from triangle t toward where the sweep meets the surface, across the edge it
-  // passes beyond (up to kMaxWalk steps; not back across the edge it came over),
-  // testing each triangle it enters: whether one proved itself on its face.
+  // Walks from triangle t (already tested) toward where the sweep meets the surface,
+  // across the edge it passes beyond (up to kMaxWalk steps; not back across the edge it
+  // came over), and tests the triangle it lands over: whether that one proved itself on
+  // its face. Triangles passed over are not tested, but for the two either side of an
+  // edge it would cross back over, and the last if the steps run out: the caller's climb
+  // and search round the contact start from them.
   bool Walk(std::uint32_t t, const SweepQuery& query, std::uint32_t piece,
             SweepSearch* search) const;
   // Tests every triangle sharing a vertex with triangle t until one proves itself on
