@@ -106,7 +106,15 @@ std::size_t HapticScene::CalcMemoryBytes() const {
 }
 
 SurfaceSample HapticScene::CalcClosestPoint(const Vec3& p_w) const {
-  const SurfacePoint closest = BuildTree().CalcClosestPoint(ToLocal(p_w));
+  // (beyond a million sizes the answer means nothing, and far enough the projection's
+  // squares overflow)
+  const Vec3 p_l = ToLocal(p_w);
+  if (!(p_l.norm() <= kClosestPointReach * size_m_)) {
+    throw std::invalid_argument(
+        "haptic scene: the point to find the closest surface point to is not finite, or "
+        "more than a million times the part's size from it");
+  }
+  const SurfacePoint closest = BuildTree().CalcClosestPoint(p_l);
   SurfaceSample out;
   out.point_w = ToWorld(closest.point);
   out.triangle = closest.triangle;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hapticad/core/rendering/haptic_scene.h"
 
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <thread>
@@ -61,6 +62,23 @@ TEST(HapticScene, ClosestPointGivesFaceAndOutwardNormalInWorld) {
   EXPECT_NEAR((s.point_w - Vec3(0.010, 0.020, 0.060)).norm(), 0.0, 1e-15);
   EXPECT_NEAR((s.normal_w - Vec3::UnitZ()).norm(), 0.0, 1e-15);
   EXPECT_NEAR(s.distance_m, 0.040, 1e-15);
+}
+
+TEST(HapticScene, ClosestPointRefusesANonFiniteOrAbsurdlyFarPointAndAnswersAFarOne) {
+  const auto scene =
+      HapticScene::Build(testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(20, 40, 60)), 1e-3);
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(scene->CalcClosestPoint(Vec3(std::nan(""), 0, 0)), std::invalid_argument);
+  EXPECT_THROW(scene->CalcClosestPoint(Vec3(0, inf, 0)), std::invalid_argument);
+  // where squared distances overflow (CGAL's projection answered -1.7e184 there)
+  EXPECT_THROW(scene->CalcClosestPoint(Vec3(1e200, 0, 0)), std::invalid_argument);
+  // far, but within reach: the +x face, at the true distance (37 km off a 75 mm part:
+  // the projection keeps 16 digits of the distance, 1e-11 of the part's size)
+  const double x = 0.5 * HapticScene::kClosestPointReach * scene->size_m();
+  const SurfaceSample far = scene->CalcClosestPoint(Vec3(x, 0.020, 0.030));
+  EXPECT_EQ(far.cad_face, 1);
+  EXPECT_NEAR((far.point_w - Vec3(0.020, 0.020, 0.030)).norm(), 0.0, 1e-9 * scene->size_m());
+  EXPECT_NEAR(far.distance_m, x - 0.020, 1e-9);
 }
 
 TEST(HapticScene, RejectsBadUnitsAndRepairsOrRejectsNonFiniteVertices) {

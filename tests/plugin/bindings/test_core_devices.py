@@ -141,6 +141,10 @@ class SimulatedHandSession(unittest.TestCase):
         with self.assertRaises(_core.DeviceError):
             _core.open_device("sim:nothing")
         self.assertTrue(issubclass(_core.DeviceError, RuntimeError))
+        scene = _core.HapticScene.build(V, T, FACES, 1.0)
+        for far in ((float("nan"), 0.0, 0.0), (0.0, float("inf"), 0.0), (1e200, 0.0, 0.0)):
+            with self.assertRaisesRegex(ValueError, "not finite, or more than a million"):
+                scene.calc_closest_point(far)
 
     @rerun_after_host_stall
     def test_mapping_clutch_and_scene_swap_reach_the_running_loop(self):

@@ -39,8 +39,8 @@ class TriangleTree {
 
   // Closest surface point to `p`: a walk of the boxes, nearest first, pruning those
   // farther than the nearest point so far. No allocation, but not for the servo tick:
-  // its cost grows with the query's distance from the surface. Precondition: the mesh
-  // has a triangle.
+  // its cost grows with the query's distance from the surface. Preconditions: the mesh
+  // has a triangle, `p` is finite.
   SurfacePoint CalcClosestPoint(const Vec3& p) const;
 
   std::size_t num_triangles() const;

@@ -83,7 +83,9 @@ class HapticScene {
 
   // Closest surface point to `p_w` (world, m). Not for the servo tick (the first call
   // builds the tree, and a point far from the surface visits many boxes); used to set
-  // up strokes and to label points.
+  // up strokes and to label points. Throws std::invalid_argument if `p_w` is not finite
+  // or further than kClosestPointReach sizes (size_m) from the scene's origin.
+  static constexpr double kClosestPointReach = 1e6;
   SurfaceSample CalcClosestPoint(const Vec3& p_w) const;
 
   Vec3 ToLocal(const Vec3& p_w) const { return p_w - origin_w_; }
