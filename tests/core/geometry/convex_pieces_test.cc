@@ -241,6 +241,25 @@ double FuzzSettle(const TriangleMesh& mesh, const ConvexPieces& pieces, double r
   return static_cast<double>(settled) / count;
 }
 
+// Solids with sharp vertices whose planes do not all lean toward the sum of their
+// normals: the corner cut off a cube (at (1, 0, 0) the slanted face's normal is 100
+// degrees from the sum), and a square pyramid whose apex leans far past its base.
+TriangleSoup CornerTetrahedron() {
+  TriangleSoup s;
+  s.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  s.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  s.cad_faces = {0, 1, 2, 3};
+  return s;
+}
+
+TriangleSoup LeaningPyramid() {
+  TriangleSoup s;
+  s.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0), Vec3(4, 0.5, 0.3)};
+  s.triangles = {{0, 2, 1}, {0, 3, 2}, {0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  s.cad_faces = {0, 0, 1, 2, 3, 4};
+  return s;
+}
+
 TEST(ConvexPieces, AClosedConvexSurfaceIsOnePieceWithRoomAllRound) {
   for (const TriangleSoup& soup :
        {MakeIcosphere(4, 1.0), testing::MakeBoxSoup(Vec3(-1, -2, -3), Vec3(1, 2, 3)),
@@ -302,7 +321,8 @@ TEST(ConvexPieces, ConvexSolidsWithSharpEdgesAndVerticesAreOnePiece) {
   tetrahedron.vertices = {Vec3(1, 1, 1), Vec3(1, -1, -1), Vec3(-1, 1, -1), Vec3(-1, -1, 1)};
   tetrahedron.triangles = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
   tetrahedron.cad_faces = {0, 0, 0, 0};
-  std::vector<TriangleSoup> solids = {tetrahedron, MakeGridBox(Vec3(0, 0, 0), Vec3(1, 2, 3), 3)};
+  std::vector<TriangleSoup> solids = {tetrahedron, MakeGridBox(Vec3(0, 0, 0), Vec3(1, 2, 3), 3),
+                                      CornerTetrahedron(), LeaningPyramid()};
   for (const double degrees : {90.0, 60.0, 30.0, 10.0}) {
     const double a = degrees * M_PI / 180.0;
     solids.push_back(
@@ -344,6 +364,18 @@ TEST(ConvexPieces, SettledSweepsOfASphereAreTheFirstContact) {
   }
 }
 
+TEST(ConvexPieces, SettledSweepsOnSharpLeaningVerticesAreTheFirstContact) {
+  for (const TriangleSoup& soup : {CornerTetrahedron(), LeaningPyramid()}) {
+    const auto mesh = MeshOf(soup);
+    const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
+    ASSERT_EQ(pieces->num_pieces(), 1u);
+    for (const double radius : {0.0, 0.01, 0.1}) {
+      const double share = FuzzSettle(*mesh, *pieces, radius, 4.0, 13, 2000);
+      EXPECT_GT(share, 0.5) << radius;
+    }
+  }
+}
+
 TEST(ConvexPieces, PiecesApartHaveTheRoomBetweenTheirBoxes) {
   const auto mesh =
       MeshOf(Join(MakeIcosphere(6, 1.0, Vec3(-3, 0, 0)), MakeIcosphere(6, 1.0, Vec3(3, 0, 0))));
@@ -373,6 +405,54 @@ TEST(ConvexPieces, PiecesApartHaveTheRoomBetweenTheirBoxes) {
   q.radius = 4.9;
   SweepSearch fat(*mesh, q);
   EXPECT_FALSE(pieces->Settle(q, &fat));
+}
+
+// More pieces than ConvexPieces compares all against all: small balls strewn at random
+// (their boxes apart), and a rod beside them along the axis they spread along most,
+// long enough to be compared with every piece.
+TEST(ConvexPieces, ManyPiecesEachHaveARoomClearOfEveryOtherBox) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> x(0.0, 60.0), yz(0.0, 20.0);
+  TriangleSoup soup = testing::MakeBoxSoup(Vec3(-1, -3, -1), Vec3(61, -2, 1));
+  std::vector<Vec3> centres;
+  while (centres.size() < 1200) {
+    const Vec3 c(x(rng), yz(rng), yz(rng));
+    bool apart = true;  // boxes of half-side 0.4 (and a hair) overlap nowhere
+    for (const Vec3& o : centres) apart = apart && ((c - o).cwiseAbs().array() > 0.81).any();
+    if (!apart) continue;
+    centres.push_back(c);
+    soup = Join(soup, MakeIcosphere(1, 0.4, c));
+  }
+  const auto mesh = MeshOf(soup);
+  const auto pieces = ConvexPieces::Build(*mesh, kTolerance);
+  ASSERT_EQ(pieces->num_pieces(), 1201u);
+  std::vector<Vec3> lo(1201, Vec3::Constant(INFINITY)), hi(1201, Vec3::Constant(-INFINITY));
+  for (std::uint32_t t = 0; t < mesh->num_triangles(); ++t) {
+    const std::uint32_t p = pieces->piece(t);
+    ASSERT_LT(p, 1201u);
+    for (const std::uint32_t v : mesh->triangle(t)) {
+      lo[p] = lo[p].cwiseMin(mesh->vertex(v));
+      hi[p] = hi[p].cwiseMax(mesh->vertex(v));
+    }
+  }
+  int cut_short = 0;  // rooms that reach less than 0.1 beyond their piece on some side
+  for (std::uint32_t p = 0; p < 1201; ++p) {
+    const Vec3& room_lo = pieces->clear_lo(p);
+    const Vec3& room_hi = pieces->clear_hi(p);
+    ASSERT_TRUE((room_lo.array() < lo[p].array()).all() && (hi[p].array() < room_hi.array()).all())
+        << "piece " << p << " is not inside its own room";
+    cut_short += ((lo[p] - room_lo).minCoeff() < 0.1 || (room_hi - hi[p]).minCoeff() < 0.1);
+    for (std::uint32_t q = 0; q < 1201; ++q) {
+      if (q == p) continue;
+      const bool clear =
+          (lo[q].array() >= room_hi.array()).any() || (hi[q].array() <= room_lo.array()).any();
+      ASSERT_TRUE(clear) << "piece " << q << "'s box is in piece " << p << "'s room";
+    }
+  }
+  EXPECT_LT(cut_short, 120);  // the slabs leave most rooms some room
+  // and sweeps settled there are the first contact (against every triangle)
+  EXPECT_GT(FuzzSettle(*mesh, *pieces, 0.0, 60.0, 17, 300), 0.5);
+  EXPECT_GT(FuzzSettle(*mesh, *pieces, 0.05, 60.0, 19, 300), 0.5);
 }
 
 TEST(ConvexPieces, ASmallPieceInsideABigOnesBoxIsNeverMissed) {

@@ -26,7 +26,9 @@
 // immersed surface is convex), with the winding's normals pointing out of it. (A
 // degenerate triangle, with no normal, fails the turn test.) Other pieces, convex or
 // not, bound a piece's room: only sweeps whose reach stays in the box that holds none
-// of their boxes are settled here.
+// of their boxes are settled here. Up to 1,024 pieces every room is bounded against
+// every other piece; beyond, against those in a slab round it, the room cut to the
+// slab (20,000 pieces: 3.4 s all against all, 0.14-0.23 s in slabs).
 //
 // Units and frame: the mesh's. Build allocates (before the loop); Settle is servo-tick
 // safe: no allocation, no lock, bounded work.
@@ -129,7 +131,9 @@ class ConvexPieces {
   int ExitEdge(std::uint32_t t, const SweepQuery& query) const;
   // Whether the triangles round vertex v turn once round it, each counter-clockwise
   // seen from outside: projected on the plane across the sum of their planes' normals
-  // (each plane once; every normal must lean toward it), a direction inside the first
+  // (each plane once), or if not every normal leans toward that, across the direction
+  // away from the mean of v's neighbours (every normal must lean toward the one taken;
+  // either does at a convex vertex), a direction inside the first
   // corner lies inside exactly one corner. A second turn (triangles wrapping round a
   // vertex twice, every edge convex) would make a surface that only looks convex edge
   // by edge. For the build.
