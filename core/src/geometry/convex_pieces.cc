@@ -233,47 +233,47 @@ bool ConvexPieces::TurnsOnce(std::uint32_t v) const {
     *e1 = mesh_->vertex(tri[(k + 1) % 3]) - p;
     *e2 = mesh_->vertex(tri[(k + 2) % 3]) - p;
   };
-  // whether every normal leans toward d (unit)
-  const auto leans = [&](const Vec3& d) {
-    bool all = true;
-    ForEachAround(v, first,
-                  [&](std::uint32_t t) { all = all && mesh_->face_normal(t).dot(d) > 1e-6; });
-    return all;
-  };
+  // Projected across the sum, or if not every normal leans toward that, across the
+  // direction away from the neighbours' mean: a sharp vertex's planes may not all lean
+  // toward their sum (a corner cut off a cube), but at any convex vertex they all lean
+  // away from the mean, since each neighbour lies on or under every plane through it,
+  // and some under each unless all are flat. Signs of triple products with the
+  // direction are those of the sides projected across it.
   Vec3 e1, e2;
-  if (!(m.norm() > 0.0) || !leans(m.normalized())) {
-    // A sharp vertex's planes may not all lean toward their sum (a corner of a slanted
-    // wedge). Away from its neighbours' mean does it for any convex vertex: each of them
-    // lies on or under every plane through it, and some under each, unless all are flat.
-    m = Vec3::Zero();
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (attempt == 1) {
+      m = Vec3::Zero();  // (p minus each neighbour: the corner after v in each triangle)
+      ForEachAround(v, first, [&](std::uint32_t t) {
+        const auto& tri = mesh_->triangle(t);
+        m += p - mesh_->vertex(tri[tri[0] == v ? 1 : (tri[1] == v ? 2 : 0)]);
+      });
+    }
+    const double length = m.norm();
+    if (!(length > 0.0)) continue;
+    const Vec3 across = m / length;
+    sides(first, &e1, &e2);
+    // inside the first corner (narrower than a half turn), projected across it
+    const Vec3 inside = e1 + e2 - (e1 + e2).dot(across) * across;
+    bool leaning = true;
+    bool ok = true;
+    int turns = 0;
     ForEachAround(v, first, [&](std::uint32_t t) {
       sides(t, &e1, &e2);
-      m -= e1;
+      // every corner counter-clockwise, so narrower than a half turn: two signs decide
+      const double turn = e1.cross(e2).dot(across);
+      const double after_first = e1.cross(inside).dot(across);
+      const double before_second = inside.cross(e2).dot(across);
+      const double scale = 1e-12 * (e1.squaredNorm() + e2.squaredNorm() + inside.squaredNorm());
+      leaning = leaning && mesh_->face_normal(t).dot(across) > 1e-6;
+      ok = ok && turn > scale &&
+           // along a side of a corner (not opposite it; inside is across): ambiguous
+           !(std::abs(after_first) <= scale && e1.dot(inside) > 0.0) &&
+           !(std::abs(before_second) <= scale && e2.dot(inside) > 0.0);
+      turns += after_first > 0.0 && before_second > 0.0;
     });
+    if (leaning) return ok && turns == 1;
   }
-  const double length = m.norm();
-  if (!(length > 0.0)) return false;
-  m /= length;
-  // Signs of triple products with m are those of the sides projected across m.
-  sides(first, &e1, &e2);
-  // inside the first corner (narrower than a half turn), projected across m
-  const Vec3 inside = e1 + e2 - (e1 + e2).dot(m) * m;
-  bool ok = true;
-  int turns = 0;
-  ForEachAround(v, first, [&](std::uint32_t t) {
-    sides(t, &e1, &e2);
-    // every corner counter-clockwise, so narrower than a half turn: two signs decide
-    const double turn = e1.cross(e2).dot(m);
-    const double after_first = e1.cross(inside).dot(m);
-    const double before_second = inside.cross(e2).dot(m);
-    const double scale = 1e-12 * (e1.squaredNorm() + e2.squaredNorm() + inside.squaredNorm());
-    ok = ok && mesh_->face_normal(t).dot(m) > 1e-6 && turn > scale &&
-         // along a side of a corner (not opposite it; inside is across m): ambiguous
-         !(std::abs(after_first) <= scale && e1.dot(inside) > 0.0) &&
-         !(std::abs(before_second) <= scale && e2.dot(inside) > 0.0);
-    turns += after_first > 0.0 && before_second > 0.0;
-  });
-  return ok && turns == 1;
+  return false;
 }
 
 bool ConvexPieces::Settle(const SweepQuery& query, SweepSearch* search) const {
