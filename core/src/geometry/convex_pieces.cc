@@ -87,7 +87,8 @@ class Slabs {
       if (in_slab(j)) visit(j);
     }
     // a piece of the sorted ones that starts before slab_lo - longest_ ends before slab_lo
-    auto it = std::lower_bound(order_lo_.begin(), order_lo_.end(), slab_lo - longest_);
+    // (twice that, so rounding cannot lose one that ends exactly there)
+    auto it = std::lower_bound(order_lo_.begin(), order_lo_.end(), slab_lo - 2.0 * longest_);
     for (auto k = static_cast<std::size_t>(it - order_lo_.begin());
          k < order_.size() && order_lo_[k] <= slab_hi; ++k) {
       if (in_slab(order_[k])) visit(order_[k]);
