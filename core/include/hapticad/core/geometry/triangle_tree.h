@@ -3,8 +3,8 @@
 //
 // CGAL builds its tree lazily on the first query; a servo tick must never pay for that,
 // so Build() does it. CGAL's distance-query kd-tree is never built (CalcClosestPoint
-// needs none). The CGAL types stay inside
-// triangle_tree.cc (licence and compile time walled off, as libigl does).
+// needs none). The CGAL types stay inside triangle_tree.cc (licence and compile time
+// walled off, as libigl does).
 //
 // Frame and units: those of the mesh (the scene's local frame, metres).
 #pragma once
@@ -39,8 +39,9 @@ class TriangleTree {
 
   // Closest surface point to `p`: a walk of the boxes, nearest first, pruning those
   // farther than the nearest point so far. No allocation, but not for the servo tick:
-  // its cost grows with the query's distance from the surface. Preconditions: the mesh
-  // has a triangle, `p` is finite.
+  // its cost grows with the query's distance from the surface (a 638k-triangle ball,
+  // through Python: 13-32 us within 2 % of its radius, 0.2-0.3 ms from a radius away
+  // and beyond). Preconditions: the mesh has a triangle, `p` is finite.
   SurfacePoint CalcClosestPoint(const Vec3& p) const;
 
   std::size_t num_triangles() const;
