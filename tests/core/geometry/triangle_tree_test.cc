@@ -156,10 +156,9 @@ TEST(TriangleTree, ClosestPointMatchesEveryTriangleTested) {
     double nearest = INFINITY;
     for (std::uint32_t t = 0; t < mesh->num_triangles(); ++t) {
       const auto& tri = mesh->triangle(t);
-      nearest = std::min(nearest, (ClosestOnTriangle(q, mesh->vertex(tri[0]), mesh->vertex(tri[1]),
-                                                     mesh->vertex(tri[2])) -
-                                   q)
-                                      .norm());
+      const Vec3 c =
+          ClosestOnTriangle(q, mesh->vertex(tri[0]), mesh->vertex(tri[1]), mesh->vertex(tri[2]));
+      nearest = std::min(nearest, (c - q).norm());
     }
     ASSERT_NEAR(got.distance, nearest, 1e-12) << i;
     ASSERT_NEAR((got.point - q).norm(), got.distance, 1e-12) << i;
