@@ -18,9 +18,10 @@ namespace {
 // those that reach into a slab round the piece along the axis where the pieces spread
 // most, the slab as wide again as the piece or twice the median piece on either side;
 // the room is then cut to the slab wherever a piece lies beyond it, which keeps every
-// piece outside the slab outside the room. Pieces much longer than the median along
-// the axis are compared with every piece, so one long piece cannot make every slab
-// scan from the start.
+// piece outside the slab outside the room. The pieces are found by their start along
+// the axis, in classes of length (each within a factor of two), so a scan starts at
+// most two of its class's longest before the slab: a few long pieces among many short
+// ones do not make every scan start far back.
 class Slabs {
  public:
   static constexpr std::size_t kAllPairs = 1024;
@@ -34,33 +35,41 @@ class Slabs {
     s.sliced_ = true;
     Vec3 c_lo = Vec3::Constant(std::numeric_limits<double>::infinity());
     Vec3 c_hi = -c_lo;
-    std::vector<double> extents(count);
     for (std::size_t j = 0; j < count; ++j) {
       const Vec3 c = 0.5 * (lo[j] + hi[j]);
       c_lo = c_lo.cwiseMin(c);
       c_hi = c_hi.cwiseMax(c);
     }
     (c_hi - c_lo).maxCoeff(&s.axis_);
+    std::vector<double> extents(count);
     for (std::size_t j = 0; j < count; ++j) extents[j] = hi[j][s.axis_] - lo[j][s.axis_];
     std::vector<double> sorted = extents;
     std::nth_element(sorted.begin(), sorted.begin() + count / 2, sorted.end());
     s.median_ = sorted[count / 2];
     s.lowest_hi_ = std::numeric_limits<double>::infinity();
     s.highest_lo_ = -s.lowest_hi_;
+    std::vector<int> class_of_exponent;  // index into classes_ by frexp exponent + offset
     for (std::uint32_t j = 0; j < count; ++j) {
       s.lowest_hi_ = std::min(s.lowest_hi_, hi[j][s.axis_]);
       s.highest_lo_ = std::max(s.highest_lo_, lo[j][s.axis_]);
-      if (extents[j] > 8.0 * s.median_) {
-        s.long_.push_back(j);
-      } else {
-        s.order_.push_back(j);
-        s.longest_ = std::max(s.longest_, extents[j]);
+      int exponent = 0;
+      std::frexp(extents[j], &exponent);                           // 0 for a zero extent
+      const auto key = static_cast<std::size_t>(exponent + 1100);  // doubles: -1074..1024
+      if (key >= class_of_exponent.size()) class_of_exponent.resize(key + 1, -1);
+      if (class_of_exponent[key] < 0) {
+        class_of_exponent[key] = static_cast<int>(s.classes_.size());
+        s.classes_.emplace_back();
       }
+      SizeClass& c = s.classes_[static_cast<std::size_t>(class_of_exponent[key])];
+      c.order.push_back(j);
+      c.longest = std::max(c.longest, extents[j]);
     }
-    std::sort(s.order_.begin(), s.order_.end(),
-              [&](std::uint32_t a, std::uint32_t b) { return lo[a][s.axis_] < lo[b][s.axis_]; });
-    s.order_lo_.reserve(s.order_.size());
-    for (const std::uint32_t j : s.order_) s.order_lo_.push_back(lo[j][s.axis_]);
+    for (SizeClass& c : s.classes_) {
+      std::sort(c.order.begin(), c.order.end(),
+                [&](std::uint32_t x, std::uint32_t y) { return lo[x][s.axis_] < lo[y][s.axis_]; });
+      c.order_lo.reserve(c.order.size());
+      for (const std::uint32_t j : c.order) c.order_lo.push_back(lo[j][s.axis_]);
+    }
     return s;
   }
 
@@ -80,35 +89,35 @@ class Slabs {
     const double margin = std::max(2.0 * median_, hi[i][a] - lo[i][a]);
     const double slab_lo = lo[i][a] - margin;
     const double slab_hi = hi[i][a] + margin;
-    const auto in_slab = [&](std::uint32_t j) {
-      return j != i && hi[j][a] >= slab_lo && lo[j][a] <= slab_hi;
-    };
-    for (const std::uint32_t j : long_) {
-      if (in_slab(j)) visit(j);
-    }
-    // a piece of the sorted ones that starts before slab_lo - longest_ ends before slab_lo
-    // (twice that, so rounding cannot lose one that ends exactly there)
-    auto it = std::lower_bound(order_lo_.begin(), order_lo_.end(), slab_lo - 2.0 * longest_);
-    for (auto k = static_cast<std::size_t>(it - order_lo_.begin());
-         k < order_.size() && order_lo_[k] <= slab_hi; ++k) {
-      if (in_slab(order_[k])) visit(order_[k]);
+    for (const SizeClass& c : classes_) {
+      // a piece that starts before slab_lo - its length ends before slab_lo (twice the
+      // class's longest, so rounding cannot lose one that ends exactly there)
+      const auto it =
+          std::lower_bound(c.order_lo.begin(), c.order_lo.end(), slab_lo - 2.0 * c.longest);
+      for (auto k = static_cast<std::size_t>(it - c.order_lo.begin());
+           k < c.order.size() && c.order_lo[k] <= slab_hi; ++k) {
+        const std::uint32_t j = c.order[k];
+        if (j != i && hi[j][a] >= slab_lo) visit(j);
+      }
     }
     if (lowest_hi_ < slab_lo) (*room_lo)[a] = std::max((*room_lo)[a], slab_lo);
     if (highest_lo_ > slab_hi) (*room_hi)[a] = std::min((*room_hi)[a], slab_hi);
   }
 
  private:
+  struct SizeClass {
+    double longest = 0.0;              // extent along the axis
+    std::vector<std::uint32_t> order;  // by lo along the axis
+    std::vector<double> order_lo;
+  };
   const std::vector<Vec3>* lo_ = nullptr;
   const std::vector<Vec3>* hi_ = nullptr;
   bool sliced_ = false;
   int axis_ = 0;
-  double median_ = 0.0;   // extent along the axis
-  double longest_ = 0.0;  // of the sorted pieces
+  double median_ = 0.0;  // extent along the axis
   double lowest_hi_ = 0.0;
   double highest_lo_ = 0.0;
-  std::vector<std::uint32_t> long_;   // compared with every piece
-  std::vector<std::uint32_t> order_;  // the others, by lo along the axis
-  std::vector<double> order_lo_;
+  std::vector<SizeClass> classes_;
 };
 
 }  // namespace
