@@ -72,6 +72,10 @@ TEST(HapticScene, ClosestPointRefusesANonFiniteOrAbsurdlyFarPointAndAnswersAFarO
   EXPECT_THROW(scene->CalcClosestPoint(Vec3(0, inf, 0)), std::invalid_argument);
   // where squared distances overflow (CGAL's projection answered -1.7e184 there)
   EXPECT_THROW(scene->CalcClosestPoint(Vec3(1e200, 0, 0)), std::invalid_argument);
+  // and just beyond the reach, where nothing overflows yet
+  const Vec3 beyond =
+      scene->origin_w() + Vec3(1.01 * HapticScene::kClosestPointReach * scene->size_m(), 0, 0);
+  EXPECT_THROW(scene->CalcClosestPoint(beyond), std::invalid_argument);
   // far, but within reach: the +x face, at the true distance (37 km off a 75 mm part:
   // the projection keeps 16 digits of the distance, 1e-11 of the part's size)
   const double x = 0.5 * HapticScene::kClosestPointReach * scene->size_m();

@@ -41,7 +41,9 @@ class TriangleTree {
   // farther than the nearest point so far. No allocation, but not for the servo tick:
   // its cost grows with the query's distance from the surface (a 638k-triangle ball,
   // through Python: 13-32 us within 2 % of its radius, 0.2-0.3 ms from a radius away
-  // and beyond). Preconditions: the mesh has a triangle, `p` is finite.
+  // and beyond). Preconditions: the mesh has a triangle; `p` is finite and its squared
+  // distance from the mesh does not overflow (|p| well under 1e150: beyond, no triangle
+  // is taken and triangle 0 is answered at distance inf; HapticScene bounds it).
   SurfacePoint CalcClosestPoint(const Vec3& p) const;
 
   std::size_t num_triangles() const;
