@@ -252,10 +252,10 @@ bool ConvexPieces::TurnsOnce(std::uint32_t v) const {
   Vec3 e1, e2;
   for (int attempt = 0; attempt < 2; ++attempt) {
     if (attempt == 1) {
-      m = Vec3::Zero();  // (p minus each neighbour: the corner after v in each triangle)
+      m = Vec3::Zero();  // each neighbour once: the corner after v in each triangle
       ForEachAround(v, first, [&](std::uint32_t t) {
-        const auto& tri = mesh_->triangle(t);
-        m += p - mesh_->vertex(tri[tri[0] == v ? 1 : (tri[1] == v ? 2 : 0)]);
+        sides(t, &e1, &e2);
+        m -= e1;
       });
     }
     const double length = m.norm();
