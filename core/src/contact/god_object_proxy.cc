@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace hapticad {
@@ -44,47 +45,62 @@ void GodObjectProxy::Reset(const Vec3& position_l) {
   warm_step_ = 0;
 }
 
+namespace {
+
+// three orthonormal directions (15 times the rows of a rotation) and their opposites,
+// askew to every axis and axis plane, so no ray runs along an axis-aligned CAD model's
+// faces
+constexpr double kAxes[3][3] = {{-11.0, -2.0, 10.0}, {10.0, -5.0, 10.0}, {2.0, 14.0, 5.0}};
+
+Vec3 ExitRay(int ray) {
+  const double* axis = kAxes[ray / 2];
+  return (ray % 2 == 0 ? 1.0 : -1.0) / 15.0 * Vec3(axis[0], axis[1], axis[2]);
+}
+
+// Where the ray p + t u (t >= 0) is inside the box [lo, hi]: false if nowhere.
+bool ClipRayToBox(const Vec3& p, const Vec3& u, const Vec3& lo, const Vec3& hi, double* enter,
+                  double* leave) {
+  double t0 = 0.0;
+  double t1 = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    if (u[k] == 0.0) {
+      if (p[k] < lo[k] || p[k] > hi[k]) return false;
+      continue;
+    }
+    double a = (lo[k] - p[k]) / u[k];
+    double b = (hi[k] - p[k]) / u[k];
+    if (a > b) std::swap(a, b);
+    t0 = std::max(t0, a);
+    t1 = std::min(t1, b);
+  }
+  *enter = t0;
+  *leave = t1;
+  return t0 <= t1;
+}
+
+}  // namespace
+
 bool GodObjectProxy::ResetOutside(const Vec3& position_l) {
   Reset(position_l);
   const SolidAnalysis* solids = config_.solids;
   // outside every piece's box (or not a point): outside every solid
-  if (solids == nullptr || !solids->bounds_solids || !position_l.allFinite() ||
+  if (solids == nullptr || !solids->pieces_bound_solids || !position_l.allFinite() ||
       !solids->InAnyPiece(position_l)) {
     return false;
   }
-  // three orthonormal directions (15 times the rows of a rotation) and their opposites,
-  // askew to every axis and axis plane, so no ray runs along an axis-aligned CAD
-  // model's faces (constexpr: a function-local static would take a guard on first use)
-  static constexpr double kAxes[3][3] = {{-11.0, -2.0, 10.0}, {10.0, -5.0, 10.0}, {2.0, 14.0, 5.0}};
-  int inside = 0;
-  int outside = 0;
-  struct Exit {
-    double distance;
-    SweepHit hit;
-  } exits[kExitRays];
-  for (int ray = 0; ray < kExitRays; ++ray) {
-    const double* axis = kAxes[ray / 2];
-    const Vec3 u = (ray % 2 == 0 ? 1.0 : -1.0) / 15.0 * Vec3(axis[0], axis[1], axis[2]);
-    SweepHit first;
-    const int crossings = CountCrossings(position_l, u, &first);
-    if (crossings < 0) continue;
-    if (crossings % 2 == 0) {
-      ++outside;
-      continue;
-    }
-    exits[inside++] = {(first.point - position_l).norm(), first};
-  }
-  if (inside <= outside) return false;
+  Exit exits[kExitRays];
+  const int found = solids->bounds_solids ? FindExitsByParity(position_l, exits)
+                                          : FindExitsByWinding(position_l, exits);
   // nearest first; an insertion sort of at most six (std::sort's path for more than 16,
   // dead here, draws GCC 12's -Warray-bounds)
-  for (int i = 1; i < inside; ++i) {
+  for (int i = 1; i < found; ++i) {
     for (int j = i; j > 0 && exits[j].distance < exits[j - 1].distance; --j) {
       std::swap(exits[j], exits[j - 1]);
     }
   }
   const double r = config_.radius_m;
   const double offset = config_.surface_offset_m;
-  for (int i = 0; i < inside; ++i) {
+  for (int i = 0; i < found; ++i) {
     // off the face it crossed, on the far side (the hit's normal faces the inside)
     const Vec3& face = exits[i].hit.point;
     const Vec3 out = -exits[i].hit.normal;
@@ -98,16 +114,129 @@ bool GodObjectProxy::ResetOutside(const Vec3& position_l) {
   return false;
 }
 
-int GodObjectProxy::CountCrossings(const Vec3& p, const Vec3& u, SweepHit* first) const {
-  const Vec3 end = p + (p.norm() + mesh_.bounding_radius()) * u;  // beyond every vertex
+int GodObjectProxy::FindExitsByParity(const Vec3& p, Exit* exits) const {
+  int inside = 0;
+  int outside = 0;
+  SweepHit hits[kMaxCrossings];
+  for (int ray = 0; ray < kExitRays; ++ray) {
+    const Vec3 u = ExitRay(ray);
+    const Vec3 end = p + (p.norm() + mesh_.bounding_radius()) * u;  // beyond every vertex
+    const int crossings = WalkCrossings(p, end, u, nullptr, 0, hits);
+    if (crossings < 0) continue;
+    if (crossings % 2 == 0) {
+      ++outside;
+      continue;
+    }
+    exits[inside++] = {(hits[0].point - p).norm(), hits[0]};
+  }
+  return inside > outside ? inside : 0;
+}
+
+int GodObjectProxy::FindExitsByWinding(const Vec3& p, Exit* exits) const {
+  const SolidAnalysis& solids = *config_.solids;
+  const std::uint32_t* of_vertex = solids.piece_of_vertex.data();
+  const auto num_pieces = static_cast<std::uint32_t>(solids.piece_lo.size());
+  // where a piece's crossings start: this far before its box, so a face in the box's
+  // side is not missed at the sweep's very start
+  const double margin = 1e3 * config_.surface_offset_m;
+  int sweeps_left = kMaxWindingSweeps;
+  int inside = 0;
+  int outside = 0;
+  int found = 0;
+  for (int ray = 0; ray < kExitRays; ++ray) {
+    const Vec3 u = ExitRay(ray);
+    // the pieces whose boxes the ray meets, nearest first; beyond the first one left
+    // out (`horizon`) the ray knows nothing
+    struct Piece {
+      std::uint32_t id;
+      double enter;
+      double leave;
+    } pieces[kMaxRayPieces];
+    int count = 0;
+    double horizon = std::numeric_limits<double>::infinity();
+    for (std::uint32_t c = 0; c < num_pieces; ++c) {
+      double enter = 0.0;
+      double leave = 0.0;
+      if (!ClipRayToBox(p, u, solids.piece_lo[c], solids.piece_hi[c], &enter, &leave)) continue;
+      int j = count < kMaxRayPieces ? count++ : kMaxRayPieces;
+      if (j == kMaxRayPieces) {
+        if (enter >= pieces[kMaxRayPieces - 1].enter) {
+          horizon = std::min(horizon, enter);
+          continue;
+        }
+        horizon = std::min(horizon, pieces[--j].enter);
+      }
+      for (; j > 0 && pieces[j - 1].enter > enter; --j) pieces[j] = pieces[j - 1];
+      pieces[j] = {c, enter, leave};
+    }
+    if (horizon <= 0.0) continue;  // more pieces round p than the ray can hold
+    // every crossing of each piece alone, in one list
+    struct Crossing {
+      double t;
+      int slot;
+      SweepHit hit;
+    } crossings[kMaxRayPieces * kMaxCrossings];
+    int num_crossings = 0;
+    int winding = 0;  // of the pieces round p, by this ray
+    int piece_inside[kMaxRayPieces];
+    bool known = true;
+    for (int k = 0; k < count && known; ++k) {
+      SweepHit hits[kMaxCrossings];
+      const double t0 = std::max(0.0, pieces[k].enter - margin);
+      sweeps_left -= 1;
+      const int n = sweeps_left < 0 ? -1
+                                    : WalkCrossings(p + t0 * u, p + (pieces[k].leave + margin) * u,
+                                                    u, of_vertex, pieces[k].id, hits);
+      if (n < 0) {
+        known = false;
+        break;
+      }
+      sweeps_left -= n;
+      piece_inside[k] = n % 2;
+      winding += piece_inside[k] * solids.piece_winding[pieces[k].id];
+      for (int i = 0; i < n; ++i) {
+        Crossing c{(hits[i].point - p).dot(u), k, hits[i]};
+        int j = num_crossings++;
+        for (; j > 0 && crossings[j - 1].t > c.t; --j) crossings[j] = crossings[j - 1];
+        crossings[j] = c;
+      }
+    }
+    if (!known || sweeps_left < 0) continue;
+    if (winding <= 0) {
+      ++outside;
+      continue;
+    }
+    ++inside;
+    // along the ray until the pieces wind round it no more; crossings within the
+    // surface offset of each other (two parts touching face to face there) count as
+    // one place
+    const double step = config_.surface_offset_m;
+    for (int i = 0; i < num_crossings && crossings[i].t < horizon; ++i) {
+      const int k = crossings[i].slot;
+      piece_inside[k] ^= 1;
+      winding += (piece_inside[k] != 0 ? 1 : -1) * solids.piece_winding[pieces[k].id];
+      const bool together = i + 1 < num_crossings && crossings[i + 1].t <= crossings[i].t + step;
+      if (!together && winding <= 0) {
+        exits[found++] = {(crossings[i].hit.point - p).norm(), crossings[i].hit};
+        break;
+      }
+    }
+  }
+  return inside > outside ? found : 0;
+}
+
+int GodObjectProxy::WalkCrossings(const Vec3& a0, const Vec3& end, const Vec3& u,
+                                  const std::uint32_t* piece_of_vertex, std::uint32_t piece,
+                                  SweepHit* hits) const {
   // past each crossing by the surface offset, so the next sweep does not meet it (or
   // its neighbour across an edge it went through) again
   const double step = config_.surface_offset_m;
-  Vec3 a = p;
+  Vec3 a = a0;
   for (int crossings = 0; crossings <= kMaxCrossings; ++crossings) {
     SweepHit hit;
-    if (!PointHit(a, end, &hit)) return crossings;
-    if (crossings == 0) *first = hit;
+    if (!PointHit(a, end, &hit, piece_of_vertex, piece)) return crossings;
+    if (crossings == kMaxCrossings) break;
+    hits[crossings] = hit;
     a = hit.point + step * u;
     if ((end - a).dot(u) <= 0.0) return crossings + 1;
   }
@@ -115,8 +244,11 @@ int GodObjectProxy::CountCrossings(const Vec3& p, const Vec3& u, SweepHit* first
 }
 
 bool GodObjectProxy::Sweep(const Vec3& a, const Vec3& b, double radius, const SweepFloors* floors,
-                           std::int64_t hint, SweepHit* hit) const {
+                           std::int64_t hint, SweepHit* hit, const std::uint32_t* piece_of_vertex,
+                           std::uint32_t piece) const {
   SweepQuery query;
+  query.piece_of_vertex = piece_of_vertex;
+  query.piece = piece;
   query.radius = radius;
   query.bary_tol = config_.bary_tolerance;
   query.floors = floors;
@@ -139,8 +271,9 @@ bool GodObjectProxy::Sweep(const Vec3& a, const Vec3& b, double radius, const Sw
   return true;
 }
 
-bool GodObjectProxy::PointHit(const Vec3& a, const Vec3& b, SweepHit* hit) const {
-  return Sweep(a, b, 0.0, nullptr, -1, hit);
+bool GodObjectProxy::PointHit(const Vec3& a, const Vec3& b, SweepHit* hit,
+                              const std::uint32_t* piece_of_vertex, std::uint32_t piece) const {
+  return Sweep(a, b, 0.0, nullptr, -1, hit, piece_of_vertex, piece);
 }
 
 bool GodObjectProxy::FirstHit(const Vec3& a, const Vec3& b, SweepHit* hit,

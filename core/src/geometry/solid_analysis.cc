@@ -2,6 +2,7 @@
 #include "hapticad/core/geometry/solid_analysis.h"
 
 #include <cstdint>
+#include <iterator>
 #include <utility>
 
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -15,6 +16,7 @@ namespace {
 
 using Kernel = CGAL::Simple_cartesian<double>;
 using Mesh = CGAL::Surface_mesh<Kernel::Point_3>;
+namespace PMP = CGAL::Polygon_mesh_processing;
 
 }  // namespace
 
@@ -38,13 +40,41 @@ SolidAnalysis AnalyseSolids(const TriangleMesh& mesh) {
       return out;
     }
   }
-  out.self_intersecting = CGAL::Polygon_mesh_processing::does_self_intersect(sm);
-  out.bounds_solids = out.closed && !out.self_intersecting;
-  if (!out.bounds_solids) return out;
+  if (!out.closed) {
+    // an open surface bounds nothing, whichever triangles cross
+    out.self_intersecting = PMP::does_self_intersect(sm);
+    return out;
+  }
+  std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> crossings;
+  PMP::self_intersections(sm, std::back_inserter(crossings));
+  out.self_intersecting = !crossings.empty();
+  out.bounds_solids = !out.self_intersecting;
   ConnectedPieces pieces = FindConnectedPieces(mesh);
+  const auto piece_of = [&](Mesh::Face_index f) {
+    return pieces.of_vertex[mesh.triangle(static_cast<std::uint32_t>(f))[0]];
+  };
+  for (const auto& [f, g] : crossings) {
+    if (piece_of(f) == piece_of(g)) return out;  // a piece crossing itself
+  }
+  out.pieces_bound_solids = true;
+  // each piece's volume (the divergence theorem, about the mesh's local origin), whose
+  // sign tells an outer shell from an inner one
+  std::vector<double> volume(pieces.lo.size(), 0.0);
+  for (std::uint32_t t = 0; t < mesh.num_triangles(); ++t) {
+    const auto& tri = mesh.triangle(t);
+    volume[pieces.of_vertex[tri[0]]] +=
+        mesh.vertex(tri[0]).dot(mesh.vertex(tri[1]).cross(mesh.vertex(tri[2])));
+  }
+  for (const double v : volume) out.piece_winding.push_back(v < 0.0 ? -1 : 1);
   out.piece_lo = std::move(pieces.lo);
   out.piece_hi = std::move(pieces.hi);
+  if (!out.bounds_solids) out.piece_of_vertex = std::move(pieces.of_vertex);
   return out;
+}
+
+std::size_t SolidAnalysis::CalcMemoryBytes() const {
+  return 2 * piece_lo.capacity() * sizeof(Vec3) + piece_winding.capacity() +
+         piece_of_vertex.capacity() * sizeof(std::uint32_t);
 }
 
 }  // namespace hapticad

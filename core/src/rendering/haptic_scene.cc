@@ -87,7 +87,10 @@ const ConvexPieces& HapticScene::BuildPieces() const {
 }
 
 const SolidAnalysis& HapticScene::BuildSolids() const {
-  std::call_once(solids_once_, [this] { solids_ = AnalyseSolids(*mesh_); });
+  std::call_once(solids_once_, [this] {
+    solids_ = AnalyseSolids(*mesh_);
+    solids_built_.store(&solids_, std::memory_order_release);
+  });
   return solids_;
 }
 
@@ -101,6 +104,9 @@ std::size_t HapticScene::CalcMemoryBytes() const {
   }
   if (const ConvexPieces* pieces = pieces_built_.load(std::memory_order_acquire)) {
     bytes += pieces->CalcMemoryBytes();
+  }
+  if (const SolidAnalysis* solids = solids_built_.load(std::memory_order_acquire)) {
+    bytes += solids->CalcMemoryBytes();
   }
   return bytes;
 }

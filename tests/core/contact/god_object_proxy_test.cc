@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hapticad/core/contact/god_object_proxy.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -314,16 +315,63 @@ TEST_P(ProxyOnBox, OneRayWithAnOddCountDoesNotDecideAlone) {
   EXPECT_EQ(proxy_->position(), Vec3::Zero());
 }
 
-TEST_P(ProxyOnBox, PartsThatTouchOrOverlapAreNotSolidsAndMoveNothing) {
-  // two boxes face to face, and two that overlap: their surface crosses itself, so the
-  // parity of crossings means nothing; nothing is moved
+// Appends box [lo, hi] to a soup as another piece, its CAD faces after the soup's.
+void AppendBox(TriangleSoup* soup, const Vec3& lo, const Vec3& hi) {
+  const TriangleSoup box = testing::MakeBoxSoup(lo, hi);
+  const auto base = static_cast<std::int32_t>(soup->vertices.size());
+  const std::int32_t faces = *std::max_element(soup->cad_faces.begin(), soup->cad_faces.end()) + 1;
+  soup->vertices.insert(soup->vertices.end(), box.vertices.begin(), box.vertices.end());
+  for (std::size_t t = 0; t < box.triangles.size(); ++t) {
+    const auto& c = box.triangles[t];
+    soup->triangles.push_back({base + c[0], base + c[1], base + c[2]});
+    soup->cad_faces.push_back(faces + box.cad_faces[t]);
+  }
+}
+
+// Whether p lies strictly inside the box [lo, hi].
+bool StrictlyInside(const Vec3& p, const Vec3& lo, const Vec3& hi) {
+  return (p.array() > lo.array()).all() && (p.array() < hi.array()).all();
+}
+
+TEST_P(ProxyOnBox, PartsThatTouchOrOverlapMoveAPointInEitherOutOfBoth) {
+  // an assembly: a 100 mm box and a smaller one against its +x face (gap 0) or sunk
+  // 10 mm into it (gap -0.01). The surface crosses itself, but each box is a solid.
+  const Vec3 lo0(-0.05, -0.05, -0.05), hi0(0.0, 0.05, 0.05);
   for (const double gap : {0.0, -0.01}) {
-    Make(MakeTwoBoxesSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.0, 0.05, 0.05), Vec3(gap, -0.04, -0.04),
-                          Vec3(0.05 + gap, 0.04, 0.04)));
+    const Vec3 lo1(gap, -0.04, -0.04), hi1(0.05 + gap, 0.04, 0.04);
+    Make(MakeTwoBoxesSoup(lo0, hi0, lo1, hi1));
     EXPECT_TRUE(solids_.closed) << gap;
     EXPECT_TRUE(solids_.self_intersecting) << gap;
     EXPECT_FALSE(solids_.bounds_solids) << gap;
-    EXPECT_FALSE(proxy_->ResetOutside(Vec3(-0.01, 0.0, 0.0))) << gap;
+    ASSERT_TRUE(solids_.pieces_bound_solids) << gap;
+    ASSERT_EQ(solids_.piece_winding.size(), 2u);
+    EXPECT_EQ(solids_.piece_winding[0], 1);
+    EXPECT_EQ(solids_.piece_winding[1], 1);
+    // by the shared face, in the big box; in the small one; where they overlap
+    for (const Vec3& start : {Vec3(-0.002, 0.001, 0.003), Vec3(0.003 + gap, -0.002, 0.001),
+                              Vec3(gap + 0.002, 0.0, 0.0), Vec3(-0.03, 0.02, 0.045)}) {
+      testing::AllocationCounter counter;
+      EXPECT_TRUE(proxy_->ResetOutside(start)) << gap << " " << start.transpose();
+      EXPECT_EQ(counter.count(), 0u);
+      const Vec3 p = proxy_->position();
+      EXPECT_FALSE(StrictlyInside(p, lo0, hi0)) << gap << " " << p.transpose();
+      EXPECT_FALSE(StrictlyInside(p, lo1, hi1)) << gap << " " << p.transpose();
+      // over a face of one of them, within a ray's reach of the nearest way out
+      const double off0 = (p - p.cwiseMax(lo0).cwiseMin(hi0)).norm();
+      const double off1 = (p - p.cwiseMax(lo1).cwiseMin(hi1)).norm();
+      EXPECT_LT(std::min(off0, off1), 2 * kOffset) << p.transpose();
+      EXPECT_LT((p - start).norm(), 0.1) << p.transpose();
+      // and the device, still inside, is held out
+      proxy_->Update(start);
+      EXPECT_TRUE(proxy_->in_contact()) << start.transpose();
+      EXPECT_FALSE(StrictlyInside(proxy_->position(), lo0, hi0));
+      EXPECT_FALSE(StrictlyInside(proxy_->position(), lo1, hi1));
+    }
+    // outside both, or in neither box: stays
+    for (const Vec3& free : {Vec3(0.03, 0.045, 0.0), Vec3(0.06, 0.0, 0.0)}) {
+      EXPECT_FALSE(proxy_->ResetOutside(free)) << free.transpose();
+      EXPECT_EQ(proxy_->position(), free);
+    }
   }
   // apart, they are two solids: each is left over its nearest face
   Make(MakeTwoBoxesSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.0, 0.05, 0.05), Vec3(0.01, -0.04, -0.04),
@@ -336,6 +384,58 @@ TEST_P(ProxyOnBox, PartsThatTouchOrOverlapAreNotSolidsAndMoveNothing) {
   EXPECT_NEAR(proxy_->position().x(), 0.06 + kOffset, 1e-12);
   // between them, in neither box: stays
   EXPECT_FALSE(proxy_->ResetOutside(Vec3(0.005, 0.0, 0.0)));
+}
+
+TEST_P(ProxyOnBox, ACavityOfAPartThatTouchesAnotherIsOutside) {
+  // the hollow part (its inner shell wound inward) with a box against its +x face
+  TriangleSoup soup = MakeHollowBoxSoup();
+  AppendBox(&soup, Vec3(0.05, -0.02, -0.02), Vec3(0.09, 0.02, 0.02));
+  Make(soup);
+  ASSERT_FALSE(solids_.bounds_solids);
+  ASSERT_TRUE(solids_.pieces_bound_solids);
+  ASSERT_EQ(solids_.piece_winding.size(), 3u);
+  EXPECT_EQ(solids_.piece_winding[1], -1);  // the cavity's shell
+  for (const Vec3& free : {Vec3(0.0, 0.0, 0.0), Vec3(0.035, 0.01, -0.02)}) {
+    EXPECT_FALSE(proxy_->ResetOutside(free)) << free.transpose();
+    EXPECT_EQ(proxy_->position(), free);
+  }
+  // in the wall, and in the box by the wall: out to the cavity or to the outside
+  for (const Vec3& start :
+       {Vec3(0.0, 0.0, 0.042), Vec3(0.046, 0.0, 0.001), Vec3(0.052, 0.0, 0.0)}) {
+    EXPECT_TRUE(proxy_->ResetOutside(start)) << start.transpose();
+    const Vec3 p = proxy_->position();
+    EXPECT_TRUE(InsideBox(p, 0.04) || !InsideBox(p, 0.05)) << p.transpose();
+    EXPECT_FALSE(StrictlyInside(p, Vec3(0.05, -0.02, -0.02), Vec3(0.09, 0.02, 0.02)))
+        << p.transpose();
+    EXPECT_LT((p - start).norm(), 0.02) << p.transpose();
+  }
+}
+
+TEST_P(ProxyOnBox, APieceThatCrossesItselfMovesNothing) {
+  // a box whose top corner is pulled down through its bottom: closed, one piece, and
+  // its faces cross, so neither parity nor winding says what is inside
+  TriangleSoup soup = testing::MakeBoxSoup(Vec3::Constant(-0.05), Vec3::Constant(0.05));
+  for (Vec3& v : soup.vertices) {
+    if (v == Vec3::Constant(0.05)) v = Vec3(0.05, 0.05, -0.08);
+  }
+  Make(soup);
+  ASSERT_TRUE(solids_.closed);
+  EXPECT_TRUE(solids_.self_intersecting);
+  EXPECT_FALSE(solids_.pieces_bound_solids);
+  EXPECT_FALSE(proxy_->ResetOutside(Vec3(-0.03, -0.03, -0.03)));
+  EXPECT_EQ(proxy_->position(), Vec3(-0.03, -0.03, -0.03));
+}
+
+TEST_P(ProxyOnBox, ASphereInTouchingPartsIsLeftClearOfBoth) {
+  const double r = 0.003;
+  const Vec3 lo0(-0.05, -0.05, -0.05), hi0(0.0, 0.05, 0.05);
+  const Vec3 lo1(0.0, -0.04, -0.04), hi1(0.05, 0.04, 0.04);
+  Make(MakeTwoBoxesSoup(lo0, hi0, lo1, hi1), r);
+  ASSERT_TRUE(solids_.pieces_bound_solids);
+  EXPECT_TRUE(proxy_->ResetOutside(Vec3(-0.001, 0.0, 0.0)));
+  const Vec3 c = proxy_->position();
+  EXPECT_GE((c - c.cwiseMax(lo0).cwiseMin(hi0)).norm(), r) << c.transpose();
+  EXPECT_GE((c - c.cwiseMax(lo1).cwiseMin(hi1)).norm(), r) << c.transpose();
 }
 
 TEST_P(ProxyOnBox, ASphereIsNotLeftWhereItWouldStickIntoAnotherPart) {

@@ -162,6 +162,39 @@ class DocumentSceneTest(unittest.TestCase):
         self.assertGreater(refined.scene.num_triangles, 2 * coarse.scene.num_triangles)
         self.assertTrue(refined.watertight, refined.repair)
 
+    def test_a_device_starting_inside_parts_that_touch_is_pushed_out_of_both(self):
+        # an assembly: a button against its housing's side, then sunk 3 mm into it. The
+        # device starts in the housing 0.5 mm from the button: the proxy must not be
+        # left in the button, whose face lies nearest along the +x rays
+        housing = self.doc.addObject("Part::Box", "Housing")
+        housing.Length = housing.Width = housing.Height = 20
+        housing.Placement.Base = App.Vector(0, 100, 0)
+        button = self.doc.addObject("Part::Box", "Button")
+        button.Length, button.Width, button.Height = 10, 12, 12
+        self.doc.recompute()
+        HaptiCAD.make_surface(self.doc, [(housing, "Face1"), (button, "Face1")])
+        for sunk in (0.0, 3.0):
+            button.Placement.Base = App.Vector(20 - sunk, 104, 4)
+            self.doc.recompute()
+            ds = build_document_scene(self.doc)
+            self.assertTrue(ds.watertight, ds.repair)
+            renderer = _core.ForceRenderer(ds.scene, ds.surfaces, _core.RenderLimits())
+            device = App.Vector(19.5, 110, 10)
+            ticks = 20
+            out = _core.run_stroke(renderer, np.tile([v * MM for v in device], (ticks, 1)),
+                                   np.zeros((ticks, 3)), [k * 1e-3 for k in range(ticks)])
+            proxy = App.Vector(*(out["proxy_w"][-1] / MM))
+            # (it rests 1e-9 of the scene's size off the faces: 4e-8 mm here)
+            for part in (housing, button):
+                self.assertFalse(part.Shape.isInside(proxy, 1e-9, False),
+                                 f"sunk {sunk}: proxy {proxy} in {part.Name}")
+            # within a ray's reach of the nearest way out (the housing's sides are 0.5 mm
+            # and 10 mm away, the button's far end 10 mm), pushing the device out to it
+            self.assertLess(proxy.distanceToPoint(device), 12.0)
+            force = App.Vector(*out["force_w"][-1])
+            self.assertGreater(force.Length, 0.0)
+            self.assertGreater(force.dot(proxy - device), 0.99 * force.Length * (proxy - device).Length)
+
 
 if __name__ == "__main__":
     unittest.main()

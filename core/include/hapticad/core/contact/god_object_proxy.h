@@ -64,19 +64,26 @@ class GodObjectProxy {
   void Reset(const Vec3& position_l);
 
   // Places the proxy at `position_l` unless that point lies inside a solid of the
-  // scene (config.solids: a closed surface free of self-intersections; otherwise, or
-  // when the point lies in no piece's box, this is Reset): then just outside it, off the
-  // face where the nearest of six fixed rays leaves it. Inside is decided by the parity
-  // of each ray's crossings, by majority, so a ray through a silhouette edge cannot
-  // decide alone. A sphere goes one radius off the face, and only where a point swept
+  // scene (config.solids; otherwise, or when the point lies in no piece's box, this is
+  // Reset): then just outside, off the face where the nearest of six fixed rays leaves
+  // the solids. Inside is decided ray by ray, by majority, so a ray through a silhouette
+  // edge cannot decide alone: by the parity of its crossings where the whole surface
+  // bounds solids, and where parts touch or overlap by how the pieces it meets wind
+  // round the point (each piece's crossings counted alone), the ray's exit then being
+  // where they stop winding round it (out of both of two parts face to face, not into
+  // the second). A sphere goes one radius off the face, and only where a point swept
   // across its diameter from that face meets nothing (else the next nearest ray, else
   // it stays). Returns whether the proxy was moved out. No allocation and bounded (at
-  // most kExitRays * (kMaxCrossings + 1) + kExitRays point sweeps across the scene),
-  // but not per-tick work: for a new scene, or the start of a session, where the device
-  // may be anywhere.
+  // most kExitRays * (kMaxCrossings + 1) + kExitRays point sweeps across the scene, or
+  // kMaxWindingSweeps + kExitRays short ones where parts touch), but not per-tick work:
+  // for a new scene, or the start of a session, where the device may be anywhere.
   bool ResetOutside(const Vec3& position_l);
   static constexpr int kExitRays = 6;
   static constexpr int kMaxCrossings = 15;  // a ray crossing more abstains
+  // Where parts touch: the pieces one ray looks at (a ray meeting more boxes knows
+  // nothing beyond the last one's start), and the sweeps all rays may take together.
+  static constexpr int kMaxRayPieces = 8;
+  static constexpr int kMaxWindingSweeps = 2 * kExitRays * (kMaxCrossings + 1);
 
   // Moves the proxy toward `goal_l`, constrained by the surface.
   void Update(const Vec3& goal_l);
@@ -99,13 +106,26 @@ class GodObjectProxy {
   Vec3 contact_point() const { return position_ - config_.radius_m * constraints_.plane(0).normal; }
 
  private:
-  // The surface crossings of the ray from p along unit u out of the mesh, and the
-  // first one in *first; -1 for more than kMaxCrossings.
-  int CountCrossings(const Vec3& p, const Vec3& u, SweepHit* first) const;
-  // A point's first contact on a -> b, through the grid or the tree.
-  bool PointHit(const Vec3& a, const Vec3& b, SweepHit* hit) const;
+  struct Exit {
+    double distance;
+    SweepHit hit;
+  };
+  // ResetOutside's rays where the whole surface bounds solids, and where its pieces do:
+  // the exits of the rays that find p inside, or 0 if most find it outside.
+  int FindExitsByParity(const Vec3& p, Exit* exits) const;
+  int FindExitsByWinding(const Vec3& p, Exit* exits) const;
+  // The surface crossings from a0 toward end along unit u (only piece `piece`'s if
+  // piece_of_vertex is given), in order in hits[0, kMaxCrossings); -1 for more.
+  int WalkCrossings(const Vec3& a0, const Vec3& end, const Vec3& u,
+                    const std::uint32_t* piece_of_vertex, std::uint32_t piece,
+                    SweepHit* hits) const;
+  // A point's first contact on a -> b, through the grid or the tree (one piece's alone
+  // if piece_of_vertex is given).
+  bool PointHit(const Vec3& a, const Vec3& b, SweepHit* hit,
+                const std::uint32_t* piece_of_vertex = nullptr, std::uint32_t piece = 0) const;
   bool Sweep(const Vec3& a, const Vec3& b, double radius, const SweepFloors* floors,
-             std::int64_t hint, SweepHit* hit) const;
+             std::int64_t hint, SweepHit* hit, const std::uint32_t* piece_of_vertex = nullptr,
+             std::uint32_t piece = 0) const;
 
   const TriangleMesh& mesh_;
   const TriangleTree* tree_ = nullptr;  // exactly one of the two

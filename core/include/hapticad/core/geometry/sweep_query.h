@@ -46,6 +46,11 @@ struct SweepQuery {
   // A triangle likely to be hit (the last contact), tested before the traversal so its
   // contact prunes the rest early. Any value, or -1.
   std::int64_t hint = -1;
+  // Only the triangles of one connected piece (SolidAnalysis::piece_of_vertex, indexed
+  // by a triangle's first vertex), for a ray that asks about one part of an assembly
+  // alone. Null: every triangle.
+  const std::uint32_t* piece_of_vertex = nullptr;
+  std::uint32_t piece = 0;
 };
 
 }  // namespace hapticad

@@ -32,6 +32,8 @@ class SweepSearch {
         d_(q.b - q.a),
         radius_(q.radius),
         bary_tol_(q.bary_tol),
+        piece_of_vertex_(q.piece_of_vertex),
+        piece_(q.piece),
         best_s_(s_max) {
     if (q.floors != nullptr) {
       for (int i = 0; i < q.floors->count; ++i) AddFloor(q.floors->normal[i], q.floors->offset[i]);
@@ -42,7 +44,8 @@ class SweepSearch {
     }
   }
 
-  // The exact contact test of one triangle (two-sided), unless a floor rules it out.
+  // The exact contact test of one triangle (two-sided), unless a floor rules it out
+  // or it lies outside the query's piece.
   void Test(std::uint32_t id) {
     const auto& t = mesh_.triangle(id);
     const Vec3& v0 = mesh_.vertex(t[0]);
@@ -55,6 +58,8 @@ class SweepSearch {
         return;
       }
     }
+    // (after the floors: the servo tick's sweeps, which have floors, never pay for it)
+    if (piece_of_vertex_ != nullptr && piece_of_vertex_[t[0]] != piece_) return;
     const Vec3& n = mesh_.face_normal(id);
     if (radius_ > 0.0) {
       SphereTriangleHit hit;
@@ -114,6 +119,8 @@ class SweepSearch {
   const Vec3 d_;
   const double radius_;
   const double bary_tol_;
+  const std::uint32_t* const piece_of_vertex_;
+  const std::uint32_t piece_;
   double best_s_;
   std::uint32_t best_triangle_ = 0;
   Vec3 best_normal_ = Vec3::Zero();

@@ -110,11 +110,12 @@ class ForceRenderer {
   // Puts the proxy at `device_w` (or wherever the caller wants it to restart); the next
   // Render() starts from there. A point inside a solid of the scene (a new scene that
   // grew over the old proxy, a session that starts with the device inside a part) is
-  // moved just outside, where the part is nearest along six rays
-  // (GodObjectProxy::ResetOutside; only where the scene's surface bounds solids:
-  // HapticScene::BuildSolids), so the spring pushes the device out instead of holding
-  // it in. Bounded but up to a few dozen sweeps across the scene: for restarts, not
-  // every tick. The constructor builds the scene's solid analysis, like its grid or tree.
+  // moved just outside, where the part is nearest along six rays, and out of any part
+  // touching or overlapping it there (GodObjectProxy::ResetOutside; only where the
+  // scene's surface, or each of its pieces, bounds solids: HapticScene::BuildSolids),
+  // so the spring pushes the device out instead of holding it in. Bounded but up to a few dozen
+  // sweeps across the scene: for restarts, not every tick. The constructor builds the scene's solid
+  // analysis, like its grid or tree.
   void Reset(const Vec3& device_w);
 
   void Render(const RenderInput& input, RenderOutput* output);

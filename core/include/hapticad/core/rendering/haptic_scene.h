@@ -113,6 +113,7 @@ class HapticScene {
   mutable std::atomic<const TriangleTree*> tree_built_{nullptr};
   mutable std::atomic<const TriangleGrid*> grid_built_{nullptr};
   mutable std::atomic<const ConvexPieces*> pieces_built_{nullptr};
+  mutable std::atomic<const SolidAnalysis*> solids_built_{nullptr};
   Vec3 origin_w_ = Vec3::Zero();
   double metres_per_unit_ = 1.0;
   double size_m_ = 0.0;
