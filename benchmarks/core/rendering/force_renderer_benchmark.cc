@@ -121,6 +121,38 @@ void BM_ResetInsideOneOfTwoFarApart(benchmark::State& state) {
 }
 BENCHMARK(BM_ResetInsideOneOfTwoFarApart)->Unit(benchmark::kMicrosecond);
 
+// Parts that overlap (their surface crosses itself; each piece is a solid): two
+// icospheres of radius 50 mm and 100,820 triangles each, centres 80 mm apart, the point
+// 2 mm inside the first and inside the second too, so the ray's exit is where the pieces
+// stop winding round it.
+void BM_ResetInsideOverlappingParts(benchmark::State& state) {
+  const bool sphere = state.range(0) != 0;
+  TriangleSoup soup = MakeIcosphere(71, 50.0, Vec3(-40.0, 0.0, 0.0));
+  const TriangleSoup other = MakeIcosphere(71, 50.0, Vec3(40.0, 0.0, 0.0));
+  const auto base = static_cast<std::int32_t>(soup.vertices.size());
+  soup.vertices.insert(soup.vertices.end(), other.vertices.begin(), other.vertices.end());
+  for (const auto& t : other.triangles)
+    soup.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+  soup.cad_faces.resize(soup.triangles.size(), 0);
+  const auto scene = HapticScene::Build(soup, 1e-3, NoRepair());
+  if (scene->BuildSolids().bounds_solids || !scene->BuildSolids().pieces_bound_solids) {
+    state.SkipWithError("the scene is not two overlapping solids");
+    return;
+  }
+  ContactOptions options;
+  options.proxy_radius_m = sphere ? 0.001 : 0.0;
+  ForceRenderer renderer(scene, std::make_shared<SurfaceTable>(), RenderLimits{8.9, 3000.0},
+                         options);
+  const Vec3 at = Vec3(-0.04, 0.0, 0.0) + Vec3(0.3, 0.5, 0.8).normalized() * 0.048;
+  for (auto _ : state) {
+    renderer.Reset(at);
+    benchmark::DoNotOptimize(renderer.proxy().position());
+  }
+  if (renderer.proxy().position() == at) state.SkipWithError("not moved out");
+  state.SetLabel(sphere ? "sphere:1" : "point");
+}
+BENCHMARK(BM_ResetInsideOverlappingParts)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
 }  // namespace
 }  // namespace hapticad
 
