@@ -98,19 +98,25 @@ void BM_ResetInside(benchmark::State& state) {
 }
 BENCHMARK(BM_ResetInside)->ArgsProduct({{22, 71, 224}, {0, 1}})->Unit(benchmark::kMicrosecond);
 
-// The worst case known for the grid: small dense parts far apart (one grid level of
-// tiny cells, whose rays walk the empty cells between the parts). Two icospheres of
-// radius 5 mm, 100,820 triangles each, 500 mm apart; a point proxy reset 0.5 mm inside
-// one of them.
-void BM_ResetInsideOneOfTwoFarApart(benchmark::State& state) {
-  TriangleSoup soup = MakeIcosphere(71, 5.0, Vec3(-250.0, 0.0, 0.0));
-  const TriangleSoup other = MakeIcosphere(71, 5.0, Vec3(250.0, 0.0, 0.0));
+// Two icospheres of 100,820 triangles and radius `radius_mm`, centred at x = -half and
+// x = +half (mm), in one soup.
+TriangleSoup TwoIcospheres(double radius_mm, double half_mm) {
+  TriangleSoup soup = MakeIcosphere(71, radius_mm, Vec3(-half_mm, 0.0, 0.0));
+  const TriangleSoup other = MakeIcosphere(71, radius_mm, Vec3(half_mm, 0.0, 0.0));
   const auto base = static_cast<std::int32_t>(soup.vertices.size());
   soup.vertices.insert(soup.vertices.end(), other.vertices.begin(), other.vertices.end());
   for (const auto& t : other.triangles)
     soup.triangles.push_back({base + t[0], base + t[1], base + t[2]});
   soup.cad_faces.resize(soup.triangles.size(), 0);
-  const auto scene = HapticScene::Build(soup, 1e-3, NoRepair());
+  return soup;
+}
+
+// The worst case known for the grid: small dense parts far apart (one grid level of
+// tiny cells, whose rays walk the empty cells between the parts). Two icospheres of
+// radius 5 mm, 100,820 triangles each, 500 mm apart; a point proxy reset 0.5 mm inside
+// one of them.
+void BM_ResetInsideOneOfTwoFarApart(benchmark::State& state) {
+  const auto scene = HapticScene::Build(TwoIcospheres(5.0, 250.0), 1e-3, NoRepair());
   ForceRenderer renderer(scene, std::make_shared<SurfaceTable>(), RenderLimits{8.9, 3000.0});
   const Vec3 at = Vec3(-0.25, 0.0, 0.0) + Vec3(0.3, 0.5, 0.8).normalized() * 0.0045;
   for (auto _ : state) {
@@ -122,19 +128,12 @@ void BM_ResetInsideOneOfTwoFarApart(benchmark::State& state) {
 BENCHMARK(BM_ResetInsideOneOfTwoFarApart)->Unit(benchmark::kMicrosecond);
 
 // Parts that overlap (their surface crosses itself; each piece is a solid): two
-// icospheres of radius 50 mm and 100,820 triangles each, centres 80 mm apart, the point
-// 2 mm inside the first and inside the second too, so the ray's exit is where the pieces
-// stop winding round it.
+// icospheres of radius 50 mm and 100,820 triangles each, centres 80 mm apart; the point
+// 1.2 mm inside both, 2 mm under the ridge where they cross, so a ray's exit is where
+// the pieces stop winding round it.
 void BM_ResetInsideOverlappingParts(benchmark::State& state) {
   const bool sphere = state.range(0) != 0;
-  TriangleSoup soup = MakeIcosphere(71, 50.0, Vec3(-40.0, 0.0, 0.0));
-  const TriangleSoup other = MakeIcosphere(71, 50.0, Vec3(40.0, 0.0, 0.0));
-  const auto base = static_cast<std::int32_t>(soup.vertices.size());
-  soup.vertices.insert(soup.vertices.end(), other.vertices.begin(), other.vertices.end());
-  for (const auto& t : other.triangles)
-    soup.triangles.push_back({base + t[0], base + t[1], base + t[2]});
-  soup.cad_faces.resize(soup.triangles.size(), 0);
-  const auto scene = HapticScene::Build(soup, 1e-3, NoRepair());
+  const auto scene = HapticScene::Build(TwoIcospheres(50.0, 40.0), 1e-3, NoRepair());
   if (scene->BuildSolids().bounds_solids || !scene->BuildSolids().pieces_bound_solids) {
     state.SkipWithError("the scene is not two overlapping solids");
     return;
@@ -143,7 +142,7 @@ void BM_ResetInsideOverlappingParts(benchmark::State& state) {
   options.proxy_radius_m = sphere ? 0.001 : 0.0;
   ForceRenderer renderer(scene, std::make_shared<SurfaceTable>(), RenderLimits{8.9, 3000.0},
                          options);
-  const Vec3 at = Vec3(-0.04, 0.0, 0.0) + Vec3(0.3, 0.5, 0.8).normalized() * 0.048;
+  const Vec3 at(0.0, 0.0, 0.028);
   for (auto _ : state) {
     renderer.Reset(at);
     benchmark::DoNotOptimize(renderer.proxy().position());
