@@ -183,15 +183,16 @@ int GodObjectProxy::FindExitsByWinding(const Vec3& p, Exit* exits) const {
     for (int k = 0; k < count && known; ++k) {
       SweepHit hits[kMaxCrossings];
       const double t0 = std::max(0.0, pieces[k].enter - margin);
-      sweeps_left -= 1;
-      const int n = sweeps_left < 0 ? -1
-                                    : WalkCrossings(p + t0 * u, p + (pieces[k].leave + margin) * u,
-                                                    u, of_vertex, pieces[k].id, hits);
+      // a walk takes at most kMaxCrossings + 1 sweeps: start one only if they are left
+      const int n = sweeps_left <= kMaxCrossings
+                        ? -1
+                        : WalkCrossings(p + t0 * u, p + (pieces[k].leave + margin) * u, u,
+                                        of_vertex, pieces[k].id, hits);
       if (n < 0) {
         known = false;
         break;
       }
-      sweeps_left -= n;
+      sweeps_left -= n + 1;
       piece_inside[k] = n % 2;
       winding += piece_inside[k] * solids.piece_winding[pieces[k].id];
       for (int i = 0; i < n; ++i) {
@@ -201,7 +202,7 @@ int GodObjectProxy::FindExitsByWinding(const Vec3& p, Exit* exits) const {
         crossings[j] = c;
       }
     }
-    if (!known || sweeps_left < 0) continue;
+    if (!known) continue;
     if (winding <= 0) {
       ++outside;
       continue;

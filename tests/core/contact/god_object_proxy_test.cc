@@ -219,20 +219,27 @@ TEST_P(ProxyOnBox, ASphereRestsOneRadiusAboveTheFaceAndRollsOverTheEdge) {
   EXPECT_GT(proxy_->position().x(), 0.05 + r - 1e-9);
 }
 
+// Appends box [lo, hi] to a soup as another piece, its CAD faces after the soup's
+// (`inward`: wound inward).
+void AppendBox(TriangleSoup* soup, const Vec3& lo, const Vec3& hi, bool inward = false) {
+  const TriangleSoup box = testing::MakeBoxSoup(lo, hi);
+  const auto base = static_cast<std::int32_t>(soup->vertices.size());
+  const std::int32_t faces = *std::max_element(soup->cad_faces.begin(), soup->cad_faces.end()) + 1;
+  soup->vertices.insert(soup->vertices.end(), box.vertices.begin(), box.vertices.end());
+  for (std::size_t t = 0; t < box.triangles.size(); ++t) {
+    const auto& c = box.triangles[t];
+    soup->triangles.push_back(
+        inward ? std::array<std::int32_t, 3>{base + c[0], base + c[2], base + c[1]}
+               : std::array<std::int32_t, 3>{base + c[0], base + c[1], base + c[2]});
+    soup->cad_faces.push_back(faces + box.cad_faces[t]);
+  }
+}
+
 // Two boxes in one soup (the second one's CAD faces 6-11; `inward`: wound inward).
 TriangleSoup MakeTwoBoxesSoup(const Vec3& lo0, const Vec3& hi0, const Vec3& lo1, const Vec3& hi1,
                               bool inward = false) {
   TriangleSoup soup = testing::MakeBoxSoup(lo0, hi0);
-  const TriangleSoup other = testing::MakeBoxSoup(lo1, hi1);
-  const auto base = static_cast<std::int32_t>(soup.vertices.size());
-  soup.vertices.insert(soup.vertices.end(), other.vertices.begin(), other.vertices.end());
-  for (std::size_t t = 0; t < other.triangles.size(); ++t) {
-    const auto& c = other.triangles[t];
-    soup.triangles.push_back(
-        inward ? std::array<std::int32_t, 3>{base + c[0], base + c[2], base + c[1]}
-               : std::array<std::int32_t, 3>{base + c[0], base + c[1], base + c[2]});
-    soup.cad_faces.push_back(6 + other.cad_faces[t]);
-  }
+  AppendBox(&soup, lo1, hi1, inward);
   return soup;
 }
 
@@ -313,19 +320,6 @@ TEST_P(ProxyOnBox, OneRayWithAnOddCountDoesNotDecideAlone) {
   ASSERT_TRUE(solids_.bounds_solids);
   EXPECT_FALSE(proxy_->ResetOutside(Vec3::Zero()));
   EXPECT_EQ(proxy_->position(), Vec3::Zero());
-}
-
-// Appends box [lo, hi] to a soup as another piece, its CAD faces after the soup's.
-void AppendBox(TriangleSoup* soup, const Vec3& lo, const Vec3& hi) {
-  const TriangleSoup box = testing::MakeBoxSoup(lo, hi);
-  const auto base = static_cast<std::int32_t>(soup->vertices.size());
-  const std::int32_t faces = *std::max_element(soup->cad_faces.begin(), soup->cad_faces.end()) + 1;
-  soup->vertices.insert(soup->vertices.end(), box.vertices.begin(), box.vertices.end());
-  for (std::size_t t = 0; t < box.triangles.size(); ++t) {
-    const auto& c = box.triangles[t];
-    soup->triangles.push_back({base + c[0], base + c[1], base + c[2]});
-    soup->cad_faces.push_back(faces + box.cad_faces[t]);
-  }
 }
 
 // Whether p lies strictly inside the box [lo, hi].
