@@ -58,7 +58,8 @@ class SweepSearch {
         return;
       }
     }
-    // (after the floors: the servo tick's sweeps, which have floors, never pay for it)
+    // (after the floors: the servo tick's sweeps pay this branch only on the triangles
+    // that reach the exact test)
     if (piece_of_vertex_ != nullptr && piece_of_vertex_[t[0]] != piece_) return;
     const Vec3& n = mesh_.face_normal(id);
     if (radius_ > 0.0) {
