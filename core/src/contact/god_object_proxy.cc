@@ -301,18 +301,27 @@ void GodObjectProxy::Update(const Vec3& goal_l) {
       floors.normal[i] = constraints_.plane(i).normal;
       floors.offset[i] = constraints_.plane(i).offset - config_.radius_m - 0.5 * offset;
     }
+    // The sweep looks one offset past the target. A target on a face's plane (a goal
+    // there, from a CAD model's round coordinates) ends the sweep on the plane, where
+    // rounding decides whether it touched: missed, the proxy would rest on the face with
+    // no offset, and a sweep that starts exactly on a plane cannot tell which side it
+    // comes from (a fuzzed run took one leaving the face for one entering it, and held
+    // the proxy inside the part). Seen from here, the face is a contact like any other.
+    const double reach = 1.0 + offset / std::sqrt(d.squaredNorm());
     SweepHit hit;
-    if (!FirstHit(position_, target, &hit, &floors, hint)) {
+    if (!FirstHit(position_, position_ + reach * d, &hit, &floors, hint)) {
       position_ = target;
       break;
     }
+    const double hit_s = reach * hit.s;  // along d
     // the plane through the centre at contact, facing where the proxy came from
     const Vec3& n = hit.normal;
     const double plane_offset = n.dot(hit.point) + offset;
-    // stop where the sweep meets the offset plane, never beyond the contact itself
+    // stop where the sweep meets the offset plane, never beyond the contact itself nor
+    // the target
     const double n_dot_d = n.dot(d);
     double s = n_dot_d < 0.0 ? (plane_offset - n.dot(position_)) / n_dot_d : 0.0;
-    s = std::clamp(s, 0.0, hit.s);
+    s = std::clamp(s, 0.0, std::min(hit_s, 1.0));
     position_ += s * d;
     if (constraints_.full()) break;
     hint = hit.triangle;

@@ -219,6 +219,38 @@ TEST_P(ProxyOnBox, ASphereRestsOneRadiusAboveTheFaceAndRollsOverTheEdge) {
   EXPECT_GT(proxy_->position().x(), 0.05 + r - 1e-9);
 }
 
+// A goal exactly on a face's plane (as a CAD model's round coordinates and a scripted or
+// quantised device can make it) ends the sweep on the plane itself, where rounding
+// decides whether the sweep touched it. The proxy must still rest the offset off the face:
+// found by a fuzzed run on the toothbrush, where a point left exactly on the head's
+// underside at a step then moved away from it, was taken as coming from the inside,
+// and was held 1e-10 m inside the part and slid on into the handle.
+TEST_P(ProxyOnBox, AGoalExactlyOnAFacesPlaneLeavesTheProxyTheOffsetOffIt) {
+  // tops at a binary round number and at two that are not (the toothbrush's 2.75 mm)
+  for (double top_face : {0.05, 0.00275, 0.0123456789}) {
+    for (double r : {0.0, 0.003}) {
+      Make(testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, top_face)), r);
+      std::mt19937 rng(77);
+      std::uniform_real_distribution<double> across(-0.045, 0.045);
+      std::uniform_real_distribution<double> log_height(-10.0, -3.0);
+      int on_plane = 0;
+      for (int i = 0; i < 2000; ++i) {
+        // from above the top, at heights from 0.1 nm to 1 mm, to a goal on its plane
+        // (the centre's plane, r above it, for the sphere): some steep, some grazing
+        const double top = top_face + r;
+        proxy_->Reset(Vec3(across(rng), across(rng), top + std::pow(10.0, log_height(rng))));
+        proxy_->Update(Vec3(across(rng), across(rng), top));
+        on_plane += proxy_->position().z() - top < 0.5 * kOffset;
+        // then away from it, up and across: the proxy must follow, above the box
+        proxy_->Update(Vec3(across(rng), across(rng), top + 0.001));
+        ASSERT_GE(proxy_->position().z(), top + 0.5 * kOffset)
+            << "top " << top_face << " radius " << r << " try " << i;
+      }
+      EXPECT_EQ(on_plane, 0) << "top " << top_face << " radius " << r;
+    }
+  }
+}
+
 // Appends box [lo, hi] to a soup as another piece, its CAD faces after the soup's
 // (`inward`: wound inward).
 void AppendBox(TriangleSoup* soup, const Vec3& lo, const Vec3& hi, bool inward = false) {
