@@ -23,7 +23,7 @@ enum class Sweeps { kTree, kGrid, kTreeAndPieces, kGridAndPieces };
 
 class ProxyOnBox : public ::testing::TestWithParam<Sweeps> {
  protected:
-  void Make(const TriangleSoup& s, double radius = 0.0) {
+  void Make(const TriangleSoup& s, double radius = 0.0, double offset = kOffset) {
     proxy_.reset();
     mesh_ = TriangleMesh::Build(s.vertices, s.triangles, s.cad_faces, s.corner_normals);
     tree_ = TriangleTree::Build(*mesh_, 1e-12);
@@ -31,7 +31,7 @@ class ProxyOnBox : public ::testing::TestWithParam<Sweeps> {
     pieces_ = ConvexPieces::Build(*mesh_, 1e-15);
     solids_ = AnalyseSolids(*mesh_);
     ProxyConfig config;
-    config.surface_offset_m = kOffset;
+    config.surface_offset_m = offset;
     config.radius_m = radius;
     config.solids = &solids_;
     const bool grid = GetParam() == Sweeps::kGrid || GetParam() == Sweeps::kGridAndPieces;
@@ -249,6 +249,30 @@ TEST_P(ProxyOnBox, AGoalExactlyOnAFacesPlaneLeavesTheProxyTheOffsetOffIt) {
       EXPECT_EQ(on_plane, 0) << "top " << top_face << " radius " << r;
     }
   }
+}
+
+// The fuzzed run itself, replayed: the toothbrush's step under its head (the neck's end
+// face, x = 25 mm, facing +x, meets the head's underside, z = -2.75 mm, facing -z, in a
+// concave edge), its scene's offset, and the three goals that took the point proxy in.
+// The second goal lies on the underside's plane: projected onto the step, the sweep to
+// it ended on that plane untouched (s a hair over 1), and the third, leaving the plane
+// downward, was held on its inner side and slid on into the handle.
+TEST_P(ProxyOnBox, APointLeftOnAFaceByAGoalOnItsPlaneIsNotTakenIn) {
+  TriangleSoup step;
+  step.vertices = {Vec3(0.025, 0.003, -0.00275),  Vec3(0.06, 0.003, -0.00275),
+                   Vec3(0.025, -0.003, -0.00275), Vec3(0.06, -0.003, -0.00275),
+                   Vec3(0.025, -0.003, -0.00675), Vec3(0.025, 0.003, -0.00675)};
+  step.triangles = {{0, 1, 2}, {2, 1, 3}, {2, 4, 5}, {2, 5, 0}};
+  step.cad_faces = {0, 0, 1, 1};
+  Make(step, 0.0, 1.8140079933671738e-10);
+  proxy_->Reset(Vec3(0.02526250403468866, 0.00034100849123098917, -0.0027501694154957552));
+  proxy_->Update(Vec3(0.023396459406861442, -0.00071667061655718333, -0.0027499999999999998));
+  proxy_->Update(Vec3(0.024541895383132784, -0.00095433280059385641, -0.0027499999999999998));
+  EXPECT_LT(proxy_->position().z(), -0.00275 - 0.5 * 1.8140079933671738e-10);
+  proxy_->Update(Vec3(0.022050799131941481, -0.001134144695367943, -0.0027642131863976861));
+  // below the underside, off the step's face: outside (the part is above and behind)
+  EXPECT_LT(proxy_->position().z(), -0.00275);
+  EXPECT_GT(proxy_->position().x(), 0.025);
 }
 
 // Appends box [lo, hi] to a soup as another piece, its CAD faces after the soup's
