@@ -81,16 +81,48 @@ bool ClipRayToBox(const Vec3& p, const Vec3& u, const Vec3& lo, const Vec3& hi, 
 }  // namespace
 
 bool GodObjectProxy::ResetOutside(const Vec3& position_l) {
+  switch (MoveOutOfSolids(position_l)) {
+    case SolidExit::kStuckInside:
+      return false;  // pushing it off the nearest face would push it further in
+    case SolidExit::kMovedOut:
+      ClearSphere();
+      return true;
+    case SolidExit::kNotInside:
+      break;
+  }
+  return ClearSphere();
+}
+
+bool GodObjectProxy::ClearSphere() {
+  const double r = config_.radius_m;
+  if (r == 0.0 || tree_ == nullptr || !position_.allFinite()) return false;
+  bool moved = false;
+  for (int step = 0; step < kMaxClearSteps; ++step) {
+    const SurfacePoint nearest = tree_->CalcClosestPoint(position_);
+    if (nearest.distance >= r) break;
+    // straight away from the nearest point (round an edge or a corner too); from a centre
+    // on the surface itself, along the face's winding normal
+    Vec3 out = position_ - nearest.point;
+    const double length = out.norm();
+    out = length > 0.0 ? Vec3(out / length) : mesh_.face_normal(nearest.triangle);
+    Reset(nearest.point + (r + config_.surface_offset_m) * out);
+    moved = true;
+  }
+  return moved;
+}
+
+GodObjectProxy::SolidExit GodObjectProxy::MoveOutOfSolids(const Vec3& position_l) {
   Reset(position_l);
   const SolidAnalysis* solids = config_.solids;
   // outside every piece's box (or not a point): outside every solid
   if (solids == nullptr || !solids->pieces_bound_solids || !position_l.allFinite() ||
       !solids->InAnyPiece(position_l)) {
-    return false;
+    return SolidExit::kNotInside;
   }
   Exit exits[kExitRays];
   const int found = solids->bounds_solids ? FindExitsByParity(position_l, exits)
                                           : FindExitsByWinding(position_l, exits);
+  if (found == 0) return SolidExit::kNotInside;
   // nearest first; an insertion sort of at most six (std::sort's path for more than 16,
   // dead here, draws GCC 12's -Warray-bounds)
   for (int i = 1; i < found; ++i) {
@@ -109,9 +141,9 @@ bool GodObjectProxy::ResetOutside(const Vec3& position_l) {
       continue;  // a sphere there would stick into something else
     }
     Reset(face + (r + offset) * out);
-    return true;
+    return SolidExit::kMovedOut;
   }
-  return false;
+  return SolidExit::kStuckInside;
 }
 
 int GodObjectProxy::FindExitsByParity(const Vec3& p, Exit* exits) const {

@@ -507,6 +507,41 @@ TEST_P(ProxyOnBox, ASphereIsNotLeftWhereItWouldStickIntoAnotherPart) {
       << c.transpose();
 }
 
+// A session that starts with the device resting on a part: the sphere's centre outside
+// it but within a radius of it. Left there, the sphere would start sunk into the surface
+// (found by the hostile-motion test on the toothbrush: 0.75 mm into it for ten ticks).
+TEST_P(ProxyOnBox, ASphereResetOverlappingTheSurfaceIsMovedOffIt) {
+  const double r = 0.003;
+  Make(testing::MakeBoxSoup(Vec3::Constant(-0.05), Vec3::Constant(0.05)), r);
+  const auto distance_to_box = [](const Vec3& p) {
+    return (p - p.cwiseMax(Vec3::Constant(-0.05)).cwiseMin(Vec3::Constant(0.05))).norm();
+  };
+  // 1 mm over the top: lifted straight up to a radius and the offset over it
+  EXPECT_TRUE(proxy_->ResetOutside(Vec3(0.01, 0.02, 0.051)));
+  EXPECT_NEAR((proxy_->position() - Vec3(0.01, 0.02, 0.05 + r + kOffset)).norm(), 0.0, 1e-12);
+  // 1 mm out from an edge, diagonally: out along the diagonal, round the edge
+  const Vec3 edge(0.05, 0.0, 0.05);
+  const Vec3 diagonal = Vec3(1.0, 0.0, 1.0).normalized();
+  EXPECT_TRUE(proxy_->ResetOutside(edge + 0.001 * diagonal));
+  EXPECT_NEAR((proxy_->position() - (edge + (r + kOffset) * diagonal)).norm(), 0.0, 1e-12);
+  // already clear: put where asked
+  const Vec3 clear(0.0, 0.0, 0.05 + r + 1e-4);
+  EXPECT_FALSE(proxy_->ResetOutside(clear));
+  EXPECT_EQ(proxy_->position(), clear);
+  // in a corner of a hollow part's cavity, 1 mm from two walls: pushed off one into the
+  // other, then off that one too
+  Make(MakeHollowBoxSoup(), r);
+  EXPECT_TRUE(proxy_->ResetOutside(Vec3(0.039, 0.039, 0.0)));
+  const Vec3 c = proxy_->position();
+  EXPECT_GE(0.04 - c.x(), r) << c.transpose();
+  EXPECT_GE(0.04 - c.y(), r) << c.transpose();
+  EXPECT_LT(c.cwiseAbs().maxCoeff(), 0.04) << c.transpose();  // still in the cavity
+  // a point is never moved for being near the surface
+  Make(testing::MakeBoxSoup(Vec3::Constant(-0.05), Vec3::Constant(0.05)));
+  EXPECT_FALSE(proxy_->ResetOutside(Vec3(0.01, 0.02, 0.0501)));
+  EXPECT_EQ(proxy_->position(), Vec3(0.01, 0.02, 0.0501));
+}
+
 TEST_P(ProxyOnBox, OnAnOpenSurfaceAResetIsAReset) {
   TriangleSoup cup = testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05));
   cup.triangles.resize(10);  // no lid: face 5 is the last two triangles

@@ -73,10 +73,15 @@ class GodObjectProxy {
   // where they stop winding round it (out of both of two parts face to face, not into
   // the second). A sphere goes one radius off the face, and only where a point swept
   // across its diameter from that face meets nothing (else the next nearest ray, else
-  // it stays). Returns whether the proxy was moved out. No allocation and bounded (at
-  // most kExitRays * (kMaxCrossings + 1) + kExitRays point sweeps across the scene, or
-  // kMaxWindingSweeps + kExitRays short ones where parts touch), but not per-tick work:
-  // for a new scene, or the start of a session, where the device may be anywhere.
+  // it stays). Then a sphere whose centre is not inside (or was moved out) but lies less
+  // than a radius from the surface (a device that starts resting on a part) is moved off it,
+  // to one radius and the offset from the nearest point, straight away from it; again
+  // from there, up to kMaxClearSteps times (a sphere in a crease is pushed out of one
+  // face into the next). Returns whether the proxy was moved. No allocation and bounded
+  // (at most kExitRays * (kMaxCrossings + 1) + kExitRays point sweeps across the scene,
+  // or kMaxWindingSweeps + kExitRays short ones where parts touch, and kMaxClearSteps
+  // closest-point walks of the tree), but not per-tick work: for a new scene, or the
+  // start of a session, where the device may be anywhere.
   bool ResetOutside(const Vec3& position_l);
   static constexpr int kExitRays = 6;
   static constexpr int kMaxCrossings = 15;  // a ray crossing more abstains
@@ -84,6 +89,7 @@ class GodObjectProxy {
   // nothing beyond the last one's start), and the sweeps all rays may take together.
   static constexpr int kMaxRayPieces = 8;
   static constexpr int kMaxWindingSweeps = 2 * kExitRays * (kMaxCrossings + 1);
+  static constexpr int kMaxClearSteps = 4;
 
   // Moves the proxy toward `goal_l`, constrained by the surface.
   void Update(const Vec3& goal_l);
@@ -112,6 +118,11 @@ class GodObjectProxy {
   };
   // ResetOutside's rays where the whole surface bounds solids, and where its pieces do:
   // the exits of the rays that find p inside, or 0 if most find it outside.
+  // ResetOutside's two parts: out of the solids, then a sphere off the surface it
+  // overlaps (true if it moved).
+  enum class SolidExit { kNotInside, kMovedOut, kStuckInside };
+  SolidExit MoveOutOfSolids(const Vec3& position_l);
+  bool ClearSphere();
   int FindExitsByParity(const Vec3& p, Exit* exits) const;
   int FindExitsByWinding(const Vec3& p, Exit* exits) const;
   // The surface crossings from a0 toward end along unit u (only piece `piece`'s if
