@@ -98,8 +98,8 @@ bool GodObjectProxy::ClearSphere() {
   if (r == 0.0 || tree_ == nullptr || !position_.allFinite()) return false;
   bool moved = false;
   for (int step = 0; step < kMaxClearSteps; ++step) {
-    const SurfacePoint nearest = tree_->CalcClosestPoint(position_);
-    if (nearest.distance >= r) break;
+    SurfacePoint nearest;
+    if (!tree_->FindClosestPointWithin(position_, r, &nearest)) break;
     // straight away from the nearest point (round an edge or a corner too); from a centre
     // on the surface itself, along the face's winding normal
     Vec3 out = position_ - nearest.point;

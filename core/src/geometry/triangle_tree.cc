@@ -208,7 +208,10 @@ class ClosestPointTraversal {
  public:
   using Priority = double;
 
-  ClosestPointTraversal(const TriangleMesh& mesh, const Vec3& p) : mesh_(mesh), p_(p) {}
+  // Only triangles closer than `max_distance` are looked for (inf: the nearest of all).
+  ClosestPointTraversal(const TriangleMesh& mesh, const Vec3& p,
+                        double max_distance = std::numeric_limits<double>::infinity())
+      : mesh_(mesh), p_(p), best_d2_(max_distance * max_distance) {}
 
   bool go_further() const { return true; }
 
@@ -223,6 +226,7 @@ class ClosestPointTraversal {
       best_d2_ = d2;
       best_.point = point;
       best_.triangle = primitive.id();
+      found_ = true;
     }
   }
 
@@ -237,7 +241,9 @@ class ClosestPointTraversal {
     return {d2 <= best_d2_, -d2};
   }
 
-  // Meaningful once a triangle was visited (the tree holds at least one).
+  // Whether a triangle was found (always, with no distance bound and a triangle).
+  bool found() const { return found_; }
+  // Meaningful once a triangle was found.
   SurfacePoint Result() const {
     SurfacePoint out = best_;
     out.distance = std::sqrt(best_d2_);
@@ -260,7 +266,8 @@ class ClosestPointTraversal {
 
   const TriangleMesh& mesh_;
   const Vec3 p_;
-  double best_d2_ = std::numeric_limits<double>::infinity();
+  double best_d2_;
+  bool found_ = false;
   SurfacePoint best_{0, Vec3::Zero(), 0.0};
 };
 
@@ -324,6 +331,15 @@ SurfacePoint TriangleTree::CalcClosestPoint(const Vec3& p) const {
   ClosestPointTraversal traversal(*impl_->mesh, p);
   impl_->tree.traversal_with_priority(p, traversal);
   return traversal.Result();
+}
+
+bool TriangleTree::FindClosestPointWithin(const Vec3& p, double max_distance,
+                                          SurfacePoint* out) const {
+  ClosestPointTraversal traversal(*impl_->mesh, p, max_distance);
+  impl_->tree.traversal_with_priority(p, traversal);
+  if (!traversal.found()) return false;
+  *out = traversal.Result();
+  return true;
 }
 
 std::size_t TriangleTree::num_triangles() const { return impl_->tree.size(); }

@@ -94,6 +94,22 @@ TEST_F(BoxTree, ClosestPointIsOnTheNearestFace) {
   EXPECT_NEAR(p.distance, 2.0, 1e-12);
 }
 
+TEST_F(BoxTree, ClosestPointWithinADistanceFindsOnlyWhatIsCloser) {
+  SurfacePoint p{7, Vec3(9, 9, 9), 9.0};
+  // 2 from the x = 1 face: not within 1.5, nor within exactly 2
+  EXPECT_FALSE(tree_->FindClosestPointWithin(Vec3(3, 0.5, 0.25), 1.5, &p));
+  EXPECT_FALSE(tree_->FindClosestPointWithin(Vec3(3, 0.5, 0.25), 2.0, &p));
+  EXPECT_EQ(p.triangle, 7u);  // left as it was
+  // within 2.5: the same answer as the unbounded search
+  ASSERT_TRUE(tree_->FindClosestPointWithin(Vec3(3, 0.5, 0.25), 2.5, &p));
+  EXPECT_EQ(mesh_->cad_face(p.triangle), 1);
+  EXPECT_NEAR((p.point - Vec3(1, 0.5, 0.25)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(p.distance, 2.0, 1e-12);
+  // inside the box, nearest the top (0.1 away) though the bottom is within the bound too
+  ASSERT_TRUE(tree_->FindClosestPointWithin(Vec3(0.5, 0.5, 0.9), 5.0, &p));
+  EXPECT_NEAR((p.point - Vec3(0.5, 0.5, 1.0)).norm(), 0.0, 1e-12);
+}
+
 TEST(TriangleTree, ClosestPointAtAVertexNamesATriangleThatHasIt) {
   // off a convex vertex the closest point is the vertex itself, where the search's
   // starting hints lie: the answer's triangle must be one of the vertex's

@@ -80,7 +80,7 @@ class GodObjectProxy {
   // face into the next). Returns whether the proxy was moved. No allocation and bounded
   // (at most kExitRays * (kMaxCrossings + 1) + kExitRays point sweeps across the scene,
   // or kMaxWindingSweeps + kExitRays short ones where parts touch, and kMaxClearSteps
-  // closest-point walks of the tree), but not per-tick work: for a new scene, or the
+  // walks of the tree's boxes within a radius), but not per-tick work: for a new scene, or the
   // start of a session, where the device may be anywhere.
   bool ResetOutside(const Vec3& position_l);
   static constexpr int kExitRays = 6;

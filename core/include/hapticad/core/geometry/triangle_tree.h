@@ -45,6 +45,11 @@ class TriangleTree {
   // distance from the mesh does not overflow (|p| well under 1e150: beyond, no triangle
   // is taken and triangle 0 is answered at distance inf; HapticScene bounds it).
   SurfacePoint CalcClosestPoint(const Vec3& p) const;
+  // The same, closer than `max_distance` to `p` only: the walk skips every box farther
+  // away, so a point clear of the surface costs the few boxes round it, not a search for
+  // the nearest triangle however far. Returns false (and leaves *out) if none is that
+  // close. Not for the servo tick either.
+  bool FindClosestPointWithin(const Vec3& p, double max_distance, SurfacePoint* out) const;
 
   std::size_t num_triangles() const;
   // Bytes of the node array and the primitive array: all the tree keeps.
