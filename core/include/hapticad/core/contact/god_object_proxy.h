@@ -7,7 +7,10 @@
 // sweep touches becomes a constraint plane through the proxy's centre at contact,
 // facing the side the proxy came from (surfaces are two-sided: sheets and plates are
 // felt from both sides) and offset by `surface_offset` to the free side; the proxy
-// stops on that plane and the goal is re-projected onto the constraint set. This
+// stops on that plane and the goal is re-projected onto the constraint set. (Each sweep
+// looks one offset past its target, so a goal on a face's plane still meets the face
+// and the proxy never ends a tick on a face, where the next sweep could not tell its
+// side.) This
 // repeats until the sweep is free or three planes bind (a concave corner), so the proxy
 // can never pass through anything, however far the device moves in one tick.
 //
