@@ -85,17 +85,44 @@ bool GodObjectProxy::ResetOutside(const Vec3& position_l) {
     case SolidExit::kStuckInside:
       return false;  // pushing it off the nearest face would push it further in
     case SolidExit::kMovedOut:
-      ClearSphere();
+      ClearSurface();
       return true;
     case SolidExit::kNotInside:
       break;
   }
-  return ClearSphere();
+  return ClearSurface();
+}
+
+bool GodObjectProxy::ClearSurface() {
+  return config_.radius_m > 0.0 ? ClearSphere() : ClearPoint();
+}
+
+bool GodObjectProxy::ClearPoint() {
+  if (!position_.allFinite()) return false;
+  const double offset = config_.surface_offset_m;
+  bool moved = false;
+  for (int step = 0; step < kMaxClearSteps; ++step) {
+    // a face within the offset is met by a short segment through the point along one
+    // of three skew directions (a point on the face: by all three)
+    bool near = false;
+    for (int ray = 0; ray < kExitRays && !near; ray += 2) {
+      const Vec3 u = ExitRay(ray);
+      SweepHit hit;
+      if (!PointHit(position_ - offset * u, position_ + offset * u, &hit)) continue;
+      const Vec3& n = mesh_.face_normal(hit.triangle);  // the winding's: away from a solid
+      const double height = n.dot(position_ - hit.point);
+      if (std::abs(height) >= 0.5 * offset) continue;
+      Reset(position_ + (offset - height) * n);
+      near = moved = true;
+    }
+    if (!near) break;
+  }
+  return moved;
 }
 
 bool GodObjectProxy::ClearSphere() {
   const double r = config_.radius_m;
-  if (r == 0.0 || tree_ == nullptr || !position_.allFinite()) return false;
+  if (tree_ == nullptr || !position_.allFinite()) return false;
   bool moved = false;
   for (int step = 0; step < kMaxClearSteps; ++step) {
     SurfacePoint nearest;

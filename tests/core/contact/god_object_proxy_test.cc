@@ -542,6 +542,19 @@ TEST_P(ProxyOnBox, ASphereResetOverlappingTheSurfaceIsMovedOffIt) {
   EXPECT_EQ(proxy_->position(), Vec3(0.01, 0.02, 0.0501));
 }
 
+// A scripted probe may start exactly on a face (a surface point it was given): lifted
+// first or pressed first, the proxy must leave on the outside.
+TEST_P(ProxyOnBox, AResetExactlyOnAFaceLeavesOnTheOutside) {
+  Make(testing::MakeBoxSoup(Vec3::Constant(-0.05), Vec3::Constant(0.05)));
+  for (const double lift : {0.001, -0.001}) {
+    proxy_->ResetOutside(Vec3(0.01, 0.02, 0.05));
+    proxy_->Update(Vec3(0.012, 0.02, 0.05 + lift));
+    EXPECT_GT(proxy_->position().z(), 0.05) << "lift " << lift;
+    proxy_->Update(Vec3(0.0, 0.0, 0.06));
+    EXPECT_NEAR((proxy_->position() - Vec3(0.0, 0.0, 0.06)).norm(), 0.0, 1e-12) << "lift " << lift;
+  }
+}
+
 TEST_P(ProxyOnBox, OnAnOpenSurfaceAResetIsAReset) {
   TriangleSoup cup = testing::MakeBoxSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.05));
   cup.triangles.resize(10);  // no lid: face 5 is the last two triangles

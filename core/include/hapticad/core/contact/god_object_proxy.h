@@ -80,10 +80,15 @@ class GodObjectProxy {
   // than a radius from the surface (a device that starts resting on a part) is moved off it,
   // to one radius and the offset from the nearest point, straight away from it; again
   // from there, up to kMaxClearSteps times (a sphere in a crease is pushed out of one
-  // face into the next). Returns whether the proxy was moved. No allocation and bounded
+  // face into the next). A point within half the offset of a face's plane (a scripted
+  // probe started on a surface point) goes to the offset on the side the face's winding
+  // faces (away from a solid; on a sheet, either side is outside): on the plane itself
+  // its first sweep could not tell its side, and lifted off it would be held inside.
+  // Returns whether the proxy was moved. No allocation and bounded
   // (at most kExitRays * (kMaxCrossings + 1) + kExitRays point sweeps across the scene,
   // or kMaxWindingSweeps + kExitRays short ones where parts touch, and kMaxClearSteps
-  // walks of the tree's boxes within a radius), but not per-tick work: for a new scene, or the
+  // walks of the tree's boxes within a radius, or 3 kMaxClearSteps point sweeps two offsets
+  // long), but not per-tick work: for a new scene, or the
   // start of a session, where the device may be anywhere.
   bool ResetOutside(const Vec3& position_l);
   static constexpr int kExitRays = 6;
@@ -121,11 +126,13 @@ class GodObjectProxy {
   };
   // ResetOutside's rays where the whole surface bounds solids, and where its pieces do:
   // the exits of the rays that find p inside, or 0 if most find it outside.
-  // ResetOutside's two parts: out of the solids, then a sphere off the surface it
-  // overlaps (true if it moved).
+  // ResetOutside's two parts: out of the solids, then off the surface (true if it
+  // moved): a sphere it overlaps, a point within half the offset of a face.
   enum class SolidExit { kNotInside, kMovedOut, kStuckInside };
   SolidExit MoveOutOfSolids(const Vec3& position_l);
+  bool ClearSurface();
   bool ClearSphere();
+  bool ClearPoint();
   int FindExitsByParity(const Vec3& p, Exit* exits) const;
   int FindExitsByWinding(const Vec3& p, Exit* exits) const;
   // The surface crossings from a0 toward end along unit u (only piece `piece`'s if
