@@ -7,12 +7,11 @@
 // sweep touches becomes a constraint plane through the proxy's centre at contact,
 // facing the side the proxy came from (surfaces are two-sided: sheets and plates are
 // felt from both sides) and offset by `surface_offset` to the free side; the proxy
-// stops on that plane and the goal is re-projected onto the constraint set. (Each sweep
-// looks one offset past its target, so a goal on a face's plane still meets the face
-// and the proxy never ends a tick on a face, where the next sweep could not tell its
-// side.) This
-// repeats until the sweep is free or three planes bind (a concave corner), so the proxy
-// can never pass through anything, however far the device moves in one tick.
+// stops on that plane and the goal is re-projected onto the constraint set (each sweep
+// looks one offset past its target, so a goal on a face's plane still meets the face:
+// the proxy never ends a tick on a face, where the next sweep could not tell its side).
+// This repeats until the sweep is free or three planes bind (a concave corner), so the
+// proxy can never pass through anything, however far the device moves in one tick.
 //
 // Temporal coherence: each sweep tests the last contact's triangle first (the last
 // tick's, then the one the sweep before found), and on a convex piece of the surface
@@ -76,20 +75,20 @@ class GodObjectProxy {
   // where they stop winding round it (out of both of two parts face to face, not into
   // the second). A sphere goes one radius off the face, and only where a point swept
   // across its diameter from that face meets nothing (else the next nearest ray, else
-  // it stays). Then a sphere whose centre is not inside (or was moved out) but lies less
-  // than a radius from the surface (a device that starts resting on a part) is moved off it,
-  // to one radius and the offset from the nearest point, straight away from it; again
-  // from there, up to kMaxClearSteps times (a sphere in a crease is pushed out of one
-  // face into the next). A point within half the offset of a face's plane (a scripted
-  // probe started on a surface point) goes to the offset on the side the face's winding
-  // faces (away from a solid; on a sheet, either side is outside): on the plane itself
-  // its first sweep could not tell its side, and lifted off it would be held inside.
-  // Returns whether the proxy was moved. No allocation and bounded
-  // (at most kExitRays * (kMaxCrossings + 1) + kExitRays point sweeps across the scene,
-  // or kMaxWindingSweeps + kExitRays short ones where parts touch, and kMaxClearSteps
-  // walks of the tree's boxes within a radius, or 3 kMaxClearSteps point sweeps two offsets
-  // long), but not per-tick work: for a new scene, or the
-  // start of a session, where the device may be anywhere.
+  // it stays). Then a sphere whose centre is not inside (or was moved out) but lies
+  // less than a radius from the surface (a device that starts resting on a part) is
+  // moved off it, to one radius and the offset from the nearest point, straight away
+  // from it; again from there, up to kMaxClearSteps times (a sphere in a crease is
+  // pushed out of one face into the next). A point within half the offset of a face's
+  // plane (a scripted probe started on a surface point) goes to the offset on the side
+  // the face's winding faces (away from a solid; on a sheet, either side is outside):
+  // on the plane itself its first sweep could not tell its side, and lifted off it
+  // would be held inside. Returns whether the proxy was moved. No allocation and
+  // bounded (at most kExitRays * (kMaxCrossings + 1) + kExitRays point sweeps across
+  // the scene, or kMaxWindingSweeps + kExitRays short ones where parts touch; then
+  // kMaxClearSteps walks of the tree's boxes within a radius, or 3 kMaxClearSteps point
+  // sweeps two offsets long), but not per-tick work: for a new scene, or the start of
+  // a session, where the device may be anywhere.
   bool ResetOutside(const Vec3& position_l);
   static constexpr int kExitRays = 6;
   static constexpr int kMaxCrossings = 15;  // a ray crossing more abstains
@@ -124,8 +123,6 @@ class GodObjectProxy {
     double distance;
     SweepHit hit;
   };
-  // ResetOutside's rays where the whole surface bounds solids, and where its pieces do:
-  // the exits of the rays that find p inside, or 0 if most find it outside.
   // ResetOutside's two parts: out of the solids, then off the surface (true if it
   // moved): a sphere it overlaps, a point within half the offset of a face.
   enum class SolidExit { kNotInside, kMovedOut, kStuckInside };
@@ -133,6 +130,8 @@ class GodObjectProxy {
   bool ClearSurface();
   bool ClearSphere();
   bool ClearPoint();
+  // ResetOutside's rays where the whole surface bounds solids, and where its pieces do:
+  // the exits of the rays that find p inside, or 0 if most find it outside.
   int FindExitsByParity(const Vec3& p, Exit* exits) const;
   int FindExitsByWinding(const Vec3& p, Exit* exits) const;
   // The surface crossings from a0 toward end along unit u (only piece `piece`'s if

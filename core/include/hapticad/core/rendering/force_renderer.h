@@ -114,10 +114,10 @@ class ForceRenderer {
   // touching or overlapping it there (GodObjectProxy::ResetOutside; only where the
   // scene's surface, or each of its pieces, bounds solids: HapticScene::BuildSolids),
   // so the spring pushes the device out instead of holding it in; a sphere that would
-  // start sunk into the surface (the device resting on a part), or a point on a face, is
-  // moved off it. Bounded but up to a
-  // few dozen sweeps across the scene: for restarts, not every tick. The constructor builds the
-  // scene's solid analysis, like its grid or tree.
+  // start sunk into the surface (the device resting on a part), or a point on a face,
+  // is moved off it. Bounded but up to a few dozen sweeps across the scene: for
+  // restarts, not every tick. The constructor builds the scene's solid analysis, like
+  // its grid or tree.
   void Reset(const Vec3& device_w);
 
   void Render(const RenderInput& input, RenderOutput* output);
