@@ -10,7 +10,9 @@ to 10 mm deep anywhere. Run by the core's stroke loop, then every tick's proxy i
 classified against the B-rep solid. The point's seeds are ones that took it into the part
 before the proxy's sweeps looked one resting offset past their target (at a step under
 the head, a goal on the underside's plane left the proxy on the face, and the next
-sweep, leaving it, was taken as entering).
+sweep, leaving it, was taken as entering). A 1 mm sphere must also stay a radius off
+the mesh from the first tick: the device starting within a radius of the surface left
+it sunk 0.75 mm until a reset learned to move it off.
 """
 import os
 import unittest
