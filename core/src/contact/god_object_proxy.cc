@@ -82,8 +82,9 @@ bool ClipRayToBox(const Vec3& p, const Vec3& u, const Vec3& lo, const Vec3& hi, 
 
 bool GodObjectProxy::ResetOutside(const Vec3& position_l) {
   switch (MoveOutOfSolids(position_l)) {
-    case SolidExit::kStuckInside:
-      return false;  // pushing it off the nearest face would push it further in
+    case SolidExit::kUnknown:      // nothing is known of inside: as documented, a Reset
+    case SolidExit::kStuckInside:  // pushing it off the nearest face would push it in
+      return false;
     case SolidExit::kMovedOut:
       ClearSurface();
       return true;
@@ -98,7 +99,6 @@ bool GodObjectProxy::ClearSurface() {
 }
 
 bool GodObjectProxy::ClearPoint() {
-  if (!position_.allFinite()) return false;
   const double offset = config_.surface_offset_m;
   bool moved = false;
   for (int step = 0; step < kMaxClearSteps; ++step) {
@@ -121,31 +121,36 @@ bool GodObjectProxy::ClearPoint() {
 }
 
 bool GodObjectProxy::ClearSphere() {
+  if (tree_ == nullptr) return false;
   const double r = config_.radius_m;
-  if (tree_ == nullptr || !position_.allFinite()) return false;
-  bool moved = false;
-  for (int step = 0; step < kMaxClearSteps; ++step) {
+  const Vec3 start = position_;
+  for (int step = 0; step <= kMaxClearSteps; ++step) {
     SurfacePoint nearest;
-    if (!tree_->FindClosestPointWithin(position_, r, &nearest)) break;
+    if (!tree_->FindClosestPointWithin(position_, r, &nearest)) return step > 0;  // clear
+    if (step == kMaxClearSteps) break;
     // straight away from the nearest point (round an edge or a corner too); from a centre
     // on the surface itself, along the face's winding normal
     Vec3 out = position_ - nearest.point;
     const double length = out.norm();
     out = length > 0.0 ? Vec3(out / length) : mesh_.face_normal(nearest.triangle);
-    Reset(nearest.point + (r + config_.surface_offset_m) * out);
-    moved = true;
+    const Vec3 next = nearest.point + (r + config_.surface_offset_m) * out;
+    // never through the surface: in a slot narrower than the sphere, the far wall
+    SweepHit blocked;
+    if (PointHit(position_, next, &blocked)) break;
+    Reset(next);
   }
-  return moved;
+  Reset(start);  // no way off the surface: left where it was
+  return false;
 }
 
 GodObjectProxy::SolidExit GodObjectProxy::MoveOutOfSolids(const Vec3& position_l) {
   Reset(position_l);
   const SolidAnalysis* solids = config_.solids;
-  // outside every piece's box (or not a point): outside every solid
-  if (solids == nullptr || !solids->pieces_bound_solids || !position_l.allFinite() ||
-      !solids->InAnyPiece(position_l)) {
-    return SolidExit::kNotInside;
+  if (solids == nullptr || !solids->pieces_bound_solids || !position_l.allFinite()) {
+    return SolidExit::kUnknown;
   }
+  // outside every piece's box: outside every solid
+  if (!solids->InAnyPiece(position_l)) return SolidExit::kNotInside;
   Exit exits[kExitRays];
   const int found = solids->bounds_solids ? FindExitsByParity(position_l, exits)
                                           : FindExitsByWinding(position_l, exits);

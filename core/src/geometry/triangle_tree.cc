@@ -335,6 +335,7 @@ SurfacePoint TriangleTree::CalcClosestPoint(const Vec3& p) const {
 
 bool TriangleTree::FindClosestPointWithin(const Vec3& p, double max_distance,
                                           SurfacePoint* out) const {
+  if (!(max_distance > 0.0)) return false;  // nothing is closer than 0 (or NaN)
   ClosestPointTraversal traversal(*impl_->mesh, p, max_distance);
   impl_->tree.traversal_with_priority(p, traversal);
   if (!traversal.found()) return false;

@@ -542,6 +542,28 @@ TEST_P(ProxyOnBox, ASphereResetOverlappingTheSurfaceIsMovedOffIt) {
   EXPECT_EQ(proxy_->position(), Vec3(0.01, 0.02, 0.0501));
 }
 
+// Where the sphere cannot be cleared it is left where it was: in a slot narrower than
+// it, pushed off one wall it would pass through the other into a part (the review's
+// case: 3 mm into the upper box); and where nothing is known of inside (no solid
+// analysis), nothing moves.
+TEST_P(ProxyOnBox, ASphereThatCannotBeClearedIsLeftWhereItWas) {
+  const double r = 0.003;
+  Make(MakeTwoBoxesSoup(Vec3(-0.05, -0.05, -0.05), Vec3(0.05, 0.05, 0.0), Vec3(-0.05, -0.05, 0.001),
+                        Vec3(0.05, 0.05, 0.05)),
+       r);
+  ASSERT_TRUE(solids_.bounds_solids);
+  const Vec3 in_slot(0.0, 0.0, 0.0003);
+  EXPECT_FALSE(proxy_->ResetOutside(in_slot));
+  EXPECT_EQ(proxy_->position(), in_slot);
+  Make(testing::MakeBoxSoup(Vec3::Constant(-0.05), Vec3::Constant(0.05)), r);
+  ProxyConfig unknown = proxy_->config();
+  unknown.solids = nullptr;
+  GodObjectProxy blind(*mesh_, *tree_, unknown);
+  const Vec3 near_top(0.01, 0.02, 0.051);
+  EXPECT_FALSE(blind.ResetOutside(near_top));
+  EXPECT_EQ(blind.position(), near_top);
+}
+
 // A scripted probe may start exactly on a face (a surface point it was given): lifted
 // first or pressed first, the proxy must leave on the outside.
 TEST_P(ProxyOnBox, AResetExactlyOnAFaceLeavesOnTheOutside) {

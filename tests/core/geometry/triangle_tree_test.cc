@@ -108,6 +108,10 @@ TEST_F(BoxTree, ClosestPointWithinADistanceFindsOnlyWhatIsCloser) {
   // inside the box, nearest the top (0.1 away) though the bottom is within the bound too
   ASSERT_TRUE(tree_->FindClosestPointWithin(Vec3(0.5, 0.5, 0.9), 5.0, &p));
   EXPECT_NEAR((p.point - Vec3(0.5, 0.5, 1.0)).norm(), 0.0, 1e-12);
+  // nothing is closer than 0, nor than a negative or NaN bound
+  EXPECT_FALSE(tree_->FindClosestPointWithin(Vec3(0.5, 0.5, 0.9), 0.0, &p));
+  EXPECT_FALSE(tree_->FindClosestPointWithin(Vec3(0.5, 0.5, 0.9), -5.0, &p));
+  EXPECT_FALSE(tree_->FindClosestPointWithin(Vec3(0.5, 0.5, 0.9), std::nan(""), &p));
 }
 
 TEST(TriangleTree, ClosestPointAtAVertexNamesATriangleThatHasIt) {

@@ -75,20 +75,22 @@ class GodObjectProxy {
   // where they stop winding round it (out of both of two parts face to face, not into
   // the second). A sphere goes one radius off the face, and only where a point swept
   // across its diameter from that face meets nothing (else the next nearest ray, else
-  // it stays). Then a sphere whose centre is not inside (or was moved out) but lies
-  // less than a radius from the surface (a device that starts resting on a part) is
-  // moved off it, to one radius and the offset from the nearest point, straight away
-  // from it; again from there, up to kMaxClearSteps times (a sphere in a crease is
-  // pushed out of one face into the next). A point within half the offset of a face's
-  // plane (a scripted probe started on a surface point) goes to the offset on the side
-  // the face's winding faces (away from a solid; on a sheet, either side is outside):
-  // on the plane itself its first sweep could not tell its side, and lifted off it
-  // would be held inside. Returns whether the proxy was moved. No allocation and
-  // bounded (at most kExitRays * (kMaxCrossings + 1) + kExitRays point sweeps across
-  // the scene, or kMaxWindingSweeps + kExitRays short ones where parts touch; then
-  // kMaxClearSteps walks of the tree's boxes within a radius, or 3 kMaxClearSteps point
-  // sweeps two offsets long), but not per-tick work: for a new scene, or the start of
-  // a session, where the device may be anywhere.
+  // it stays). Then, where inside is known (the point was found outside, or was moved
+  // out), a sphere less than a radius from the surface (a device that starts resting on
+  // a part) is moved off it, to one radius and the offset from the nearest point,
+  // straight away from it, and again from there, up to kMaxClearSteps times (out of a
+  // crease); where its centre would pass through the surface on the way (a slot
+  // narrower than the sphere), or it still overlaps after the steps, it is left where
+  // it was. A point within half the offset of a face's plane (a scripted probe started
+  // on a surface point) goes to the offset on the side the face's winding faces (away
+  // from a solid): on the plane itself its first sweep could not tell its side, and
+  // lifted off it would be held inside. Returns whether the proxy was moved. No
+  // allocation and bounded (at most kExitRays * (kMaxCrossings + 1) + kExitRays point
+  // sweeps across the scene, or kMaxWindingSweeps + kExitRays short ones where parts
+  // touch; then kMaxClearSteps + 1 walks of the tree's boxes within a radius and
+  // kMaxClearSteps point sweeps a radius long, or 3 kMaxClearSteps point sweeps two
+  // offsets long), but not per-tick work: for a new scene, or the start of a session,
+  // where the device may be anywhere.
   bool ResetOutside(const Vec3& position_l);
   static constexpr int kExitRays = 6;
   static constexpr int kMaxCrossings = 15;  // a ray crossing more abstains
@@ -125,7 +127,7 @@ class GodObjectProxy {
   };
   // ResetOutside's two parts: out of the solids, then off the surface (true if it
   // moved): a sphere it overlaps, a point within half the offset of a face.
-  enum class SolidExit { kNotInside, kMovedOut, kStuckInside };
+  enum class SolidExit { kUnknown, kNotInside, kMovedOut, kStuckInside };
   SolidExit MoveOutOfSolids(const Vec3& position_l);
   bool ClearSurface();
   bool ClearSphere();

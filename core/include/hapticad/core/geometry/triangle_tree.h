@@ -48,7 +48,7 @@ class TriangleTree {
   // The same, closer than `max_distance` to `p` only: the walk skips every box farther
   // away, so a point clear of the surface costs the few boxes round it, not a search for
   // the nearest triangle however far. Returns false (and leaves *out) if none is that
-  // close. Not for the servo tick either.
+  // close (always for a max_distance that is not > 0). Not for the servo tick either.
   bool FindClosestPointWithin(const Vec3& p, double max_distance, SurfacePoint* out) const;
 
   std::size_t num_triangles() const;

@@ -115,7 +115,7 @@ class ForceRenderer {
   // scene's surface, or each of its pieces, bounds solids: HapticScene::BuildSolids),
   // so the spring pushes the device out instead of holding it in; a sphere that would
   // start sunk into the surface (the device resting on a part), or a point on a face,
-  // is moved off it. Bounded but up to a few dozen sweeps across the scene: for
+  // is moved off it where it can be. Bounded but up to a few dozen sweeps across the scene: for
   // restarts, not every tick. The constructor builds the scene's solid analysis, like
   // its grid or tree.
   void Reset(const Vec3& device_w);
