@@ -94,6 +94,13 @@ bool GodObjectProxy::ResetOutside(const Vec3& position_l) {
   return ClearSurface();
 }
 
+bool GodObjectProxy::OnOpenPiece(std::uint32_t triangle) const {
+  const SolidAnalysis* solids = config_.solids;
+  if (solids == nullptr || solids->piece_of_vertex.empty()) return false;  // all closed
+  const std::uint32_t piece = solids->piece_of_vertex[mesh_.triangle(triangle)[0]];
+  return solids->piece_winding[piece] == 0;
+}
+
 bool GodObjectProxy::ClearSurface() {
   return config_.radius_m > 0.0 ? ClearSphere() : ClearPoint();
 }
@@ -109,6 +116,7 @@ bool GodObjectProxy::ClearPoint() {
       const Vec3 u = ExitRay(ray);
       SweepHit hit;
       if (!PointHit(position_ - offset * u, position_ + offset * u, &hit)) continue;
+      if (OnOpenPiece(hit.triangle)) continue;          // a sheet has no outside to go to
       const Vec3& n = mesh_.face_normal(hit.triangle);  // the winding's: away from a solid
       const double height = n.dot(position_ - hit.point);
       if (std::abs(height) >= 0.5 * offset) continue;
@@ -127,7 +135,7 @@ bool GodObjectProxy::ClearSphere() {
   for (int step = 0; step <= kMaxClearSteps; ++step) {
     SurfacePoint nearest;
     if (!tree_->FindClosestPointWithin(position_, r, &nearest)) return step > 0;  // clear
-    if (step == kMaxClearSteps) break;
+    if (step == kMaxClearSteps || OnOpenPiece(nearest.triangle)) break;
     // straight away from the nearest point (round an edge or a corner too); from a centre
     // on the surface itself, along the face's winding normal
     Vec3 out = position_ - nearest.point;
@@ -150,7 +158,7 @@ GodObjectProxy::SolidExit GodObjectProxy::MoveOutOfSolids(const Vec3& position_l
     return SolidExit::kUnknown;
   }
   // outside every piece's box: outside every solid
-  if (!solids->InAnyPiece(position_l)) return SolidExit::kNotInside;
+  if (!solids->InAnySolidPiece(position_l)) return SolidExit::kNotInside;
   Exit exits[kExitRays];
   const int found = solids->bounds_solids ? FindExitsByParity(position_l, exits)
                                           : FindExitsByWinding(position_l, exits);
@@ -219,6 +227,7 @@ int GodObjectProxy::FindExitsByWinding(const Vec3& p, Exit* exits) const {
     int count = 0;
     double horizon = std::numeric_limits<double>::infinity();
     for (std::uint32_t c = 0; c < num_pieces; ++c) {
+      if (solids.piece_winding[c] == 0) continue;  // open: bounds nothing
       double enter = 0.0;
       double leave = 0.0;
       if (!ClipRayToBox(p, u, solids.piece_lo[c], solids.piece_hi[c], &enter, &leave)) continue;

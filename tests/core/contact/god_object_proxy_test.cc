@@ -519,11 +519,13 @@ TEST_P(ProxyOnBox, ASphereResetOverlappingTheSurfaceIsMovedOffIt) {
   // 1 mm over the top: lifted straight up to a radius and the offset over it
   EXPECT_TRUE(proxy_->ResetOutside(Vec3(0.01, 0.02, 0.051)));
   EXPECT_NEAR((proxy_->position() - Vec3(0.01, 0.02, 0.05 + r + kOffset)).norm(), 0.0, 1e-12);
+  EXPECT_GE(distance_to_box(proxy_->position()), r);
   // 1 mm out from an edge, diagonally: out along the diagonal, round the edge
   const Vec3 edge(0.05, 0.0, 0.05);
   const Vec3 diagonal = Vec3(1.0, 0.0, 1.0).normalized();
   EXPECT_TRUE(proxy_->ResetOutside(edge + 0.001 * diagonal));
   EXPECT_NEAR((proxy_->position() - (edge + (r + kOffset) * diagonal)).norm(), 0.0, 1e-12);
+  EXPECT_GE(distance_to_box(proxy_->position()), r);
   // already clear: put where asked
   const Vec3 clear(0.0, 0.0, 0.05 + r + 1e-4);
   EXPECT_FALSE(proxy_->ResetOutside(clear));
@@ -574,6 +576,47 @@ TEST_P(ProxyOnBox, AResetExactlyOnAFaceLeavesOnTheOutside) {
     EXPECT_GT(proxy_->position().z(), 0.05) << "lift " << lift;
     proxy_->Update(Vec3(0.0, 0.0, 0.06));
     EXPECT_NEAR((proxy_->position() - Vec3(0.0, 0.0, 0.06)).norm(), 0.0, 1e-12) << "lift " << lift;
+  }
+}
+
+// A part and an open sheet in one scene (a surface model's shell beside a solid, or a
+// plane cutting through it): the sheet bounds nothing, so what is inside the part is
+// still known; the sheet itself is never a reason to move.
+TEST_P(ProxyOnBox, ASheetBesideAPartLeavesItsInsideKnown) {
+  for (const double sheet_z : {0.08, 0.0}) {  // above the box, and through it
+    for (const double r : {0.0, 0.003}) {
+      TriangleSoup soup = testing::MakeBoxSoup(Vec3::Constant(-0.05), Vec3::Constant(0.05));
+      const auto base = static_cast<std::int32_t>(soup.vertices.size());
+      for (const double x : {-0.1, 0.1}) {
+        for (const double y : {-0.1, 0.1}) soup.vertices.emplace_back(x, y, sheet_z);
+      }
+      soup.triangles.push_back({base, base + 2, base + 3});
+      soup.triangles.push_back({base, base + 3, base + 1});
+      soup.cad_faces.resize(soup.triangles.size(), 6);
+      Make(soup, r);
+      const std::string where =
+          "sheet at z " + std::to_string(sheet_z) + ", r " + std::to_string(r);
+      ASSERT_FALSE(solids_.closed) << where;
+      ASSERT_FALSE(solids_.bounds_solids) << where;
+      ASSERT_TRUE(solids_.pieces_bound_solids) << where;
+      ASSERT_EQ(solids_.piece_winding.size(), 2u) << where;
+      EXPECT_EQ(solids_.piece_winding[0], 1) << where;
+      EXPECT_EQ(solids_.piece_winding[1], 0) << where;
+      // 5 mm inside the bottom: out under it (where the nearest ray leaves), a radius
+      // and the offset off it
+      testing::AllocationCounter counter;
+      EXPECT_TRUE(proxy_->ResetOutside(Vec3(0.01, 0.02, -0.045))) << where;
+      EXPECT_EQ(counter.count(), 0u);
+      EXPECT_NEAR(proxy_->position().z(), -0.05 - r - kOffset, 1e-12)
+          << where << ": " << proxy_->position().transpose();
+      EXPECT_LT(proxy_->position().head<2>().cwiseAbs().maxCoeff(), 0.05) << where;
+      // beside the box, on the sheet's plane or a millimetre over it: left where it is
+      for (const double lift : {0.0, 0.001}) {
+        const Vec3 by_sheet(0.08, 0.0, sheet_z + lift);
+        EXPECT_FALSE(proxy_->ResetOutside(by_sheet)) << where << ", lift " << lift;
+        EXPECT_EQ(proxy_->position(), by_sheet) << where << ", lift " << lift;
+      }
+    }
   }
 }
 

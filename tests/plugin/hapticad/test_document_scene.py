@@ -195,6 +195,35 @@ class DocumentSceneTest(unittest.TestCase):
             self.assertGreater(force.Length, 0.0)
             self.assertGreater(force.dot(proxy - device), 0.99 * force.Length * (proxy - device).Length)
 
+    def test_a_device_starting_inside_a_part_beside_a_sheet_is_pushed_out(self):
+        # a solid and an open sheet in one scene (a surface model's panel beside a
+        # part): the sheet bounds nothing, and the part's inside is still known. The
+        # device starts 2 mm under the part's top, away from its bore
+        sheet = self.doc.addObject("Part::Plane", "Panel")
+        sheet.Length, sheet.Width = 60, 50
+        sheet.Placement.Base = App.Vector(-10, -10, 30)
+        self.doc.recompute()
+        HaptiCAD.make_surface(self.doc, [(self.part, self.top_face()), (sheet, "Face1")])
+        ds = build_document_scene(self.doc)
+        self.assertFalse(ds.watertight)  # the sheet's edges are open
+        renderer = _core.ForceRenderer(ds.scene, ds.surfaces, _core.RenderLimits())
+        device = App.Vector(8, 7, 18)
+        ticks = 20
+        out = _core.run_stroke(renderer, np.tile([v * MM for v in device], (ticks, 1)),
+                               np.zeros((ticks, 3)), [k * 1e-3 for k in range(ticks)])
+        proxy = App.Vector(*(out["proxy_w"][-1] / MM))
+        self.assertFalse(self.part.Shape.isInside(proxy, 1e-9, False), f"proxy {proxy} in the part")
+        self.assertLess(proxy.distanceToPoint(device), 12.0)  # out near the nearest way
+        force = App.Vector(*out["force_w"][-1])
+        self.assertGreater(force.Length, 0.0)
+        self.assertGreater(force.dot(proxy - device), 0.99 * force.Length * (proxy - device).Length)
+        # a device starting on the sheet itself, beside the part, is left where it is
+        on_sheet = App.Vector(45, 0, 30)
+        renderer = _core.ForceRenderer(ds.scene, ds.surfaces, _core.RenderLimits())
+        out = _core.run_stroke(renderer, np.array([[v * MM for v in on_sheet]]), np.zeros((1, 3)), [0.0])
+        self.assertAlmostEqual(App.Vector(*(out["proxy_w"][0] / MM)).distanceToPoint(on_sheet), 0.0,
+                               delta=1e-6)
+
 
 if __name__ == "__main__":
     unittest.main()

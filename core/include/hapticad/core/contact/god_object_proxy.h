@@ -84,13 +84,15 @@ class GodObjectProxy {
   // it was. A point within half the offset of a face's plane (a scripted probe started
   // on a surface point) goes to the offset on the side the face's winding faces (away
   // from a solid): on the plane itself its first sweep could not tell its side, and
-  // lifted off it would be held inside. Returns whether the proxy was moved. No
-  // allocation and bounded (at most kExitRays * (kMaxCrossings + 1) + kExitRays point
-  // sweeps across the scene, or kMaxWindingSweeps + kExitRays short ones where parts
-  // touch; then kMaxClearSteps + 1 walks of the tree's boxes within a radius and
-  // kMaxClearSteps point sweeps a radius long, or 3 kMaxClearSteps point sweeps two
-  // offsets long), but not per-tick work: for a new scene, or the start of a session,
-  // where the device may be anywhere.
+  // lifted off it would be held inside. An open piece of the surface (a sheet beside
+  // the parts) bounds nothing and is never a reason to move: a sphere whose nearest
+  // point is on one is left where it was, and a point on one stays. Returns whether
+  // the proxy was moved. No allocation and bounded (at most kExitRays * (kMaxCrossings
+  // + 1) + kExitRays point sweeps across the scene, or kMaxWindingSweeps + kExitRays
+  // short ones where parts touch; then kMaxClearSteps + 1 walks of the tree's boxes
+  // within a radius and kMaxClearSteps point sweeps a radius long, or 3 kMaxClearSteps
+  // point sweeps two offsets long), but not per-tick work: for a new scene, or the
+  // start of a session, where the device may be anywhere.
   bool ResetOutside(const Vec3& position_l);
   static constexpr int kExitRays = 6;
   static constexpr int kMaxCrossings = 15;  // a ray crossing more abstains
@@ -132,6 +134,8 @@ class GodObjectProxy {
   bool ClearSurface();
   bool ClearSphere();
   bool ClearPoint();
+  // Whether the triangle belongs to an open piece of the surface (config.solids).
+  bool OnOpenPiece(std::uint32_t triangle) const;
   // ResetOutside's rays where the whole surface bounds solids, and where its pieces do:
   // the exits of the rays that find p inside, or 0 if most find it outside.
   int FindExitsByParity(const Vec3& p, Exit* exits) const;
