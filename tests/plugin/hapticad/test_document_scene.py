@@ -34,7 +34,22 @@ def probe_face(doc_scene, face, offset_mm=0.01):
     return doc_scene.face_names[sample.cad_face], sample
 
 
+def hold_device_at(doc_scene, device, ticks=20):
+    """(proxy, force) after the device has rested at ``device`` (mm) from a fresh start:
+    the proxy in mm, the force in N, both App.Vector."""
+    renderer = _core.ForceRenderer(doc_scene.scene, doc_scene.surfaces, _core.RenderLimits())
+    out = _core.run_stroke(renderer, np.tile([v * MM for v in device], (ticks, 1)),
+                           np.zeros((ticks, 3)), [k * 1e-3 for k in range(ticks)])
+    return App.Vector(*(out["proxy_w"][-1] / MM)), App.Vector(*out["force_w"][-1])
+
+
 class DocumentSceneTest(unittest.TestCase):
+    def assertPushedOutTowardTheProxy(self, proxy, device, force):
+        # within a ray's reach of the nearest way out, the spring pulling the device to it
+        self.assertLess(proxy.distanceToPoint(device), 12.0)
+        self.assertGreater(force.Length, 0.0)
+        self.assertGreater(force.dot(proxy - device), 0.99 * force.Length * (proxy - device).Length)
+
     def setUp(self):
         self.doc = App.newDocument("SceneTest")
         box = Part.makeBox(40, 30, 20)
@@ -178,22 +193,14 @@ class DocumentSceneTest(unittest.TestCase):
             self.doc.recompute()
             ds = build_document_scene(self.doc)
             self.assertTrue(ds.watertight, ds.repair)
-            renderer = _core.ForceRenderer(ds.scene, ds.surfaces, _core.RenderLimits())
             device = App.Vector(19.5, 110, 10)
-            ticks = 20
-            out = _core.run_stroke(renderer, np.tile([v * MM for v in device], (ticks, 1)),
-                                   np.zeros((ticks, 3)), [k * 1e-3 for k in range(ticks)])
-            proxy = App.Vector(*(out["proxy_w"][-1] / MM))
+            proxy, force = hold_device_at(ds, device)
             # (it rests 1e-9 of the scene's size off the faces: 4e-8 mm here)
             for part in (housing, button):
                 self.assertFalse(part.Shape.isInside(proxy, 1e-9, False),
                                  f"sunk {sunk}: proxy {proxy} in {part.Name}")
-            # within a ray's reach of the nearest way out (the housing's sides are 0.5 mm
-            # and 10 mm away, the button's far end 10 mm), pushing the device out to it
-            self.assertLess(proxy.distanceToPoint(device), 12.0)
-            force = App.Vector(*out["force_w"][-1])
-            self.assertGreater(force.Length, 0.0)
-            self.assertGreater(force.dot(proxy - device), 0.99 * force.Length * (proxy - device).Length)
+            # the housing's sides are 0.5 mm and 10 mm away, the button's far end 10 mm
+            self.assertPushedOutTowardTheProxy(proxy, device, force)
 
     def test_a_device_starting_inside_a_part_beside_a_sheet_is_pushed_out(self):
         # a solid and an open sheet in one scene (a surface model's panel beside a
@@ -206,23 +213,14 @@ class DocumentSceneTest(unittest.TestCase):
         HaptiCAD.make_surface(self.doc, [(self.part, self.top_face()), (sheet, "Face1")])
         ds = build_document_scene(self.doc)
         self.assertFalse(ds.watertight)  # the sheet's edges are open
-        renderer = _core.ForceRenderer(ds.scene, ds.surfaces, _core.RenderLimits())
         device = App.Vector(8, 7, 18)
-        ticks = 20
-        out = _core.run_stroke(renderer, np.tile([v * MM for v in device], (ticks, 1)),
-                               np.zeros((ticks, 3)), [k * 1e-3 for k in range(ticks)])
-        proxy = App.Vector(*(out["proxy_w"][-1] / MM))
+        proxy, force = hold_device_at(ds, device)
         self.assertFalse(self.part.Shape.isInside(proxy, 1e-9, False), f"proxy {proxy} in the part")
-        self.assertLess(proxy.distanceToPoint(device), 12.0)  # out near the nearest way
-        force = App.Vector(*out["force_w"][-1])
-        self.assertGreater(force.Length, 0.0)
-        self.assertGreater(force.dot(proxy - device), 0.99 * force.Length * (proxy - device).Length)
+        self.assertPushedOutTowardTheProxy(proxy, device, force)
         # a device starting on the sheet itself, beside the part, is left where it is
         on_sheet = App.Vector(45, 0, 30)
-        renderer = _core.ForceRenderer(ds.scene, ds.surfaces, _core.RenderLimits())
-        out = _core.run_stroke(renderer, np.array([[v * MM for v in on_sheet]]), np.zeros((1, 3)), [0.0])
-        self.assertAlmostEqual(App.Vector(*(out["proxy_w"][0] / MM)).distanceToPoint(on_sheet), 0.0,
-                               delta=1e-6)
+        proxy, force = hold_device_at(ds, on_sheet, ticks=1)
+        self.assertAlmostEqual(proxy.distanceToPoint(on_sheet), 0.0, delta=1e-9)  # < the offset
 
 
 if __name__ == "__main__":
