@@ -13,9 +13,12 @@
 #include <utility>
 #include <vector>
 
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Simple_cartesian.h>
+#include <CGAL/box_intersection_d.h>
 
+#include "hapticad/core/geometry/connected_pieces.h"
 #include "hapticad/core/geometry/vertex_buckets.h"
 
 namespace hapticad {
@@ -24,15 +27,18 @@ namespace {
 using Kernel = CGAL::Simple_cartesian<double>;
 using Point = Kernel::Point_3;
 using Polygon = std::array<std::size_t, 3>;
+using EdgeCounts = std::vector<std::pair<std::pair<std::size_t, std::size_t>, int>>;
 namespace PMP = CGAL::Polygon_mesh_processing;
+// exact orientation tests on the same doubles, for the inside tests of step 5
+using ExactPredicates = CGAL::Exact_predicates_inexact_constructions_kernel;
+using ExactPoint = ExactPredicates::Point_3;
 
 Vec3 ToVec(const Point& p) { return Vec3(p.x(), p.y(), p.z()); }
 
 // Undirected edges with the number of triangles on each, sorted. A counting sort by the
 // lower vertex, then each vertex's few edges sorted in place: O(n), where a sort of the
 // 3n edge copies was a third of a 1M-triangle repair.
-std::vector<std::pair<std::pair<std::size_t, std::size_t>, int>> CountEdges(
-    const std::vector<Polygon>& polygons) {
+EdgeCounts CountEdges(const std::vector<Polygon>& polygons) {
   std::size_t vertices = 0;
   for (const Polygon& p : polygons) vertices = std::max({vertices, p[0] + 1, p[1] + 1, p[2] + 1});
   // the edges whose lower vertex is v, by their upper vertex
@@ -43,7 +49,7 @@ std::vector<std::pair<std::pair<std::size_t, std::size_t>, int>> CountEdges(
   VertexBuckets<std::size_t> upper = BucketByVertex<std::size_t>(
       vertices, 3 * polygons.size(), [&](std::size_t i) { return edge(i).first; },
       [&](std::size_t i) { return edge(i).second; });
-  std::vector<std::pair<std::pair<std::size_t, std::size_t>, int>> counted;
+  EdgeCounts counted;
   counted.reserve(upper.values.size() / 2 + 1);
   for (std::size_t v = 0; v < vertices; ++v) {
     const auto first = upper.begin(v);
@@ -173,6 +179,223 @@ std::size_t WeldOpenEdges(const std::vector<Point>& points, std::vector<Polygon>
   return into.size();
 }
 
+// Whether the segment p-q (q outside the triangle's box) crosses triangle abc: 1
+// through its inside, 0 not at all, -1 through an edge or a corner, from p on the
+// triangle or within its plane, where a count of crossings could be wrong.
+int Crosses(const ExactPoint& p, const ExactPoint& q, const ExactPoint& a, const ExactPoint& b,
+            const ExactPoint& c) {
+  const CGAL::Orientation side_p = CGAL::orientation(a, b, c, p);
+  const CGAL::Orientation side_q = CGAL::orientation(a, b, c, q);
+  if (side_p == side_q) return side_p == CGAL::COPLANAR ? -1 : 0;  // in its plane: unclear
+  if (side_p == CGAL::COPLANAR) {
+    // the segment meets the plane at p alone: in the triangle only if in its box
+    const CGAL::Bbox_3 box = a.bbox() + b.bbox() + c.bbox();
+    return p.x() < box.xmin() || p.x() > box.xmax() || p.y() < box.ymin() || p.y() > box.ymax() ||
+                   p.z() < box.zmin() || p.z() > box.zmax()
+               ? 0
+               : -1;
+  }
+  const CGAL::Orientation s[3] = {CGAL::orientation(p, q, a, b), CGAL::orientation(p, q, b, c),
+                                  CGAL::orientation(p, q, c, a)};
+  int positive = 0, negative = 0;
+  for (const CGAL::Orientation o : s) {
+    positive += o == CGAL::POSITIVE;
+    negative += o == CGAL::NEGATIVE;
+  }
+  if (positive == 3 || negative == 3) return 1;
+  return positive == 0 || negative == 0 ? -1 : 0;  // on an edge or a corner, or outside
+}
+
+// Whether p lies inside the closed piece made of `triangles`, by the parity of the
+// crossings of a segment from p out of the piece's box: 1 inside, 0 outside, -1 when no
+// segment of a few gives a clean count (p on the piece, say).
+int InsideClosedPiece(const std::vector<Point>& points, const std::vector<Polygon>& polygons,
+                      const std::size_t* triangles, std::size_t num_triangles, const Point& p,
+                      double box_diagonal) {
+  static constexpr double kDirections[3][3] = {
+      {0.5773502691896258, 0.6180339887498949, 0.5331584453516463},
+      {-0.7071067811865476, 0.2360679774997897, 0.6666666666666666},
+      {0.1415926535897932, -0.8660254037844386, -0.4794255386042030}};
+  const ExactPoint from(p.x(), p.y(), p.z());
+  for (const auto& d : kDirections) {
+    const double far = 2.0 * box_diagonal;  // from p inside the box, well out of it
+    const ExactPoint to(p.x() + far * d[0], p.y() + far * d[1], p.z() + far * d[2]);
+    int crossings = 0;
+    bool clean = true;
+    for (std::size_t i = 0; i < num_triangles && clean; ++i) {
+      const Polygon& t = polygons[triangles[i]];
+      const auto at = [&points](std::size_t v) {
+        return ExactPoint(points[v].x(), points[v].y(), points[v].z());
+      };
+      const int crossing = Crosses(from, to, at(t[0]), at(t[1]), at(t[2]));
+      clean = crossing >= 0;
+      crossings += crossing > 0 ? 1 : 0;
+    }
+    if (clean) return crossings % 2;
+  }
+  return -1;
+}
+
+// The closed pieces of an oriented soup, and which of them hold which: what step 5
+// needs to tell a part's outer shell from its void.
+class ClosedPieces {
+ public:
+  ClosedPieces(const std::vector<Point>& points, const std::vector<Polygon>& polygons,
+               const EdgeCounts& edges)
+      : points_(points),
+        polygons_(polygons),
+        pieces_(FindConnectedPieces(
+            points.size(), polygons.size(),
+            [&polygons](std::size_t t, int k) { return polygons[t][k]; },
+            [&points](std::size_t v) { return ToVec(points[v]); })),
+        closed_(pieces_.lo.size(), 1),
+        volume_(pieces_.lo.size(), 0.0) {
+    for (const auto& [edge, count] : edges) {
+      if (count != 2) closed_[pieces_.of_vertex[edge.first]] = 0;
+    }
+    // six times each piece's volume, about its box's corner (a part far from the origin
+    // keeps its digits)
+    for (std::size_t t = 0; t < polygons.size(); ++t) {
+      const std::uint32_t c = piece_of(t);
+      const Vec3& o = pieces_.lo[c];
+      const Vec3 a = ToVec(points[polygons[t][0]]) - o, b = ToVec(points[polygons[t][1]]) - o,
+                 d = ToVec(points[polygons[t][2]]) - o;
+      volume_[c] += a.dot(b.cross(d));
+    }
+  }
+
+  std::size_t size() const { return closed_.size(); }
+  bool closed(std::size_t c) const { return closed_[c] != 0; }
+  double volume(std::size_t c) const { return volume_[c]; }
+  bool BoxHolds(std::size_t c, const Vec3& lo, const Vec3& hi) const {
+    return (lo.array() >= pieces_.lo[c].array()).all() &&
+           (hi.array() <= pieces_.hi[c].array()).all();
+  }
+  std::uint32_t piece_of(std::size_t t) const { return pieces_.of_vertex[polygons_[t][0]]; }
+
+  // Groups the triangles by piece, for the inside tests. Allocates O(n).
+  void GroupTriangles() {
+    start_.assign(size() + 1, 0);
+    for (std::size_t t = 0; t < polygons_.size(); ++t) ++start_[piece_of(t) + 1];
+    for (std::size_t c = 0; c < size(); ++c) start_[c + 1] += start_[c];
+    by_piece_.resize(polygons_.size());
+    std::vector<std::size_t> next(start_.begin(), start_.end() - 1);
+    for (std::size_t t = 0; t < polygons_.size(); ++t) by_piece_[next[piece_of(t)]++] = t;
+  }
+  const std::size_t* triangles(std::size_t c) const { return &by_piece_[start_[c]]; }
+  std::size_t num_triangles(std::size_t c) const { return start_[c + 1] - start_[c]; }
+
+  // For each piece of `queried`: the closed pieces that hold it, judged at the first of
+  // up to kTries of its vertices (spread over its triangles) that gives a clean count
+  // against every closed piece whose box holds that vertex (CGAL's box intersection
+  // finds those); `known` false where none does. Precondition: GroupTriangles().
+  struct Holders {
+    bool known = false;
+    std::vector<std::size_t> pieces;
+  };
+  std::vector<Holders> FindHolders(const std::vector<std::size_t>& queried) const {
+    static constexpr std::size_t kTries = 8;
+    using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t>;
+    const auto vertex = [&](std::size_t c, std::size_t j) {  // j < kTries
+      const std::size_t n = num_triangles(c);
+      return polygons_[triangles(c)[j * n / kTries]][j % 3];
+    };
+    std::vector<Box> at, round;
+    for (std::size_t q = 0; q < queried.size(); ++q) {
+      for (std::size_t j = 0; j < kTries; ++j) {
+        const Point& p = points_[vertex(queried[q], j)];
+        at.emplace_back(p.bbox(), q * kTries + j);
+      }
+    }
+    for (std::size_t c = 0; c < size(); ++c) {
+      if (!closed(c)) continue;
+      round.emplace_back(CGAL::Bbox_3(pieces_.lo[c].x(), pieces_.lo[c].y(), pieces_.lo[c].z(),
+                                      pieces_.hi[c].x(), pieces_.hi[c].y(), pieces_.hi[c].z()),
+                         c);
+    }
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;  // (query and try, piece)
+    CGAL::box_intersection_d(at.begin(), at.end(), round.begin(), round.end(),
+                             [&](const Box& a, const Box& b) {
+                               if (b.info() != queried[a.info() / kTries]) {
+                                 pairs.emplace_back(a.info(), b.info());
+                               }
+                             });
+    std::sort(pairs.begin(), pairs.end());
+    std::vector<Holders> out(queried.size());
+    auto pair = pairs.begin();
+    for (std::size_t q = 0; q < queried.size(); ++q) {
+      for (std::size_t j = 0; j < kTries; ++j) {
+        const std::size_t key = q * kTries + j;
+        const auto first = pair;
+        while (pair != pairs.end() && pair->first == key) ++pair;
+        if (out[q].known) continue;
+        const Point& p = points_[vertex(queried[q], j)];
+        bool clean = true;
+        std::vector<std::size_t> holders;
+        for (auto it = first; it != pair && clean; ++it) {
+          const std::size_t h = it->second;
+          const int inside = InsideClosedPiece(points_, polygons_, triangles(h), num_triangles(h),
+                                               p, (pieces_.hi[h] - pieces_.lo[h]).norm());
+          clean = inside >= 0;
+          if (inside == 1) holders.push_back(h);
+        }
+        if (clean) out[q] = {true, std::move(holders)};
+      }
+    }
+    return out;
+  }
+
+ private:
+  const std::vector<Point>& points_;
+  const std::vector<Polygon>& polygons_;
+  ConnectedPieces pieces_;
+  std::vector<char> closed_;
+  std::vector<double> volume_;
+  std::vector<std::size_t> start_;     // GroupTriangles: piece c's are by_piece_[start_[c],
+  std::vector<std::size_t> by_piece_;  // start_[c + 1])
+};
+
+// Step 5: a closed piece wound inward (a negative volume) that no other closed piece
+// holds is the outer shell of a part whose triangles were listed the wrong way round (a
+// file's writer that winds clockwise): it is turned round, and so is a piece wound
+// outward that only it holds (that part's void, listed the same way). A piece for which
+// no count is clean (its vertices on other pieces) is left as it is. Returns how many
+// pieces were turned. O(n) when no closed piece is wound inward; else O(n log n) for
+// the boxes, and O(size) of each piece whose box holds a vertex in question.
+std::size_t TurnInsideOutShells(const std::vector<Point>& points, const EdgeCounts& edges,
+                                std::vector<Polygon>* polygons,
+                                std::vector<std::array<Vec3, 3>>* corner_normals) {
+  ClosedPieces pieces(points, *polygons, edges);
+  std::vector<std::size_t> inward, outward;
+  for (std::size_t c = 0; c < pieces.size(); ++c) {
+    if (!pieces.closed(c)) continue;
+    if (pieces.volume(c) < 0.0) inward.push_back(c);
+    if (pieces.volume(c) > 0.0) outward.push_back(c);
+  }
+  if (inward.empty()) return 0;
+  pieces.GroupTriangles();
+  std::vector<char> turn(pieces.size(), 0);
+  std::vector<ClosedPieces::Holders> holders = pieces.FindHolders(inward);
+  for (std::size_t i = 0; i < inward.size(); ++i) {
+    if (holders[i].known && holders[i].pieces.empty()) turn[inward[i]] = 1;
+  }
+  holders = pieces.FindHolders(outward);
+  for (std::size_t i = 0; i < outward.size(); ++i) {
+    if (holders[i].known && holders[i].pieces.size() == 1 && turn[holders[i].pieces[0]] == 1) {
+      turn[outward[i]] = 2;
+    }
+  }
+  std::size_t turned = 0;
+  for (std::size_t t = 0; t < polygons->size(); ++t) {
+    if (turn[pieces.piece_of(t)] == 0) continue;
+    std::swap((*polygons)[t][1], (*polygons)[t][2]);
+    // the corner normals follow their corners: they are the CAD surface's
+    if (!corner_normals->empty()) std::swap((*corner_normals)[t][1], (*corner_normals)[t][2]);
+  }
+  for (const char t : turn) turned += t != 0;
+  return turned;
+}
+
 bool Degenerate(const std::vector<Point>& points, const Polygon& p, double needle_tolerance) {
   if (p[0] == p[1] || p[1] == p[2] || p[0] == p[2]) return true;
   const Vec3 a = ToVec(points[p[0]]), b = ToVec(points[p[1]]), c = ToVec(points[p[2]]);
@@ -195,6 +418,7 @@ std::string RepairReport::Describe() const {
   item(removed_degenerate, "degenerate or needle triangles removed");
   item(removed_duplicates, "duplicate triangles removed");
   item(reoriented, "triangles reoriented");
+  item(inside_out_shells, "closed shells wound inside out turned round");
   item(non_manifold_edges, "non-manifold edges split");
   item(non_manifold_vertices, "non-manifold vertices split");
   if (boundary_edges > 0) {
@@ -343,8 +567,10 @@ TriangleSoup RepairSoup(const TriangleSoup& soup, const RepairOptions& options,
     }
   }
 
-  // 5. what is still open
-  for (const auto& [edge, count] : CountEdges(polygons)) {
+  // 5. parts wound inside out turned round; 6. what is still open
+  const EdgeCounts edges = CountEdges(polygons);
+  r.inside_out_shells = TurnInsideOutShells(points, edges, &polygons, &corner_normals);
+  for (const auto& [edge, count] : edges) {
     if (count == 1) ++r.boundary_edges;
   }
 

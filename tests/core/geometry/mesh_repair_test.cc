@@ -148,6 +148,115 @@ TEST(MeshRepair, OrientsConsistentlyAndFlipsTheCornerNormalsWithTheTriangle) {
   EXPECT_EQ(mesh->num_triangles(), 12u);
 }
 
+// Appends `more` to `soup`, every triangle on CAD face `face`.
+void Append(const TriangleSoup& more, std::int32_t face, TriangleSoup* soup) {
+  const auto base = static_cast<std::int32_t>(soup->vertices.size());
+  soup->vertices.insert(soup->vertices.end(), more.vertices.begin(), more.vertices.end());
+  for (const auto& t : more.triangles) {
+    soup->triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    soup->cad_faces.push_back(face);
+    if (!more.corner_normals.empty()) soup->corner_normals.push_back({});
+  }
+}
+
+// Every triangle wound the other way, its corner normals with their corners.
+TriangleSoup WoundTheOtherWay(TriangleSoup soup) {
+  for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
+    std::swap(soup.triangles[t][1], soup.triangles[t][2]);
+    if (!soup.corner_normals.empty())
+      std::swap(soup.corner_normals[t][1], soup.corner_normals[t][2]);
+  }
+  return soup;
+}
+
+// Six times the signed volume bounded by the triangles whose corners all lie on the
+// surface of the box [lo, hi] (one piece of a scene of boxes), about lo.
+double VolumeOnBox(const TriangleSoup& soup, const Vec3& lo, const Vec3& hi) {
+  const auto on = [&](const Vec3& p) {
+    const bool in = (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
+    return in && ((p - lo).cwiseAbs().minCoeff() == 0.0 || (p - hi).cwiseAbs().minCoeff() == 0.0);
+  };
+  double volume = 0.0;
+  for (const auto& t : soup.triangles) {
+    const Vec3 &a = soup.vertices[t[0]], &b = soup.vertices[t[1]], &c = soup.vertices[t[2]];
+    if (on(a) && on(b) && on(c)) volume += (a - lo).dot((b - lo).cross(c - lo));
+  }
+  return volume;
+}
+
+TEST(MeshRepair, TurnsAPartWoundInsideOutOutwardAndItsVoidInward) {
+  // a hollow part: a 10 mm cube round a 4 mm void (wound inward, as a B-rep's inner shell)
+  TriangleSoup hollow = testing::MakeBoxSoup(Vec3::Zero(), Vec3::Constant(10.0));
+  Append(WoundTheOtherWay(testing::MakeBoxSoup(Vec3::Constant(3.0), Vec3::Constant(7.0))), 6,
+         &hollow);
+  for (std::size_t t = 0; t < hollow.triangles.size(); ++t) {
+    hollow.corner_normals.push_back({Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()});
+  }
+  for (const double scale : {1.0, 1e-3}) {
+    for (const double shift : {0.0, 1e6}) {
+      const auto moved = [&](TriangleSoup s) {
+        for (Vec3& v : s.vertices) v = v * scale + Vec3::Constant(shift);
+        return s;
+      };
+      const std::string where =
+          "scale " + std::to_string(scale) + ", shift " + std::to_string(shift);
+      const Vec3 lo = Vec3::Constant(shift), hi = Vec3::Constant(10.0 * scale + shift);
+      const Vec3 void_lo = Vec3::Constant(3.0 * scale + shift);
+      const Vec3 void_hi = Vec3::Constant(7.0 * scale + shift);
+      // as made: nothing to turn
+      TriangleSoup out;
+      RepairReport r = Repair(moved(hollow), &out);
+      EXPECT_EQ(r.inside_out_shells, 0u) << where;
+      EXPECT_GT(VolumeOnBox(out, lo, hi), 0.0) << where;
+      EXPECT_LT(VolumeOnBox(out, void_lo, void_hi), 0.0) << where;
+      // as a file wound clockwise hands it over: both shells turned round, and said so
+      const TriangleSoup inside_out = moved(WoundTheOtherWay(hollow));
+      r = Repair(inside_out, &out);
+      EXPECT_EQ(r.inside_out_shells, 2u) << where;
+      EXPECT_NE(r.Describe().find("2 closed shells wound inside out turned round"),
+                std::string::npos)
+          << r.Describe();
+      EXPECT_TRUE(r.watertight()) << where;
+      EXPECT_GT(VolumeOnBox(out, lo, hi), 0.0) << where;
+      EXPECT_LT(VolumeOnBox(out, void_lo, void_hi), 0.0) << where;
+      // each corner keeps its own normal (the CAD surface's, not the winding's)
+      ASSERT_EQ(out.triangles.size(), inside_out.triangles.size());
+      for (std::size_t t = 0; t < out.triangles.size(); ++t) {
+        for (int k = 0; k < 3; ++k) {
+          for (int j = 0; j < 3; ++j) {
+            if (out.vertices[out.triangles[t][k]] ==
+                inside_out.vertices[inside_out.triangles[t][j]]) {
+              EXPECT_EQ(out.corner_normals[t][k], inside_out.corner_normals[t][j]) << where;
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(MeshRepair, TurnsOnlyTheShellsThatAreInsideOut) {
+  // three cubes in a row: the second, wound inward, touches the first face to face,
+  // offset (its corner at lo lies on the first's face: no clean count from there), the
+  // third stands apart
+  TriangleSoup row = testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(1, 1, 1));
+  const Vec3 second_lo(1, 0.5, 0.25), second_hi(2, 1.5, 1.25);
+  Append(WoundTheOtherWay(testing::MakeBoxSoup(second_lo, second_hi)), 6, &row);
+  Append(testing::MakeBoxSoup(Vec3(3, 0, 0), Vec3(4, 1, 1)), 7, &row);
+  // and a lidless cup wound inward: open, it bounds nothing, and stays as it is
+  TriangleSoup cup = WoundTheOtherWay(testing::MakeBoxSoup(Vec3(5, 0, 0), Vec3(6, 1, 1)));
+  cup.triangles.resize(10);
+  cup.cad_faces.resize(10);
+  Append(cup, 8, &row);
+  TriangleSoup out;
+  const RepairReport r = Repair(row, &out);
+  EXPECT_EQ(r.inside_out_shells, 1u) << r.Describe();
+  EXPECT_GT(VolumeOnBox(out, Vec3(0, 0, 0), Vec3(1, 1, 1)), 0.0);
+  EXPECT_GT(VolumeOnBox(out, second_lo, second_hi), 0.0);
+  EXPECT_GT(VolumeOnBox(out, Vec3(3, 0, 0), Vec3(4, 1, 1)), 0.0);
+  EXPECT_LT(VolumeOnBox(out, Vec3(5, 0, 0), Vec3(6, 1, 1)), 0.0);  // the cup, untouched
+}
+
 TEST(MeshRepair, SplitsANonManifoldEdgeAndSaysSo) {
   TriangleSoup s;
   s.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1)};

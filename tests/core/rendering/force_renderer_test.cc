@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -429,6 +430,45 @@ TEST_F(RendererOnBox, DampingResistsPressingAndSpringingBackButNeverPulls) {
   EXPECT_NEAR(out.force_w.z(), 300.0 * 0.002 + limits_.max_damping_n_s_per_m * 0.1, 1e-6);
   faces[5].damping_n_s_per_m = -1.0;
   EXPECT_THROW(SurfaceTable{faces}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace hapticad
+
+namespace hapticad {
+namespace {
+
+TEST_F(RendererOnBox, APartWoundInsideOutPushesOutADeviceThatStartsInIt) {
+  // the same box as a file that lists its triangles clockwise hands it over; alone, and
+  // with a sheet beside it (where inside is known piece by piece, from how each winds)
+  for (const bool sheet : {false, true}) {
+    TriangleSoup inside_out = testing::MakeBoxSoup(Vec3(-50, -50, -50), Vec3(50, 50, 50));
+    for (auto& t : inside_out.triangles) std::swap(t[1], t[2]);
+    if (sheet) {
+      const TriangleSoup beside = testing::MakeSheetSoup(40.0, 0.0);
+      const auto base = static_cast<std::int32_t>(inside_out.vertices.size());
+      for (const Vec3& v : beside.vertices) inside_out.vertices.push_back(v + Vec3(200, 0, 0));
+      for (const auto& t : beside.triangles) {
+        inside_out.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+        inside_out.cad_faces.push_back(0);
+      }
+    }
+    scene_ = HapticScene::Build(inside_out, 1e-3);
+    EXPECT_EQ(scene_->repair_report().inside_out_shells, 1u);
+    ForceRenderer r(scene_, surfaces_, limits_);
+    // the device starts 5 mm under the rubber top, or on it: the proxy goes out through it
+    for (const double depth : {0.005, 0.0}) {
+      const Vec3 device(0.01, 0.02, 0.05 - depth);
+      r.Reset(device);
+      RenderOutput out;
+      r.Render({device, Vec3::Zero()}, &out);
+      const std::string where = (sheet ? "with a sheet, " : "alone, ") + std::to_string(depth);
+      EXPECT_GT(out.proxy_w.z(), 0.05) << where;
+      EXPECT_NEAR(out.proxy_w.z(), 0.05, 1e-6) << where;
+      EXPECT_NEAR(out.force_w.z(), 300.0 * depth, 1e-5) << where;
+      EXPECT_NEAR(out.force_w.head<2>().norm(), 0.0, 1e-9) << where;
+    }
+  }
 }
 
 }  // namespace

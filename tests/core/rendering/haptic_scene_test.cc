@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hapticad/core/rendering/haptic_scene.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -110,6 +112,49 @@ TEST(HapticScene, RejectsBadUnitsAndRepairsOrRejectsNonFiniteVertices) {
     FAIL() << "an all-infinite soup was accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("finite"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace hapticad
+
+namespace hapticad {
+namespace {
+
+// A sheet welded to a part (at a corner, or along an edge as a fin) shares the part's
+// vertices; the repair splits them, so the part stays a closed piece that bounds a solid
+// and the sheet an open one that bounds nothing.
+TEST(HapticScene, ASheetWeldedToAPartLeavesThePartAClosedPiece) {
+  const TriangleSoup box = testing::MakeBoxSoup(Vec3::Constant(-50), Vec3::Constant(50));
+  const std::array<Vec3, 4> at_a_corner = {Vec3(50, 50, 50), Vec3(150, 50, 50), Vec3(150, 150, 50),
+                                           Vec3(50, 150, 50)};
+  const std::array<Vec3, 4> along_an_edge = {Vec3(50, -50, 50), Vec3(50, 50, 50), Vec3(150, 50, 50),
+                                             Vec3(150, -50, 50)};
+  for (const auto& sheet : {at_a_corner, along_an_edge}) {
+    TriangleSoup soup = box;
+    const auto base = static_cast<std::int32_t>(soup.vertices.size());
+    soup.vertices.insert(soup.vertices.end(), sheet.begin(), sheet.end());
+    soup.triangles.push_back({base, base + 1, base + 2});
+    soup.triangles.push_back({base, base + 2, base + 3});
+    soup.cad_faces.resize(soup.triangles.size(), 6);
+    const auto scene = HapticScene::Build(soup, 1e-3);
+    const std::string report = scene->repair_report().Describe();
+    EXPECT_NE(report.find("non-manifold vertices split"), std::string::npos) << report;
+    const SolidAnalysis& solids = scene->BuildSolids();
+    EXPECT_FALSE(solids.closed);
+    EXPECT_TRUE(solids.pieces_bound_solids) << report;
+    ASSERT_EQ(solids.piece_winding.size(), 2u) << report;
+    // the piece whose box is the part's winds outward; the sheet's is open
+    const Vec3 part_lo = Vec3::Constant(-0.05) - scene->origin_w();
+    const Vec3 part_hi = Vec3::Constant(0.05) - scene->origin_w();
+    int parts = 0;
+    for (std::size_t c = 0; c < 2; ++c) {
+      const bool is_part = (solids.piece_lo[c] - part_lo).norm() < 1e-12 &&
+                           (solids.piece_hi[c] - part_hi).norm() < 1e-12;
+      parts += is_part;
+      EXPECT_EQ(solids.piece_winding[c], is_part ? 1 : 0) << report;
+    }
+    EXPECT_EQ(parts, 1) << report;
   }
 }
 

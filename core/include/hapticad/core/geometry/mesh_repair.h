@@ -14,7 +14,13 @@
 //      which covers the slit they leave) and duplicate triangles are removed;
 //   4. orientation is made consistent (CGAL's orient_polygon_soup); a non-manifold
 //      edge or vertex is split by duplicating its vertex, as CGAL does, and counted;
-//   5. what stays open is reported: edges with one triangle are holes or cracks.
+//   5. a closed piece wound inward that no other closed piece holds (judged at one of
+//      its vertices, by exact predicates) is a part listed the wrong way round, e.g. by
+//      a file writer that winds clockwise: it is turned outward, and so is, inward, a
+//      piece that only it holds (its void, listed the same way); a part's own void,
+//      wound inward inside it, is left so. Without this the proxy could not tell the
+//      part's inside from its outside when it restarts;
+//   6. what stays open is reported: edges with one triangle are holes or cracks.
 // CAD face ids and corner normals follow their triangles (a flipped triangle's corner
 // normals are flipped with it: they are the CAD surface's, not the winding's).
 //
@@ -44,6 +50,7 @@ struct RepairReport {
   std::size_t removed_degenerate = 0;  // repeated vertex, zero area, needles and caps
   std::size_t removed_duplicates = 0;  // same three vertices as another triangle
   std::size_t reoriented = 0;          // triangles flipped to agree with their neighbours
+  std::size_t inside_out_shells = 0;   // closed pieces turned round (step 5)
   std::size_t non_manifold_edges = 0;  // edges of more than two triangles (split)
   std::size_t non_manifold_vertices = 0;
   std::size_t boundary_edges = 0;  // edges of one triangle after repair: holes, cracks
