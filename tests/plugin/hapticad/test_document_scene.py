@@ -222,6 +222,33 @@ class DocumentSceneTest(unittest.TestCase):
         proxy, force = hold_device_at(ds, on_sheet, ticks=1)
         self.assertAlmostEqual(proxy.distanceToPoint(on_sheet), 0.0, delta=1e-9)  # < the offset
 
+    def test_a_hollow_parts_void_stays_a_void(self):
+        # a block round a sealed spherical void (two shells, the inner one wound inward by
+        # the tessellator), and a sheet beside it, so inside is known piece by piece, by
+        # how each winds: the repair turns nothing round, a device in the void is left
+        # there, and one in the wall is pushed out
+        hollow = self.doc.addObject("Part::Feature", "Hollow")
+        hollow.Shape = Part.makeBox(40, 40, 40).cut(Part.makeSphere(12, App.Vector(20, 20, 20)))
+        hollow.Placement.Base = App.Vector(0, 0, 100)
+        self.doc.recompute()
+        self.assertEqual(len(hollow.Shape.Shells), 2)
+        HaptiCAD.make_surface(self.doc, [(hollow, "Face1")])
+        sheet = self.doc.addObject("Part::Plane", "Panel")
+        sheet.Length, sheet.Width = 30, 30
+        sheet.Placement.Base = App.Vector(60, 0, 120)
+        self.doc.recompute()
+        HaptiCAD.make_surface(self.doc, [(sheet, "Face1")])
+        ds = build_document_scene(self.doc)
+        self.assertNotIn("inside out", ds.repair)
+        in_void = App.Vector(20, 20, 122)
+        proxy, force = hold_device_at(ds, in_void, ticks=1)
+        self.assertAlmostEqual(proxy.distanceToPoint(in_void), 0.0, delta=1e-9)
+        self.assertAlmostEqual(force.Length, 0.0, delta=1e-9)
+        in_wall = App.Vector(20, 20, 137)
+        proxy, force = hold_device_at(ds, in_wall)
+        self.assertFalse(hollow.Shape.isInside(proxy, 1e-9, False), f"proxy {proxy} in the part")
+        self.assertPushedOutTowardTheProxy(proxy, in_wall, force)
+
 
 if __name__ == "__main__":
     unittest.main()
