@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
@@ -14,8 +15,11 @@
 #include <vector>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/intersection.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Simple_cartesian.h>
+#include <CGAL/Surface_mesh.h>
 #include <CGAL/box_intersection_d.h>
 
 #include "hapticad/core/geometry/connected_pieces.h"
@@ -29,7 +33,7 @@ using Point = Kernel::Point_3;
 using Polygon = std::array<std::size_t, 3>;
 using EdgeCounts = std::vector<std::pair<std::pair<std::size_t, std::size_t>, int>>;
 namespace PMP = CGAL::Polygon_mesh_processing;
-// exact orientation tests on the same doubles, for the inside tests of step 5
+// exact predicates on the same doubles, for the inside tests of step 5
 using ExactPredicates = CGAL::Exact_predicates_inexact_constructions_kernel;
 using ExactPoint = ExactPredicates::Point_3;
 
@@ -179,65 +183,28 @@ std::size_t WeldOpenEdges(const std::vector<Point>& points, std::vector<Polygon>
   return into.size();
 }
 
-// Whether the segment p-q (q outside the triangle's box) crosses triangle abc: 1
-// through its inside, 0 not at all, -1 through an edge or a corner, from p on the
-// triangle or within its plane, where a count of crossings could be wrong.
-int Crosses(const ExactPoint& p, const ExactPoint& q, const ExactPoint& a, const ExactPoint& b,
-            const ExactPoint& c) {
-  const CGAL::Orientation side_p = CGAL::orientation(a, b, c, p);
-  const CGAL::Orientation side_q = CGAL::orientation(a, b, c, q);
-  if (side_p == side_q) return side_p == CGAL::COPLANAR ? -1 : 0;  // in its plane: unclear
-  if (side_p == CGAL::COPLANAR) {
-    // the segment meets the plane at p alone: in the triangle only if in its box
-    const CGAL::Bbox_3 box = a.bbox() + b.bbox() + c.bbox();
-    return p.x() < box.xmin() || p.x() > box.xmax() || p.y() < box.ymin() || p.y() > box.ymax() ||
-                   p.z() < box.zmin() || p.z() > box.zmax()
-               ? 0
-               : -1;
-  }
-  const CGAL::Orientation s[3] = {CGAL::orientation(p, q, a, b), CGAL::orientation(p, q, b, c),
-                                  CGAL::orientation(p, q, c, a)};
-  int positive = 0, negative = 0;
-  for (const CGAL::Orientation o : s) {
-    positive += o == CGAL::POSITIVE;
-    negative += o == CGAL::NEGATIVE;
-  }
-  if (positive == 3 || negative == 3) return 1;
-  return positive == 0 || negative == 0 ? -1 : 0;  // on an edge or a corner, or outside
+// The pairs (i, j) of boxes a[i] and b[j] that meet (closed boxes: a point on a box's
+// face is in it), by their infos, sorted. CGAL's box intersection: O(n log n) where a
+// loop over all pairs would be quadratic in the number of pieces.
+using InfoBox = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t>;
+std::vector<std::pair<std::size_t, std::size_t>> MeetingBoxes(std::vector<InfoBox> a,
+                                                              std::vector<InfoBox> b) {
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  CGAL::box_intersection_d(
+      a.begin(), a.end(), b.begin(), b.end(),
+      [&pairs](const InfoBox& x, const InfoBox& y) { pairs.emplace_back(x.info(), y.info()); });
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
 }
 
-// Whether p lies inside the closed piece made of `triangles`, by the parity of the
-// crossings of a segment from p out of the piece's box: 1 inside, 0 outside, -1 when no
-// segment of a few gives a clean count (p on the piece, say).
-int InsideClosedPiece(const std::vector<Point>& points, const std::vector<Polygon>& polygons,
-                      const std::size_t* triangles, std::size_t num_triangles, const Point& p,
-                      double box_diagonal) {
-  static constexpr double kDirections[3][3] = {
-      {0.5773502691896258, 0.6180339887498949, 0.5331584453516463},
-      {-0.7071067811865476, 0.2360679774997897, 0.6666666666666666},
-      {0.1415926535897932, -0.8660254037844386, -0.4794255386042030}};
-  const ExactPoint from(p.x(), p.y(), p.z());
-  for (const auto& d : kDirections) {
-    const double far = 2.0 * box_diagonal;  // from p inside the box, well out of it
-    const ExactPoint to(p.x() + far * d[0], p.y() + far * d[1], p.z() + far * d[2]);
-    int crossings = 0;
-    bool clean = true;
-    for (std::size_t i = 0; i < num_triangles && clean; ++i) {
-      const Polygon& t = polygons[triangles[i]];
-      const auto at = [&points](std::size_t v) {
-        return ExactPoint(points[v].x(), points[v].y(), points[v].z());
-      };
-      const int crossing = Crosses(from, to, at(t[0]), at(t[1]), at(t[2]));
-      clean = crossing >= 0;
-      crossings += crossing > 0 ? 1 : 0;
-    }
-    if (clean) return crossings % 2;
-  }
-  return -1;
+CGAL::Bbox_3 ToBbox(const Vec3& lo, const Vec3& hi) {
+  return CGAL::Bbox_3(lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z());
 }
 
-// The closed pieces of an oriented soup, and which of them hold which: what step 5
-// needs to tell a part's outer shell from its void.
+// The connected pieces of an oriented soup, which are closed, which way each winds, and
+// which closed pieces hold which: what step 5 needs to tell a part's outer shell from
+// its void. The inside tests are CGAL's (Side_of_triangle_mesh: exact predicates, an
+// AABB tree per piece asked about, built on first use).
 class ClosedPieces {
  public:
   ClosedPieces(const std::vector<Point>& points, const std::vector<Polygon>& polygons,
@@ -267,60 +234,38 @@ class ClosedPieces {
   std::size_t size() const { return closed_.size(); }
   bool closed(std::size_t c) const { return closed_[c] != 0; }
   double volume(std::size_t c) const { return volume_[c]; }
-  bool BoxHolds(std::size_t c, const Vec3& lo, const Vec3& hi) const {
-    return (lo.array() >= pieces_.lo[c].array()).all() &&
-           (hi.array() <= pieces_.hi[c].array()).all();
-  }
   std::uint32_t piece_of(std::size_t t) const { return pieces_.of_vertex[polygons_[t][0]]; }
-
-  // Groups the triangles by piece, for the inside tests. Allocates O(n).
-  void GroupTriangles() {
-    start_.assign(size() + 1, 0);
-    for (std::size_t t = 0; t < polygons_.size(); ++t) ++start_[piece_of(t) + 1];
-    for (std::size_t c = 0; c < size(); ++c) start_[c + 1] += start_[c];
-    by_piece_.resize(polygons_.size());
-    std::vector<std::size_t> next(start_.begin(), start_.end() - 1);
-    for (std::size_t t = 0; t < polygons_.size(); ++t) by_piece_[next[piece_of(t)]++] = t;
+  InfoBox box(std::size_t c) const { return {ToBbox(pieces_.lo[c], pieces_.hi[c]), c}; }
+  bool BoxHolds(std::size_t outer, std::size_t inner) const {
+    return (pieces_.lo[inner].array() >= pieces_.lo[outer].array()).all() &&
+           (pieces_.hi[inner].array() <= pieces_.hi[outer].array()).all();
   }
-  const std::size_t* triangles(std::size_t c) const { return &by_piece_[start_[c]]; }
-  std::size_t num_triangles(std::size_t c) const { return start_[c + 1] - start_[c]; }
 
-  // For each piece of `queried`: the closed pieces that hold it, judged at the first of
-  // up to kTries of its vertices (spread over its triangles) that gives a clean count
-  // against every closed piece whose box holds that vertex (CGAL's box intersection
-  // finds those); `known` false where none does. Precondition: GroupTriangles().
+  // For each piece of `queried`, at up to kTries of its vertices (spread over its
+  // triangles), the closed pieces that hold the vertex. A vertex on a piece's surface,
+  // or in an open piece's box (a cracked shell round it could be its part), tells
+  // nothing. `known`: some vertex told; `pieces`: the first such vertex's holders;
+  // `free`: some such vertex is held by none.
   struct Holders {
     bool known = false;
     std::vector<std::size_t> pieces;
+    bool free = false;
   };
-  std::vector<Holders> FindHolders(const std::vector<std::size_t>& queried) const {
+  std::vector<Holders> FindHolders(const std::vector<std::size_t>& queried) {
     static constexpr std::size_t kTries = 8;
-    using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t>;
+    GroupTriangles();
     const auto vertex = [&](std::size_t c, std::size_t j) {  // j < kTries
-      const std::size_t n = num_triangles(c);
-      return polygons_[triangles(c)[j * n / kTries]][j % 3];
+      const std::size_t n = start_[c + 1] - start_[c];
+      return polygons_[by_piece_[start_[c] + j * n / kTries]][j % 3];
     };
-    std::vector<Box> at, round;
+    std::vector<InfoBox> at, round;
     for (std::size_t q = 0; q < queried.size(); ++q) {
       for (std::size_t j = 0; j < kTries; ++j) {
-        const Point& p = points_[vertex(queried[q], j)];
-        at.emplace_back(p.bbox(), q * kTries + j);
+        at.emplace_back(points_[vertex(queried[q], j)].bbox(), q * kTries + j);
       }
     }
-    for (std::size_t c = 0; c < size(); ++c) {
-      if (!closed(c)) continue;
-      round.emplace_back(CGAL::Bbox_3(pieces_.lo[c].x(), pieces_.lo[c].y(), pieces_.lo[c].z(),
-                                      pieces_.hi[c].x(), pieces_.hi[c].y(), pieces_.hi[c].z()),
-                         c);
-    }
-    std::vector<std::pair<std::size_t, std::size_t>> pairs;  // (query and try, piece)
-    CGAL::box_intersection_d(at.begin(), at.end(), round.begin(), round.end(),
-                             [&](const Box& a, const Box& b) {
-                               if (b.info() != queried[a.info() / kTries]) {
-                                 pairs.emplace_back(a.info(), b.info());
-                               }
-                             });
-    std::sort(pairs.begin(), pairs.end());
+    for (std::size_t c = 0; c < size(); ++c) round.push_back(box(c));
+    const auto pairs = MeetingBoxes(std::move(at), std::move(round));
     std::vector<Holders> out(queried.size());
     auto pair = pairs.begin();
     for (std::size_t q = 0; q < queried.size(); ++q) {
@@ -328,72 +273,154 @@ class ClosedPieces {
         const std::size_t key = q * kTries + j;
         const auto first = pair;
         while (pair != pairs.end() && pair->first == key) ++pair;
-        if (out[q].known) continue;
         const Point& p = points_[vertex(queried[q], j)];
         bool clean = true;
         std::vector<std::size_t> holders;
         for (auto it = first; it != pair && clean; ++it) {
           const std::size_t h = it->second;
-          const int inside = InsideClosedPiece(points_, polygons_, triangles(h), num_triangles(h),
-                                               p, (pieces_.hi[h] - pieces_.lo[h]).norm());
-          clean = inside >= 0;
-          if (inside == 1) holders.push_back(h);
+          if (h == queried[q]) continue;
+          const Built* built = closed(h) ? Build(h) : nullptr;
+          if (built == nullptr) {
+            clean = false;  // an open piece's box, or a piece CGAL would not take
+            break;
+          }
+          const CGAL::Bounded_side side = (*built->side)(ExactPoint(p.x(), p.y(), p.z()));
+          clean = side != CGAL::ON_BOUNDARY;
+          if (side == CGAL::ON_BOUNDED_SIDE) holders.push_back(h);
         }
-        if (clean) out[q] = {true, std::move(holders)};
+        if (!clean) continue;
+        out[q].free = out[q].free || holders.empty();
+        if (!out[q].known) out[q].pieces = std::move(holders);
+        out[q].known = true;
       }
     }
     return out;
   }
 
+  // Whether the surfaces of closed pieces a and b cross or touch (CGAL's do_intersect);
+  // true too where either cannot be tested.
+  bool SurfacesMeet(std::size_t a, std::size_t b) {
+    const Built* x = Build(a);
+    const Built* y = Build(b);
+    return x == nullptr || y == nullptr ||
+           CGAL::Polygon_mesh_processing::do_intersect(x->mesh, y->mesh);
+  }
+
  private:
+  using PieceMesh = CGAL::Surface_mesh<ExactPoint>;
+  struct Built {
+    PieceMesh mesh;
+    std::unique_ptr<CGAL::Side_of_triangle_mesh<PieceMesh, ExactPredicates>> side;
+  };
+
+  void GroupTriangles() {
+    if (!start_.empty()) return;
+    start_.assign(size() + 1, 0);
+    for (std::size_t t = 0; t < polygons_.size(); ++t) ++start_[piece_of(t) + 1];
+    for (std::size_t c = 0; c < size(); ++c) start_[c + 1] += start_[c];
+    by_piece_.resize(polygons_.size());
+    std::vector<std::size_t> next(start_.begin(), start_.end() - 1);
+    for (std::size_t t = 0; t < polygons_.size(); ++t) by_piece_[next[piece_of(t)]++] = t;
+  }
+
+  // Closed piece c as a CGAL mesh with its inside test, built on first use; null where
+  // CGAL does not take it as a triangle mesh.
+  const Built* Build(std::size_t c) {
+    GroupTriangles();
+    if (built_.empty()) built_.resize(size());
+    if (built_[c] != nullptr) return built_[c]->side != nullptr ? built_[c].get() : nullptr;
+    built_[c] = std::make_unique<Built>();
+    PieceMesh& mesh = built_[c]->mesh;
+    if (local_.empty()) local_.assign(points_.size(), kNoVertex);
+    std::vector<std::size_t> used;
+    bool taken = true;
+    for (std::size_t i = start_[c]; i < start_[c + 1] && taken; ++i) {
+      std::array<PieceMesh::Vertex_index, 3> corners;
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t v = polygons_[by_piece_[i]][k];
+        if (local_[v] == kNoVertex) {
+          local_[v] = static_cast<std::uint32_t>(
+              mesh.add_vertex(ExactPoint(points_[v].x(), points_[v].y(), points_[v].z())));
+          used.push_back(v);
+        }
+        corners[k] = PieceMesh::Vertex_index(local_[v]);
+      }
+      taken = mesh.add_face(corners[0], corners[1], corners[2]) != PieceMesh::null_face();
+    }
+    for (const std::size_t v : used) local_[v] = kNoVertex;
+    if (!taken || !CGAL::is_closed(mesh)) return nullptr;
+    built_[c]->side =
+        std::make_unique<CGAL::Side_of_triangle_mesh<PieceMesh, ExactPredicates>>(mesh);
+    return built_[c].get();
+  }
+
+  static constexpr std::uint32_t kNoVertex = ~std::uint32_t{0};
   const std::vector<Point>& points_;
   const std::vector<Polygon>& polygons_;
   ConnectedPieces pieces_;
   std::vector<char> closed_;
   std::vector<double> volume_;
-  std::vector<std::size_t> start_;     // GroupTriangles: piece c's are by_piece_[start_[c],
-  std::vector<std::size_t> by_piece_;  // start_[c + 1])
+  std::vector<std::size_t> start_;     // piece c's triangles are by_piece_[start_[c],
+  std::vector<std::size_t> by_piece_;  // start_[c + 1]), once grouped
+  std::vector<std::unique_ptr<Built>> built_;
+  std::vector<std::uint32_t> local_;  // while building a piece: a vertex's index in it
 };
 
-// Step 5: a closed piece wound inward (a negative volume) that no other closed piece
-// holds is the outer shell of a part whose triangles were listed the wrong way round (a
-// file's writer that winds clockwise): it is turned round, and so is a piece wound
-// outward that only it holds (that part's void, listed the same way). A piece for which
-// no count is clean (its vertices on other pieces) is left as it is. Returns how many
-// pieces were turned. O(n) when no closed piece is wound inward; else O(n log n) for
-// the boxes, and O(size) of each piece whose box holds a vertex in question.
+// Step 5: a closed piece wound inward (a negative volume) with a vertex outside every
+// other closed piece is no void (a void lies wholly inside its part): it is the outer
+// shell of a part whose triangles were listed the wrong way round (a file's writer that
+// winds clockwise), and it is turned round. So is a closed piece wound outward that
+// only such a shell holds and whose surface never meets the shell's (that part's void,
+// listed the same way; a part overlapping the shell crosses it). Where the vertices
+// tried tell nothing (on a surface, or in an open piece's box: a cracked shell round a
+// void), a piece is left as it is; so is a part inside another's void, which two
+// shells hold. Returns how many pieces were turned. O(n) when no closed piece winds
+// inward; else O(n log n) for the boxes, and CGAL's tree over each closed piece whose
+// box holds a vertex tried (on a 1M-triangle part round a void, about 0.9 s).
 std::size_t TurnInsideOutShells(const std::vector<Point>& points, const EdgeCounts& edges,
                                 std::vector<Polygon>* polygons,
                                 std::vector<std::array<Vec3, 3>>* corner_normals) {
   ClosedPieces pieces(points, *polygons, edges);
-  std::vector<std::size_t> inward, outward;
+  std::vector<std::size_t> inward;
   for (std::size_t c = 0; c < pieces.size(); ++c) {
-    if (!pieces.closed(c)) continue;
-    if (pieces.volume(c) < 0.0) inward.push_back(c);
-    if (pieces.volume(c) > 0.0) outward.push_back(c);
+    if (pieces.closed(c) && pieces.volume(c) < 0.0) inward.push_back(c);
   }
   if (inward.empty()) return 0;
-  pieces.GroupTriangles();
   std::vector<char> turn(pieces.size(), 0);
   std::vector<ClosedPieces::Holders> holders = pieces.FindHolders(inward);
+  std::vector<InfoBox> turned_boxes, outward_boxes;
   for (std::size_t i = 0; i < inward.size(); ++i) {
-    if (holders[i].known && holders[i].pieces.empty()) turn[inward[i]] = 1;
+    if (!holders[i].free) continue;
+    turn[inward[i]] = 1;
+    turned_boxes.push_back(pieces.box(inward[i]));
   }
-  holders = pieces.FindHolders(outward);
-  for (std::size_t i = 0; i < outward.size(); ++i) {
-    if (holders[i].known && holders[i].pieces.size() == 1 && turn[holders[i].pieces[0]] == 1) {
-      turn[outward[i]] = 2;
+  if (turned_boxes.empty()) return 0;
+  // a turned shell's voids: closed pieces wound outward in its box
+  for (std::size_t c = 0; c < pieces.size(); ++c) {
+    if (pieces.closed(c) && pieces.volume(c) > 0.0) outward_boxes.push_back(pieces.box(c));
+  }
+  std::vector<std::size_t> in_a_turned_box;
+  for (const auto& [c, shell] : MeetingBoxes(std::move(outward_boxes), std::move(turned_boxes))) {
+    if (pieces.BoxHolds(shell, c) && (in_a_turned_box.empty() || in_a_turned_box.back() != c)) {
+      in_a_turned_box.push_back(c);
     }
   }
-  std::size_t turned = 0;
+  holders = pieces.FindHolders(in_a_turned_box);
+  for (std::size_t i = 0; i < in_a_turned_box.size(); ++i) {
+    const std::size_t c = in_a_turned_box[i];
+    if (holders[i].known && holders[i].pieces.size() == 1 && turn[holders[i].pieces[0]] == 1 &&
+        !pieces.SurfacesMeet(c, holders[i].pieces[0])) {
+      turn[c] = 2;
+    }
+  }
   for (std::size_t t = 0; t < polygons->size(); ++t) {
     if (turn[pieces.piece_of(t)] == 0) continue;
     std::swap((*polygons)[t][1], (*polygons)[t][2]);
     // the corner normals follow their corners: they are the CAD surface's
     if (!corner_normals->empty()) std::swap((*corner_normals)[t][1], (*corner_normals)[t][2]);
   }
-  for (const char t : turn) turned += t != 0;
-  return turned;
+  return static_cast<std::size_t>(
+      std::count_if(turn.begin(), turn.end(), [](char t) { return t != 0; }));
 }
 
 bool Degenerate(const std::vector<Point>& points, const Polygon& p, double needle_tolerance) {

@@ -257,6 +257,39 @@ TEST(MeshRepair, TurnsOnlyTheShellsThatAreInsideOut) {
   EXPECT_LT(VolumeOnBox(out, Vec3(5, 0, 0), Vec3(6, 1, 1)), 0.0);  // the cup, untouched
 }
 
+TEST(MeshRepair, PartsThatOverlapAreNoVoidsAndACrackedShellsVoidIsLeftAlone) {
+  // a cube with one triangle wound the wrong way: the orientation follows that triangle
+  // and winds the whole cube inward (11 reoriented); a second cube, wound outward,
+  // overlaps it. Only the first is turned; the second is a part, not its void
+  TriangleSoup overlapping = testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(2, 2, 2));
+  std::swap(overlapping.triangles[0][1], overlapping.triangles[0][2]);
+  Append(testing::MakeBoxSoup(Vec3(1, 1, 1), Vec3(3, 3, 3)), 6, &overlapping);
+  TriangleSoup out;
+  RepairReport r = Repair(overlapping, &out);
+  EXPECT_EQ(r.reoriented, 11u) << r.Describe();
+  EXPECT_EQ(r.inside_out_shells, 1u) << r.Describe();
+  EXPECT_GT(VolumeOnBox(out, Vec3(0, 0, 0), Vec3(2, 2, 2)), 0.0);
+  EXPECT_GT(VolumeOnBox(out, Vec3(1, 1, 1), Vec3(3, 3, 3)), 0.0);
+  // both wound inward (a file listed clockwise): each has a corner outside the other,
+  // so neither is a void, and both are turned
+  TriangleSoup clockwise = testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(2, 2, 2));
+  Append(testing::MakeBoxSoup(Vec3(1, 1, 1), Vec3(3, 3, 3)), 6, &clockwise);
+  r = Repair(WoundTheOtherWay(clockwise), &out);
+  EXPECT_EQ(r.inside_out_shells, 2u) << r.Describe();
+  EXPECT_GT(VolumeOnBox(out, Vec3(0, 0, 0), Vec3(2, 2, 2)), 0.0);
+  EXPECT_GT(VolumeOnBox(out, Vec3(1, 1, 1), Vec3(3, 3, 3)), 0.0);
+  // a hollow part whose outer shell has a crack (one triangle missing): its void, wound
+  // inward, lies in the cracked shell's box and is left as the tessellator wound it
+  TriangleSoup cracked = testing::MakeBoxSoup(Vec3::Zero(), Vec3::Constant(10.0));
+  cracked.triangles.pop_back();
+  cracked.cad_faces.pop_back();
+  Append(WoundTheOtherWay(testing::MakeBoxSoup(Vec3::Constant(3.0), Vec3::Constant(7.0))), 6,
+         &cracked);
+  r = Repair(cracked, &out);
+  EXPECT_EQ(r.inside_out_shells, 0u) << r.Describe();
+  EXPECT_LT(VolumeOnBox(out, Vec3::Constant(3.0), Vec3::Constant(7.0)), 0.0);
+}
+
 TEST(MeshRepair, SplitsANonManifoldEdgeAndSaysSo) {
   TriangleSoup s;
   s.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1)};
