@@ -376,7 +376,7 @@ class ClosedPieces {
 // void), a piece is left as it is; so is a part inside another's void, which two
 // shells hold. Returns how many pieces were turned. O(n) when no closed piece winds
 // inward; else O(n log n) for the boxes, and CGAL's tree over each closed piece whose
-// box holds a vertex tried (on a 1M-triangle part round a void, about 0.9 s).
+// box holds a vertex tried (on a 1M-triangle part round a void, about 0.8 s).
 std::size_t TurnInsideOutShells(const std::vector<Point>& points, const EdgeCounts& edges,
                                 std::vector<Polygon>* polygons,
                                 std::vector<std::array<Vec3, 3>>* corner_normals) {
