@@ -331,6 +331,10 @@ class ClosedPieces {
     if (built_[c] != nullptr) return built_[c]->side != nullptr ? built_[c].get() : nullptr;
     built_[c] = std::make_unique<Built>();
     PieceMesh& mesh = built_[c]->mesh;
+    const std::size_t faces = start_[c + 1] - start_[c];  // closed: V = F / 2 + 2 - 2 genus
+    mesh.reserve(static_cast<PieceMesh::size_type>(faces / 2 + 2),
+                 static_cast<PieceMesh::size_type>(3 * faces / 2),
+                 static_cast<PieceMesh::size_type>(faces));
     if (local_.empty()) local_.assign(points_.size(), kNoVertex);
     std::vector<std::size_t> used;
     bool taken = true;
