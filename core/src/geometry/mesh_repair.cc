@@ -183,6 +183,30 @@ std::size_t WeldOpenEdges(const std::vector<Point>& points, std::vector<Polygon>
   return into.size();
 }
 
+// Whether the segment p-q (q outside the triangle's box) crosses triangle abc: 1
+// through its inside, 0 not at all, -1 through an edge or a corner, from p on the
+// triangle or within its plane, where a count of crossings could be wrong.
+int Crosses(const ExactPoint& p, const ExactPoint& q, const ExactPoint& a, const ExactPoint& b,
+            const ExactPoint& c) {
+  const CGAL::Orientation side_p = CGAL::orientation(a, b, c, p);
+  const CGAL::Orientation side_q = CGAL::orientation(a, b, c, q);
+  if (side_p == side_q) return side_p == CGAL::COPLANAR ? -1 : 0;
+  if (side_p == CGAL::COPLANAR) {
+    // the segment meets the plane at p alone: in the triangle only if in its box
+    const CGAL::Bbox_3 box = a.bbox() + b.bbox() + c.bbox();
+    return CGAL::do_overlap(box, p.bbox()) ? -1 : 0;
+  }
+  const CGAL::Orientation s[3] = {CGAL::orientation(p, q, a, b), CGAL::orientation(p, q, b, c),
+                                  CGAL::orientation(p, q, c, a)};
+  int positive = 0, negative = 0;
+  for (const CGAL::Orientation o : s) {
+    positive += o == CGAL::POSITIVE;
+    negative += o == CGAL::NEGATIVE;
+  }
+  if (positive == 3 || negative == 3) return 1;
+  return positive == 0 || negative == 0 ? -1 : 0;  // on an edge or a corner, or outside
+}
+
 // The pairs (i, j) of boxes a[i] and b[j] that meet (closed boxes: a point on a box's
 // face is in it), by their infos, sorted. CGAL's box intersection: O(n log n) where a
 // loop over all pairs would be quadratic in the number of pieces.
@@ -203,8 +227,7 @@ CGAL::Bbox_3 ToBbox(const Vec3& lo, const Vec3& hi) {
 
 // The connected pieces of an oriented soup, which are closed, which way each winds, and
 // which closed pieces hold which: what step 5 needs to tell a part's outer shell from
-// its void. The inside tests are CGAL's (Side_of_triangle_mesh: exact predicates, an
-// AABB tree per piece asked about, built on first use).
+// its void. The inside tests use exact predicates (SideOf).
 class ClosedPieces {
  public:
   ClosedPieces(const std::vector<Point>& points, const std::vector<Polygon>& polygons,
@@ -266,6 +289,8 @@ class ClosedPieces {
     }
     for (std::size_t c = 0; c < size(); ++c) round.push_back(box(c));
     const auto pairs = MeetingBoxes(std::move(at), std::move(round));
+    std::vector<std::size_t> asked(size(), 0);
+    for (const auto& [key, h] : pairs) ++asked[h];
     std::vector<Holders> out(queried.size());
     auto pair = pairs.begin();
     for (std::size_t q = 0; q < queried.size(); ++q) {
@@ -279,12 +304,11 @@ class ClosedPieces {
         for (auto it = first; it != pair && clean; ++it) {
           const std::size_t h = it->second;
           if (h == queried[q]) continue;
-          const Built* built = closed(h) ? Build(h) : nullptr;
-          if (built == nullptr) {
-            clean = false;  // an open piece's box, or a piece CGAL would not take
+          if (!closed(h)) {
+            clean = false;  // an open piece's box
             break;
           }
-          const CGAL::Bounded_side side = (*built->side)(ExactPoint(p.x(), p.y(), p.z()));
+          const CGAL::Bounded_side side = SideOf(h, p, asked[h]);
           clean = side != CGAL::ON_BOUNDARY;
           if (side == CGAL::ON_BOUNDED_SIDE) holders.push_back(h);
         }
@@ -302,16 +326,55 @@ class ClosedPieces {
   bool SurfacesMeet(std::size_t a, std::size_t b) {
     const Built* x = Build(a);
     const Built* y = Build(b);
-    return x == nullptr || y == nullptr ||
-           CGAL::Polygon_mesh_processing::do_intersect(x->mesh, y->mesh);
+    return !x->taken || !y->taken || CGAL::Polygon_mesh_processing::do_intersect(x->mesh, y->mesh);
   }
 
  private:
   using PieceMesh = CGAL::Surface_mesh<ExactPoint>;
+  using InsideTest = CGAL::Side_of_triangle_mesh<PieceMesh, ExactPredicates>;
   struct Built {
     PieceMesh mesh;
-    std::unique_ptr<CGAL::Side_of_triangle_mesh<PieceMesh, ExactPredicates>> side;
+    bool taken = true;                   // CGAL took every triangle, and the mesh is closed
+    std::unique_ptr<InsideTest> inside;  // its tree, made when many vertices ask
   };
+
+  // Which side of closed piece h the point p lies on, `asked` being how many vertices
+  // will ask about h: for a few, exact parity along up to three segments out of h's
+  // box, brute force over its triangles (a few ms on a million); for more, CGAL's
+  // Side_of_triangle_mesh, whose tree costs as much as some twenty such counts but
+  // answers each ask in O(log n). ON_BOUNDARY: the point tells nothing (on the surface,
+  // or no clean count).
+  CGAL::Bounded_side SideOf(std::size_t h, const Point& p, std::size_t asked) {
+    static constexpr std::size_t kAsksForATree = 24;
+    const ExactPoint from(p.x(), p.y(), p.z());
+    if (asked >= kAsksForATree) {
+      Built* built = Build(h);
+      if (!built->taken) return CGAL::ON_BOUNDARY;
+      if (built->inside == nullptr) built->inside = std::make_unique<InsideTest>(built->mesh);
+      return (*built->inside)(from);
+    }
+    static constexpr double kDirections[3][3] = {
+        {0.5773502691896258, 0.6180339887498949, 0.5331584453516463},
+        {-0.7071067811865476, 0.2360679774997897, 0.6666666666666666},
+        {0.1415926535897932, -0.8660254037844386, -0.4794255386042030}};
+    const double far = 2.0 * (pieces_.hi[h] - pieces_.lo[h]).norm();  // well out of the box
+    const auto at = [this](std::size_t v) {
+      return ExactPoint(points_[v].x(), points_[v].y(), points_[v].z());
+    };
+    for (const auto& d : kDirections) {
+      const ExactPoint to(p.x() + far * d[0], p.y() + far * d[1], p.z() + far * d[2]);
+      int crossings = 0;
+      bool clean = true;
+      for (std::size_t i = start_[h]; i < start_[h + 1] && clean; ++i) {
+        const Polygon& t = polygons_[by_piece_[i]];
+        const int crossing = Crosses(from, to, at(t[0]), at(t[1]), at(t[2]));
+        clean = crossing >= 0;
+        crossings += crossing;
+      }
+      if (clean) return crossings % 2 == 1 ? CGAL::ON_BOUNDED_SIDE : CGAL::ON_UNBOUNDED_SIDE;
+    }
+    return CGAL::ON_BOUNDARY;
+  }
 
   void GroupTriangles() {
     if (!start_.empty()) return;
@@ -323,12 +386,12 @@ class ClosedPieces {
     for (std::size_t t = 0; t < polygons_.size(); ++t) by_piece_[next[piece_of(t)]++] = t;
   }
 
-  // Closed piece c as a CGAL mesh with its inside test, built on first use; null where
-  // CGAL does not take it as a triangle mesh.
-  const Built* Build(std::size_t c) {
+  // Closed piece c as a CGAL mesh, built on first use (`taken` false where CGAL does
+  // not take it as a closed triangle mesh).
+  Built* Build(std::size_t c) {
     GroupTriangles();
     if (built_.empty()) built_.resize(size());
-    if (built_[c] != nullptr) return built_[c]->side != nullptr ? built_[c].get() : nullptr;
+    if (built_[c] != nullptr) return built_[c].get();
     built_[c] = std::make_unique<Built>();
     PieceMesh& mesh = built_[c]->mesh;
     const std::size_t faces = start_[c + 1] - start_[c];  // closed: V = F / 2 + 2 - 2 genus
@@ -352,9 +415,7 @@ class ClosedPieces {
       taken = mesh.add_face(corners[0], corners[1], corners[2]) != PieceMesh::null_face();
     }
     for (const std::size_t v : used) local_[v] = kNoVertex;
-    if (!taken || !CGAL::is_closed(mesh)) return nullptr;
-    built_[c]->side =
-        std::make_unique<CGAL::Side_of_triangle_mesh<PieceMesh, ExactPredicates>>(mesh);
+    built_[c]->taken = taken && CGAL::is_closed(mesh);
     return built_[c].get();
   }
 
@@ -379,8 +440,8 @@ class ClosedPieces {
 // tried tell nothing (on a surface, or in an open piece's box: a cracked shell round a
 // void), a piece is left as it is; so is a part inside another's void, which two
 // shells hold. Returns how many pieces were turned. O(n) when no closed piece winds
-// inward; else O(n log n) for the boxes, and CGAL's tree over each closed piece whose
-// box holds a vertex tried (on a 1M-triangle part round a void, about 0.8 s).
+// inward; else O(n log n) for the boxes, and per closed piece whose box holds a vertex
+// tried, O(size) per vertex for a few, or CGAL's tree over it for many.
 std::size_t TurnInsideOutShells(const std::vector<Point>& points, const EdgeCounts& edges,
                                 std::vector<Polygon>* polygons,
                                 std::vector<std::array<Vec3, 3>>* corner_normals) {

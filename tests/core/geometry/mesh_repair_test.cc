@@ -290,6 +290,26 @@ TEST(MeshRepair, PartsThatOverlapAreNoVoidsAndACrackedShellsVoidIsLeftAlone) {
   EXPECT_LT(VolumeOnBox(out, Vec3::Constant(3.0), Vec3::Constant(7.0)), 0.0);
 }
 
+TEST(MeshRepair, APartWithManyVoidsIsToldApartFromItsVoidsAsWithOne) {
+  // four voids in one block: 32 vertices ask about the block's inside, enough that the
+  // repair answers them from CGAL's tree over it rather than one parity count each
+  TriangleSoup block = testing::MakeBoxSoup(Vec3::Zero(), Vec3::Constant(10.0));
+  for (const double at : {1.0, 3.0, 5.0, 7.0}) {
+    Append(WoundTheOtherWay(testing::MakeBoxSoup(Vec3::Constant(at), Vec3::Constant(at + 1.0))), 6,
+           &block);
+  }
+  for (const bool clockwise : {false, true}) {
+    TriangleSoup out;
+    const RepairReport r = Repair(clockwise ? WoundTheOtherWay(block) : block, &out);
+    EXPECT_EQ(r.inside_out_shells, clockwise ? 5u : 0u) << r.Describe();
+    EXPECT_GT(VolumeOnBox(out, Vec3::Zero(), Vec3::Constant(10.0)), 0.0) << clockwise;
+    for (const double at : {1.0, 3.0, 5.0, 7.0}) {
+      EXPECT_LT(VolumeOnBox(out, Vec3::Constant(at), Vec3::Constant(at + 1.0)), 0.0)
+          << clockwise << ", void at " << at;
+    }
+  }
+}
+
 TEST(MeshRepair, SplitsANonManifoldEdgeAndSaysSo) {
   TriangleSoup s;
   s.vertices = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1)};

@@ -15,14 +15,15 @@
 //   4. orientation is made consistent (CGAL's orient_polygon_soup); a non-manifold
 //      edge or vertex is split by duplicating its vertex, as CGAL does, and counted;
 //   5. a closed piece wound inward with a vertex outside every other closed piece (a
-//      void lies wholly inside its part; CGAL's Side_of_triangle_mesh, exact
-//      predicates) is a part listed the wrong way round, e.g. by a file writer that
-//      winds clockwise, or by step 4 following one flipped triangle: it is turned
-//      outward, and so is, inward, a piece that only it holds and whose surface never
-//      meets it (its void, listed the same way). A part's own void, wound inward inside
-//      it, is left so, and so is any piece where the vertices tried tell nothing (on a
-//      surface, or in an open piece's box: a cracked shell round a void). Without this
-//      the proxy could not tell such a part's inside from its outside when it restarts;
+//      void lies wholly inside its part; exact predicates: a parity count for a few
+//      vertices, CGAL's Side_of_triangle_mesh for many) is a part listed the wrong way
+//      round, e.g. by a file writer that winds clockwise, or by step 4 following one
+//      flipped triangle: it is turned outward, and so is, inward, a piece that only it
+//      holds and whose surface never meets it (its void, listed the same way). A
+//      part's own void, wound inward inside it, is left so, and so is any piece where
+//      the vertices tried tell nothing (on a surface, or in an open piece's box: a
+//      cracked shell round a void). Without this the proxy could not tell such a
+//      part's inside from its outside when it restarts;
 //   6. what stays open is reported: edges with one triangle are holes or cracks.
 // CAD face ids and corner normals follow their triangles (a flipped triangle's corner
 // normals are reordered with its corners, not negated: they are the CAD surface's, not
