@@ -22,6 +22,13 @@ strict to loose and accepts only a *unique* candidate at the first level that ha
 3. the same kind of surface facing the same way (plane normal, cylinder axis and
    sense): the face moved, e.g. the box got taller.
 
+At the two loose levels a face that is still exactly one of the tagged face's *rivals*
+is no candidate: the rivals are the other faces of the part, at the last match, that
+level 3 could have confused with it (a second hole along the same axis direction, the
+other faces of a B-spline part). Without them, removing the tagged hole moved its tag
+onto the other, unchanged hole and called that "ok". Entries written before rivals were
+kept have none until they are signed again, and match as before.
+
 No GUI; used by the HapticSurface object on every recompute.
 """
 import math
@@ -168,16 +175,26 @@ def same_face(a, b, size):
 LEVELS = (same_face, same_surface, same_orientation)
 
 
-def match_face(signature, name, signatures, size):
+def rivals_of(index, signatures, size):
+    """Signatures of the faces other than ``index`` that match it at the loosest level."""
+    mine = signatures[index]
+    return [s for i, s in enumerate(signatures) if i != index and same_orientation(mine, s, size)]
+
+
+def match_face(signature, name, signatures, size, rivals=()):
     """(face name or None, status) of the face of a shape that ``signature`` describes;
-    ``name`` is the stored name, ``signatures`` those of the shape's faces (Face1 first).
+    ``name`` is the stored name, ``signatures`` those of the shape's faces (Face1 first),
+    ``rivals`` the signatures of the faces it could be confused with at the last match.
 
     At each level, from strict to loose: if the stored name fits it is kept ("ok");
     otherwise exactly one fitting face is a re-match; two or more are ambiguous
-    ("broken"); none passes to the next, looser, level."""
+    ("broken"); none passes to the next, looser, level. A face that is still one of the
+    rivals is never a fit."""
     index = _face_index(name)
+    unchanged_rivals = {i for i, s in enumerate(signatures) if any(same_face(r, s, size) for r in rivals)}
     for level in LEVELS:
-        fits = [i for i, s in enumerate(signatures) if level(signature, s, size)]
+        fits = [i for i, s in enumerate(signatures)
+                if i not in unchanged_rivals and level(signature, s, size)]
         if not fits:
             continue
         if len(fits) == 1:
@@ -213,24 +230,41 @@ def rematch(entries, shapes):
         if entry["object"] not in cache:
             cache[entry["object"]] = shape_signatures(shape)
         signatures, size = cache[entry["object"]]
-        name, status = match_face(entry["signature"], entry["face"], signatures, size)
+        name, status = match_face(entry["signature"], entry["face"], signatures, size, entry.get("rivals", ()))
         if status == BROKEN:
             result.append(dict(entry, status=BROKEN))
         else:
-            result.append(dict(entry, face=name, status=status, signature=signatures[_face_index(name)]))
+            index = _face_index(name)
+            result.append(dict(entry, face=name, status=status, signature=signatures[index],
+                               rivals=rivals_of(index, signatures, size)))
     return result
 
 
-def new_entry(obj, face_name):
-    """A reference entry for a face as it is now."""
-    signature = None
-    try:
-        face = local_shape(obj.Shape).getElement(face_name)
-        signature = face_signature(face)
-    except Exception:  # a face that does not exist yet is recorded as broken
-        pass
-    return {"object": obj.Name, "face": face_name, "signature": signature,
-            "status": OK if signature is not None else BROKEN}
+def sign_rivals(entry, shape):
+    """``entry`` with its rivals taken from ``shape`` when it has none yet and still names
+    the face it describes; otherwise ``entry`` as it is."""
+    if "rivals" in entry or entry.get("signature") is None or shape is None or shape.isNull():
+        return entry
+    signatures, size = shape_signatures(shape)
+    index = _face_index(entry["face"])
+    if not 0 <= index < len(signatures) or not same_face(entry["signature"], signatures[index], size):
+        return entry
+    return dict(entry, rivals=rivals_of(index, signatures, size))
+
+
+def new_entry(obj, face_name, cache=None):
+    """A reference entry for a face as it is now. ``cache`` ({object name: what
+    shape_signatures gave}) saves signing a part's faces again for each of its faces."""
+    index = _face_index(face_name)
+    cache = {} if cache is None else cache
+    if obj.Name not in cache:
+        shape = getattr(obj, "Shape", None)
+        cache[obj.Name] = shape_signatures(shape) if shape is not None and not shape.isNull() else ([], 1.0)
+    signatures, size = cache[obj.Name]
+    if not 0 <= index < len(signatures):  # no such face (yet): recorded as broken
+        return {"object": obj.Name, "face": face_name, "signature": None, "status": BROKEN}
+    return {"object": obj.Name, "face": face_name, "signature": signatures[index],
+            "rivals": rivals_of(index, signatures, size), "status": OK}
 
 
 # --- PartDesign: a designer picks the visible solid, which belongs to the Body -----------

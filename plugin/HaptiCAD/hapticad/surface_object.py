@@ -188,6 +188,12 @@ class HapticSurface(SchemaState):
         if not obj.ReferenceState:
             # written before schema 3: the names are as good as they get, sign them now
             sync_reference_state(obj)
+        else:
+            # written before references kept their rivals: sign those now, while the
+            # shapes are the ones the references were matched on
+            shapes = {o.Name: getattr(o, "Shape", None) for o, _ in reference_pairs(obj)}
+            _write_reference_state(obj, [face_references.sign_rivals(e, shapes.get(e.get("object")))
+                                         for e in read_reference_state(obj)])
         # a document written without the GUI (freecadcmd, the CLI) has no view-provider
         # proxy to restore: give the surface its own
         attach_view_provider(obj)
@@ -278,7 +284,9 @@ def sync_reference_state(obj):
     """Keeps one state entry per reference: known ones as they are, new ones signed from
     the face they name now (a designer just picked it)."""
     known = {(e["object"], e["face"]): e for e in read_reference_state(obj)}
-    entries = [known.get((o.Name, sub)) or face_references.new_entry(o, sub) for o, sub in reference_pairs(obj)]
+    cache = {}
+    entries = [known.get((o.Name, sub)) or face_references.new_entry(o, sub, cache)
+               for o, sub in reference_pairs(obj)]
     _write_reference_state(obj, entries)
 
 
@@ -303,7 +311,8 @@ def rematch_references(obj):
     before = read_reference_state(obj)
     pairs = reference_pairs(obj)
     known = {(e["object"], e["face"]): e for e in before}
-    inputs = [known.get((o.Name, sub)) or face_references.new_entry(o, sub) for o, sub in pairs]
+    cache = {}
+    inputs = [known.get((o.Name, sub)) or face_references.new_entry(o, sub, cache) for o, sub in pairs]
     objects = {o.Name: o for o, _ in pairs}
     entries = face_references.rematch(inputs, {name: getattr(o, "Shape", None) for name, o in objects.items()})
     # two references landing on one face: the one that kept its name wins, the other breaks

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Face references survive model edits (or say they broke): Box minus Cylinder, a box
 made taller, a PartDesign Body, an App::Part; never a silent re-bind. Run by freecadcmd."""
+import json
 import os
 import tempfile
 import unittest
@@ -155,7 +156,7 @@ class SimpleEditsTest(unittest.TestCase):
         self.assertEqual(HaptiCAD.reference_status(surface), [("Box", "Face6", "ok")])
         self.assertEqual(surface.ReferenceState, state)
 
-    def test_a_new_face_facing_the_same_way_makes_a_moved_face_ambiguous(self):
+    def test_a_moved_face_beside_one_facing_the_same_way_is_followed_unless_both_moved(self):
         # a step: two faces facing +z at different heights, the tagged one moves
         step = self.doc.addObject("Part::Box", "Step")
         step.Length, step.Width, step.Height = 5, 10, 15
@@ -165,9 +166,16 @@ class SimpleEditsTest(unittest.TestCase):
         self.doc.recompute()
         (top,) = faces_where(fuse.Shape, "Plane", lambda c: abs(c.z - 15) < 1e-6)
         surface = HaptiCAD.make_surface(self.doc, [(fuse, top)])
-        step.Height = 12  # the tagged face moves; +z faces at 10 and 12: which one?
+        step.Height = 12  # +z faces at 10 and 12: the one at 10 is the box's, unchanged
         self.doc.recompute()
-        self.assertEqual(HaptiCAD.reference_status(surface), [("Fuse", top, "broken")])
+        (step_top,) = faces_where(fuse.Shape, "Plane", lambda c: abs(c.z - 12) < 1e-6)
+        ((_, face, status),) = HaptiCAD.reference_status(surface)
+        self.assertEqual(face, step_top)
+        self.assertNotEqual(status, "broken")
+        # both move in one edit: +z faces at 11 and 13, and nothing tells which is which
+        self.box.Height, step.Height = 11, 13
+        self.doc.recompute()
+        self.assertEqual(HaptiCAD.reference_status(surface), [("Fuse", step_top, "broken")])
 
     def test_a_face_that_is_gone_is_broken(self):
         hole = self.doc.addObject("Part::Cylinder", "Hole")
@@ -190,6 +198,77 @@ class SimpleEditsTest(unittest.TestCase):
         self.doc.recompute()
         self.assertEqual([s for _, _, s in HaptiCAD.reference_status(surface)], ["broken", "ok"])
         self.assertEqual(len(build_document_scene(self.doc).face_surface), 1)
+
+
+class TwoHolesTest(unittest.TestCase):
+    """A plate with two holes bored the same way: the tag on one never lands on the other."""
+
+    def setUp(self):
+        self.doc = App.newDocument("TwoHoles")
+        plate = self.doc.addObject("Part::Box", "Plate")
+        plate.Length, plate.Width, plate.Height = 60, 30, 5
+        self.hole_a = self.doc.addObject("Part::Cylinder", "HoleA")
+        self.hole_a.Radius, self.hole_a.Height = 2, 20
+        self.hole_a.Placement.Base = App.Vector(15, 15, -5)
+        hole_b = self.doc.addObject("Part::Cylinder", "HoleB")
+        hole_b.Radius, hole_b.Height = 4, 20
+        hole_b.Placement.Base = App.Vector(45, 15, -5)
+        cut_a = self.doc.addObject("Part::Cut", "CutA")
+        cut_a.Base, cut_a.Tool = plate, self.hole_a
+        self.cut = self.doc.addObject("Part::Cut", "CutB")
+        self.cut.Base, self.cut.Tool = cut_a, hole_b
+        self.doc.recompute()
+        self.surface = HaptiCAD.make_surface(self.doc, [(self.cut, self.bore(2))], material="Rubber")
+        self.doc.recompute()
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def bore(self, radius):
+        names = [f"Face{i + 1}" for i, f in enumerate(self.cut.Shape.Faces)
+                 if type(f.Surface).__name__ == "Cylinder" and abs(f.Surface.Radius - radius) < 1e-9]
+        return names[0] if names else None
+
+    def test_removing_the_tagged_hole_breaks_the_tag_instead_of_moving_it_to_the_other(self):
+        self.hole_a.Placement.Base = App.Vector(200, 15, -5)  # off the plate: hole A is gone
+        self.doc.recompute()
+        self.assertIsNone(self.bore(2))
+        ((_, face, status),) = HaptiCAD.reference_status(self.surface)
+        self.assertEqual(status, "broken", f"the tag went to {face} (hole B is {self.bore(4)})")
+        with self.assertRaisesRegex(ValueError, "every tagged face reference is broken"):
+            build_document_scene(self.doc)
+
+    def test_the_tagged_hole_made_wider_keeps_its_tag_beside_the_other(self):
+        # without the rivals both bores faced the same way and the tag broke as ambiguous
+        self.hole_a.Radius = 3
+        self.doc.recompute()
+        ((_, face, status),) = HaptiCAD.reference_status(self.surface)
+        self.assertNotEqual(status, "broken")
+        self.assertEqual(face, self.bore(3))
+
+    def test_a_document_written_without_rivals_gets_them_when_it_opens(self):
+        from hapticad.surface_object import read_reference_state
+
+        (entry,) = read_reference_state(self.surface)
+        self.assertEqual(len(entry["rivals"]), 1)  # hole B's bore
+        self.assertEqual(entry["rivals"][0]["surface"]["radius"], 4.0)
+        old = [{k: v for k, v in e.items() if k != "rivals"} for e in read_reference_state(self.surface)]
+        self.surface.ReferenceState = json.dumps(old, sort_keys=True)
+        name = self.surface.Name
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "holes.FCStd")
+            self.doc.saveAs(path)
+            App.closeDocument(self.doc.Name)
+            self.doc = App.openDocument(path)
+        self.surface = self.doc.getObject(name)
+        self.cut = self.doc.getObject("CutB")
+        self.hole_a = self.doc.getObject("HoleA")
+        (entry,) = read_reference_state(self.surface)
+        self.assertEqual(entry["rivals"][0]["surface"]["radius"], 4.0)
+        self.assertNotIn("Touched", self.surface.State)
+        self.hole_a.Placement.Base = App.Vector(200, 15, -5)
+        self.doc.recompute()
+        self.assertEqual(HaptiCAD.reference_status(self.surface)[0][2], "broken")
 
 
 def HaptiCAD_state(surface):
@@ -310,6 +389,14 @@ class MatchFaceUnitTest(unittest.TestCase):
         self.assertEqual(m(a, "Face1", [b], 10), (None, "broken"))
         two_moved = [self.sig(12), self.sig(14, centre=(1, 1, 14)), b]
         self.assertEqual(m(a, "Face1", two_moved, 10), (None, "broken"))
+        # a rival that is still there is no candidate: a's face gone, the other remains
+        rival = self.sig(14, centre=(1, 1, 14))
+        self.assertEqual(m(a, "Face1", [rival, b], 10), ("Face1", "ok"))  # without rivals: wrong
+        self.assertEqual(m(a, "Face1", [rival, b], 10, [rival]), (None, "broken"))
+        # and the face that moved is found beside the unchanged rival
+        self.assertEqual(m(a, "Face2", [rival, moved, b], 10, [rival]), ("Face2", "ok"))
+        self.assertEqual(m(a, "Face1", [rival, moved, b], 10, [rival]), ("Face2", "rematched"))
+        self.assertEqual(face_references.rivals_of(0, [a, b, rival], 10), [rival])
 
 
 if __name__ == "__main__":
