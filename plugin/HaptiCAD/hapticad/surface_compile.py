@@ -12,7 +12,7 @@ import numpy as np
 
 import FreeCAD as App
 
-from . import _core
+from . import _core, curve_references
 
 MM = 1e-3
 
@@ -53,17 +53,29 @@ def face_frame(face, angle_deg):
 
 
 def _curve_edges(link):
-    """The edges a PatternCurve link names: a whole sketch, or chosen edges."""
-    obj, subs = link
-    if subs and any(subs):
-        return [obj.Shape.getElement(s) for s in subs if s]
-    return list(obj.Shape.Edges)
+    """The edges a PatternCurve link names: a whole sketch, or chosen edges. Raises
+    ValueError naming an edge the object does not have."""
+    obj, _ = link
+    names = curve_references.named_edges(link)
+    if not names:
+        return list(obj.Shape.Edges)
+    edges = obj.Shape.Edges
+    missing = [n for n in names if not (n.startswith("Edge") and n[4:].isdigit() and 1 <= int(n[4:]) <= len(edges))]
+    if missing:
+        raise ValueError(f"PatternCurve names {', '.join(f'{obj.Label}.{n}' for n in missing)}, which "
+                         f"{obj.Label} no longer has (it has {len(edges)} edges): pick the curve again")
+    return [edges[int(n[4:]) - 1] for n in names]
 
 
 def _as_bspline(edges):
     if len(edges) == 1:
-        e = edges[0]
-        return e.Curve.toBSpline(e.FirstParameter, e.LastParameter)
+        # exact: an arc or an ellipse becomes a rational quadratic, not a degree-9 fit
+        e = edges[0].toNurbs().Edges[0]
+        curve = e.Curve
+        if (e.FirstParameter, e.LastParameter) != (curve.FirstParameter, curve.LastParameter):
+            curve = curve.copy()
+            curve.segment(e.FirstParameter, e.LastParameter)
+        return curve
     import Part
 
     wire = Part.Wire(Part.__sortEdges__(edges))
@@ -75,7 +87,14 @@ def curve_pattern(surface, frame):
     origin, the lookup axis y along the curve's chord. Raises ValueError clearly."""
     if surface.PatternCurve is None:
         raise ValueError(f"{surface.Label}: the Curve pattern needs a sketch or edge in PatternCurve")
-    edges = _curve_edges(surface.PatternCurve)
+    problem = curve_references.problem(curve_references.loads(getattr(surface, "PatternCurveState", "")),
+                                       surface.PatternCurve[0].Label)
+    if problem:
+        raise ValueError(f"{surface.Label}: {problem}")
+    try:
+        edges = _curve_edges(surface.PatternCurve)
+    except ValueError as exc:
+        raise ValueError(f"{surface.Label}: {exc}") from None
     if not edges:
         raise ValueError(f"{surface.Label}: PatternCurve {surface.PatternCurve[0].Label} has no edges")
     curve = _as_bspline(edges)

@@ -13,7 +13,7 @@ import json
 import FreeCAD as App
 
 from .proxy_state import SchemaState
-from . import face_references, materials, textures
+from . import curve_references, face_references, materials, textures
 
 TYPE = "HaptiCAD::HapticSurface"
 # 3: ReferenceState (face signatures and re-match status per reference)
@@ -134,6 +134,10 @@ class HapticSurface(SchemaState):
             obj.addProperty("App::PropertyString", "ReferenceState", "Base",
                             "Per referenced face: its geometric signature and re-match status (JSON)")
             obj.setEditorMode("ReferenceState", 2)
+        if "PatternCurveState" not in obj.PropertiesList:
+            obj.addProperty("App::PropertyString", "PatternCurveState", "Base",
+                            "The pattern curve's named edges: signatures and re-match status (JSON)")
+            obj.setEditorMode("PatternCurveState", 2)
         for name, kind, group, tip, default, constraint in PROPERTIES:
             added = name not in obj.PropertiesList
             if added:
@@ -168,6 +172,8 @@ class HapticSurface(SchemaState):
         try:
             if prop == "References":
                 sync_reference_state(obj)
+            elif prop == "PatternCurve":
+                _write_curve_state(obj, curve_references.sign(obj.PatternCurve))
             elif prop == "Material" and obj.Material in materials.default_database():
                 material = materials.default_database().get(obj.Material)
                 obj.StaticFriction = material.static_friction
@@ -194,6 +200,9 @@ class HapticSurface(SchemaState):
             shapes = {o.Name: getattr(o, "Shape", None) for o, _ in reference_pairs(obj)}
             _write_reference_state(obj, [face_references.sign_rivals(e, shapes.get(e.get("object")))
                                          for e in read_reference_state(obj)])
+        if not obj.PatternCurveState and curve_references.named_edges(obj.PatternCurve):
+            # written before curve edges were signed: sign them as they are now
+            _write_curve_state(obj, curve_references.sign(obj.PatternCurve))
         # a document written without the GUI (freecadcmd, the CLI) has no view-provider
         # proxy to restore: give the surface its own
         attach_view_provider(obj)
@@ -205,6 +214,7 @@ class HapticSurface(SchemaState):
         self._applying = True
         try:
             rematch_references(obj)
+            rematch_curve(obj)
         finally:
             self._applying = False
         problems = validate(obj)
@@ -227,6 +237,10 @@ def validate(obj, compile_faces=True):
                         "cannot be found unambiguously; pick it again")
     if obj.Pattern == "Curve" and obj.PatternCurve is None:
         problems.append("the Curve pattern needs a sketch or edge in PatternCurve")
+    elif obj.Pattern == "Curve":
+        problem = curve_problem(obj)
+        if problem:
+            problems.append(problem)
     if obj.Texture != "None":
         values = [getattr(obj, n) for n in TEXTURE_VALUES]
         if any(v != v or abs(v) == float("inf") for v in values):
@@ -343,6 +357,32 @@ def rematch_references(obj):
                 grouped[o].append(sub)
         obj.References = [(o, tuple(subs)) for o, subs in grouped.items()]
     _write_reference_state(obj, entries)
+
+
+def _write_curve_state(obj, state):
+    text = curve_references.dumps(state) if state else ""
+    if text != obj.PatternCurveState:
+        obj.PatternCurveState = text
+
+
+def curve_problem(obj):
+    """What is wrong with the edges the pattern curve names (None when nothing is)."""
+    if obj.PatternCurve is None:
+        return None
+    return curve_references.problem(curve_references.loads(obj.PatternCurveState), obj.PatternCurve[0].Label)
+
+
+def rematch_curve(obj):
+    """Looks for the pattern curve's named edges again (curve_references) and follows
+    the ones that were renumbered, saying so; validate() reports the ones that broke."""
+    state, names = curve_references.rematch(curve_references.loads(obj.PatternCurveState), obj.PatternCurve)
+    for name, status in curve_references.status(state):
+        if status == curve_references.REMATCHED:
+            App.Console.PrintMessage(f"{obj.Label}: the pattern curve now follows "
+                                     f"{obj.PatternCurve[0].Label}.{name}\n")
+    if obj.PatternCurve is not None and names != curve_references.named_edges(obj.PatternCurve):
+        obj.PatternCurve = (obj.PatternCurve[0], names)
+    _write_curve_state(obj, state)
 
 
 def _has_subshape(obj, sub):

@@ -12,7 +12,7 @@ import Part
 
 import HaptiCAD
 from hapticad import _core
-from hapticad.surface_compile import compile_surface, face_frame
+from hapticad.surface_compile import _as_bspline, compile_surface, face_frame
 
 V = App.Vector
 
@@ -111,6 +111,24 @@ class CompileTest(unittest.TestCase):
         p = compile_surface(s, self.top)
         frame = p.pattern.evaluate([0.05, 0.01, 0.01], [0, 0, 1])
         np.testing.assert_allclose(np.abs(frame.stripe), np.array([1, 2, 0]) / math.sqrt(5), atol=1e-9)
+
+    def test_an_arc_or_an_elliptic_arc_makes_an_exact_pattern(self):
+        # toBSpline approximated an arc by a degree-9 curve the core refused ("degree 10")
+        arc = Part.ArcOfCircle(Part.Circle(V(30, 0, 0), V(0, 0, 1), 25), 0.4, 2.7)
+        ellipse = Part.ArcOfEllipse(Part.Ellipse(V(30, 0, 0), 28, 18), 0.4, 2.7)
+        for geometry in (arc, ellipse):
+            sketch = self.sketch([geometry])
+            s = self.surface(Pattern="Curve", CurveEvaluation="Exact")
+            s.PatternCurve = (sketch, ["Edge1"])
+            p = compile_surface(s, self.top)
+            self.assertEqual(_as_bspline(sketch.Shape.Edges).Degree, 2)  # exact, rational
+            # on the curve itself the stripes run along its tangent
+            edge = sketch.Shape.Edges[0]
+            for t in (0.25, 0.5, 0.75):
+                param = edge.FirstParameter + t * (edge.LastParameter - edge.FirstParameter)
+                point, tangent = edge.valueAt(param), edge.tangentAt(param)
+                frame = p.pattern.evaluate([point.x * 1e-3, point.y * 1e-3, 0.01], [0, 0, 1])
+                self.assertAlmostEqual(abs(np.dot(frame.stripe, [tangent.x, tangent.y, tangent.z])), 1.0, places=9)
 
     def test_curves_that_cannot_make_a_pattern_are_refused_clearly(self):
         s = self.surface(Pattern="Curve")
