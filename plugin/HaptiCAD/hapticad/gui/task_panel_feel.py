@@ -14,6 +14,7 @@ import FreeCADGui as Gui
 from PySide2 import QtCore, QtGui, QtWidgets
 
 from .. import _core, feel_session, icon, preferences
+from .document_closing import DocumentClosingObserver
 from .feel_view import FeelView, MouseSteering
 from .strip_chart import StripChart
 from .session_edit_observer import SessionEditObserver
@@ -44,6 +45,9 @@ class FeelTaskPanel:
         self.timer.timeout.connect(self.update_display)
         self.refresh_devices()
         self.set_running(False)
+        self.closing = DocumentClosingObserver(doc, self.document_closing)
+        # closed without Close (Gui.Control.closeDialog()): the session must not outlive it
+        self.form.destroyed.connect(self._form_destroyed)
         _ACTIVE.append(self)
 
     # --- widgets -----------------------------------------------------------------------
@@ -189,6 +193,24 @@ class FeelTaskPanel:
             self.show_message("Surface edited on a part the session did not hold: the scene was "
                               "built again and you feel it now.")
 
+    def document_closing(self):
+        """The document is being closed: the session stops, and the panel closes with it.
+        Its 3D view is already being destroyed (asking it for its scene graph now
+        crashes FreeCAD): the probe's nodes and the mouse callbacks go with it untouched."""
+        self.closing = None
+        self.view_nodes = None
+        self.steering = None
+        self.stop()
+        self._leave()
+        if Gui.Control.activeDialog():
+            Gui.Control.closeDialog()
+
+    def _form_destroyed(self, *_):
+        if self.session is not None:
+            self.session.stop()
+        self._tear_down()
+        self._leave()
+
     def update_display(self):
         """Drains the trace and shows it (the display timer, at most DISPLAY_HZ)."""
         if self.session is None:
@@ -241,10 +263,17 @@ class FeelTaskPanel:
     def getStandardButtons(self):
         return int(QtWidgets.QDialogButtonBox.Close)
 
-    def reject(self):
-        self.stop()
+    def _leave(self):
+        """The panel is done: its document observer goes, and it is no longer active."""
+        if self.closing is not None:
+            self.closing.remove()
+            self.closing = None
         if self in _ACTIVE:
             _ACTIVE.remove(self)
+
+    def reject(self):
+        self.stop()
+        self._leave()
         return True
 
     def accept(self):

@@ -44,7 +44,49 @@ class FeelGuiTest(unittest.TestCase):
     def tearDown(self):
         if Gui.Control.activeDialog():
             h.press_task_button("Close")
-        App.closeDocument(self.doc.Name)
+        if self.doc is not None:
+            App.closeDocument(self.doc.Name)
+
+    def start_feeling(self):
+        """Opens Feel, steers the probe onto the top face; returns the panel."""
+        from hapticad.gui import task_panel_feel
+
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        panel = task_panel_feel.active_panel()
+        self.assertTrue(panel.session is not None, h.widget(QtWidgets.QLabel, "feelMessage").text())
+        h.mouse("move", h.screen_pos(np.array([20.0, 15.0, 20.0])))
+        wait(0.4)
+        self.assertIn("Box.Face6", h.widget(QtWidgets.QLabel, "feelFace").text())
+        return panel
+
+    def test_closing_the_document_while_feeling_stops_the_session_and_closes_the_panel(self):
+        from hapticad.gui import task_panel_feel
+
+        panel = self.start_feeling()
+        session = panel.session
+        App.closeDocument(self.doc.Name)  # asked the 3D view for its scene graph: a crash
+        self.doc = None
+        wait(0.3)
+        self.assertFalse(session.running)
+        self.assertIsNone(panel.session)
+        self.assertFalse(panel.timer.isActive())
+        self.assertFalse(Gui.Control.activeDialog())
+        self.assertIsNone(task_panel_feel.active_panel())
+        # a new document and a new session work as before
+        self.setUp()
+        self.start_feeling()
+        h.widget(QtWidgets.QPushButton, "feelStop").click()
+        h.process_events()
+
+    def test_a_panel_closed_without_close_does_not_leave_the_loop_running(self):
+        panel = self.start_feeling()
+        session = panel.session
+        Gui.Control.closeDialog()  # the display timer then drew on deleted widgets forever
+        wait(0.3)
+        self.assertFalse(session.running)
+        self.assertFalse(panel.timer.isActive())
+        self.assertIsNone(panel.session)
 
     def test_a_simulated_session_follows_the_mouse_and_charts_the_forces(self):
         Gui.runCommand("HaptiCAD_Feel")
