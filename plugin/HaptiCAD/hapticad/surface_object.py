@@ -235,6 +235,11 @@ def validate(obj, compile_faces=True):
     if broken:
         problems.append(f"broken face reference(s) {', '.join(broken)}: the model changed and the face "
                         "cannot be found unambiguously; pick it again")
+    shared = [(o, f, other) for o, f in active_reference_pairs(obj)
+              for other in [surface_tagging(o, f, besides=obj)] if other is not None]
+    if shared:
+        problems.append(", ".join(f"{o.Label}.{f} is also tagged by {other.Label}" for o, f, other in shared)
+                        + ": a face feels one way; remove it from one of the surfaces")
     if obj.Pattern == "Curve" and obj.PatternCurve is None:
         problems.append("the Curve pattern needs a sketch or edge in PatternCurve")
     elif obj.Pattern == "Curve":
@@ -268,6 +273,14 @@ def is_haptic_surface(obj):
 def surfaces_of(doc):
     """The HapticSurface objects of a document, in document order."""
     return [o for o in doc.Objects if is_haptic_surface(o)]
+
+
+def surface_tagging(obj, face, besides=None):
+    """The HapticSurface (other than ``besides``) that tags ``obj``'s ``face``, or None."""
+    for surface in surfaces_of(obj.Document):
+        if surface is not besides and (obj, face) in active_reference_pairs(surface):
+            return surface
+    return None
 
 
 def reference_pairs(surface):
@@ -413,6 +426,10 @@ def _normalise_references(doc, references):
             raise ValueError(f"make_surface: {obj.Name} has no shape")
         if not (isinstance(sub, str) and sub.startswith("Face") and _has_subshape(obj, sub)):
             raise ValueError(f"make_surface: {obj.Name} has no face {sub!r}")
+        other = surface_tagging(obj, sub)
+        if other is not None:
+            raise ValueError(f"make_surface: {obj.Label}.{sub} is already tagged by {other.Label}; "
+                             "edit that surface, or remove the face from it first")
         grouped.setdefault(obj, [])
         if sub not in grouped[obj]:
             grouped[obj].append(sub)

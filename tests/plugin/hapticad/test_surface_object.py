@@ -83,6 +83,21 @@ class MakeSurfaceTest(unittest.TestCase):
                 self.assertIn(message, str(caught.exception))
         self.assertEqual([o.Name for o in self.doc.Objects], ["Box"])
 
+    def test_a_face_tagged_by_another_surface_is_refused_or_reported(self):
+        first = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="Steel")
+        with self.assertRaisesRegex(ValueError, r"Box\.Face6 is already tagged by HapticSurface"):
+            HaptiCAD.make_surface(self.doc, [(self.box, "Face1"), (self.box, "Face6")])
+        self.assertEqual(len(HaptiCAD.surfaces_of(self.doc)), 1)
+        # a script that adds it to a second surface directly is told, and so is the first
+        second = HaptiCAD.make_surface(self.doc, [(self.box, "Face1")])
+        second.References = [(self.box, ("Face1", "Face6"))]
+        self.doc.recompute()
+        for surface, other in ((second, first), (first, second)):
+            problems = surface_object.validate(surface)
+            self.assertTrue(any(f"Box.Face6 is also tagged by {other.Label}" in p for p in problems), problems)
+        second.References = [(self.box, ("Face1",))]
+        self.assertEqual(surface_object.validate(second), [])
+
     def test_a_face_from_another_document_is_refused(self):
         other = App.newDocument("Other")
         try:

@@ -5,7 +5,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from .. import icon
-from ..surface_object import is_haptic_surface
+from ..surface_object import is_haptic_surface, surface_tagging
 from .selection import selected_faces
 
 NAME = "HaptiCAD_Surface"
@@ -29,7 +29,18 @@ class CommandHapticSurface:
         return App.ActiveDocument is not None and _no_dialog() and bool(selected_faces())
 
     def Activated(self):
-        faces = selected_faces()
+        faces = []
+        for obj, sub in selected_faces():
+            other = surface_tagging(obj, sub)
+            if other is None:
+                faces.append((obj, sub))
+            else:
+                App.Console.PrintWarning(f"HaptiCAD: {obj.Label}.{sub} is already tagged by {other.Label}; "
+                                         "it is left there (a face feels one way)\n")
+                tagged_by = other
+        if not faces:  # every selected face is tagged already: edit (the last) one of them
+            Gui.doCommand(f"Gui.ActiveDocument.setEdit({tagged_by.Name!r}, 0)")
+            return
         refs = ", ".join(f"(App.ActiveDocument.{obj.Name}, {sub!r})" for obj, sub in faces)
         doc = App.ActiveDocument
         # one transaction for the creation and the whole edit: the panel's OK commits it,

@@ -504,6 +504,11 @@ class SurfaceTaskPanel:
         pairs = surface_object.reference_pairs(self.obj)
         if (obj, face) in pairs:
             return
+        other = surface_object.surface_tagging(obj, face, besides=self.obj)
+        if other is not None:
+            self.show_problems([f"{obj.Label}.{face} is already tagged by {other.Label}: a face feels one way; "
+                                "remove it there first"])
+            return
         grouped = {}
         for o, f in pairs + [(obj, face)]:
             grouped.setdefault(o, []).append(f)

@@ -131,6 +131,34 @@ class TaskPanelTest(unittest.TestCase):
         self.assertEqual(HaptiCAD.reference_pairs(surface), [(self.box, "Face6")])
         h.press_task_button("OK")
 
+    def test_a_face_another_surface_tags_is_not_added_and_the_command_edits_that_surface(self):
+        first = self.open_new_surface()  # Face6, the top
+        h.press_task_button("OK")
+        # the command on the tagged top face opens its surface instead of a second one
+        Gui.Selection.addSelection(self.box, "Face6")
+        Gui.runCommand("HaptiCAD_Surface")
+        h.process_events()
+        self.assertEqual(HaptiCAD.surfaces_of(self.doc), [first])
+        self.assertTrue(Gui.Control.activeDialog())
+        self.assertEqual(Gui.ActiveDocument.getInEdit().Object, first)
+        h.press_task_button("Cancel")
+        # the top and the front selected: the new surface takes only the front
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(self.box, "Face6")
+        Gui.Selection.addSelection(self.box, "Face3")
+        Gui.runCommand("HaptiCAD_Surface")
+        h.process_events()
+        second = [s for s in HaptiCAD.surfaces_of(self.doc) if s is not first][0]
+        self.assertEqual(HaptiCAD.reference_pairs(second), [(self.box, "Face3")])
+        # a click on the top face in the panel adds nothing, and says why
+        Gui.Selection.clearSelection()
+        h.widget(QtWidgets.QPushButton, "addFaces").setChecked(True)
+        h.click_at((20, 15, 20))
+        self.assertEqual(HaptiCAD.reference_pairs(second), [(self.box, "Face3")])
+        self.assertIn(f"already tagged by {first.Label}", h.widget(QtWidgets.QLabel, "status").text())
+        h.press_task_button("OK")
+        self.assertEqual(HaptiCAD.reference_pairs(first), [(self.box, "Face6")])
+
     def test_values_are_validated_live_and_ok_is_refused_while_wrong(self):
         import Part
 
