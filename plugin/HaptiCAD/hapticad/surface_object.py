@@ -113,7 +113,9 @@ TEXTURE_VALUES = ("TextureDC", "TextureViscosity", "TextureBeta", "TextureAlpha"
 
 
 def _is_restoring(obj):
-    return "Restore" in obj.State or obj.Document.Restoring
+    """Loading, or undoing / redoing: every property comes back as it was, and one must
+    not set others from it (undoing a material change would reset an overridden mu)."""
+    return "Restore" in obj.State or obj.Document.Restoring or obj.Document.Transacting
 
 
 class HapticSurface(SchemaState):

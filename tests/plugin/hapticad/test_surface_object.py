@@ -51,6 +51,38 @@ class MakeSurfaceTest(unittest.TestCase):
         rubber = materials.default_database().get("Rubber")
         self.assertEqual((s.StaticFriction, s.DynamicFriction), (rubber.static_friction, rubber.dynamic_friction))
 
+    def test_undo_and_redo_bring_back_every_value_as_it_was(self):
+        from hapticad import textures
+
+        self.doc.UndoMode = 1
+        self.doc.openTransaction("tag")
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS")
+        self.doc.commitTransaction()
+        self.doc.openTransaction("override")
+        s.StaticFriction = 0.93
+        self.doc.commitTransaction()
+        self.doc.openTransaction("material")
+        s.Material = "PP"
+        self.doc.commitTransaction()
+        pp = materials.default_database().get("PP").static_friction
+        self.assertEqual(s.StaticFriction, pp)
+        self.doc.undo()  # re-applied ABS's database values over the restored override
+        self.assertEqual((s.Material, s.StaticFriction), ("ABS", 0.93))
+        self.doc.redo()
+        self.assertEqual((s.Material, s.StaticFriction), ("PP", pp))
+        preset = list(textures.PRESETS)[0]
+        self.doc.openTransaction("texture")
+        s.Texture = preset
+        self.doc.commitTransaction()
+        self.doc.openTransaction("texture edit")
+        s.TextureBeta = 0.3
+        self.doc.commitTransaction()
+        self.assertEqual(s.Texture, "Custom")
+        self.doc.undo()
+        self.assertEqual((s.Texture, s.TextureBeta), (preset, textures.PRESETS[preset][2]))
+        self.doc.redo()
+        self.assertEqual((s.Texture, s.TextureBeta), ("Custom", 0.3))
+
     def test_constraints_keep_values_in_range(self):
         s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])
         s.RoughnessCategory = 9
