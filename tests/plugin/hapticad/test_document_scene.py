@@ -119,7 +119,11 @@ class DocumentSceneTest(unittest.TestCase):
             build_document_scene(self.doc)
         self.assertIn("no HapticSurface", str(caught.exception))
         a = HaptiCAD.make_surface(self.doc, [(self.part, "Face1")])
-        HaptiCAD.make_surface(self.doc, [(self.part, "Face1")], name="Again")
+        with self.assertRaisesRegex(ValueError, "already tagged"):
+            HaptiCAD.make_surface(self.doc, [(self.part, "Face1")], name="Again")
+        # a script that sets References itself gets past make_surface, not past the scene
+        again = HaptiCAD.make_surface(self.doc, [(self.part, "Face2")], name="Again")
+        again.References = [(self.part, ("Face1", "Face2"))]
         with self.assertRaises(ValueError) as caught:
             build_document_scene(self.doc)
         self.assertIn("Part.Face1 is tagged by both", str(caught.exception))

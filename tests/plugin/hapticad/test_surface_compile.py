@@ -29,6 +29,9 @@ class CompileTest(unittest.TestCase):
         App.closeDocument(self.doc.Name)
 
     def surface(self, **properties):
+        """A new surface on the top face (the one made before leaves it: a face is tagged once)."""
+        for old in HaptiCAD.surfaces_of(self.doc):
+            self.doc.removeObject(old.Name)
         return HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS", **properties)
 
     def sketch(self, geometry, z=10.0):
