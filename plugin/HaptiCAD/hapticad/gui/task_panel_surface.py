@@ -171,6 +171,7 @@ class SurfaceTaskPanel:
                 reset = QtWidgets.QPushButton("Use the material's values")
                 reset.setObjectName("resetMaterial")
                 reset.clicked.connect(self.reset_to_material)
+                self.reset_material = reset
                 form.addRow(self.material_info)
                 form.addRow(reset)
             elif name == "RoughnessCategory":
@@ -373,8 +374,14 @@ class SurfaceTaskPanel:
     def _load_material_info(self):
         obj = self.obj
         database = materials.default_database()
-        if obj.Material not in database:
-            self.material_info.setText(f"{obj.Material} is not in the material database any more.")
+        known = obj.Material in database
+        self.reset_material.setEnabled(known)
+        self.reset_material.setToolTip("" if known else f"{obj.Material} is not in this machine's material "
+                                       "database (a card of the colleague who made the document?): the "
+                                       "values below stay as the document has them")
+        if not known:
+            self.material_info.setText(f"{obj.Material} is not in the material database on this machine; "
+                                       "the values below are the document's.")
             return
         m = database.get(obj.Material)
         overridden = (abs(m.static_friction - obj.StaticFriction) > 1e-9 or
@@ -427,7 +434,11 @@ class SurfaceTaskPanel:
         self.set_property(name, value)
 
     def reset_to_material(self):
-        m = materials.default_database().get(self.obj.Material)
+        database = materials.default_database()
+        if self.obj.Material not in database:
+            self.show_problems([f"{self.obj.Material} is not in the material database on this machine"])
+            return
+        m = database.get(self.obj.Material)
         self.obj.StaticFriction = m.static_friction
         self.obj.DynamicFriction = m.dynamic_friction
         self.obj.Stiffness = m.stiffness_n_per_mm

@@ -159,6 +159,24 @@ class TaskPanelTest(unittest.TestCase):
         h.press_task_button("OK")
         self.assertEqual(HaptiCAD.reference_pairs(first), [(self.box, "Face6")])
 
+    def test_a_material_this_machine_does_not_know_keeps_the_documents_values(self):
+        surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])
+        # as a document made with a colleague's own material card opens here
+        surface.Material = surface.getEnumerationsOfProperty("Material") + ["MyFoam"]
+        surface.Material = "MyFoam"
+        surface.StaticFriction = 0.9
+        Gui.ActiveDocument.setEdit(surface.Name, 0)
+        h.process_events()
+        reset = h.widget(QtWidgets.QPushButton, "resetMaterial")
+        self.assertFalse(reset.isEnabled())
+        self.assertIn("MyFoam is not in the material database", h.widget(QtWidgets.QLabel, "materialInfo").text())
+        reset.setEnabled(True)  # pressed anyway (a shortcut): a message, not a KeyError
+        reset.click()
+        h.process_events()
+        self.assertIn("MyFoam is not in the material database", h.widget(QtWidgets.QLabel, "status").text())
+        self.assertEqual(surface.StaticFriction, 0.9)
+        h.press_task_button("OK")
+
     def test_values_are_validated_live_and_ok_is_refused_while_wrong(self):
         import Part
 
