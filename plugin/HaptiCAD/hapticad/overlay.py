@@ -23,6 +23,7 @@ import numpy as np
 
 from . import _core, materials
 from .surface_compile import curve_pattern, face_frame
+from .surface_object import circular_centre_axis
 
 MM = 1e-3
 STRIPES_PER_FACE = 10  # stripe pairs across a face: readable at any zoom that shows the face
@@ -172,8 +173,8 @@ def stripe_coordinates(surface, face, points_mm):
         across = e2 if along_first else e1
         return (points_mm - origin) @ np.asarray(across), "length"
     if pattern == "Circular":
-        centre = np.array([surface.PatternCenter.x, surface.PatternCenter.y, surface.PatternCenter.z])
-        axis = np.array([surface.PatternAxis.x, surface.PatternAxis.y, surface.PatternAxis.z])
+        centre, axis = circular_centre_axis(surface)
+        centre, axis = np.array([centre.x, centre.y, centre.z]), np.array([axis.x, axis.y, axis.z])
         axis = np.asarray(n) if np.linalg.norm(axis) == 0 else axis / np.linalg.norm(axis)
         d = points_mm - centre
         radial = d - np.outer(d @ axis, axis)

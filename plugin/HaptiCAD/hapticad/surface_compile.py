@@ -13,6 +13,7 @@ import numpy as np
 import FreeCAD as App
 
 from . import _core, curve_references
+from .surface_object import circular_centre_axis
 
 MM = 1e-3
 
@@ -148,9 +149,10 @@ def compile_surface(surface, face):
     if surface.Pattern == "Linear":
         props.pattern = _core.LinearPattern(e1)
     elif surface.Pattern == "Circular":
-        axis = _vec(surface.PatternAxis)
+        centre, axis = circular_centre_axis(surface)
+        axis = _vec(axis)
         axis = n if np.linalg.norm(axis) == 0 else axis / np.linalg.norm(axis)
-        props.pattern = _core.CircularPattern(_vec(surface.PatternCenter, MM), axis,
+        props.pattern = _core.CircularPattern(_vec(centre, MM), axis,
                                               surface.PatternBlendRadius * MM)
     elif surface.Pattern == "Curve":
         props.pattern = curve_pattern(surface, frame)

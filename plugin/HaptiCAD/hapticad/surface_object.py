@@ -70,7 +70,7 @@ PROPERTIES = [
      "Stripe direction: from the face's u direction (at its centre), counter-clockwise about its normal",
      0.0, None),
     ("PatternCenter", "App::PropertyVectorDistance", "Pattern",
-     "Circular pattern: centre (mm, global coordinates)", None, None),
+     "Circular pattern: centre (mm, global coordinates; moves with the first tagged part)", None, None),
     ("PatternAxis", "App::PropertyVector", "Pattern",
      "Circular pattern: axis of the circles; zero uses the face's normal", None, None),
     ("PatternBlendRadius", "App::PropertyFloatConstraint", "Pattern",
@@ -136,6 +136,10 @@ class HapticSurface(SchemaState):
             obj.addProperty("App::PropertyString", "ReferenceState", "Base",
                             "Per referenced face: its geometric signature and re-match status (JSON)")
             obj.setEditorMode("ReferenceState", 2)
+        if "PatternAnchor" not in obj.PropertiesList:
+            obj.addProperty("App::PropertyString", "PatternAnchor", "Base",
+                            "The circular pattern's centre and axis in the first tagged part's frame (JSON)")
+            obj.setEditorMode("PatternAnchor", 2)
         if "PatternCurveState" not in obj.PropertiesList:
             obj.addProperty("App::PropertyString", "PatternCurveState", "Base",
                             "The pattern curve's named edges: signatures and re-match status (JSON)")
@@ -174,6 +178,11 @@ class HapticSurface(SchemaState):
         try:
             if prop == "References":
                 sync_reference_state(obj)
+                # the first tagged part may be another one now: the centre stays where it is
+                follow_pattern_anchor(obj)
+                record_pattern_anchor(obj)
+            elif prop in ("PatternCenter", "PatternAxis"):
+                record_pattern_anchor(obj)
             elif prop == "PatternCurve":
                 _write_curve_state(obj, curve_references.sign(obj.PatternCurve))
             elif prop == "Material" and obj.Material in materials.default_database():
@@ -202,6 +211,8 @@ class HapticSurface(SchemaState):
             shapes = {o.Name: getattr(o, "Shape", None) for o, _ in reference_pairs(obj)}
             _write_reference_state(obj, [face_references.sign_rivals(e, shapes.get(e.get("object")))
                                          for e in read_reference_state(obj)])
+        if not obj.PatternAnchor:
+            record_pattern_anchor(obj)  # written before the centre moved with its part
         if not obj.PatternCurveState and curve_references.named_edges(obj.PatternCurve):
             # written before curve edges were signed: sign them as they are now
             _write_curve_state(obj, curve_references.sign(obj.PatternCurve))
@@ -217,6 +228,7 @@ class HapticSurface(SchemaState):
         try:
             rematch_references(obj)
             rematch_curve(obj)
+            follow_pattern_anchor(obj)
         finally:
             self._applying = False
         problems = validate(obj)
@@ -372,6 +384,46 @@ def rematch_references(obj):
                 grouped[o].append(sub)
         obj.References = [(o, tuple(subs)) for o, subs in grouped.items()]
     _write_reference_state(obj, entries)
+
+
+def _vec3(v):
+    return [float(v.x), float(v.y), float(v.z)]
+
+
+def record_pattern_anchor(obj):
+    """Keeps the circular pattern's centre and axis in the frame of the first tagged
+    part, so that they move with it."""
+    pairs = reference_pairs(obj)
+    state = ""
+    if pairs:
+        part = pairs[0][0]
+        inverse = part.getGlobalPlacement().inverse()
+        state = json.dumps({"object": part.Name, "centre": _vec3(inverse.multVec(obj.PatternCenter)),
+                            "axis": _vec3(inverse.Rotation.multVec(obj.PatternAxis))}, sort_keys=True)
+    if state != obj.PatternAnchor:
+        obj.PatternAnchor = state
+
+
+def circular_centre_axis(obj):
+    """(centre mm, axis) of the circular pattern, global, where the first tagged part
+    stands now (PatternCenter and PatternAxis when it has no anchor)."""
+    try:
+        state = json.loads(obj.PatternAnchor) if obj.PatternAnchor else None
+        part = obj.Document.getObject(state["object"]) if state else None
+    except (ValueError, KeyError, TypeError):
+        part = None
+    if part is None:
+        return App.Vector(obj.PatternCenter), App.Vector(obj.PatternAxis)
+    placement = part.getGlobalPlacement()
+    return (placement.multVec(App.Vector(*state["centre"])),
+            placement.Rotation.multVec(App.Vector(*state["axis"])))
+
+
+def follow_pattern_anchor(obj):
+    """Moves PatternCenter and PatternAxis with the part they are anchored to."""
+    centre, axis = circular_centre_axis(obj)
+    if (centre - obj.PatternCenter).Length > 1e-9 or (axis - obj.PatternAxis).Length > 1e-12:
+        obj.PatternCenter, obj.PatternAxis = centre, axis
 
 
 def _write_curve_state(obj, state):

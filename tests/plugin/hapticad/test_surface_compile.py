@@ -85,6 +85,34 @@ class CompileTest(unittest.TestCase):
         frame = _core.evaluate_circular(c.pattern, [0.03, 0.02, 0.01], [0, 0, 1])
         np.testing.assert_allclose(np.abs(frame.stripe), [0, 1, 0], atol=1e-12)
 
+    def test_the_circular_centre_and_axis_move_with_the_part(self):
+        s = self.surface(Pattern="Circular", pattern_center_mm=(10, 20, 10))
+        s.PatternAxis = V(0, 0, 1)
+        rotation = App.Rotation(V(1, 0, 0), 90)  # the top face now faces -y
+        self.box.Placement = App.Placement(V(30, 0, 0), rotation)
+        self.doc.recompute()
+        face = self.box.Shape.Faces[5]
+        c = compile_surface(s, face)
+        np.testing.assert_allclose(c.pattern.centre_w, [0.04, -0.01, 0.02], atol=1e-12)
+        np.testing.assert_allclose(c.pattern.axis_w, [0, -1, 0], atol=1e-12)
+        # the property a designer reads follows too
+        np.testing.assert_allclose([s.PatternCenter.x, s.PatternCenter.y, s.PatternCenter.z], [40, -10, 20],
+                                   atol=1e-9)
+        # a container moved: the surface is not even recomputed, the pattern still follows
+        container = self.doc.addObject("App::Part", "Assembly")
+        container.addObject(self.box)
+        container.Placement = App.Placement(V(0, 0, 100), App.Rotation())
+        self.doc.recompute()
+        moved = self.box.Shape.copy()
+        moved.Placement = self.box.getGlobalPlacement()
+        c = compile_surface(s, moved.Faces[5])
+        np.testing.assert_allclose(c.pattern.centre_w, [0.04, -0.01, 0.12], atol=1e-12)
+        # a centre the designer picks afresh is where it is put
+        s.PatternCenter = V(1, 2, 3)
+        self.doc.recompute()
+        np.testing.assert_allclose(compile_surface(s, moved.Faces[5]).pattern.centre_w, [0.001, 0.002, 0.003],
+                                   atol=1e-12)
+
     def test_curve_pattern_from_a_sketch_follows_the_curve(self):
         poles = [V(10, 5, 0), V(30, 12, 0), V(10, 25, 0), V(30, 35, 0)]
         sketch = self.sketch([Part.BSplineCurve(poles)])
