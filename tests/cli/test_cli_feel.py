@@ -84,7 +84,11 @@ class FeelCommandTest(unittest.TestCase):
 
     def test_bad_input_gets_a_clear_error(self):
         out = os.path.join(self.tmp.name, "bad")
+        cut_short = os.path.join(self.tmp.name, "cut_short.FCStd")
+        with open(self.doc_path, "rb") as whole, open(cut_short, "wb") as part:
+            part.write(whole.read()[:3000])  # FreeCAD opened it and said every face was gone
         cases = [
+            (("feel", cut_short, "--stroke", "1,1,20:2,2,20", "--out", out), "a damaged one"),
             (("feel", self.doc_path + "x", "--stroke", "1,1,20:2,2,20", "--out", out), "no such file"),
             (("feel", self.doc_path, "--stroke", "10,20,50:70,20,50", "--out", out), "from the nearest surface"),
             (("feel", self.doc_path, "--stroke", "10,20:70,20,20", "--out", out), "is not X,Y,Z"),

@@ -6,6 +6,7 @@ import json
 import os
 import signal
 import sys
+import zipfile
 
 from .accuracy import PRESETS
 from .freecad_env import ensure_freecad
@@ -36,6 +37,11 @@ def cmd_feel(args):
 
     if not os.path.exists(args.file):
         raise ValueError(f"{args.file}: no such file")
+    if not zipfile.is_zipfile(args.file):
+        # FreeCAD opens a cut-short .FCStd and reads what it can: the parts come without
+        # their shapes, and every face looks gone
+        raise ValueError(f"{args.file}: not a FreeCAD document, or a damaged one (cut short in a copy or "
+                         "download?): it is not a readable zip archive")
     doc = App.openDocument(os.path.abspath(args.file))
     try:
         doc_scene = build_document_scene(doc, accuracy.preset(args.accuracy or preferences.load().accuracy))

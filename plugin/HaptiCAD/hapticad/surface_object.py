@@ -9,6 +9,7 @@ parameters in the paper's normalised units. Created with :func:`make_surface`;
 App-only (no GUI import), so it works in ``freecadcmd`` and from the ``hapticad`` CLI.
 """
 import json
+import math
 
 import FreeCAD as App
 
@@ -244,8 +245,11 @@ def validate(obj, compile_faces=True):
     problems = []
     if not obj.References:
         problems.append("no faces: pick at least one face")
+    not_faces = [f"{o.Label}.{sub}" for o, sub in reference_pairs(obj) if not sub.startswith("Face")]
+    if not_faces:
+        problems.append(f"{', '.join(not_faces)}: not a face; a surface tags faces only")
     broken = [f"{name}.{face}" for name, face, status in reference_status(obj)
-              if status == face_references.BROKEN]
+              if status == face_references.BROKEN and face.startswith("Face")]
     if broken:
         problems.append(f"broken face reference(s) {', '.join(broken)}: the model changed and the face "
                         "cannot be found unambiguously; pick it again")
@@ -260,10 +264,9 @@ def validate(obj, compile_faces=True):
         problem = curve_problem(obj)
         if problem:
             problems.append(problem)
-    if obj.Texture != "None":
-        values = [getattr(obj, n) for n in TEXTURE_VALUES]
-        if any(v != v or abs(v) == float("inf") for v in values):
-            problems.append("texture parameters must be finite")
+    not_finite = [f"{name} = {value}" for name, value in _numbers(obj) if not math.isfinite(value)]
+    if not_finite:
+        problems.append(f"{', '.join(not_finite)}: not a finite number")
     if compile_faces and not problems:
         from .surface_compile import compile_surface
 
@@ -278,6 +281,16 @@ def validate(obj, compile_faces=True):
                 problems.append(message[len(prefix):] if message.startswith(prefix) else message)
                 break
     return problems
+
+
+def _numbers(obj):
+    """(name, float) of every number among a surface's properties (vectors by component)."""
+    for name, kind, *_ in PROPERTIES:
+        if kind in ("App::PropertyFloat", "App::PropertyFloatConstraint", "App::PropertyAngle"):
+            yield name, float(getattr(obj, name))
+        elif kind in ("App::PropertyVector", "App::PropertyVectorDistance"):
+            v = getattr(obj, name)
+            yield from ((f"{name}.{axis}", float(getattr(v, axis))) for axis in "xyz")
 
 
 def is_haptic_surface(obj):
@@ -369,7 +382,8 @@ def rematch_references(obj):
             holder[key] = j + i - loser
     was_broken = {(e["object"], e["face"]) for e in before if e.get("status") == face_references.BROKEN}
     for e in entries:
-        if e["status"] == face_references.BROKEN and (e["object"], e["face"]) not in was_broken:
+        if (e["status"] == face_references.BROKEN and (e["object"], e["face"]) not in was_broken
+                and e["face"].startswith("Face")):  # validate() names what is not a face
             App.Console.PrintWarning(
                 f"{obj.Label}: the reference to {e['object']}.{e['face']} is broken: the model changed and "
                 "the face cannot be found unambiguously; it is left out until you pick it again\n")

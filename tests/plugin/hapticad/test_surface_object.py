@@ -115,6 +115,25 @@ class MakeSurfaceTest(unittest.TestCase):
                 self.assertIn(message, str(caught.exception))
         self.assertEqual([o.Name for o in self.doc.Objects], ["Box"])
 
+    def test_validation_names_the_property_or_reference_that_is_wrong(self):
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])
+        self.doc.recompute()
+        self.assertEqual(surface_object.validate(s), [])
+        nan = float("nan")
+        for name in ("PatternBlendRadius", "PatternAngle", "TextureBeta"):  # used or not
+            with self.subTest(name=name):
+                old = getattr(s, name)
+                setattr(s, name, nan)
+                problems = surface_object.validate(s)
+                self.assertEqual(problems, [f"{name} = nan: not a finite number"])
+                setattr(s, name, old)
+        s.PatternCenter = App.Vector(0, float("inf"), 0)
+        self.assertEqual(surface_object.validate(s), ["PatternCenter.y = inf: not a finite number"])
+        s.PatternCenter = App.Vector()
+        s.References = [(self.box, ("Face6", "Edge1"))]  # was: "the model changed"
+        self.doc.recompute()
+        self.assertEqual(surface_object.validate(s), ["Box.Edge1: not a face; a surface tags faces only"])
+
     def test_a_face_tagged_by_another_surface_is_refused_or_reported(self):
         first = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="Steel")
         with self.assertRaisesRegex(ValueError, r"Box\.Face6 is already tagged by HapticSurface"):
