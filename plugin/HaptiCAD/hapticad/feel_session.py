@@ -69,6 +69,21 @@ def scene_box_m(doc_scene):
     return low * MM, high * MM
 
 
+def beyond_reach(limits, mapping, low_m, high_m):
+    """A sentence when the box (world m) of the parts does not fit in the device's
+    workspace (limits) as ``mapping`` places it in the world, else None."""
+    low_d, high_d = np.asarray(limits.workspace_min_d, float), np.asarray(limits.workspace_max_d, float)
+    tolerance = 1e-9 * max(float(np.max(high_d - low_d)), 1e-3)
+    corners_w = [np.array([x, y, z]) for x in (low_m[0], high_m[0]) for y in (low_m[1], high_m[1])
+                 for z in (low_m[2], high_m[2])]
+    for corner in corners_w:
+        p_d = np.asarray(mapping.world_to_device(corner), float)
+        if (p_d < low_d - tolerance).any() or (p_d > high_d + tolerance).any():
+            return ("the parts reach beyond the device's workspace as it is mapped now: use the clutch to "
+                    "reach the rest, or start the session again to fit them")
+    return None
+
+
 class LiveSession:
     """One Feel session on a document scene. Raises RuntimeError / ValueError with the
     device layer's message when the device cannot be opened."""
@@ -100,6 +115,8 @@ class LiveSession:
                                     trace_capacity=int(self.rate_hz * TRACE_SECONDS) + 1024)
         if mapping is not None:
             self.loop.set_mapping(mapping)
+        # a device's reach: the simulated hand's is the parts' box and a margin
+        self.reach_note = None if self.simulated else beyond_reach(limits, self.loop.mapping, low, high)
 
     @staticmethod
     def _mapping(limits, low, high, prefs):
@@ -143,7 +160,9 @@ class LiveSession:
         face if the part grew over it, and the force ramps in again. Raises ValueError
         (naming the part or surface) when the new shape cannot be felt (a tagged face
         gone, nothing left to touch, parts beyond the simulated probe's workspace, which
-        was set at the start); the loop then keeps the old scene."""
+        was set at the start); the loop then keeps the old scene. With a device, parts
+        grown beyond its mapped workspace are felt where it reaches, and ``reach_note``
+        says so (the clutch reaches the rest)."""
         from .document_scene import build_document_scene  # FreeCAD's: only when used
 
         doc_scene = build_document_scene(doc, self.doc_scene.accuracy)
@@ -156,6 +175,8 @@ class LiveSession:
         self.loop.set_renderer(renderer)
         self.renderer = renderer
         self.doc_scene = doc_scene
+        if not self.simulated:  # the device's mapping was fitted to the parts as they were
+            self.reach_note = beyond_reach(self.limits, self.loop.mapping, *scene_box_m(doc_scene))
 
     def apply_edit(self, doc, geometry):
         """What the Feel panel calls after the designer edits doc: with ``geometry``

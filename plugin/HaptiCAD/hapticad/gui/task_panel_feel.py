@@ -23,6 +23,10 @@ DISPLAY_HZ = 60
 _ACTIVE = []  # the open panel, for tests and for the Stop of a closing document
 
 
+def _note(text):
+    return f" Note: {text}." if text else ""
+
+
 def active_panel():
     return _ACTIVE[-1] if _ACTIVE else None
 DEPTH_RANGE_MM = (0.0, 5.0)
@@ -162,7 +166,8 @@ class FeelTaskPanel:
         self.edits = SessionEditObserver(self.doc, self.edited, lambda: self.doc_scene.shapes)
         self.set_running(True)
         self.show_message("Move the mouse over the part; the wheel or the slider sets how hard you press."
-                          if self.session.simulated else "The device drives the probe.")
+                          if self.session.simulated else
+                          "The device drives the probe." + _note(self.session.reach_note))
         return True
 
     def edited(self, geometry):
@@ -188,10 +193,10 @@ class FeelTaskPanel:
         if applied == "surfaces":
             self.show_message("Surface edited: you feel the change now.")
         elif geometry:
-            self.show_message("Geometry edited: you feel the new shape now.")
+            self.show_message("Geometry edited: you feel the new shape now." + _note(self.session.reach_note))
         else:
             self.show_message("Surface edited on a part the session did not hold: the scene was "
-                              "built again and you feel it now.")
+                              "built again and you feel it now." + _note(self.session.reach_note))
 
     def document_closing(self):
         """The document is being closed: the session stops, and the panel closes with it.
