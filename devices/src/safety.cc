@@ -48,6 +48,8 @@ ForceSafety::ForceSafety(const DeviceLimits& limits, const SafetyConfig& config)
 void ForceSafety::BeginSession(double t_s) {
   ramp_pending_ = false;
   ramp_start_s_ = t_s;
+  ramp_from_.setZero();
+  last_sent_.setZero();
   in_fault_ = false;
   fault_timed_out_ = false;
   have_time_ = false;
@@ -110,6 +112,7 @@ Vec3 ForceSafety::Shape(double t_s, std::uint32_t faults, const Vec3& force_d,
     if (ramp_pending_) {
       ramp_pending_ = false;
       ramp_start_s_ = t_s;
+      ramp_from_ = last_sent_;  // zero after a fault
     }
     const double max_force = limits_.max_force_n;
     const double norm = f.norm();
@@ -118,18 +121,26 @@ Vec3 ForceSafety::Shape(double t_s, std::uint32_t faults, const Vec3& force_d,
       *flags |= kSafetyClamped;
     }
     const double continuous = limits_.continuous_force_n;
-    if (continuous > 0.0 && heat_n2_ > continuous * continuous && f.norm() > continuous) {
+    const bool warm = continuous > 0.0 && heat_n2_ > continuous * continuous;
+    if (warm && f.norm() > continuous) {
       f *= continuous / f.norm();
       *flags |= kThermalLimited;
     }
     if (config_.ramp_s > 0.0) {
       const double ramp = (t_s - ramp_start_s_) / config_.ramp_s;
       if (ramp < 1.0) {
-        f *= std::max(0.0, ramp);
+        // from the force last sent (zero at the start and after a fault) to this one
+        f = ramp_from_ + std::max(0.0, ramp) * (f - ramp_from_);
         *flags |= kRamping;
+        // both ends are within the maximum, so is the mix; the continuous force holds
+        if (warm && f.norm() > continuous) {
+          f *= continuous / f.norm();
+          *flags |= kThermalLimited;
+        }
       }
     }
   }
+  last_sent_ = f;
   // the motors heat with what was actually sent
   const double alpha = 1.0 - std::exp(-dt / config_.thermal_time_constant_s);
   heat_n2_ += alpha * (f.squaredNorm() - heat_n2_);

@@ -15,6 +15,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "hapticad/devices/realtime.h"
 
@@ -31,6 +32,7 @@ enum FaultIndex {
   kReportedIdx,
   kWatchdogIdx,
   kUnpluggedIdx,
+  kRendererIdx,
   kZeroForceIdx,
   kClampedIdx,
   kThermalIdx,
@@ -70,10 +72,28 @@ ServoConfig CheckedConfig(ServoConfig config) {
                                 std::to_string(config.clutch_button) + " is outside -1..31");
   }
   ValidateSafetyConfig(config.safety);
+  // a gap over the watchdog (or data older than the stale limit) zeroes the force: the
+  // period must leave a whole period's room for a late tick, or most ticks are faults
+  const double min_rate_hz = MinServoRateHz(config.safety);
+  if (config.rate_hz < min_rate_hz * (1.0 - 1e-12)) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "servo loop: rate %g Hz (period %.3g ms) is too slow for the loop watchdog "
+                  "of %g ms and the stale-data limit of %g ms: the period must be at most "
+                  "half of each, or a tick that starts late cuts the force; use at least "
+                  "%g Hz",
+                  config.rate_hz, 1e3 / config.rate_hz, config.safety.watchdog_s * 1e3,
+                  config.safety.stale_after_s * 1e3, std::ceil(min_rate_hz - 1e-9));
+    throw std::invalid_argument(text);
+  }
   return config;
 }
 
 }  // namespace
+
+double MinServoRateHz(const SafetyConfig& safety) {
+  return 2.0 / std::min(safety.watchdog_s, safety.stale_after_s);
+}
 
 const char* SessionEndName(SessionEnd end) {
   switch (end) {
@@ -119,6 +139,7 @@ void ServoLoop::BeginTicks() {
   clutch_.Reset();
   end_requested_ = SessionEnd::kRunning;
   renderer_needs_reset_ = true;
+  std::lock_guard<std::mutex> lock(fault_message_mutex_);
   fault_message_.clear();
 }
 
@@ -143,6 +164,7 @@ void ServoLoop::Stop() {
 }
 
 std::string ServoLoop::fault_message() const {
+  std::lock_guard<std::mutex> lock(fault_message_mutex_);
   if (running()) return {};
   return fault_message_;
 }
@@ -174,9 +196,14 @@ void ServoLoop::AdoptUpdates() {
     renderer_needs_reset_ = true;
     safety_.RestartRamp();
   }
+  // a new mapping: the old proxy says nothing about where the tool is now (it could be
+  // far away, across the part). The proxy restarts at the tool, as at the start of a
+  // session, and the force ramps in again
   if (mapping_updates_.has_news()) {
     mapping_ = mapping_updates_.Read();
     clutch_.Reset();
+    renderer_needs_reset_ = true;
+    reset_from_proxy_ = false;
     safety_.RestartRamp();
   }
 }
@@ -190,7 +217,7 @@ void ServoLoop::Tick(double loop_time_s, double gap_s) {
   sample.period_us = gap_s * 1e6;
   sample.cad_face = -1;
   const ReadStatus status = device_.ReadState(loop_time_s, &state_);
-  const std::uint32_t faults = safety_.CheckReading(status, state_, gap_s);
+  std::uint32_t faults = safety_.CheckReading(status, state_, gap_s);
 
   RenderOutput out;
   std::uint32_t flags = 0;
@@ -200,7 +227,9 @@ void ServoLoop::Tick(double loop_time_s, double gap_s) {
     const bool held =
         clutch_requested_.load(std::memory_order_acquire) ||
         (config_.clutch_button >= 0 && (state_.buttons >> config_.clutch_button) & 1u);
-    if (clutch_.Update(held, state_.position_d, &mapping_) == Clutch::Event::kReleased) {
+    // engaged: the force fades out over the ramp (not a step to zero under a pressing
+    // hand); released: it fades in again
+    if (clutch_.Update(held, state_.position_d, &mapping_) != Clutch::Event::kNone) {
       safety_.RestartRamp();
     }
     if (clutch_.engaged()) {
@@ -223,6 +252,9 @@ void ServoLoop::Tick(double loop_time_s, double gap_s) {
       flags |= out.flags;
       last_proxy_w_ = out.proxy_w;
       had_proxy_ = true;
+      // the renderer refused the input (and sent zero): a fault like any other, counted,
+      // and the force ramps in again after it rather than jumping back
+      if (out.flags & kInputFault) faults |= kFaultRenderer;
     }
     last_tool_w_ = tool_w;
   } else {
@@ -274,6 +306,7 @@ void ServoLoop::CountFlags(std::uint32_t flags) {
   if (flags & kFaultReported) Bump(fault_counts_[kReportedIdx]);
   if (flags & kFaultWatchdog) Bump(fault_counts_[kWatchdogIdx]);
   if (flags & kFaultUnplugged) Bump(fault_counts_[kUnpluggedIdx]);
+  if (flags & kFaultRenderer) Bump(fault_counts_[kRendererIdx]);
   if (flags & kDeviceFault) Bump(fault_counts_[kZeroForceIdx]);
   if (flags & kSafetyClamped) Bump(fault_counts_[kClampedIdx]);
   if (flags & kThermalLimited) Bump(fault_counts_[kThermalIdx]);
@@ -344,11 +377,12 @@ void ServoLoop::FinishSession(SessionEnd end, double loop_time_s) {
   char when[64];
   std::snprintf(when, sizeof when, "%.3f s", fault_time_s_ >= 0.0 ? fault_time_s_ : loop_time_s);
   const std::string detail = device_.DescribeFault();
+  std::string message;
   if (end == SessionEnd::kUnplugged) {
-    fault_message_ = "The session ended: " + who + " was unplugged at " + when +
-                     " and the force was zeroed in that tick" +
-                     (detail.empty() ? std::string() : " (" + detail + ")") +
-                     ". Plug it back in and start again; your document is unchanged.";
+    message = "The session ended: " + who + " was unplugged at " + when +
+              " and the force was zeroed in that tick" +
+              (detail.empty() ? std::string() : " (" + detail + ")") +
+              ". Plug it back in and start again; your document is unchanged.";
   } else if (end == SessionEnd::kDeviceLost) {
     std::string reasons;
     auto add = [&](std::uint32_t bit, const char* name) {
@@ -360,14 +394,16 @@ void ServoLoop::FinishSession(SessionEnd end, double loop_time_s) {
     add(kFaultNonFinite, "non-finite values");
     add(kFaultReported, "a fault reported by the device");
     add(kFaultWatchdog, "the servo loop missing its deadline");
+    add(kFaultRenderer, "positions or speeds the renderer refused");
     std::snprintf(when, sizeof when, "%.1f s", config_.safety.fault_timeout_s);
-    fault_message_ = "The session ended: " + who + " gave no usable data for " + when + " (" +
-                     reasons + ")" + (detail.empty() ? std::string() : "; " + detail) +
-                     ". The force was held at zero throughout. Check the cable and the "
-                     "device, then start again; your document is unchanged.";
-  } else {
-    fault_message_.clear();
+    message = "The session ended: " + who + " gave no usable data for " + when + " (" + reasons +
+              ")" + (detail.empty() ? std::string() : "; " + detail) +
+              ". The force was held at zero throughout. Check the cable and the "
+              "device, then start again; your document is unchanged.";
   }
+  // readers on other threads take the lock too (the string is not atomic)
+  std::lock_guard<std::mutex> lock(fault_message_mutex_);
+  fault_message_ = std::move(message);
   session_end_.store(end, std::memory_order_release);
   running_.store(false, std::memory_order_release);
 }
@@ -400,6 +436,7 @@ std::size_t ServoLoop::DrainTrace(std::vector<TraceSample>* out) {
 }
 
 ServoStats ServoLoop::stats() const {
+  static_assert(sizeof(fault_counts_) / sizeof(fault_counts_[0]) == kNumFaultCounters);
   ServoStats s;
   s.ticks = ticks_.load(std::memory_order_relaxed);
   s.overruns = overruns_.load(std::memory_order_relaxed);
@@ -426,6 +463,7 @@ ServoStats ServoLoop::stats() const {
   s.faults.reported = get(kReportedIdx);
   s.faults.watchdog = get(kWatchdogIdx);
   s.faults.unplugged = get(kUnpluggedIdx);
+  s.faults.renderer = get(kRendererIdx);
   s.faults.zero_force_ticks = get(kZeroForceIdx);
   s.faults.clamped = get(kClampedIdx);
   s.faults.thermal_limited = get(kThermalIdx);

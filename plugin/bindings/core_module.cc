@@ -432,6 +432,9 @@ void DefineDeviceTypes(py::module_& m) {
       .def_readwrite("workspace_margin", &SafetyConfig::workspace_margin)
       .def_readwrite("max_speed_mps", &SafetyConfig::max_speed_mps)
       .def_readwrite("thermal_time_constant_s", &SafetyConfig::thermal_time_constant_s);
+  m.def("min_servo_rate_hz", &MinServoRateHz, py::arg("safety") = SafetyConfig{},
+        "The slowest servo rate the loop accepts with these safety settings (400 Hz with "
+        "the defaults: its period at most half the watchdog and the stale-data limit).");
 
   py::class_<HandModel>(m, "HandModel")
       .def(py::init<>())
@@ -466,6 +469,7 @@ void DefineDeviceTypes(py::module_& m) {
       .def_readonly("reported", &FaultCounts::reported)
       .def_readonly("watchdog", &FaultCounts::watchdog)
       .def_readonly("unplugged", &FaultCounts::unplugged)
+      .def_readonly("renderer", &FaultCounts::renderer)
       .def_readonly("zero_force_ticks", &FaultCounts::zero_force_ticks)
       .def_readonly("clamped", &FaultCounts::clamped)
       .def_readonly("thermal_limited", &FaultCounts::thermal_limited);
@@ -508,6 +512,7 @@ void DefineDeviceTypes(py::module_& m) {
   m.attr("FLAG_FAULT_REPORTED") = kFaultReported;
   m.attr("FLAG_FAULT_WATCHDOG") = kFaultWatchdog;
   m.attr("FLAG_FAULT_UNPLUGGED") = kFaultUnplugged;
+  m.attr("FLAG_FAULT_RENDERER") = kFaultRenderer;
   m.attr("FLAG_RAMPING") = kRamping;
   m.attr("FLAG_SAFETY_CLAMPED") = kSafetyClamped;
   m.attr("FLAG_THERMAL_LIMITED") = kThermalLimited;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hapticad/devices/safety.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -89,6 +90,44 @@ TEST(ForceSafety, AFaultZeroesTheForceAndTheForceRampsBackAfterIt) {
   flags = 0;
   EXPECT_EQ(safety.Shape(0.7, 0, Vec3(0, NAN, 0), &flags), Vec3::Zero());
   EXPECT_EQ(flags, kFaultNonFinite | kDeviceFault);
+}
+
+TEST(ForceSafety, ARestartedRampGoesFromTheForceLastSentWithoutAStep) {
+  ForceSafety safety(Limits(), SafetyConfig{});
+  safety.BeginSession(0.0);
+  std::uint32_t flags = 0;
+  int i = 0;
+  for (; i <= 500; ++i) safety.Shape(i * 1e-3, 0, Vec3(0, 0, 1.2), &flags);
+  // asked to ramp again (a scene swap) with the same force asked for: it stays
+  safety.RestartRamp();
+  for (const int end = i + 300; i < end; ++i) {
+    flags = 0;
+    const Vec3 f = safety.Shape(i * 1e-3, 0, Vec3(0, 0, 1.2), &flags);
+    EXPECT_NEAR(f.z(), 1.2, 1e-12) << i;
+    EXPECT_EQ((flags & kRamping) != 0, i < 701) << i;
+  }
+  // asked to ramp again with no force asked for (the clutch engaged): it fades out
+  // linearly over the ramp instead of dropping in one tick
+  safety.RestartRamp();
+  const int start = i;
+  for (const int end = i + 300; i < end; ++i) {
+    flags = 0;
+    const Vec3 f = safety.Shape(i * 1e-3, 0, Vec3::Zero(), &flags);
+    EXPECT_NEAR(f.z(), 1.2 * std::max(0.0, 1.0 - (i - start) * 1e-3 / 0.2), 1e-9) << i;
+  }
+  // and in again, from zero: as the ramp at the start
+  safety.RestartRamp();
+  const int again = i;
+  for (const int end = i + 300; i < end; ++i) {
+    flags = 0;
+    const Vec3 f = safety.Shape(i * 1e-3, 0, Vec3(0, 0, 0.5), &flags);
+    EXPECT_NEAR(f.z(), 0.5 * std::min(1.0, (i - again) * 1e-3 / 0.2), 1e-9) << i;
+  }
+  // a fault still zeroes the force at once, and the force ramps in from zero after it
+  flags = 0;
+  EXPECT_EQ(safety.Shape(i * 1e-3, kFaultStale, Vec3(0, 0, 0.5), &flags), Vec3::Zero());
+  ++i;
+  EXPECT_EQ(safety.Shape(i * 1e-3, 0, Vec3(0, 0, 0.5), &flags).z(), 0.0);
 }
 
 TEST(ForceSafety, HoldsTheContinuousForceOnceTheMotorsAreWarm) {

@@ -8,6 +8,7 @@
 #include <memory>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -395,13 +396,14 @@ class ScriptedDevice : public Device {
     if (status != ReadStatus::kOk) return status;
     state->time_s = loop_time_s;
     state->position_d = position;
-    state->velocity_d = Vec3::Zero();
+    state->velocity_d = velocity;
     state->age_s = 0.0;
     return ReadStatus::kOk;
   }
   void WriteForce(const Vec3& force_d) override { force = force_d; }
 
   Vec3 position = Vec3::Zero();
+  Vec3 velocity = Vec3::Zero();
   ReadStatus status = ReadStatus::kOk;
   Vec3 force = Vec3::Zero();
 
@@ -435,6 +437,192 @@ TEST(ServoLoopSessions, ARendererSwappedDuringAFaultDoesNotStartTheNextSessionAt
   const TraceSample last = loop.latest();
   EXPECT_FALSE(last.flags & kContact);
   EXPECT_NEAR(last.proxy_m[2], -0.06, 1e-9);
+}
+
+TEST(ServoLoopMapping, ANewMappingRestartsTheProxyAtTheToolAndRampsTheForceIn) {
+  ScriptedDevice device;
+  ServoLoop loop(device, BoxRenderer(device.info().limits), Config(1000.0, 1 << 12));
+  device.position = Vec3(0, 0, 0.06);  // above the top face (z = 0.05), in free space
+  loop.BeginTicks();
+  double t = 0.0;
+  for (int i = 0; i < 300; ++i, t += 1e-3) loop.Tick(t, 1e-3);
+  ASSERT_NEAR(loop.latest().proxy_m[2], 0.06, 1e-9);
+  // a new mapping puts the tool 14 cm lower, under the part, in free space: the proxy
+  // restarts there (it used to stay above the part, catch on the top face and pull the
+  // hand up with the full force)
+  WorkspaceMapping lower;
+  lower.offset_w = Vec3(0, 0, -0.14);
+  loop.SetMapping(lower);
+  for (int i = 0; i < 400; ++i, t += 1e-3) {
+    loop.Tick(t, 1e-3);
+    ASSERT_EQ(device.force, Vec3::Zero()) << t;
+  }
+  TraceSample last = loop.latest();
+  EXPECT_FALSE(last.flags & kContact);
+  EXPECT_NEAR(last.device_m[2], -0.08, 1e-9);
+  EXPECT_NEAR(last.proxy_m[2], -0.08, 1e-9);
+  // a mapping that puts the tool 2 mm into the top face: the proxy restarts on the face
+  // (as at the start of a session) and the force ramps in from zero over 0.2 s
+  WorkspaceMapping into;
+  into.offset_w = Vec3(0, 0, -0.012);
+  loop.SetMapping(into);
+  std::vector<TraceSample> trace;
+  loop.DrainTrace(&trace);
+  trace.clear();
+  const double adopted = t;
+  for (int i = 0; i < 400; ++i, t += 1e-3) loop.Tick(t, 1e-3);
+  loop.DrainTrace(&trace);
+  ASSERT_EQ(trace.size(), 400u);
+  for (const auto& s : trace) {
+    ASSERT_TRUE(s.flags & kContact) << s.time_s;
+    ASSERT_NEAR(s.proxy_m[2], 0.05, 1e-9) << s.time_s;
+    const double ramp = std::min(1.0, (s.time_s - adopted) / 0.2);
+    ASSERT_LE(s.force_n[2], 0.8 * ramp + 1e-6) << s.time_s;
+    if (s.time_s - adopted < 0.2 - 1e-9) {
+      ASSERT_TRUE(s.flags & kRamping) << s.time_s;
+    }
+  }
+  EXPECT_EQ(trace.front().force_n[2], 0.0);
+  EXPECT_NEAR(trace.back().force_n[2], 0.8, 1e-6);  // 400 N/m, 2 mm
+}
+
+// The largest change of the force sent (z) from one tick to the next over `trace`.
+double LargestStep(const std::vector<TraceSample>& trace, double before) {
+  double step = 0.0;
+  for (const auto& s : trace) {
+    step = std::max(step, std::abs(s.force_n[2] - before));
+    before = s.force_n[2];
+  }
+  return step;
+}
+
+TEST(ServoLoopTransitions, ASceneSwapAndTheClutchNeverStepTheForce) {
+  ScriptedDevice device;  // 3.3 N, 400 N/m
+  ServoLoop loop(device, BoxRenderer(device.info().limits), Config(1000.0, 1 << 12));
+  device.position = Vec3(0, 0, 0.047);  // 3 mm into the top face: 1.2 N
+  loop.BeginTicks();
+  int i = 0;
+  auto run = [&](int n) {
+    std::vector<TraceSample> trace;
+    loop.DrainTrace(&trace);
+    const double before = loop.latest().force_n[2];
+    trace.clear();
+    for (const int end = i + n; i < end; ++i) loop.Tick(i * 1e-3, 1e-3);
+    loop.DrainTrace(&trace);
+    return std::make_pair(trace, before);
+  };
+  run(400);
+  ASSERT_NEAR(loop.latest().force_n[2], 1.2, 1e-6);
+  // the same box again (a material edit): the force carries on (it used to drop to zero
+  // and ramp in again)
+  loop.SetRenderer(BoxRenderer(device.info().limits));
+  auto [swap, before_swap] = run(300);
+  EXPECT_LT(LargestStep(swap, before_swap), 1e-9);
+  EXPECT_TRUE(swap[10].flags & kRamping);
+  // the top extruded to 55 mm: 8 mm in, 3.2 N, reached over the ramp, not in a step
+  loop.SetRenderer(BoxRenderer(device.info().limits, 0.0, 55.0));
+  auto [grown, before_grown] = run(300);
+  EXPECT_LE(LargestStep(grown, before_grown), 2.0 / 200 + 1e-9);
+  EXPECT_NEAR(grown.back().force_n[2], 3.2, 1e-6);
+  // the clutch engaged under the pressing hand: the force fades out over the ramp
+  // (it used to drop from 3.2 N to zero in one tick); released, it fades in again
+  loop.SetClutch(true);
+  auto [held, before_held] = run(300);
+  EXPECT_LE(LargestStep(held, before_held), 3.2 / 200 + 1e-9);
+  EXPECT_GT(held[100].force_n[2], 1.5);
+  EXPECT_TRUE(held[100].flags & kClutched);
+  EXPECT_EQ(held.back().force_n[2], 0.0);
+  loop.SetClutch(false);
+  auto [released, before_released] = run(300);
+  EXPECT_LE(LargestStep(released, before_released), 3.2 / 200 + 1e-9);
+  EXPECT_NEAR(released.back().force_n[2], 3.2, 1e-6);
+}
+
+TEST(ServoLoopSettings, ARateTooSlowForTheWatchdogOrTheStaleLimitIsRefused) {
+  ScriptedDevice device;
+  auto renderer = BoxRenderer(device.info().limits);
+  EXPECT_DOUBLE_EQ(MinServoRateHz(SafetyConfig{}), 400.0);
+  // 150 Hz: every 6.7 ms gap would trip the 5 ms watchdog, every tick a fault
+  try {
+    ServoLoop loop(device, renderer, Config(150.0, 8));
+    FAIL() << "150 Hz accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("rate 150 Hz"), std::string::npos) << message;
+    EXPECT_NE(message.find("period 6.67 ms"), std::string::npos) << message;
+    EXPECT_NE(message.find("watchdog of 5 ms"), std::string::npos) << message;
+    EXPECT_NE(message.find("at least 400 Hz"), std::string::npos) << message;
+  }
+  EXPECT_THROW(ServoLoop(device, renderer, Config(100.0, 8)), std::invalid_argument);
+  EXPECT_THROW(ServoLoop(device, renderer, Config(399.0, 8)), std::invalid_argument);
+  EXPECT_NO_THROW(ServoLoop(device, renderer, Config(400.0, 8)));
+  // a longer watchdog allows a slower loop, as long as the stale limit does too
+  ServoConfig slow = Config(100.0, 8);
+  slow.safety.watchdog_s = 0.02;
+  try {
+    ServoLoop loop(device, renderer, slow);
+    FAIL() << "100 Hz accepted with a 5 ms stale limit";
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("period 10 ms"), std::string::npos) << message;
+    EXPECT_NE(message.find("stale-data limit of 5 ms"), std::string::npos) << message;
+  }
+  slow.safety.stale_after_s = 0.02;
+  EXPECT_DOUBLE_EQ(MinServoRateHz(slow.safety), 100.0);
+  EXPECT_NO_THROW(ServoLoop(device, renderer, slow));
+}
+
+TEST(ServoLoopFaults, ATickTheRendererRefusesIsAFaultCountedAndTheForceRampsBackIn) {
+  DeviceLimits limits;
+  limits.max_force_n = 8.0;
+  limits.max_stiffness_n_per_m = 3000.0;
+  ScriptedDevice device;
+  // a box 100 m wide with its top at z = 10 m, felt through a scale of 200 (a 30 m model
+  // fitted into the workspace): a 6 m/s handle (under the safety's 10 m/s) is 1200 m/s in
+  // the world, over the renderer's 1 km/s bound
+  auto scene =
+      HapticScene::Build(testing::MakeBoxSoup(Vec3(-5e4, -5e4, -5e4), Vec3(5e4, 5e4, 1e4)), 1e-3);
+  auto renderer = std::make_shared<ForceRenderer>(scene, std::make_shared<SurfaceTable>(),
+                                                  RenderLimits{8.0, 3000.0 / 200});
+  ServoLoop loop(device, renderer, Config(1000.0, 1 << 12));
+  WorkspaceMapping scaled;
+  scaled.scale = 200.0;
+  loop.SetMapping(scaled);
+  loop.BeginTicks();
+  device.position = Vec3(0, 0, 0.06);  // 12 m: above the top
+  int i = 0;
+  for (; i < 50; ++i) loop.Tick(i * 1e-3, 1e-3);
+  device.position = Vec3(0, 0, 0.049);  // 9.8 m: 0.2 m in, 3 N at 15 N/m
+  for (; i < 400; ++i) loop.Tick(i * 1e-3, 1e-3);
+  ASSERT_NEAR(loop.latest().force_n[2], 3.0, 1e-4);
+  const ServoStats before = loop.stats();
+  std::vector<TraceSample> trace;
+  loop.DrainTrace(&trace);
+  trace.clear();
+  device.velocity = Vec3(0, 0, -6.0);
+  loop.Tick(i * 1e-3, 1e-3);
+  ++i;
+  device.velocity = Vec3::Zero();
+  for (int k = 0; k < 300; ++k, ++i) loop.Tick(i * 1e-3, 1e-3);
+  loop.DrainTrace(&trace);
+  ASSERT_EQ(trace.size(), 301u);
+  // the refused tick: zero force, a fault of its own
+  EXPECT_TRUE(trace[0].flags & kInputFault);
+  EXPECT_TRUE(trace[0].flags & kFaultRenderer);
+  EXPECT_TRUE(trace[0].flags & kDeviceFault);
+  EXPECT_EQ(trace[0].force_n[2], 0.0);
+  // then the force ramps back in (it used to jump back to 3 N in the next tick)
+  for (std::size_t k = 1; k < trace.size(); ++k) {
+    const double ramp = std::min(1.0, (trace[k].time_s - trace[1].time_s) / 0.2);
+    ASSERT_FALSE(trace[k].flags & kDeviceFault) << trace[k].time_s;
+    ASSERT_LE(trace[k].force_n[2], 3.0001 * ramp + 1e-9) << trace[k].time_s;
+  }
+  EXPECT_TRUE(trace[1].flags & kRamping);
+  EXPECT_LT(trace[10].force_n[2], 0.2);
+  EXPECT_NEAR(trace.back().force_n[2], 3.0, 1e-4);
+  const FaultCounts& faults = loop.stats().faults;
+  EXPECT_EQ(faults.renderer - before.faults.renderer, 1u);
+  EXPECT_EQ(faults.zero_force_ticks - before.faults.zero_force_ticks, 1u);
 }
 
 TEST_F(HandOnBox, ARendererSwapReachesARunningLoop) {

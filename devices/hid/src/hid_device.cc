@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <cwchar>
 #include <mutex>
 #include <utility>
 
@@ -18,6 +20,18 @@ namespace {
 constexpr int kMaxReadsPerTick = 64;  // hidraw queues at most 64 reports
 constexpr double kWorkspaceMargin = 0.25;
 constexpr double kDriftAllowance = 1e-3;  // s per s: crystals drift 1e-4 at most
+// A report more than this many reports' time after the last one (at the device's stated
+// rate) may carry a sequence that has wrapped past half its 16-bit range: the device's
+// 32-bit clock decides. A quarter of the range, so a device up to twice as fast as it
+// states is still resynchronised.
+constexpr double kSequenceUnwrapReports = 16384.0;
+
+// The protocol version to ask a device for: the version of major 1 inside its range
+// nearest this host's 1.0 (minor versions are compatible, PROTOCOL.md section 2). The
+// range has passed DescribeInfoProblem, so it holds major 1.
+std::uint16_t SelectVersion(const hid::InfoReport& info) {
+  return std::clamp(hid::kHostVersion, info.version_min, info.version_max);
+}
 
 // Closes a handle unless released (Open's error paths).
 struct HandleGuard {
@@ -93,16 +107,23 @@ std::unique_ptr<HidDevice> HidDevice::Open(const std::string& path, int watchdog
   std::unique_ptr<HidDevice> device(new HidDevice(guard.handle, std::move(probe)));
   guard.handle = nullptr;  // the device owns it now
   device->watchdog_ms_ = watchdog_ms;
-  if (!device->SetSession(false)) {
+  const std::string refusal = device->SetSession(false);
+  if (!refusal.empty()) {
+    const hid::InfoReport& info = device->report_;
     throw DeviceError("the HID device " + path + " refused HaptiCAD HID protocol " +
-                      hid::VersionString(hid::kHostVersion) + " although it lists it (" +
-                      device->DescribeFault() + ")");
+                      hid::VersionString(device->version_) + ", which it lists (" +
+                      hid::VersionString(info.version_min) + "-" +
+                      hid::VersionString(info.version_max) + "): " + refusal +
+                      ". Its firmware does not follow the protocol; update it");
   }
   return device;
 }
 
 HidDevice::HidDevice(hid_device* handle, HidProbe probe)
-    : handle_(handle), info_(std::move(probe.info)), report_(probe.report) {
+    : handle_(handle),
+      info_(std::move(probe.info)),
+      report_(probe.report),
+      version_(SelectVersion(report_)) {
   const Vec3 margin =
       kWorkspaceMargin * (info_.limits.workspace_max_d - info_.limits.workspace_min_d);
   allowed_min_d_ = info_.limits.workspace_min_d - margin;
@@ -114,20 +135,29 @@ HidDevice::~HidDevice() {
   hid_close(handle_);
 }
 
-bool HidDevice::SetSession(bool open) {
+std::string HidDevice::SetSession(bool open) {
   hid::SessionReport session;
   session.flags = open ? hid::kSessionOpen : 0;
-  session.version = hid::kHostVersion;
+  session.version = version_;
   session.watchdog_ms = static_cast<std::uint16_t>(watchdog_ms_);
   std::uint8_t out[hid::kSessionReportSize];
   hid::EncodeSession(session, out);
-  if (hid_send_feature_report(handle_, out, sizeof out) < 0) return false;
+  if (hid_send_feature_report(handle_, out, sizeof out) < 0) {
+    return "setting the session report failed: " + hid::ErrorText(handle_);
+  }
   std::uint8_t in[256] = {hid::kSessionReportId};
   const int n = hid_get_feature_report(handle_, in, sizeof in);
+  if (n < 0) return "reading the session report back failed: " + hid::ErrorText(handle_);
   hid::SessionReport accepted;
-  if (n < 0 || !hid::DecodeSession(in, static_cast<std::size_t>(n), &accepted)) return false;
-  return accepted.version == hid::kHostVersion &&
-         (accepted.flags & hid::kSessionOpen) == session.flags;
+  if (!hid::DecodeSession(in, static_cast<std::size_t>(n), &accepted)) {
+    return "its session report (" + std::to_string(n) + " bytes) is malformed";
+  }
+  if (accepted.version == version_ && (accepted.flags & hid::kSessionOpen) == session.flags) {
+    return {};
+  }
+  return "it answered version " +
+         (accepted.version == 0 ? std::string("0") : hid::VersionString(accepted.version)) +
+         ((accepted.flags & hid::kSessionOpen) ? " with a session open" : " with no session");
 }
 
 void HidDevice::BeginSession() {
@@ -137,9 +167,9 @@ void HidDevice::BeginSession() {
   // old reports say nothing about now
   for (int i = 0; i < 4096 && hid_read_timeout(handle_, buffer_, sizeof buffer_, 0) > 0; ++i) {
   }
-  if (!SetSession(true)) {
-    throw DeviceError("the HID device " + info_.path +
-                      " did not open a session: " + hid::ErrorText(handle_));
+  const std::string refusal = SetSession(true);
+  if (!refusal.empty()) {
+    throw DeviceError("the HID device " + info_.path + " did not open a session: " + refusal);
   }
   session_open_ = true;
   have_report_ = false;
@@ -178,7 +208,7 @@ ReadStatus HidDevice::ReadState(double /*loop_time_s*/, DeviceState* state) {
   for (int i = 0; i < kMaxReadsPerTick; ++i) {
     const int n = hid_read_timeout(handle_, buffer_, sizeof buffer_, 0);
     if (n < 0) {
-      unplugged_.store(true, std::memory_order_release);
+      MarkUnplugged();
       return ReadStatus::kUnplugged;
     }
     if (n == 0) break;
@@ -189,9 +219,19 @@ ReadStatus HidDevice::ReadState(double /*loop_time_s*/, DeviceState* state) {
       continue;
     }
     if (have_report_) {
-      const auto ahead = static_cast<std::int16_t>(r.sequence - last_sequence_);
       // unsigned difference: wraps every 71.6 min; "back" shows as a huge step
       const std::uint32_t dt_us = r.device_time_us - last_device_time_us_;
+      const auto step = static_cast<std::uint16_t>(r.sequence - last_sequence_);
+      std::int64_t ahead = static_cast<std::int16_t>(step);
+      // after a long gap (the host stalled: hidraw kept the oldest reports and dropped
+      // the rest) the 16-bit sequence may have moved on by more than half its range and
+      // look like going back. The device's clock, 32 bits, moved forward: the advance is
+      // the one of step + k 65536 that agrees with it at the device's rate
+      const double expected = dt_us * 1e-6 * report_.report_rate_hz;
+      if (dt_us < 0x80000000u && expected >= kSequenceUnwrapReports) {
+        const double wraps = std::round((expected - step) / 65536.0);
+        ahead = std::max<std::int64_t>(1, step + static_cast<std::int64_t>(wraps) * 65536);
+      }
       if (ahead <= 0 || dt_us == 0 || dt_us >= 0x80000000u) {
         Count(not_newer_);
         continue;
@@ -202,7 +242,7 @@ ReadStatus HidDevice::ReadState(double /*loop_time_s*/, DeviceState* state) {
     have_report_ = true;
     last_sequence_ = r.sequence;
     last_device_time_us_ = r.device_time_us;
-    last_status_ = r.status;
+    last_status_.store(r.status, std::memory_order_relaxed);
     if (r.status & hid::kStatusWatchdog) Count(watchdog_reports_);
     if (r.round_trip_us != 0) {
       round_trip_.Record(static_cast<std::int64_t>(r.round_trip_us) * 1000);
@@ -261,22 +301,33 @@ void HidDevice::WriteForce(const Vec3& force_d) {
   Count(writes_);
   if (hid_write(handle_, out, sizeof out) < 0) {
     Count(writes_failed_);
-    if (++failed_writes_in_a_row_ >= 3) unplugged_.store(true, std::memory_order_release);
+    if (++failed_writes_in_a_row_ >= 3) MarkUnplugged();
   } else {
     failed_writes_in_a_row_ = 0;
   }
 }
 
+void HidDevice::MarkUnplugged() {
+  // hidapi's error text belongs to this thread's last call: keep it for DescribeFault()
+  // (any thread) before saying unplugged. Unplugged is final: written once.
+  const wchar_t* reason = hid_error(handle_);
+  if (reason) std::wcsncpy(unplug_reason_, reason, kReasonLength - 1);
+  unplug_reason_[kReasonLength - 1] = L'\0';
+  unplugged_.store(true, std::memory_order_release);
+}
+
 std::string HidDevice::DescribeFault() const {
   const HidLinkStats s = link_stats();
+  const std::uint8_t status = last_status_.load(std::memory_order_relaxed);
   std::string text;
   if (unplugged()) {
-    text = "hidapi: " + hid::ErrorText(handle_);
-  } else if (last_status_ & hid::kStatusFault) {
+    const std::string reason = hid::ToUtf8(unplug_reason_);
+    text = "hidapi: " + (reason.empty() ? std::string("unknown error") : reason);
+  } else if (status & hid::kStatusFault) {
     text = "the device reports a fault (amplifier, encoder or temperature)";
-  } else if (last_status_ & hid::kStatusNotHomed) {
+  } else if (status & hid::kStatusNotHomed) {
     text = "the device is not calibrated (homed) yet";
-  } else if (last_status_ & hid::kStatusWatchdog) {
+  } else if (status & hid::kStatusWatchdog) {
     text = "the device's watchdog cut the force (no command reached it in time)";
   }
   if (s.malformed + s.not_newer + s.dropped + s.out_of_range > 0) {

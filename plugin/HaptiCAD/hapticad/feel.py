@@ -40,8 +40,10 @@ class Stroke:
             raise ValueError(f"stroke: speed {self.speed_mm_s} mm/s is outside 0..2000")
         if not (0 < self.depth_mm <= 20):
             raise ValueError(f"stroke: depth {self.depth_mm} mm is outside 0..20")
-        if not (1 <= self.rate_hz <= 10000):
-            raise ValueError(f"stroke: rate {self.rate_hz} Hz is outside 1..10000")
+        slowest = _core.min_servo_rate_hz()  # what the loop's watchdog allows
+        if not (slowest <= self.rate_hz <= 10000):
+            raise ValueError(f"stroke: rate {self.rate_hz} Hz is outside {slowest:g}..10000 "
+                             "(slower, the loop's watchdog would cut the force)")
 
 
 @dataclass

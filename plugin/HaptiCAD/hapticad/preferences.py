@@ -24,7 +24,9 @@ SIMULATED_DEVICE = "simulated"
 ACCURACY_PRESETS = tuple(accuracy_presets.PRESETS)
 WORKSPACE_MAPPINGS = ("Fit part", "Fixed scale")
 COLOUR_BY = ("Material", "Roughness")
-SERVO_RATE_RANGE_HZ = (100, 10000)
+# The servo loop refuses a period over half its 5 ms watchdog (and stale-data limit):
+# below 400 Hz every late tick would cut the force (_core.min_servo_rate_hz()).
+SERVO_RATE_RANGE_HZ = (400, 10000)
 FORCE_LIMIT_RANGE_N = (0.1, 50.0)
 WORKSPACE_SCALE_RANGE = (0.01, 100.0)
 

@@ -5,7 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -129,12 +133,52 @@ TEST_F(HidOnEmulator, RefusesAWrongProtocolVersionSayingWhatToUpdate) {
   older.path = "emu:old";
   older.version_min = older.version_max = 0x0009;
   EXPECT_TRUE(Contains(OpenError(older), "update the device's firmware"));
-  // a device listing 1.x that then refuses it at negotiation
+  // a device that lists 1.0 and then refuses it at negotiation: what it answered, not "()"
   FirmwareConfig liar;
   liar.path = "emu:liar";
-  liar.version_min = 0x0101;  // speaks only 1.1..1.2: lists major 1, refuses 1.0
-  liar.version_max = 0x0102;
-  EXPECT_TRUE(Contains(OpenError(liar), "refused HaptiCAD HID protocol 1.0")) << OpenError(liar);
+  liar.refuse_sessions = true;
+  const std::string refused = OpenError(liar);
+  EXPECT_TRUE(Contains(refused,
+                       "the HID device emu:liar refused HaptiCAD HID protocol 1.0, which it "
+                       "lists (1.0-1.0): it answered version 0 with no session"))
+      << refused;
+  EXPECT_FALSE(Contains(refused, "()")) << refused;
+}
+
+TEST_F(HidOnEmulator, OpensADeviceThatSpeaksOnlyLaterMinorVersionsOfMajorOne) {
+  // minor versions are compatible (PROTOCOL.md section 2): a 1.1-1.2 device is asked for
+  // 1.1, the 1.x nearest this host's 1.0 (it used to be asked for 1.0, refuse it, and
+  // fail to open "although it lists it ()")
+  FirmwareConfig c;
+  c.version_min = 0x0101;
+  c.version_max = 0x0102;
+  const int id = hidemu::AddDevice(c);
+  EXPECT_EQ(hid::DescribeInfoProblem(HidDevice::Probe("emu:0").report), "");
+  std::unique_ptr<HidDevice> d;
+  try {
+    d = HidDevice::Open("emu:0");
+  } catch (const DeviceError& e) {
+    FAIL() << e.what();
+  }
+  EXPECT_EQ(d->protocol_version(), 0x0101);
+  EXPECT_EQ(hidemu::GetSnapshot(id).version, 0x0101);
+  d->set_clock(&hidemu::Now);
+  d->BeginSession();
+  EXPECT_TRUE(hidemu::GetSnapshot(id).session_open);
+  EXPECT_EQ(hidemu::GetSnapshot(id).version, 0x0101);
+  DeviceState s;
+  Tick(*d, 0.0, &s);
+  for (int i = 1; i <= 50; ++i) ASSERT_EQ(Tick(*d, i * 1e-3, &s), ReadStatus::kOk) << i;
+  d->EndSession();
+  EXPECT_FALSE(hidemu::GetSnapshot(id).session_open);
+  // a device whose range takes in 1.0 is asked for 1.0
+  FirmwareConfig wide;
+  wide.path = "emu:wide";
+  wide.version_min = 0x0005;
+  wide.version_max = 0x0103;
+  const int wide_id = hidemu::AddDevice(wide);
+  EXPECT_EQ(HidDevice::Open("emu:wide")->protocol_version(), 0x0100);
+  EXPECT_EQ(hidemu::GetSnapshot(wide_id).version, 0x0100);
 }
 
 TEST_F(HidOnEmulator, RefusesDevicesThatAreNotHapticOrStateImpossibleLimits) {
@@ -368,6 +412,98 @@ TEST_F(HidFaults, UnplugIsFinalAndSaysWhy) {
     FAIL();
   } catch (const DeviceError& e) {
     EXPECT_TRUE(Contains(e.what(), "was unplugged")) << e.what();
+  }
+}
+
+TEST_F(HidOnEmulator, DescribeFaultAsksHidapiNothingAndKeepsTheUnplugReason) {
+  // DescribeFault() may be called from any thread while the servo thread reads and
+  // writes; hidapi's error text is not thread-safe, so the reason for an unplug is taken
+  // on the servo thread when it happens, and DescribeFault() never calls hid_error()
+  FirmwareConfig c;
+  c.faults.push_back(FaultWindow{Fault::kNotHomed, 0.05, 0.06});
+  c.faults.push_back(FaultWindow{Fault::kUnplug, 0.1});
+  hidemu::AddDevice(c);
+  auto d = HidDevice::Open("emu:0");
+  d->set_clock(&hidemu::Now);
+  d->BeginSession();
+  DeviceState s;
+  for (int i = 0; i <= 55; ++i) Tick(*d, i * 1e-3, &s);
+  std::uint64_t calls = hidemu::HidErrorCalls();
+  EXPECT_TRUE(Contains(d->DescribeFault(), "not calibrated")) << d->DescribeFault();
+  for (int i = 56; i < 100; ++i) Tick(*d, i * 1e-3, &s);
+  EXPECT_EQ(d->DescribeFault(), "");  // good reports again: no fault to tell
+  EXPECT_EQ(hidemu::HidErrorCalls(), calls);
+  for (int i = 100; i < 105; ++i) EXPECT_EQ(Tick(*d, i * 1e-3, &s), ReadStatus::kUnplugged);
+  calls = hidemu::HidErrorCalls();
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(d->DescribeFault(),
+              "hidapi: hid_read_timeout: unexpected poll error (device disconnected)")
+        << d->DescribeFault();
+  }
+  EXPECT_EQ(hidemu::HidErrorCalls(), calls);
+  d->EndSession();
+  EXPECT_EQ(d->DescribeFault(),
+            "hidapi: hid_read_timeout: unexpected poll error (device disconnected)");
+}
+
+// The host stalls (a frozen process: nothing reads or writes) while the device reports
+// on; hidraw keeps the 64 oldest reports. Returns the statuses of the ticks after it.
+struct StallRun {
+  std::vector<ReadStatus> status;
+  std::vector<double> age_s;
+  HidLinkStats before, after;
+  std::string fault;
+};
+StallRun RunAHostStall(int rate_hz, double stall_s) {
+  hidemu::Reset();
+  hidemu::UseManualClock(kPlugTime);
+  FirmwareConfig c;
+  c.report_rate_hz = static_cast<std::uint16_t>(rate_hz);
+  hidemu::AddDevice(c);
+  auto d = HidDevice::Open("emu:0");
+  d->set_clock(&hidemu::Now);
+  d->BeginSession();
+  DeviceState s;
+  StallRun run;
+  long i = 0;
+  for (; i < 1000; ++i) {
+    hidemu::SetTime(kPlugTime + i * 1e-3);
+    d->ReadState(i * 1e-3, &s);
+    d->WriteForce(Vec3(0, 0, 0.5));
+  }
+  run.before = d->link_stats();
+  for (i = std::lround((1.0 + stall_s) * 1000); run.status.size() < 20; ++i) {
+    hidemu::SetTime(kPlugTime + i * 1e-3);
+    run.status.push_back(d->ReadState(i * 1e-3, &s));
+    run.age_s.push_back(s.age_s);
+    d->WriteForce(Vec3(0, 0, 0.5));
+  }
+  run.after = d->link_stats();
+  run.fault = d->DescribeFault();
+  return run;
+}
+
+TEST_F(HidOnEmulator, AfterAHostStallOverHalfTheSequenceRangeTheReportsAreUsedAtOnce) {
+  // 20 kHz for 2 s and 1 kHz for 40 s: the 16-bit sequence moves on by more than 32767,
+  // which alone would look like going back (it used to reject every healthy report for
+  // 1.3 s at 20 kHz, and for 25 s at 1 kHz); the device's 32-bit clock tells
+  for (const auto& [rate, stall] : {std::pair<int, double>{20000, 2.0}, {1000, 40.0}}) {
+    SCOPED_TRACE(rate);
+    const StallRun run = RunAHostStall(rate, stall);
+    // the first tick reads the 64 reports queued at the start of the stall: old data (at
+    // 1 kHz they also say the device's watchdog tripped)
+    EXPECT_TRUE(run.status[0] != ReadStatus::kOk || run.age_s[0] > 1.0) << run.age_s[0];
+    // from the next tick on, the reports sent after the stall are fresh data again
+    for (std::size_t k = 1; k < run.status.size(); ++k) {
+      EXPECT_EQ(run.status[k], ReadStatus::kOk) << k;
+      EXPECT_LT(run.age_s[k], 1e-3) << k;
+    }
+    EXPECT_EQ(run.after.not_newer, run.before.not_newer);
+    // the reports lost in the stall are counted (all but the 64 queued)
+    const double lost = rate * stall - 64;
+    EXPECT_NEAR(static_cast<double>(run.after.dropped - run.before.dropped), lost, 0.001 * lost);
+    // and the device's watchdog, over once commands come again, is not said to be on
+    EXPECT_FALSE(Contains(run.fault, "watchdog")) << run.fault;
   }
 }
 

@@ -43,6 +43,7 @@ class FeelTest(unittest.TestCase):
             (Stroke((10, 20, 20), (50, 20, 20), speed_mm_s=0), "speed"),
             (Stroke((10, 20, 20), (50, 20, 20), depth_mm=-1), "depth"),
             (Stroke((10, 20, 20), (50, 20, 20), rate_hz=1e6), "rate"),
+            (Stroke((10, 20, 20), (50, 20, 20), rate_hz=200), "the loop's watchdog would cut the force"),
             (Stroke((10, float("nan"), 20), (50, 20, 20)), "finite"),
         ]
         for stroke, message in cases:

@@ -40,6 +40,20 @@ class PreferencesTest(unittest.TestCase):
                     preferences.update(**change)
         self.assertEqual(preferences.load(), preferences.Preferences(servo_rate_hz=500))
 
+    def test_the_slowest_servo_rate_offered_is_the_slowest_the_loop_runs(self):
+        from hapticad import _core
+        low, high = preferences.SERVO_RATE_RANGE_HZ
+        self.assertEqual((low, high), (_core.min_servo_rate_hz(), 10000))
+        preferences.save(preferences.Preferences(servo_rate_hz=low))
+        for rate in (low - 1, 100, 199):
+            with self.subTest(rate=rate):
+                with self.assertRaisesRegex(ValueError, f"servo rate {rate} Hz is outside {low}..{high} Hz"):
+                    preferences.update(servo_rate_hz=rate)
+        self.assertEqual(preferences.load().servo_rate_hz, low)
+        # a rate stored by an older version that allowed it falls back to the default
+        App.ParamGet(preferences.GROUP).SetInt("ServoRateHz", 150)
+        self.assertEqual(preferences.load().servo_rate_hz, 1000)
+
     def test_a_hand_edited_bad_value_falls_back_to_its_default_only(self):
         group = App.ParamGet(preferences.GROUP)
         group.SetInt("ServoRateHz", 7)

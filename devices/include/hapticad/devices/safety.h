@@ -10,8 +10,11 @@
 //   force shaping  non-finite force => zero and kFaultNonFinite; clamp to the device's
 //                  max_force_n; hold to continuous_force_n once the force's thermal
 //                  average (I^2 t: mean of |F|^2 over `thermal_time_constant_s`) exceeds
-//                  it; ramp linearly from zero over `ramp_s` at session start, after
-//                  any fault and whenever the loop asks (scene swap, clutch release)
+//                  it; ramp linearly over `ramp_s` at session start, after any fault
+//                  and whenever the loop asks (scene swap, new mapping, clutch engage
+//                  and release): from the force last sent to the one asked for, so
+//                  the force never steps (from zero after a fault or at the start:
+//                  faults zero the force at once)
 //   give up        faults (or no data) for `fault_timeout_s` without a break
 //
 // Units: s, m, N (device frame). Servo-tick safe (no allocation, no lock, no I/O).
@@ -54,7 +57,8 @@ class ForceSafety {
   // kSafetyClamped or kThermalLimited to `*flags`.
   Vec3 Shape(double t_s, std::uint32_t faults, const Vec3& force_d, std::uint32_t* flags);
 
-  // Ramps again from zero starting with the next tick.
+  // Ramps again starting with the next tick: from the force last sent (zero after a
+  // fault) to the force asked for, over `ramp_s`.
   void RestartRamp() { ramp_pending_ = true; }
 
   // True when faults have lasted `fault_timeout_s` without a good tick in between.
@@ -71,6 +75,8 @@ class ForceSafety {
   Vec3 allowed_max_d_;
   bool ramp_pending_ = true;
   double ramp_start_s_ = 0.0;
+  Vec3 ramp_from_ = Vec3::Zero();  // the force the ramp starts from
+  Vec3 last_sent_ = Vec3::Zero();  // what Shape() returned last
   bool in_fault_ = false;
   double fault_since_s_ = 0.0;
   bool fault_timed_out_ = false;

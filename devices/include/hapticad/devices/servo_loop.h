@@ -2,7 +2,9 @@
 // ServoLoop: the haptic servo thread. At a fixed rate on the monotonic clock it reads
 // the device, maps the handle into the world (WorkspaceMapping, Clutch), renders a
 // force, passes it through ForceSafety, writes it, and pushes a TraceSample into a
-// preallocated lock-free ring that another thread drains.
+// preallocated lock-free ring that another thread drains. A tick the renderer refuses
+// (kInputFault) is a fault to ForceSafety like a bad reading (kFaultRenderer): zero
+// force, counted, and the force ramps in again after it.
 //
 // Hot path (Tick): no allocation, no lock, no system call but the device's I/O, no
 // Python. tests/devices/servo_loop_test.cc proves the allocation part by counting.
@@ -23,6 +25,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -41,12 +44,18 @@
 namespace hapticad {
 
 struct ServoConfig {
-  double rate_hz = 1000.0;               // 1..10000
+  double rate_hz = 1000.0;               // MinServoRateHz(safety)..10000
   std::size_t trace_capacity = 1 << 16;  // samples buffered between drains
   int realtime_priority = 70;            // SCHED_FIFO priority to ask for; <= 0: do not ask
   int clutch_button = -1;                // device button that holds the clutch; -1: none
   SafetyConfig safety;
 };
+
+// The slowest rate the loop runs at with `safety`: its period must be at most half the
+// loop watchdog and half the stale-data limit, so a tick that starts up to a period late
+// is not yet a fault (at 200 Hz with the 5 ms defaults every tick's gap would be one).
+// 400 Hz with the defaults.
+double MinServoRateHz(const SafetyConfig& safety);
 
 enum class SessionEnd : std::uint8_t {
   kNotStarted = 0,
@@ -66,6 +75,7 @@ struct FaultCounts {  // ticks with each reason for zero force (one tick may hav
   std::uint64_t reported = 0;  // the device reported a fault
   std::uint64_t watchdog = 0;
   std::uint64_t unplugged = 0;
+  std::uint64_t renderer = 0;          // the renderer refused the tick (kFaultRenderer)
   std::uint64_t zero_force_ticks = 0;  // ticks with any of the above
   std::uint64_t clamped = 0;           // ticks whose force the safety layer clamped
   std::uint64_t thermal_limited = 0;
@@ -98,7 +108,8 @@ struct ServoStats {
 class ServoLoop {
  public:
   // `device` (and `renderer`) must outlive the loop. Throws std::invalid_argument for a
-  // rate outside 1..10000 Hz, invalid safety settings or device limits.
+  // rate outside MinServoRateHz(config.safety)..10000 Hz (the message names the rate's
+  // period and the watchdog and stale limits), invalid safety settings or device limits.
   ServoLoop(Device& device, ForceRenderer& renderer, ServoConfig config = {});
   ServoLoop(Device& device, std::shared_ptr<ForceRenderer> renderer, ServoConfig config = {});
   ~ServoLoop();
@@ -126,10 +137,11 @@ class ServoLoop {
 
   // Swaps the renderer (a new scene, built on this thread): the servo thread takes it at
   // its next tick, starting it at the old proxy (or just outside the new scene's solid,
-  // if that grew over it: ForceRenderer::Reset) and ramping the force in again; the old
-  // one is released on this thread, never on the servo thread (core/handoff.h). Never
-  // blocks; a renderer set and not yet taken gives way to a newer one. A property edit
-  // needs no new renderer: ForceRenderer::SetSurfaces.
+  // if that grew over it: ForceRenderer::Reset) and going over ForceSafety's ramp from
+  // the force last sent to the new scene's (no step); the old one is released on this
+  // thread, never on the servo thread (core/handoff.h). Never blocks; a renderer set and
+  // not yet taken gives way to a newer one. A property edit needs no new renderer:
+  // ForceRenderer::SetSurfaces.
   void SetRenderer(std::shared_ptr<ForceRenderer> renderer);
   // Control thread: frees the renderers (and their scenes) the servo thread has moved
   // past. SetRenderer() and Stop() do it too; a control thread that swaps big scenes
@@ -137,11 +149,14 @@ class ServoLoop {
   // Returns how many renderers are still kept (the one in use and any set since).
   std::size_t ReleaseReplacedRenderers();
   // Replaces the mapping (validated; throws std::invalid_argument). Taken at the next
-  // tick; any clutch offset is dropped and the force ramps in again.
+  // tick; any clutch offset is dropped, the proxy restarts at the tool's new position
+  // (as at the start of a session: ForceRenderer::Reset) and the force goes over the
+  // ramp from the force last sent to the new one.
   void SetMapping(const WorkspaceMapping& mapping);
   // The mapping in effect (clutch offsets included), as of the last tick.
   WorkspaceMapping mapping() { return effective_mapping_.Read(); }
-  // Holds or releases the clutch (in addition to ServoConfig::clutch_button).
+  // Holds or releases the clutch (in addition to ServoConfig::clutch_button). Held, the
+  // force fades to zero over the ramp; released, it comes back over the ramp.
   void SetClutch(bool held) { clutch_requested_.store(held, std::memory_order_release); }
 
   // Runs the ticks at loop times 0, T, 2T, ... up to and including `duration_s` on the
@@ -197,8 +212,11 @@ class ServoLoop {
   std::atomic<bool> stop_requested_{false};
   std::atomic<SessionEnd> session_end_{SessionEnd::kNotStarted};
   SessionEnd end_requested_ = SessionEnd::kRunning;  // servo thread's
-  std::string fault_message_;                        // written before running_ turns false
-  std::string realtime_report_;                      // control thread's
+  // written before running_ turns false, cleared when a session begins; off the tick,
+  // under the mutex, which fault_message() (any thread) takes too
+  mutable std::mutex fault_message_mutex_;
+  std::string fault_message_;
+  std::string realtime_report_;  // control thread's
   std::atomic<bool> realtime_{false};
 
   std::atomic<std::uint64_t> ticks_{0};
@@ -207,7 +225,7 @@ class ServoLoop {
   std::atomic<std::uint64_t> trace_dropped_{0};
   std::atomic<double> elapsed_s_{0.0};
   std::atomic<double> wall_s_{0.0};
-  std::atomic<std::uint64_t> fault_counts_[10] = {};
+  std::atomic<std::uint64_t> fault_counts_[11] = {};  // FaultCounts, in its order
   LatencyHistogram period_jitter_;
   LatencyHistogram wake_latency_;
   LatencyHistogram tick_time_;

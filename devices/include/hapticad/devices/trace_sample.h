@@ -38,9 +38,13 @@ constexpr std::uint32_t kFaultNonFinite = 1u << 12;   // NaN or Inf from device 
 constexpr std::uint32_t kFaultReported = 1u << 13;    // the device reports a fault
 constexpr std::uint32_t kFaultWatchdog = 1u << 14;    // the loop missed its watchdog
 constexpr std::uint32_t kFaultUnplugged = 1u << 15;   // the device is gone
+// The renderer refused the tick (its kInputFault: the tool beyond its reach or speed
+// bounds in the world, or a force that would not be finite). Bit 20: bits 16-19 below
+// were taken when it came.
+constexpr std::uint32_t kFaultRenderer = 1u << 20;
 constexpr std::uint32_t kFaultMask = kFaultNoData | kFaultStale | kFaultOutOfRange |
                                      kFaultNonFinite | kFaultReported | kFaultWatchdog |
-                                     kFaultUnplugged;
+                                     kFaultUnplugged | kFaultRenderer;
 // Force shaping by the safety layer (the force was sent, reduced).
 constexpr std::uint32_t kRamping = 1u << 16;         // ramping in after start or a fault
 constexpr std::uint32_t kSafetyClamped = 1u << 17;   // clamped to the device's maximum

@@ -36,7 +36,9 @@ class PreferencesPage:
         self.servo_rate.setRange(*preferences.SERVO_RATE_RANGE_HZ)
         self.servo_rate.setSingleStep(100)
         self.servo_rate.setSuffix(" Hz")
-        self.servo_rate.setToolTip("Rate of the C++ servo loop; textures feel cleaner at higher rates")
+        self.servo_rate.setToolTip("Rate of the C++ servo loop; textures feel cleaner at higher rates. At least "
+                                   f"{preferences.SERVO_RATE_RANGE_HZ[0]} Hz: a slower loop would trip its own "
+                                   "5 ms watchdog")
         form.addRow("Servo rate", self.servo_rate)
         self.force_limit = QtWidgets.QDoubleSpinBox()
         self.force_limit.setObjectName("forceLimit")

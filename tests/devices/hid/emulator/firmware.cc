@@ -329,7 +329,8 @@ int Firmware::GetFeature(std::uint8_t* data, std::size_t length) {
 int Firmware::SendFeature(const std::uint8_t* data, std::size_t length) {
   if (data[0] != 0x04 || length < 8) return -1;
   const std::uint16_t version = Get16(data + 2);
-  if (version >= config_.version_min && version <= config_.version_max) {
+  if (version >= config_.version_min && version <= config_.version_max &&
+      !config_.refuse_sessions) {
     session_open_ = (data[1] & 1) != 0;
     version_ = version;
     watchdog_ms_ = Get16(data + 4);

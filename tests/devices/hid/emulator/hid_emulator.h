@@ -84,6 +84,9 @@ struct FirmwareConfig {
   double transport_latency_s = 0.0;  // each way
   std::uint32_t seed = 1;
   std::vector<FaultWindow> faults;
+  // refuses every session request (answers SESSION = 0, version 0) although it lists
+  // its versions: a faulty firmware
+  bool refuse_sessions = false;
 };
 
 struct Snapshot {
@@ -128,6 +131,10 @@ void UseManualClock(double t_s);
 void SetTime(double t_s);
 void UseRealClock();
 double Now();
+
+// How many times hid_error() was called, on any handle (hidapi's error text is not
+// thread-safe: a backend must not ask for it from another thread while it runs).
+std::uint64_t HidErrorCalls();
 
 // Parses a device list like "path=emu:0,product=My arm;path=emu:1,version=2.0-2.1" and
 // adds the devices. Keys: path, product, version (min-max), max_force (N; the continuous

@@ -4,7 +4,9 @@
 #include <hidapi/hidapi.h>
 #include <time.h>
 
+#include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -180,6 +182,10 @@ double Now() {
   std::lock_guard<std::mutex> lock(R().mutex);
   return NowLocked();
 }
+
+std::atomic<std::uint64_t> error_calls{0};
+
+std::uint64_t HidErrorCalls() { return error_calls.load(std::memory_order_relaxed); }
 
 void ConfigureFromSpec(const std::string& spec) {
   std::stringstream devices(spec);
@@ -480,6 +486,7 @@ struct hid_device_info HID_API_EXPORT* HID_API_CALL hid_get_device_info(hid_devi
 }
 
 HID_API_EXPORT const wchar_t* HID_API_CALL hid_error(hid_device* dev) {
+  hapticad::hidemu::error_calls.fetch_add(1, std::memory_order_relaxed);
   if (!dev) return R().global_error;
   return dev->error;
 }

@@ -1,17 +1,21 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // HidDevice: a haptic device speaking the HaptiCAD HID protocol (PROTOCOL.md) through
-// hidapi. Open() reads the device's information, negotiates the protocol version and
-// checks its limits; a session enables forces; every tick ReadState() drains the
-// input reports queued since the last tick (keeping the newest valid one) and
-// WriteForce() sends one output report.
+// hidapi. Open() reads the device's information, negotiates the protocol version (of
+// major 1 in the device's range, nearest 1.0) and checks its limits; a session enables forces;
+// every tick ReadState() drains the input reports queued since the last tick (keeping the newest
+// valid one) and WriteForce() sends one output report.
 //
 // Per report it rejects a wrong ID, length or CRC (truncated, garbage), a sequence
 // that is not newer (duplicated, reordered), a device time that does not advance
-// (frozen), and counts sequence gaps (dropped). Positions outside the stated workspace
-// grown by 25 % give kOutOfRange, a FAULT, NOT_HOMED or WATCHDOG status kDeviceFault
+// (frozen), and counts sequence gaps (dropped). After a gap of 16384 reports or more
+// by the device's clock (a host stall) the 16-bit sequence may have wrapped past half:
+// the device time decides, and the first report after the gap is used. Positions outside the stated
+// workspace grown by 25 % give kOutOfRange, a FAULT, NOT_HOMED or WATCHDOG status kDeviceFault
 // (after a device watchdog trip the force must ramp in, not jump back), and never
 // reach the velocity filter. A failed read, or three failed writes in a row, is an
-// unplug: kUnplugged from then on, and DescribeFault() gives hidapi's reason.
+// unplug: kUnplugged from then on, and DescribeFault() gives hidapi's reason (taken on
+// the servo thread when it happens: DescribeFault() never calls hidapi, whose error
+// text is not thread-safe).
 //
 // Age: time since the last fresh report, plus how much later than usual that report
 // arrived (its delay over the smallest recent delay, comparing the device's clock with
@@ -23,8 +27,8 @@
 //
 // Units: SI (device frame); velocity is filtered from positions on the device's own
 // clock. ReadState()/WriteForce() are servo-tick safe: no allocation, no lock; their
-// only system calls are hidapi's reads and write. The statistics may be read from any
-// thread.
+// only system calls are hidapi's reads and write. The statistics and DescribeFault()
+// may be read from any thread.
 #pragma once
 
 #include <atomic>
@@ -73,10 +77,10 @@ class HidDevice final : public Device {
   // version, impossible limits.
   static HidProbe Probe(const std::string& path);
 
-  // Opens `path`, checks it as Probe() does and negotiates protocol 1.0 with the
-  // device watchdog `watchdog_ms` (0: the device's default). The default, 5 ms, makes
-  // the device itself drop the force when the servo loop misses more than 5 ms, even
-  // if the loop never runs again. Throws DeviceError.
+  // Opens `path`, checks it as Probe() does and negotiates protocol 1.x (1.0, or the
+  // lowest 1.x the device speaks if it does not speak 1.0) with the device watchdog `watchdog_ms`
+  // (0: the device's default). The default, 5 ms, makes the device itself drop the force when the
+  // servo loop misses more than 5 ms, even if the loop never runs again. Throws DeviceError.
   static std::unique_ptr<HidDevice> Open(const std::string& path, int watchdog_ms = 5);
 
   ~HidDevice() override;
@@ -97,17 +101,21 @@ class HidDevice final : public Device {
   void set_clock(Clock clock) { clock_ = clock; }
   static double MonotonicSeconds();
   const hid::InfoReport& device_report() const { return report_; }
-  std::uint16_t protocol_version() const { return hid::kHostVersion; }
+  // The version negotiated: of major 1, in the device's range, nearest 1.0.
+  std::uint16_t protocol_version() const { return version_; }
   bool unplugged() const { return unplugged_.load(std::memory_order_acquire); }
 
  private:
   HidDevice(hid_device_* handle, HidProbe probe);
   void Count(std::atomic<std::uint64_t>& counter, std::uint64_t n = 1);
-  bool SetSession(bool open);
+  // Sets and reads back the session report: empty if the device accepted, else why not.
+  std::string SetSession(bool open);
+  void MarkUnplugged();  // servo thread
 
   hid_device_* handle_;
   DeviceInfo info_;
   hid::InfoReport report_;
+  std::uint16_t version_;  // asked for and accepted
   int watchdog_ms_ = 5;
   Clock clock_ = &HidDevice::MonotonicSeconds;
   Vec3 allowed_min_d_;
@@ -127,12 +135,16 @@ class HidDevice final : public Device {
   ReadStatus verdict_ = ReadStatus::kNoData;
   Vec3 position_d_ = Vec3::Zero();
   std::uint32_t buttons_ = 0;
-  std::uint8_t last_status_ = 0;
+  std::atomic<std::uint8_t> last_status_{0};  // of the newest report used; DescribeFault reads it
   VelocityFilter velocity_filter_{40.0};
   std::uint16_t output_sequence_ = 0;
   int failed_writes_in_a_row_ = 0;
   std::uint8_t buffer_[64] = {};
 
+  // hidapi's reason, taken on the servo thread before unplugged_ turns true (hid_error is
+  // not thread-safe; DescribeFault reads this instead)
+  static constexpr int kReasonLength = 160;
+  wchar_t unplug_reason_[kReasonLength] = {};
   std::atomic<bool> unplugged_{false};
   std::atomic<std::uint64_t> reports_read_{0}, reports_used_{0}, malformed_{0}, not_newer_{0},
       dropped_{0}, out_of_range_{0}, device_faults_{0}, watchdog_reports_{0}, writes_{0},
