@@ -188,23 +188,25 @@ void ServoLoop::SetMapping(const WorkspaceMapping& mapping) {
 }
 
 void ServoLoop::AdoptUpdates() {
-  // a new renderer (a new scene): it starts at the old proxy, the force ramps in again
+  // a new renderer (a new scene): it starts at the old proxy, where the hand still
+  // touches, and the force goes over the ramp from what was sent to what it renders
   ForceRenderer* next = renderers_.Take();
   if (next != current_) {
     reset_from_proxy_ = had_proxy_;
     current_ = next;
     renderer_needs_reset_ = true;
-    safety_.RestartRamp();
+    safety_.RestartRamp(RampFrom::kLastSent);
   }
   // a new mapping: the old proxy says nothing about where the tool is now (it could be
   // far away, across the part). The proxy restarts at the tool, as at the start of a
-  // session, and the force ramps in again
+  // session; the old force stops at once (no push the new contact does not back) and
+  // the new one ramps in from zero
   if (mapping_updates_.has_news()) {
     mapping_ = mapping_updates_.Read();
     clutch_.Reset();
     renderer_needs_reset_ = true;
     reset_from_proxy_ = false;
-    safety_.RestartRamp();
+    safety_.RestartRamp(RampFrom::kZero);
   }
 }
 
@@ -227,10 +229,10 @@ void ServoLoop::Tick(double loop_time_s, double gap_s) {
     const bool held =
         clutch_requested_.load(std::memory_order_acquire) ||
         (config_.clutch_button >= 0 && (state_.buttons >> config_.clutch_button) & 1u);
-    // engaged: the force fades out over the ramp (not a step to zero under a pressing
-    // hand); released: it fades in again
-    if (clutch_.Update(held, state_.position_d, &mapping_) != Clutch::Event::kNone) {
-      safety_.RestartRamp();
+    // engaged: the force stops at once (the hand moves the device freely, nothing
+    // is to push it); released: it ramps in from zero
+    if (clutch_.Update(held, state_.position_d, &mapping_) == Clutch::Event::kReleased) {
+      safety_.RestartRamp(RampFrom::kZero);
     }
     if (clutch_.engaged()) {
       tool_w = clutch_.frozen_tool_w();

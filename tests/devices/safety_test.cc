@@ -92,23 +92,23 @@ TEST(ForceSafety, AFaultZeroesTheForceAndTheForceRampsBackAfterIt) {
   EXPECT_EQ(flags, kFaultNonFinite | kDeviceFault);
 }
 
-TEST(ForceSafety, ARestartedRampGoesFromTheForceLastSentWithoutAStep) {
+TEST(ForceSafety, ARampFromTheForceLastSentHasNoStepAndOneFromZeroStopsItAtOnce) {
   ForceSafety safety(Limits(), SafetyConfig{});
   safety.BeginSession(0.0);
   std::uint32_t flags = 0;
   int i = 0;
   for (; i <= 500; ++i) safety.Shape(i * 1e-3, 0, Vec3(0, 0, 1.2), &flags);
   // asked to ramp again (a scene swap) with the same force asked for: it stays
-  safety.RestartRamp();
+  safety.RestartRamp(RampFrom::kLastSent);
   for (const int end = i + 300; i < end; ++i) {
     flags = 0;
     const Vec3 f = safety.Shape(i * 1e-3, 0, Vec3(0, 0, 1.2), &flags);
     EXPECT_NEAR(f.z(), 1.2, 1e-12) << i;
     EXPECT_EQ((flags & kRamping) != 0, i < 701) << i;
   }
-  // asked to ramp again with no force asked for (the clutch engaged): it fades out
+  // asked to ramp again from what was sent with no force asked for: it fades out
   // linearly over the ramp instead of dropping in one tick
-  safety.RestartRamp();
+  safety.RestartRamp(RampFrom::kLastSent);
   const int start = i;
   for (const int end = i + 300; i < end; ++i) {
     flags = 0;
@@ -116,12 +116,20 @@ TEST(ForceSafety, ARestartedRampGoesFromTheForceLastSentWithoutAStep) {
     EXPECT_NEAR(f.z(), 1.2 * std::max(0.0, 1.0 - (i - start) * 1e-3 / 0.2), 1e-9) << i;
   }
   // and in again, from zero: as the ramp at the start
-  safety.RestartRamp();
+  safety.RestartRamp(RampFrom::kLastSent);
   const int again = i;
   for (const int end = i + 300; i < end; ++i) {
     flags = 0;
     const Vec3 f = safety.Shape(i * 1e-3, 0, Vec3(0, 0, 0.5), &flags);
     EXPECT_NEAR(f.z(), 0.5 * std::min(1.0, (i - again) * 1e-3 / 0.2), 1e-9) << i;
+  }
+  // from zero (a new mapping): the force sent stops at once and the new one ramps in
+  safety.RestartRamp(RampFrom::kZero);
+  const int fresh = i;
+  for (const int end = i + 300; i < end; ++i) {
+    flags = 0;
+    const Vec3 f = safety.Shape(i * 1e-3, 0, Vec3(0, 0, 0.9), &flags);
+    EXPECT_NEAR(f.z(), 0.9 * std::min(1.0, (i - fresh) * 1e-3 / 0.2), 1e-9) << i;
   }
   // a fault still zeroes the force at once, and the force ramps in from zero after it
   flags = 0;

@@ -11,10 +11,11 @@
 //                  max_force_n; hold to continuous_force_n once the force's thermal
 //                  average (I^2 t: mean of |F|^2 over `thermal_time_constant_s`) exceeds
 //                  it; ramp linearly over `ramp_s` at session start, after any fault
-//                  and whenever the loop asks (scene swap, new mapping, clutch engage
-//                  and release): from the force last sent to the one asked for, so
-//                  the force never steps (from zero after a fault or at the start:
-//                  faults zero the force at once)
+//                  and whenever the loop asks: from the force last sent at a scene
+//                  swap (the hand still touches: no step), from zero after a new
+//                  mapping or a clutch release, after a fault and at the start (a
+//                  force no contact backs any more stops at once; stopping adds no
+//                  energy)
 //   give up        faults (or no data) for `fault_timeout_s` without a break
 //
 // Units: s, m, N (device frame). Servo-tick safe (no allocation, no lock, no I/O).
@@ -39,6 +40,8 @@ struct SafetyConfig {
 // Throws std::invalid_argument naming the first bad field.
 void ValidateSafetyConfig(const SafetyConfig& config);
 
+enum class RampFrom { kLastSent, kZero };
+
 class ForceSafety {
  public:
   // Throws std::invalid_argument for invalid limits or config.
@@ -57,9 +60,13 @@ class ForceSafety {
   // kSafetyClamped or kThermalLimited to `*flags`.
   Vec3 Shape(double t_s, std::uint32_t faults, const Vec3& force_d, std::uint32_t* flags);
 
-  // Ramps again starting with the next tick: from the force last sent (zero after a
-  // fault) to the force asked for, over `ramp_s`.
-  void RestartRamp() { ramp_pending_ = true; }
+  // Ramps again starting with the next tick, over `ramp_s`, to the force asked for:
+  // from the force last sent (zero after a fault), or from zero (the force last sent
+  // stops at once: what the hand touched before says nothing any more).
+  void RestartRamp(RampFrom from) {
+    ramp_pending_ = true;
+    if (from == RampFrom::kZero) last_sent_.setZero();
+  }
 
   // True when faults have lasted `fault_timeout_s` without a good tick in between.
   bool fault_timed_out() const { return fault_timed_out_; }

@@ -150,13 +150,13 @@ class ServoLoop {
   std::size_t ReleaseReplacedRenderers();
   // Replaces the mapping (validated; throws std::invalid_argument). Taken at the next
   // tick; any clutch offset is dropped, the proxy restarts at the tool's new position
-  // (as at the start of a session: ForceRenderer::Reset) and the force goes over the
-  // ramp from the force last sent to the new one.
+  // (as at the start of a session: ForceRenderer::Reset); the force sent stops and the
+  // new one ramps in from zero.
   void SetMapping(const WorkspaceMapping& mapping);
   // The mapping in effect (clutch offsets included), as of the last tick.
   WorkspaceMapping mapping() { return effective_mapping_.Read(); }
   // Holds or releases the clutch (in addition to ServoConfig::clutch_button). Held, the
-  // force fades to zero over the ramp; released, it comes back over the ramp.
+  // force stops at once; released, it ramps in from zero.
   void SetClutch(bool held) { clutch_requested_.store(held, std::memory_order_release); }
 
   // Runs the ticks at loop times 0, T, 2T, ... up to and including `duration_s` on the
