@@ -212,6 +212,9 @@ void DefineTextures(py::module_& m) {
   m.def("paper_preset", &PaperPreset, py::arg("dc"), py::arg("vis"));
   m.def("viscous_texture_level", &ViscousTextureLevel, py::arg("params"), py::arg("x_m"),
         py::arg("speed_mps"));
+  py::enum_<TextureScale>(m, "TextureScale")
+      .value("DEVICE_FORCE", TextureScale::kDeviceForce)
+      .value("FRICTION_LEVEL", TextureScale::kFrictionLevel);
   py::class_<ViscousGrating>(m, "ViscousGrating")
       .def(py::init([](const ViscousTextureParams& p, const SurfaceFrame& f) {
              return ViscousGrating{p, f};
@@ -219,7 +222,8 @@ void DefineTextures(py::module_& m) {
            py::arg("params"), py::arg("frame"))
       .def_readwrite("params", &ViscousGrating::params)
       .def_readwrite("frame", &ViscousGrating::frame)
-      .def_readwrite("full_range_n", &ViscousGrating::full_range_n);
+      .def_readwrite("full_range_n", &ViscousGrating::full_range_n)
+      .def_readwrite("scale", &ViscousGrating::scale);
 
   py::class_<Vibration>(m, "Vibration")
       .def(py::init([](double f, double a, const Vec3& axis, bool powered) {

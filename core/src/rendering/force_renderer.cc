@@ -246,8 +246,11 @@ void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
 
   Vec3 force = normal_force * normal_direction;
   if (effects & kEffectTexture) {
+    const ViscousGrating& grating = *surface.texture;
     const double full_range =
-        surface.texture->full_range_n > 0.0 ? surface.texture->full_range_n : limits_.max_force_n;
+        grating.scale == TextureScale::kFrictionLevel
+            ? surface.friction.static_coefficient * friction_scale * normal_force
+            : (grating.full_range_n > 0.0 ? grating.full_range_n : limits_.max_force_n);
     const Vec3 texture = CalcViscousTextureForce(surface.texture->params, full_range,
                                                  GratingCoordinate(surface, contact_w), v_t,
                                                  surface.friction.stick_speed_mps);

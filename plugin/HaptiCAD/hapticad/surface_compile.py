@@ -171,6 +171,8 @@ def compile_surface(surface, face):
         params.period_m = surface.TexturePeriod * MM
         grating = _core.ViscousGrating(params, surface_frame)
         grating.full_range_n = surface.TextureFullRange
+        grating.scale = (_core.TextureScale.FRICTION_LEVEL if surface.TextureScale == "Friction level"
+                         else _core.TextureScale.DEVICE_FORCE)
         props.texture = grating
     try:
         _core.validate_surface_properties(props)

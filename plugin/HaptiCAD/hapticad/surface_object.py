@@ -18,11 +18,14 @@ from . import curve_references, face_references, materials, textures
 
 TYPE = "HaptiCAD::HapticSurface"
 # 3: ReferenceState (face signatures and re-match status per reference)
-SCHEMA_VERSION = 3
+# 4: rivals in ReferenceState, PatternCurveState, PatternAnchor, TextureScale (all
+#    added, and signed from the shapes as saved, when an older document opens)
+SCHEMA_VERSION = 4
 PATTERNS = ["None", "Linear", "Circular", "Curve"]
 FRICTION_MODELS = ["Velocity (seed 000)", "Friction cone (stick-slip)"]
 INTERPOLATIONS = ["Linear (seed 000 eq. 3)", "Friction ellipse"]
 CURVE_EVALUATIONS = ["Lookup table", "Exact"]
+TEXTURE_SCALES = ["Device force", "Friction level"]
 ROUGHNESS_MIN, ROUGHNESS_MAX = 1, 7
 # keeps a typed-in zero from making a face infinitely soft; the device caps the top
 STIFFNESS_MIN_N_PER_MM = 1e-3
@@ -98,8 +101,12 @@ PROPERTIES = [
     ("TextureBetaViscosity", "App::PropertyFloat", "Texture", "beta_vis: amplitude change per 400 mm/s", 0.0, None),
     ("TextureAlphaViscosity", "App::PropertyFloat", "Texture", "alpha_vis: decay change per 400 mm/s", 0.0, None),
     ("TexturePeriod", "App::PropertyFloatConstraint", "Texture", "Grating period lambda (mm)", 2.5, (1e-3, 1e3, 0.1)),
+    ("TextureScale", "App::PropertyEnumeration", "Texture",
+     "What level 1 stands for. Device force: a force (Full range, or the device's full range), however "
+     "hard you press. Friction level: the face's static friction times how hard you press, as on the "
+     "paper's TPad, whose levels set its glass's friction (seed 001 §IV)", None, None),
     ("TextureFullRange", "App::PropertyFloatConstraint", "Texture",
-     "Newtons that level 1 stands for; 0 = the device's full range (the paper's convention)",
+     "Device force: newtons that level 1 stands for; 0 = the device's full range",
      0.0, (0.0, 100.0, 0.1)),
 ]
 ENUMERATIONS = {
@@ -108,6 +115,7 @@ ENUMERATIONS = {
     "Interpolation": INTERPOLATIONS,
     "CurveEvaluation": CURVE_EVALUATIONS,
     "Texture": textures.CHOICES,
+    "TextureScale": TEXTURE_SCALES,
 }
 TEXTURE_VALUES = ("TextureDC", "TextureViscosity", "TextureBeta", "TextureAlpha",
                   "TextureBetaViscosity", "TextureAlphaViscosity")

@@ -260,6 +260,30 @@ TEST_F(EffectsOnBox, ViscousGratingReplacesFrictionWithEq2InNewtons) {
               ViscousTextureLevel(grating.params, 0.08 * 119 / 1000.0, 0.08) * 2.0, 1e-9);
 }
 
+TEST_F(EffectsOnBox, AViscousGratingAsAFrictionLevelDragsInProportionToThePress) {
+  ViscousGrating grating{PaperPreset(1, 1),
+                         SurfaceFrame{Vec3(0, 0, 0.05), Vec3::UnitX(), Vec3::UnitY()}};
+  grating.scale = TextureScale::kFrictionLevel;
+  top_.texture = grating;
+  // across the ridges at 80 mm/s, pressed 1 and 3 mm deep: level * mu_s * F_n, so the
+  // deeper stroke drags three times as hard (as a force, both dragged the same 8 N * f)
+  for (const double depth : {0.001, 0.003}) {
+    auto r = Make();
+    RenderOutput out;
+    r.Render({Vec3(0, -0.03, 0.06), Vec3::Zero(), 0.0}, &out);
+    for (int i = 0; i < 200; ++i) {
+      const double y = -0.03 + 0.08 * i / 1000.0;
+      r.Render({Vec3(0, y, 0.05 - depth), Vec3(0, 0.08, 0), i / 1000.0}, &out);
+      if (i < 20) continue;
+      const double level = std::clamp(ViscousTextureLevel(grating.params, y, 0.08), 0.0, 1.0);
+      ASSERT_NEAR(out.normal_force_n, 500.0 * depth, 1e-6) << i;
+      ASSERT_NEAR(out.texture_force_n, level * 0.4 * out.normal_force_n, 1e-12)
+          << depth << " " << i;
+      ASSERT_LT(out.texture_force_n, 0.4 * out.normal_force_n + 1e-12) << i;
+    }
+  }
+}
+
 TEST_F(EffectsOnBox, VibrationShakesOnlyWhileTouched) {
   top_.vibration = 0;
   auto r = Make({Vibration{100.0, 0.25, Vec3::UnitZ(), true}});

@@ -179,6 +179,9 @@ class CompileTest(unittest.TestCase):
         p = compile_surface(self.surface(RoughnessCategory=6, RoughnessHeight=0.1,
                                          Texture="Paper f_DC 0.675 f_vis -0.2", TexturePeriod=3.0,
                                          TextureFullRange=1.2), self.top)
+        self.assertEqual(p.texture.scale, _core.TextureScale.DEVICE_FORCE)  # issue 3's reading
+        friction = compile_surface(self.surface(Texture="Custom", TextureScale="Friction level"), self.top)
+        self.assertEqual(friction.texture.scale, _core.TextureScale.FRICTION_LEVEL)
         self.assertAlmostEqual(p.roughness.spacing_m, 1.5e-3)
         self.assertAlmostEqual(p.roughness.amplitude_m, 1.5e-4)
         self.assertEqual((p.texture.params.f_dc, p.texture.params.f_vis), (0.675, -0.2))

@@ -37,7 +37,7 @@ LABELS = {
     "PatternCurve": "Curve", "AcrossFriction": "Across / along", "BackwardFriction": "Backward / forward",
     "TextureDC": "f_DC", "TextureViscosity": "f_vis", "TextureBeta": "β_h", "TextureAlpha": "α_h",
     "TextureBetaViscosity": "β_vis", "TextureAlphaViscosity": "α_vis", "TexturePeriod": "Period λ",
-    "TextureFullRange": "Full range",
+    "TextureFullRange": "Full range", "TextureScale": "Level 1 is",
 }
 GROUP_TITLES = [("Surface", "Material"), ("Friction", "Friction and stiffness"), ("Roughness", "Roughness"),
                 ("Pattern", "Friction pattern"), ("Texture", "Viscous texture")]
@@ -55,7 +55,8 @@ RELEVANT = {
     "RoughnessHeight": lambda o: o.FeelRoughness,
     "RoughnessFrictionModulation": lambda o: o.FeelRoughness,
     **{name: (lambda o: o.Texture != "None") for name in surface_object.TEXTURE_VALUES + ("TexturePeriod",
-                                                                                          "TextureFullRange")},
+                                                                                          "TextureScale")},
+    "TextureFullRange": lambda o: o.Texture != "None" and o.TextureScale == "Device force",
 }
 FLOAT_DECIMALS = 4
 SPECIAL = ("References", "Material", "RoughnessCategory", "PatternCurve")

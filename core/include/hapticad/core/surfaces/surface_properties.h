@@ -43,12 +43,25 @@ enum class FrictionMode {
 using StripePattern = std::variant<std::monostate, LinearPattern, CircularPattern,
                                    std::shared_ptr<const CurvePattern>>;
 
+// What level 1 of a viscous grating stands for.
+enum class TextureScale {
+  // A force: full_range_n, or the device's full range (issue 3's reading of "1 = the
+  // hardware's full range"), whatever the press: on a strong device several times a
+  // light touch's normal force.
+  kDeviceForce,
+  // A friction level, as on seed 001's TPad, whose levels set its glass's friction:
+  // level 1 is the face's static friction (times the roughness's scale), and the
+  // lateral force is the level times that mu times the normal force. A texture then
+  // drags harder the harder one presses, as a real one does.
+  kFrictionLevel,
+};
+
 struct ViscousGrating {
   ViscousTextureParams params;
   SurfaceFrame frame;  // x across the ridges: e2 of the frame unless a pattern says otherwise
-  // Newtons that level 1 stands for; 0 takes the device's full range (seed 001's
-  // convention), which on a strong device is several times a light touch's normal force.
+  // kDeviceForce: newtons that level 1 stands for; 0 takes the device's full range.
   double full_range_n = 0.0;
+  TextureScale scale = TextureScale::kDeviceForce;
 };
 
 struct SurfaceProperties {

@@ -9,9 +9,14 @@
 // device's full range; v is in units of 400 mm/s (f_vis is "per 400 mm/s"); alpha are
 // dimensionless; x and lambda are metres. In newtons the lateral force is
 // clamp(f, 0, 1) * full_range_n, opposing the sliding velocity: like the TPad's
-// friction it can only resist, never push, nor exceed the device. The paper's
+// friction it can only resist, never push, nor exceed the device. What full_range_n is
+// (a fixed force, or the face's friction times the normal force, as the TPad's levels
+// were) is the renderer's choice: TextureScale in surface_properties.h. The paper's
 // experiment held beta_h = 0.125, alpha_h = 2.5, beta_vis = alpha_vis = 0, and crossed
-// f_DC in {0.325, 0.5, 0.675} with f_vis in {-0.2, 0, 0.2}: PaperPreset(i, j).
+// f_DC in {0.325, 0.5, 0.675} with f_vis in {-0.2, 0, 0.2}: PaperPreset(i, j). The
+// -0.2 was chosen "to offset the observed positive viscosity inherent on a glass
+// surface" (seed 001 §IV), a value the paper does not give: rendered without glass,
+// those presets are the net negative viscosity the subjects did not feel.
 //
 // The grating's ridges run along the stripes, so x is measured across them. Pure and
 // servo-tick safe; non-finite inputs give 0.
