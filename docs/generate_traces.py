@@ -79,6 +79,7 @@ class Figures:
         self.circular()
         self.curve()
         self.texture()
+        self.texture_scale()
         self.stick_slip()
         self.vibration()
 
@@ -233,6 +234,26 @@ class Figures:
         fig.suptitle("Viscous gratings of seed 001 eq. 2, f_DC = 0.5, level 1 = the device's full range "
                      "(8.9 N): viscosity shifts the level with speed")
         self.save(fig, "texture_viscous.png")
+
+    def texture_scale(self):
+        np, plt = self.np, self.plt
+        fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), constrained_layout=True, sharey=True)
+        for ax, scale in zip(axes, ("Device force", "Friction level")):
+            for depth in (0.5, 2.0):
+                scene = self.scene(material="Glass", Texture="Paper f_DC 0.500 f_vis +0.0", FeelRoughness=False,
+                                   TextureScale=scale)
+                _, trace, sliding, x = self.stroke(scene, (50, 30, 20), (50, 70, 20), speed=80.0, depth=depth)
+                normal = trace["normal_force_n"][sliding].mean()
+                ax.plot(x[sliding], trace["texture_force_n"][sliding], lw=1.0,
+                        label=f"pressed {depth:g} mm (normal force {normal:.2f} N)")
+            ax.set_title(f"Level 1 is: {scale}")
+            ax.set_xlabel("distance along the stroke (mm), 80 mm/s across the ridges")
+            ax.grid(alpha=0.3)
+            ax.legend(fontsize=8)
+        axes[0].set_ylabel("lateral force (N)")
+        fig.suptitle("The same grating (f_DC 0.5) on glass: as a device force (8.9 N full range) it drags the same\n"
+                     "however lightly you touch; as a friction level (seed 001's TPad) it scales with the press")
+        self.save(fig, "texture_scale.png")
 
     def stick_slip(self):
         np, plt = self.np, self.plt
