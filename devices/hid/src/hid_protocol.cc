@@ -145,8 +145,14 @@ std::string DescribeInfoProblem(const InfoReport& info) {
     return bad("position resolution (" + std::to_string(info.position_resolution_nm * 1e-6) +
                " mm)");
   }
-  if (info.report_rate_hz < 100 || info.report_rate_hz > 20000) {
+  if (info.report_rate_hz > 20000) {
     return bad("report rate (" + std::to_string(info.report_rate_hz) + " Hz)");
+  }
+  if (info.report_rate_hz < kMinReportRateHz) {
+    return "it reports at " + std::to_string(info.report_rate_hz) +
+           " Hz, too slowly: HaptiCAD renders from positions no older than 5 ms and needs at "
+           "least " +
+           std::to_string(kMinReportRateHz) + " Hz; raise the device's report rate";
   }
   if (info.watchdog_ms < 1 || info.watchdog_ms > 1000) {
     return bad("watchdog (" + std::to_string(info.watchdog_ms) + " ms)");

@@ -141,6 +141,12 @@ TEST(HidProtocol, SaysWhatIsWrongWithADevice) {
   EXPECT_NE(DescribeInfoProblem(i).find("workspace"), std::string::npos);
   i = GoodInfo();
   i.report_rate_hz = 50;
+  EXPECT_NE(DescribeInfoProblem(i).find("reports at 50 Hz, too slowly"), std::string::npos);
+  i.report_rate_hz = 399;  // the data would be stale on many ticks: almost no force
+  EXPECT_NE(DescribeInfoProblem(i).find("needs at least 400 Hz"), std::string::npos);
+  i.report_rate_hz = 400;
+  EXPECT_EQ(DescribeInfoProblem(i), "");
+  i.report_rate_hz = 20001;
   EXPECT_NE(DescribeInfoProblem(i).find("report rate"), std::string::npos);
   i = GoodInfo();
   i.watchdog_ms = 0;

@@ -20,6 +20,11 @@ constexpr std::uint16_t kUsagePage = 0xFF48;
 constexpr std::uint16_t kUsage = 0x01;
 constexpr std::uint16_t kMagic = 0x4348;        // 'H' 'C'
 constexpr std::uint16_t kHostVersion = 0x0100;  // 1.0: this host speaks major 1
+// The slowest input report rate the host accepts: the loop zeroes the force on data
+// older than 5 ms (SafetyConfig::stale_after_s), and a report period must leave room
+// for a late one (ServoLoop's own minimum rate is 2 / that limit too). A 100 Hz device
+// had its data stale on 46 % of ticks and felt almost no force.
+constexpr std::uint16_t kMinReportRateHz = 400;
 
 constexpr std::uint8_t kInputReportId = 0x01;
 constexpr std::uint8_t kOutputReportId = 0x02;
