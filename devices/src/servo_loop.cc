@@ -265,6 +265,9 @@ void ServoLoop::Tick(double loop_time_s, double gap_s) {
   }
   const Vec3 rendered_d =
       faults == 0 && !clutch_.engaged() ? mapping_.ForceToDevice(out.force_w) : Vec3::Zero();
+  // a scene swap blends from the force last sent only while the hand touches something:
+  // a face the edit took away, or the clutch, ends the old force at once
+  if (!(out.flags & kContact) || clutch_.engaged()) safety_.DropBlend();
   const Vec3 force_d = safety_.Shape(loop_time_s, faults, rendered_d, &flags);
   device_.WriteForce(force_d);
   const auto end = Clock::now();

@@ -541,6 +541,23 @@ TEST(ServoLoopTransitions, ASceneSwapNeverStepsTheForceAndTheClutchStopsItAtOnce
   auto [released, before_released] = run(300);
   EXPECT_LE(LargestStep(released, before_released), 3.2 / 200 + 1e-9);
   EXPECT_NEAR(released.back().force_n[2], 3.2, 1e-6);
+  // the top lowered to 40 mm, under the hand at 47 mm: nothing backs the 3.2 N any more,
+  // and it stops at once (it used to fade out over the ramp, pushing on nothing)
+  loop.SetRenderer(BoxRenderer(device.info().limits, 0.0, 40.0));
+  auto [lowered, before_lowered] = run(50);
+  for (const auto& s : lowered) {
+    ASSERT_FALSE(s.flags & kContact) << s.time_s;
+    ASSERT_EQ(s.force_n[2], 0.0) << s.time_s;
+  }
+  // back to 55 mm, and the clutch engaged in the middle of the swap's blend: zero at once
+  loop.SetRenderer(BoxRenderer(device.info().limits, 0.0, 55.0));
+  run(300);
+  loop.SetRenderer(BoxRenderer(device.info().limits, 0.0, 54.0));
+  run(50);
+  ASSERT_TRUE(loop.latest().flags & kRamping);
+  loop.SetClutch(true);
+  auto [clutched, before_clutched] = run(10);
+  for (const auto& s : clutched) ASSERT_EQ(s.force_n[2], 0.0) << s.time_s;
 }
 
 TEST(ServoLoopSettings, ARateTooSlowForTheWatchdogOrTheStaleLimitIsRefused) {

@@ -157,7 +157,8 @@ class LiveSession:
         new scene into the loop: a change of shape is felt from the next tick on, the
         session goes on. The loop takes the new renderer at its next tick (built here,
         never on the servo thread); the proxy restarts where it was, or on the nearest
-        face if the part grew over it, and the force ramps in again. Raises ValueError
+        face if the part grew over it, and the force goes over 0.2 s from the old one to
+        the new (at once to zero if the hand touches nothing now). Raises ValueError
         (naming the part or surface) when the new shape cannot be felt (a tagged face
         gone, nothing left to touch, parts beyond the simulated probe's workspace, which
         was set at the start); the loop then keeps the old scene. With a device, parts

@@ -67,6 +67,12 @@ class ForceSafety {
     ramp_pending_ = true;
     if (from == RampFrom::kZero) last_sent_.setZero();
   }
+  // The force a ramp blends from stops now: nothing the hand touches backs it any more
+  // (no contact, or the clutch). The rest of a running ramp goes from zero.
+  void DropBlend() {
+    ramp_from_.setZero();
+    last_sent_.setZero();
+  }
 
   // True when faults have lasted `fault_timeout_s` without a good tick in between.
   bool fault_timed_out() const { return fault_timed_out_; }
