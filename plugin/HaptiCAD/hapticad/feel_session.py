@@ -115,8 +115,9 @@ class LiveSession:
                                     trace_capacity=int(self.rate_hz * TRACE_SECONDS) + 1024)
         if mapping is not None:
             self.loop.set_mapping(mapping)
+        self.mapping = mapping or _core.WorkspaceMapping()  # the loop takes it at its first tick
         # a device's reach: the simulated hand's is the parts' box and a margin
-        self.reach_note = None if self.simulated else beyond_reach(limits, self.loop.mapping, low, high)
+        self.reach_note = None if self.simulated else beyond_reach(limits, self.mapping, low, high)
 
     @staticmethod
     def _mapping(limits, low, high, prefs):
@@ -177,7 +178,9 @@ class LiveSession:
         self.renderer = renderer
         self.doc_scene = doc_scene
         if not self.simulated:  # the device's mapping was fitted to the parts as they were
-            self.reach_note = beyond_reach(self.limits, self.loop.mapping, *scene_box_m(doc_scene))
+            # the mapping in effect, clutch offsets included, once the loop has ticked
+            mapping = self.loop.mapping if self.loop.stats.ticks > 0 else self.mapping
+            self.reach_note = beyond_reach(self.limits, mapping, *scene_box_m(doc_scene))
 
     def apply_edit(self, doc, geometry):
         """What the Feel panel calls after the designer edits doc: with ``geometry``

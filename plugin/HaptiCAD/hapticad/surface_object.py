@@ -191,6 +191,13 @@ class HapticSurface(SchemaState):
                 follow_pattern_anchor(obj)
                 record_pattern_anchor(obj)
             elif prop in ("PatternCenter", "PatternAxis"):
+                # the other of the two may be stale (its part moved in an App::Part
+                # without a recompute): take it where the part stands now
+                centre, axis = circular_centre_axis(obj)
+                if prop == "PatternCenter":
+                    obj.PatternAxis = axis
+                else:
+                    obj.PatternCenter = centre
                 record_pattern_anchor(obj)
             elif prop == "PatternCurve":
                 _write_curve_state(obj, curve_references.sign(obj.PatternCurve))
@@ -412,6 +419,12 @@ def _vec3(v):
     return [float(v.x), float(v.y), float(v.z)]
 
 
+def _global_placement(obj):
+    """Where an object stands in the world (identity for one that has no placement)."""
+    get = getattr(obj, "getGlobalPlacement", None)
+    return get() if get is not None and hasattr(obj, "Placement") else App.Placement()
+
+
 def record_pattern_anchor(obj):
     """Keeps the circular pattern's centre and axis in the frame of the first tagged
     part, so that they move with it."""
@@ -419,7 +432,7 @@ def record_pattern_anchor(obj):
     state = ""
     if pairs:
         part = pairs[0][0]
-        inverse = part.getGlobalPlacement().inverse()
+        inverse = _global_placement(part).inverse()
         state = json.dumps({"object": part.Name, "centre": _vec3(inverse.multVec(obj.PatternCenter)),
                             "axis": _vec3(inverse.Rotation.multVec(obj.PatternAxis))}, sort_keys=True)
     if state != obj.PatternAnchor:
@@ -436,7 +449,7 @@ def circular_centre_axis(obj):
         part = None
     if part is None:
         return App.Vector(obj.PatternCenter), App.Vector(obj.PatternAxis)
-    placement = part.getGlobalPlacement()
+    placement = _global_placement(part)
     return (placement.multVec(App.Vector(*state["centre"])),
             placement.Rotation.multVec(App.Vector(*state["axis"])))
 

@@ -42,6 +42,16 @@ class ReachTest(unittest.TestCase):
         session.update_scene(self.doc)
         self.assertIsNone(session.reach_note)
 
+    def test_a_large_part_fitted_to_the_workspace_is_within_reach(self):
+        # the note at the start used the loop's mapping before its first tick: identity
+        self.box.Length, self.box.Width, self.box.Height = 1000, 600, 300
+        self.doc.recompute()
+        session = self.session(workspace_mapping="Fit part")
+        self.assertGreater(session.mapping.scale, 5.0)
+        self.assertIsNone(session.reach_note)
+        session.update_scene(self.doc)
+        self.assertIsNone(session.reach_note)
+
     def test_a_fixed_scale_that_cannot_hold_the_part_is_noted_at_the_start(self):
         limits = _core.open_device("emu:0").info.limits
         span_mm = float(np.max(np.asarray(limits.workspace_max_d) - np.asarray(limits.workspace_min_d))) * 1e3

@@ -107,6 +107,11 @@ class CompileTest(unittest.TestCase):
         moved.Placement = self.box.getGlobalPlacement()
         c = compile_surface(s, moved.Faces[5])
         np.testing.assert_allclose(c.pattern.centre_w, [0.04, -0.01, 0.12], atol=1e-12)
+        # the axis edited alone: the centre stays where the part took it (not where the
+        # stale PatternCenter said, before the App::Part moved)
+        s.PatternAxis = V(0, -1, 0)
+        np.testing.assert_allclose(compile_surface(s, moved.Faces[5]).pattern.centre_w, [0.04, -0.01, 0.12],
+                                   atol=1e-12)
         # a centre the designer picks afresh is where it is put
         s.PatternCenter = V(1, 2, 3)
         self.doc.recompute()
