@@ -7,8 +7,9 @@ named edge keeps a *signature* (kind of curve, length, end points, middle point,
 object's own frame, mm), and the state keeps the signatures of the object's other edges
 too. After every recompute each named edge is looked for again:
 
-- **ok**: the name still names the signed edge, or an edge that is none of the other
-  edges unchanged (the designer reshaped this curve: it is still the one picked);
+- **ok**: the name still names the signed edge, or, while every other edge is still
+  there unchanged, another curve (the designer reshaped this one: still the one
+  picked);
 - **rematched**: the signed edge now has another name, found uniquely; the pattern
   follows it;
 - **broken**: no such edge any more, or the name now names one of the other edges, and
@@ -100,6 +101,9 @@ def rematch(state, link):
     obj = link[0]
     signatures, size = _edge_signatures(obj)
     others = state.get("others", [])
+    # an edge may be "the same curve, reshaped" only while every other edge is still
+    # there unchanged: else the name may now name one of them, changed too
+    others_kept = all(any(same_edge(o, s, size) for s in signatures) for o in others)
     edges = []
     for entry in state.get("edges", []):
         signature, i = entry.get("signature"), _edge_index(entry["name"])
@@ -111,7 +115,7 @@ def rematch(state, link):
             edges.append(dict(entry, signature=signatures[i], status=OK))
         elif len(exact) == 1:
             edges.append({"name": f"Edge{exact[0] + 1}", "signature": signatures[exact[0]], "status": REMATCHED})
-        elif (not exact and 0 <= i < len(signatures)
+        elif (not exact and 0 <= i < len(signatures) and others_kept
               and not any(same_edge(o, signatures[i], size) for o in others)):
             edges.append(dict(entry, signature=signatures[i], status=OK))  # reshaped in place
         else:
@@ -144,8 +148,9 @@ def problem(state, object_label):
     broken = broken_edges(state)
     if not broken:
         return None
-    return (f"the pattern curve's {', '.join(f'{object_label}.{e}' for e in broken)} is gone or is now "
-            "another edge (the sketch changed): pick the curve again")
+    names = ", ".join(f"{object_label}.{e}" for e in broken)
+    verb = "are gone or are now other edges" if len(broken) > 1 else "is gone or is now another edge"
+    return f"the pattern curve's {names} {verb} (the sketch changed): pick the curve again"
 
 
 def status(state):

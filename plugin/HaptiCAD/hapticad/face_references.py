@@ -22,12 +22,14 @@ strict to loose and accepts only a *unique* candidate at the first level that ha
 3. the same kind of surface facing the same way (plane normal, cylinder axis and
    sense): the face moved, e.g. the box got taller.
 
-At the two loose levels a face that is still exactly one of the tagged face's *rivals*
-is no candidate: the rivals are the other faces of the part, at the last match, that
-level 3 could have confused with it (a second hole along the same axis direction, the
-other faces of a B-spline part). Without them, removing the tagged hole moved its tag
-onto the other, unchanged hole and called that "ok". Entries written before rivals were
-kept have none until they are signed again, and match as before.
+At the two loose levels the tagged face's *rivals* decide too: the other faces of the
+part, at the last match, that level 3 could confuse with it (a second hole bored the
+same way, the other faces of a B-spline part). They must all still be there unchanged
+(else nothing tells the tagged face from one of them: broken), and they are no
+candidates. Without them, removing the tagged hole moved its tag onto the other hole
+and called that "ok". So each surface keeps the signatures of its parts' faces at the
+last match (tables(); one list per part, not per reference). A document written
+before has them taken when it opens.
 
 No GUI; used by the HapticSurface object on every recompute.
 """
@@ -175,26 +177,48 @@ def same_face(a, b, size):
 LEVELS = (same_face, same_surface, same_orientation)
 
 
-def rivals_of(index, signatures, size):
-    """Signatures of the faces other than ``index`` that match it at the loosest level."""
-    mine = signatures[index]
-    return [s for i, s in enumerate(signatures) if i != index and same_orientation(mine, s, size)]
+class Previous:
+    """An object's faces at the last match (``old``, signatures as shape_signatures gave
+    them) against its faces now: which old faces are still there exactly, and which
+    faces now are one of them. Worked out once per object, and only when a loose match
+    needs it."""
+
+    def __init__(self, old, signatures, size):
+        self.old, self.signatures, self.size = old, signatures, size
+        self._now_of_old = None
+
+    def now_of_old(self):
+        """For each old face, the faces now that are exactly it."""
+        if self._now_of_old is None:
+            self._now_of_old = [[i for i, s in enumerate(self.signatures) if same_face(o, s, self.size)]
+                                for o in self.old]
+        return self._now_of_old
+
+    def rivals(self, index, signature):
+        """Old faces other than ``index`` that ``signature`` matches at the loosest level."""
+        return [j for j, o in enumerate(self.old) if j != index and same_orientation(signature, o, self.size)]
 
 
-def match_face(signature, name, signatures, size, rivals=()):
+def match_face(signature, name, signatures, size, previous=None):
     """(face name or None, status) of the face of a shape that ``signature`` describes;
     ``name`` is the stored name, ``signatures`` those of the shape's faces (Face1 first),
-    ``rivals`` the signatures of the faces it could be confused with at the last match.
+    ``previous`` the object's faces at the last match (a Previous, or None when unknown).
 
     At each level, from strict to loose: if the stored name fits it is kept ("ok");
     otherwise exactly one fitting face is a re-match; two or more are ambiguous
-    ("broken"); none passes to the next, looser, level. A face that is still one of the
-    rivals is never a fit."""
+    ("broken"); none passes to the next, looser, level. At the loose levels the tagged
+    face's rivals must all still be there unchanged (else nothing tells it from one of
+    them: broken), and they are no candidates."""
     index = _face_index(name)
-    unchanged_rivals = {i for i, s in enumerate(signatures) if any(same_face(r, s, size) for r in rivals)}
+    excluded = set()
     for level in LEVELS:
-        fits = [i for i, s in enumerate(signatures)
-                if i not in unchanged_rivals and level(signature, s, size)]
+        if level is not same_face and previous is not None and previous.old:
+            now_of_old = previous.now_of_old()
+            rivals = previous.rivals(index, signature)
+            if any(not now_of_old[j] for j in rivals):
+                return None, BROKEN
+            excluded = {i for j in rivals for i in now_of_old[j]}
+        fits = [i for i, s in enumerate(signatures) if i not in excluded and level(signature, s, size)]
         if not fits:
             continue
         if len(fits) == 1:
@@ -213,13 +237,16 @@ def _face_index(name):
         return -1
 
 
-def rematch(entries, shapes):
+def rematch(entries, shapes, previous=None, signed=None):
     """Re-matches reference entries against the current shapes.
 
     ``entries``: [{"object": name, "face": "FaceN", "signature": {...}, "status": ...}];
-    ``shapes``: {object name: shape or None}. Returns new entries (same order): the face
-    and signature follow the matched face; a broken entry keeps its old face and
-    signature so that undoing the edit restores it."""
+    ``shapes``: {object name: shape or None}; ``previous``: {object name: signatures of
+    its faces at the last match} (see tables()); ``signed``, if given, receives the
+    signatures taken now ({object name: [...]}, the next rematch's ``previous``).
+    Returns new entries (same order): the face and signature follow the matched face; a
+    broken entry keeps its old face and signature so that undoing the edit restores it."""
+    previous = previous or {}
     cache = {}
     result = []
     for entry in entries:
@@ -228,28 +255,26 @@ def rematch(entries, shapes):
             result.append(dict(entry, status=BROKEN))
             continue
         if entry["object"] not in cache:
-            cache[entry["object"]] = shape_signatures(shape)
-        signatures, size = cache[entry["object"]]
-        name, status = match_face(entry["signature"], entry["face"], signatures, size, entry.get("rivals", ()))
+            signatures, size = shape_signatures(shape)
+            old = previous.get(entry["object"])
+            cache[entry["object"]] = (signatures, size, Previous(old, signatures, size) if old else None)
+            if signed is not None:
+                signed[entry["object"]] = signatures
+        signatures, size, before = cache[entry["object"]]
+        name, status = match_face(entry["signature"], entry["face"], signatures, size, before)
         if status == BROKEN:
             result.append(dict(entry, status=BROKEN))
         else:
-            index = _face_index(name)
-            result.append(dict(entry, face=name, status=status, signature=signatures[index],
-                               rivals=rivals_of(index, signatures, size)))
+            result.append(dict(entry, face=name, status=status, signature=signatures[_face_index(name)]))
     return result
 
 
-def sign_rivals(entry, shape):
-    """``entry`` with its rivals taken from ``shape`` when it has none yet and still names
-    the face it describes; otherwise ``entry`` as it is."""
-    if "rivals" in entry or entry.get("signature") is None or shape is None or shape.isNull():
-        return entry
-    signatures, size = shape_signatures(shape)
-    index = _face_index(entry["face"])
-    if not 0 <= index < len(signatures) or not same_face(entry["signature"], signatures[index], size):
-        return entry
-    return dict(entry, rivals=rivals_of(index, signatures, size))
+def tables(shapes, signed=None):
+    """{object name: signatures of its faces} of the given {object name: shape}: what
+    the next rematch takes as ``previous``; ``signed`` holds those already taken."""
+    signed = signed or {}
+    return {name: signed[name] if name in signed else shape_signatures(shape)[0]
+            for name, shape in shapes.items() if shape is not None and not shape.isNull()}
 
 
 def new_entry(obj, face_name, cache=None):
@@ -260,11 +285,10 @@ def new_entry(obj, face_name, cache=None):
     if obj.Name not in cache:
         shape = getattr(obj, "Shape", None)
         cache[obj.Name] = shape_signatures(shape) if shape is not None and not shape.isNull() else ([], 1.0)
-    signatures, size = cache[obj.Name]
+    signatures, _ = cache[obj.Name]
     if not 0 <= index < len(signatures):  # no such face (yet): recorded as broken
         return {"object": obj.Name, "face": face_name, "signature": None, "status": BROKEN}
-    return {"object": obj.Name, "face": face_name, "signature": signatures[index],
-            "rivals": rivals_of(index, signatures, size), "status": OK}
+    return {"object": obj.Name, "face": face_name, "signature": signatures[index], "status": OK}
 
 
 # --- PartDesign: a designer picks the visible solid, which belongs to the Body -----------

@@ -18,8 +18,8 @@ from . import curve_references, face_references, materials, textures
 
 TYPE = "HaptiCAD::HapticSurface"
 # 3: ReferenceState (face signatures and re-match status per reference)
-# 4: rivals in ReferenceState, PatternCurveState, PatternAnchor, TextureScale (all
-#    added, and signed from the shapes as saved, when an older document opens)
+# 4: ReferenceShapes, PatternCurveState, PatternAnchor, TextureScale (all added, and
+#    signed from the shapes as saved, when an older document opens)
 SCHEMA_VERSION = 4
 PATTERNS = ["None", "Linear", "Circular", "Curve"]
 FRICTION_MODELS = ["Velocity (seed 000)", "Friction cone (stick-slip)"]
@@ -145,6 +145,10 @@ class HapticSurface(SchemaState):
             obj.addProperty("App::PropertyString", "ReferenceState", "Base",
                             "Per referenced face: its geometric signature and re-match status (JSON)")
             obj.setEditorMode("ReferenceState", 2)
+        if "ReferenceShapes" not in obj.PropertiesList:
+            obj.addProperty("App::PropertyString", "ReferenceShapes", "Base",
+                            "Signatures of the tagged parts' faces at the last match (JSON)")
+            obj.setEditorMode("ReferenceShapes", 2)
         if "PatternAnchor" not in obj.PropertiesList:
             obj.addProperty("App::PropertyString", "PatternAnchor", "Base",
                             "The circular pattern's centre and axis in the first tagged part's frame (JSON)")
@@ -221,12 +225,10 @@ class HapticSurface(SchemaState):
         if not obj.ReferenceState:
             # written before schema 3: the names are as good as they get, sign them now
             sync_reference_state(obj)
-        else:
-            # written before references kept their rivals: sign those now, while the
-            # shapes are the ones the references were matched on
-            shapes = {o.Name: getattr(o, "Shape", None) for o, _ in reference_pairs(obj)}
-            _write_reference_state(obj, [face_references.sign_rivals(e, shapes.get(e.get("object")))
-                                         for e in read_reference_state(obj)])
+        elif not obj.ReferenceShapes:
+            # written before the parts' faces were kept: take them now, while the shapes
+            # are the ones the references were matched on
+            _write_reference_shapes(obj)
         if not obj.PatternAnchor:
             record_pattern_anchor(obj)  # written before the centre moved with its part
         if not obj.PatternCurveState and curve_references.named_edges(obj.PatternCurve):
@@ -260,7 +262,8 @@ def validate(obj, compile_faces=True):
     problems = []
     if not obj.References:
         problems.append("no faces: pick at least one face")
-    not_faces = [f"{o.Label}.{sub}" for o, sub in reference_pairs(obj) if not sub.startswith("Face")]
+    not_faces = [f"{o.Label}.{sub}" if sub else f"{o.Label} (the whole object)"
+                 for o, sub in reference_pairs(obj) if not sub.startswith("Face")]
     if not_faces:
         problems.append(f"{', '.join(not_faces)}: not a face; a surface tags faces only")
     broken = [f"{name}.{face}" for name, face, status in reference_status(obj)
@@ -285,11 +288,13 @@ def validate(obj, compile_faces=True):
     if compile_faces and not problems:
         from .surface_compile import compile_surface
 
+        placed = {}  # one copy per part: copying a big part for each of its faces took seconds
         for o, sub in active_reference_pairs(obj):
-            shape = o.Shape.copy()
-            shape.Placement = o.getGlobalPlacement()
+            if o.Name not in placed:
+                placed[o.Name] = o.Shape.copy()
+                placed[o.Name].Placement = o.getGlobalPlacement()
             try:
-                compile_surface(obj, shape.getElement(sub))
+                compile_surface(obj, placed[o.Name].getElement(sub))
             except ValueError as exc:
                 message = str(exc)
                 prefix = f"{obj.Label}: "
@@ -357,6 +362,27 @@ def sync_reference_state(obj):
     entries = [known.get((o.Name, sub)) or face_references.new_entry(o, sub, cache)
                for o, sub in reference_pairs(obj)]
     _write_reference_state(obj, entries)
+    _write_reference_shapes(obj)
+
+
+def _reference_shapes(obj):
+    return {o.Name: getattr(o, "Shape", None) for o, _ in reference_pairs(obj)}
+
+
+def _write_reference_shapes(obj, signed=None):
+    """Keeps the signatures of the tagged parts' faces as they are now, for the next
+    rematch (face_references.tables; ``signed``: those a rematch has just taken)."""
+    text = json.dumps(face_references.tables(_reference_shapes(obj), signed), sort_keys=True)
+    if text != obj.ReferenceShapes:
+        obj.ReferenceShapes = text
+
+
+def _read_reference_shapes(obj):
+    try:
+        tables = json.loads(obj.ReferenceShapes) if obj.ReferenceShapes else {}
+    except ValueError:
+        tables = {}
+    return tables if isinstance(tables, dict) else {}
 
 
 def reference_status(surface):
@@ -383,7 +409,9 @@ def rematch_references(obj):
     cache = {}
     inputs = [known.get((o.Name, sub)) or face_references.new_entry(o, sub, cache) for o, sub in pairs]
     objects = {o.Name: o for o, _ in pairs}
-    entries = face_references.rematch(inputs, {name: getattr(o, "Shape", None) for name, o in objects.items()})
+    signed = {}
+    entries = face_references.rematch(inputs, {name: getattr(o, "Shape", None) for name, o in objects.items()},
+                                      _read_reference_shapes(obj), signed)
     # two references landing on one face: the one that kept its name wins, the other breaks
     holder = {}
     for i, e in enumerate(entries):
@@ -396,14 +424,17 @@ def rematch_references(obj):
             entries[loser] = dict(inputs[loser], status=face_references.BROKEN)
             holder[key] = j + i - loser
     was_broken = {(e["object"], e["face"]) for e in before if e.get("status") == face_references.BROKEN}
-    for e in entries:
-        if (e["status"] == face_references.BROKEN and (e["object"], e["face"]) not in was_broken
-                and e["face"].startswith("Face")):  # validate() names what is not a face
-            App.Console.PrintWarning(
-                f"{obj.Label}: the reference to {e['object']}.{e['face']} is broken: the model changed and "
-                "the face cannot be found unambiguously; it is left out until you pick it again\n")
-        elif e["status"] == face_references.REMATCHED:
-            App.Console.PrintMessage(f"{obj.Label}: a face reference now follows {e['object']}.{e['face']}\n")
+    newly_broken = [f"{e['object']}.{e['face']}" for e in entries
+                    if e["status"] == face_references.BROKEN and (e["object"], e["face"]) not in was_broken
+                    and e["face"].startswith("Face")]  # validate() names what is not a face
+    if newly_broken:
+        App.Console.PrintWarning(
+            f"{obj.Label}: the reference{'s' if len(newly_broken) > 1 else ''} to {', '.join(newly_broken)} "
+            f"{'are' if len(newly_broken) > 1 else 'is'} broken: the model changed and the face cannot be "
+            "found unambiguously; left out until you pick it again\n")
+    followed = [f"{e['object']}.{e['face']}" for e in entries if e["status"] == face_references.REMATCHED]
+    if followed:
+        App.Console.PrintMessage(f"{obj.Label}: face references now follow {', '.join(followed)}\n")
     new_pairs = [(objects[e["object"]], e["face"]) for e in entries]
     if new_pairs != pairs:
         grouped = {}
@@ -413,6 +444,7 @@ def rematch_references(obj):
                 grouped[o].append(sub)
         obj.References = [(o, tuple(subs)) for o, subs in grouped.items()]
     _write_reference_state(obj, entries)
+    _write_reference_shapes(obj, signed)
 
 
 def _vec3(v):

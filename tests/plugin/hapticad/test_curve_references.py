@@ -76,6 +76,15 @@ class SketchEditsTest(unittest.TestCase):
         self.assertEqual(validate(self.surface), [])
         self.assertGreater(self.stripe_at_centre()[1], 0.9)
 
+    def test_the_picked_spline_deleted_as_the_other_is_nudged_breaks_the_pattern(self):
+        # one Sketcher session: "Edge1" now names the other spline, changed too; it was
+        # taken for the picked one, reshaped
+        self.pick("Edge1")
+        nudged = Part.BSplineCurve([V(30, 2, 0), V(34, 15, 0), V(28, 25, 0), V(31, 38, 0)])
+        self.sketch.Geometry = [nudged]
+        self.doc.recompute()
+        self.assertEqual(self.state(), [("Edge1", "broken")])
+
     def test_a_reshaped_spline_keeps_the_pattern(self):
         self.pick("Edge1")
         reshaped = Part.BSplineCurve([V(5, 5, 0), V(20, 12, 0), V(40, 0, 0), V(55, 6, 0)])

@@ -210,7 +210,7 @@ class TwoHolesTest(unittest.TestCase):
         self.hole_a = self.doc.addObject("Part::Cylinder", "HoleA")
         self.hole_a.Radius, self.hole_a.Height = 2, 20
         self.hole_a.Placement.Base = App.Vector(15, 15, -5)
-        hole_b = self.doc.addObject("Part::Cylinder", "HoleB")
+        self.hole_b = hole_b = self.doc.addObject("Part::Cylinder", "HoleB")
         hole_b.Radius, hole_b.Height = 4, 20
         hole_b.Placement.Base = App.Vector(45, 15, -5)
         cut_a = self.doc.addObject("Part::Cut", "CutA")
@@ -238,6 +238,15 @@ class TwoHolesTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "every tagged face reference is broken"):
             build_document_scene(self.doc)
 
+    def test_the_tagged_hole_removed_as_the_other_changes_breaks_the_tag(self):
+        # one edit: hole A gone, hole B widened. The tag landed on B as "ok" while the
+        # rivals had to be unchanged only to be no candidates
+        self.hole_a.Placement.Base = App.Vector(200, 15, -5)
+        self.hole_b.Radius = 5
+        self.doc.recompute()
+        ((_, face, status),) = HaptiCAD.reference_status(self.surface)
+        self.assertEqual(status, "broken", f"the tag went to {face} (hole B is {self.bore(5)})")
+
     def test_the_tagged_hole_made_wider_keeps_its_tag_beside_the_other(self):
         # without the rivals both bores faced the same way and the tag broke as ambiguous
         self.hole_a.Radius = 3
@@ -246,14 +255,11 @@ class TwoHolesTest(unittest.TestCase):
         self.assertNotEqual(status, "broken")
         self.assertEqual(face, self.bore(3))
 
-    def test_a_document_written_without_rivals_gets_them_when_it_opens(self):
-        from hapticad.surface_object import read_reference_state
-
-        (entry,) = read_reference_state(self.surface)
-        self.assertEqual(len(entry["rivals"]), 1)  # hole B's bore
-        self.assertEqual(entry["rivals"][0]["surface"]["radius"], 4.0)
-        old = [{k: v for k, v in e.items() if k != "rivals"} for e in read_reference_state(self.surface)]
-        self.surface.ReferenceState = json.dumps(old, sort_keys=True)
+    def test_a_document_written_without_the_parts_faces_gets_them_when_it_opens(self):
+        faces = json.loads(self.surface.ReferenceShapes)["CutB"]
+        self.assertEqual(len(faces), len(self.cut.Shape.Faces))
+        self.assertEqual(sorted(f["surface"]["radius"] for f in faces if f["type"] == "Cylinder"), [2.0, 4.0])
+        self.surface.ReferenceShapes = ""  # as schema 3 wrote it
         name = self.surface.Name
         with tempfile.TemporaryDirectory() as tmp:
             path = os.path.join(tmp, "holes.FCStd")
@@ -263,8 +269,7 @@ class TwoHolesTest(unittest.TestCase):
         self.surface = self.doc.getObject(name)
         self.cut = self.doc.getObject("CutB")
         self.hole_a = self.doc.getObject("HoleA")
-        (entry,) = read_reference_state(self.surface)
-        self.assertEqual(entry["rivals"][0]["surface"]["radius"], 4.0)
+        self.assertEqual(json.loads(self.surface.ReferenceShapes)["CutB"], faces)
         self.assertNotIn("Touched", self.surface.State)
         self.hole_a.Placement.Base = App.Vector(200, 15, -5)
         self.doc.recompute()
@@ -389,14 +394,31 @@ class MatchFaceUnitTest(unittest.TestCase):
         self.assertEqual(m(a, "Face1", [b], 10), (None, "broken"))
         two_moved = [self.sig(12), self.sig(14, centre=(1, 1, 14)), b]
         self.assertEqual(m(a, "Face1", two_moved, 10), (None, "broken"))
-        # a rival that is still there is no candidate: a's face gone, the other remains
+        # with the faces as they were (a, b and a rival facing the same way as a):
         rival = self.sig(14, centre=(1, 1, 14))
-        self.assertEqual(m(a, "Face1", [rival, b], 10), ("Face1", "ok"))  # without rivals: wrong
-        self.assertEqual(m(a, "Face1", [rival, b], 10, [rival]), (None, "broken"))
-        # and the face that moved is found beside the unchanged rival
-        self.assertEqual(m(a, "Face2", [rival, moved, b], 10, [rival]), ("Face2", "ok"))
-        self.assertEqual(m(a, "Face1", [rival, moved, b], 10, [rival]), ("Face2", "rematched"))
-        self.assertEqual(face_references.rivals_of(0, [a, b, rival], 10), [rival])
+
+        def before(now, old=(a, b, rival)):  # the tagged face's name is its index in old
+            return face_references.Previous(list(old), now, 10)
+
+        self.assertEqual(before([]).rivals(0, a), [2])
+        # a rival that is still there is no candidate: a's face gone, the other remains
+        self.assertEqual(m(a, "Face1", [rival, b], 10), ("Face1", "ok"))  # without: wrong
+        now = [rival, b]
+        self.assertEqual(m(a, "Face1", now, 10, before(now)), (None, "broken"))
+        # the face that moved is found beside the unchanged rival
+        now = [rival, moved, b]
+        self.assertEqual(m(a, "Face2", now, 10, before(now, (rival, a, b))), ("Face2", "ok"))
+        self.assertEqual(m(a, "Face1", [moved, rival, b], 10, before([moved, rival, b])), ("Face1", "ok"))
+        now = [b, rival, moved]
+        self.assertEqual(m(a, "Face1", now, 10, before(now)), ("Face3", "rematched"))
+        # a rival that changed too: nothing tells them apart any more
+        now = [self.sig(15, centre=(1, 1, 15)), b]
+        self.assertEqual(m(a, "Face1", now, 10, before(now)), (None, "broken"))
+        now = [moved, self.sig(15, centre=(1, 1, 15)), b]
+        self.assertEqual(m(a, "Face1", now, 10, before(now)), (None, "broken"))
+        # a unchanged is found at the first level, whatever its rivals did
+        now = [a, b]
+        self.assertEqual(m(a, "Face1", now, 10, before(now)), ("Face1", "ok"))
 
 
 if __name__ == "__main__":
