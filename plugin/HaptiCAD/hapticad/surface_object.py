@@ -109,6 +109,13 @@ PROPERTIES = [
      "Device force: newtons that level 1 stands for; 0 = the device's full range",
      0.0, (0.0, 100.0, 0.1)),
 ]
+# the object's own bookkeeping, JSON in hidden string properties
+HIDDEN_STATE = [
+    ("ReferenceState", "Per referenced face: its geometric signature and re-match status (JSON)"),
+    ("ReferenceShapes", "Signatures of the tagged parts' faces at the last match (JSON)"),
+    ("PatternAnchor", "The circular pattern's centre and axis in the first tagged part's frame (JSON)"),
+    ("PatternCurveState", "The pattern curve's named edges: signatures and re-match status (JSON)"),
+]
 ENUMERATIONS = {
     "Pattern": PATTERNS,
     "FrictionModel": FRICTION_MODELS,
@@ -141,22 +148,10 @@ class HapticSurface(SchemaState):
             obj.addProperty("App::PropertyString", "HaptiCADType", "Base", "Type tag of HaptiCAD objects")
             obj.setEditorMode("HaptiCADType", 2)  # hidden
         obj.HaptiCADType = TYPE
-        if "ReferenceState" not in obj.PropertiesList:
-            obj.addProperty("App::PropertyString", "ReferenceState", "Base",
-                            "Per referenced face: its geometric signature and re-match status (JSON)")
-            obj.setEditorMode("ReferenceState", 2)
-        if "ReferenceShapes" not in obj.PropertiesList:
-            obj.addProperty("App::PropertyString", "ReferenceShapes", "Base",
-                            "Signatures of the tagged parts' faces at the last match (JSON)")
-            obj.setEditorMode("ReferenceShapes", 2)
-        if "PatternAnchor" not in obj.PropertiesList:
-            obj.addProperty("App::PropertyString", "PatternAnchor", "Base",
-                            "The circular pattern's centre and axis in the first tagged part's frame (JSON)")
-            obj.setEditorMode("PatternAnchor", 2)
-        if "PatternCurveState" not in obj.PropertiesList:
-            obj.addProperty("App::PropertyString", "PatternCurveState", "Base",
-                            "The pattern curve's named edges: signatures and re-match status (JSON)")
-            obj.setEditorMode("PatternCurveState", 2)
+        for name, tip in HIDDEN_STATE:
+            if name not in obj.PropertiesList:
+                obj.addProperty("App::PropertyString", name, "Base", tip)
+                obj.setEditorMode(name, 2)
         for name, kind, group, tip, default, constraint in PROPERTIES:
             added = name not in obj.PropertiesList
             if added:
@@ -271,8 +266,9 @@ def validate(obj, compile_faces=True):
     if broken:
         problems.append(f"broken face reference(s) {', '.join(broken)}: the model changed and the face "
                         "cannot be found unambiguously; pick it again")
-    shared = [(o, f, other) for o, f in active_reference_pairs(obj)
-              for other in [surface_tagging(o, f, besides=obj)] if other is not None]
+    others = {(o.Name, f): surface for surface in surfaces_of(obj.Document) if surface is not obj
+              for o, f in active_reference_pairs(surface)}
+    shared = [(o, f, others[(o.Name, f)]) for o, f in active_reference_pairs(obj) if (o.Name, f) in others]
     if shared:
         problems.append(", ".join(f"{o.Label}.{f} is also tagged by {other.Label}" for o, f, other in shared)
                         + ": a face feels one way; remove it from one of the surfaces")
