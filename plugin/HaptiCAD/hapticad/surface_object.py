@@ -278,6 +278,9 @@ def validate(obj, compile_faces=True):
         problem = curve_problem(obj)
         if problem:
             problems.append(problem)
+    if obj.Texture != "None" and obj.TextureScale == "Friction level" and obj.StaticFriction == 0:
+        problems.append("the texture's level 1 is the face's friction, and its static friction is 0: "
+                        "it would render nothing; raise the friction, or make level 1 a device force")
     not_finite = [f"{name} = {value}" for name, value in _numbers(obj) if not math.isfinite(value)]
     if not_finite:
         problems.append(f"{', '.join(not_finite)}: not a finite number")

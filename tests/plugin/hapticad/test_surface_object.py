@@ -130,6 +130,11 @@ class MakeSurfaceTest(unittest.TestCase):
         s.PatternCenter = App.Vector(0, float("inf"), 0)
         self.assertEqual(surface_object.validate(s), ["PatternCenter.y = inf: not a finite number"])
         s.PatternCenter = App.Vector()
+        s.Texture, s.TextureScale, s.StaticFriction = "Custom", "Friction level", 0.0
+        self.assertEqual(len(surface_object.validate(s)), 1)
+        self.assertIn("would render nothing", surface_object.validate(s)[0])
+        s.TextureScale = "Device force"
+        self.assertEqual(surface_object.validate(s), [])
         s.References = [(self.box, ("Face6", "Edge1"))]  # was: "the model changed"
         self.doc.recompute()
         self.assertEqual(surface_object.validate(s), ["Box.Edge1: not a face; a surface tags faces only"])
