@@ -194,27 +194,28 @@ class Previous:
                                 for o in self.old]
         return self._now_of_old
 
-    def rivals(self, index, signature):
-        """Old faces other than ``index`` that ``signature`` matches at the loosest level."""
-        return [j for j, o in enumerate(self.old) if j != index and same_orientation(signature, o, self.size)]
+    def rivals(self, index, signature, level):
+        """Old faces other than ``index`` that ``signature`` matches at ``level``."""
+        return [j for j, o in enumerate(self.old) if j != index and level(signature, o, self.size)]
 
 
-def match_face(signature, name, signatures, size, previous=None):
+def match_face(signature, name, signatures, size, previous=None, loose=True):
     """(face name or None, status) of the face of a shape that ``signature`` describes;
     ``name`` is the stored name, ``signatures`` those of the shape's faces (Face1 first),
     ``previous`` the object's faces at the last match (a Previous, or None when unknown).
 
     At each level, from strict to loose: if the stored name fits it is kept ("ok");
     otherwise exactly one fitting face is a re-match; two or more are ambiguous
-    ("broken"); none passes to the next, looser, level. At the loose levels the tagged
-    face's rivals must all still be there unchanged (else nothing tells it from one of
-    them: broken), and they are no candidates."""
+    ("broken"); none passes to the next, looser, level. At a loose level the tagged
+    face's rivals at that level must all still be there unchanged (else nothing tells
+    it from one of them: broken), and they are no candidates. Without ``loose`` only the
+    first level is tried (a broken reference comes back only as the very face it was)."""
     index = _face_index(name)
     excluded = set()
-    for level in LEVELS:
+    for level in LEVELS if loose else LEVELS[:1]:
         if level is not same_face and previous is not None and previous.old:
             now_of_old = previous.now_of_old()
-            rivals = previous.rivals(index, signature)
+            rivals = previous.rivals(index, signature, level)
             if any(not now_of_old[j] for j in rivals):
                 return None, BROKEN
             excluded = {i for j in rivals for i in now_of_old[j]}
@@ -261,7 +262,10 @@ def rematch(entries, shapes, previous=None, signed=None):
             if signed is not None:
                 signed[entry["object"]] = signatures
         signatures, size, before = cache[entry["object"]]
-        name, status = match_face(entry["signature"], entry["face"], signatures, size, before)
+        # a broken reference's name may name another face by now, and the table no
+        # longer holds its face: it comes back only exactly (an undo), never loosely
+        name, status = match_face(entry["signature"], entry["face"], signatures, size, before,
+                                  loose=entry.get("status") != BROKEN)
         if status == BROKEN:
             result.append(dict(entry, status=BROKEN))
         else:

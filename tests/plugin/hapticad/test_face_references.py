@@ -238,6 +238,42 @@ class TwoHolesTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "every tagged face reference is broken"):
             build_document_scene(self.doc)
 
+    def test_a_broken_tag_stays_broken_through_later_edits_and_comes_back_on_undo(self):
+        self.hole_a.Placement.Base = App.Vector(200, 15, -5)
+        self.doc.recompute()
+        self.assertEqual(HaptiCAD.reference_status(self.surface)[0][2], "broken")
+        # any later edit: the old name now names hole B, which it took as "ok"
+        self.doc.getObject("Plate").Length = 70
+        self.doc.recompute()
+        self.cut.touch()
+        self.doc.recompute()
+        ((_, face, status),) = HaptiCAD.reference_status(self.surface)
+        self.assertEqual(status, "broken", f"the tag went to {face} (hole B is {self.bore(4)})")
+        # hole A back where it was: the very face the tag was on
+        self.doc.getObject("Plate").Length = 60
+        self.hole_a.Placement.Base = App.Vector(15, 15, -5)
+        self.doc.recompute()
+        self.assertEqual(HaptiCAD.reference_status(self.surface), [("CutB", self.bore(2), "ok")])
+
+    def test_a_face_round_a_widened_blind_pocket_keeps_its_tag(self):
+        # the top face loses area to a wider pocket, whose floor faces the same way and
+        # changed too: only faces in the top's own plane can be confused with it
+        pocket = self.doc.addObject("Part::Box", "Pocket")
+        pocket.Length, pocket.Width, pocket.Height = 10, 10, 10
+        pocket.Placement.Base = App.Vector(25, 10, 3)
+        cut = self.doc.addObject("Part::Cut", "Pocketed")
+        cut.Base, cut.Tool = self.cut, pocket
+        self.doc.recompute()
+        (top,) = faces_where(cut.Shape, "Plane", lambda c: abs(c.z - 5) < 1e-6)
+        surface = HaptiCAD.make_surface(self.doc, [(cut, top)])
+        self.doc.recompute()
+        pocket.Length = 14
+        self.doc.recompute()
+        (top,) = faces_where(cut.Shape, "Plane", lambda c: abs(c.z - 5) < 1e-6)
+        ((_, face, status),) = HaptiCAD.reference_status(surface)
+        self.assertNotEqual(status, "broken")
+        self.assertEqual(face, top)
+
     def test_the_tagged_hole_removed_as_the_other_changes_breaks_the_tag(self):
         # one edit: hole A gone, hole B widened. The tag landed on B as "ok" while the
         # rivals had to be unchanged only to be no candidates
@@ -400,7 +436,8 @@ class MatchFaceUnitTest(unittest.TestCase):
         def before(now, old=(a, b, rival)):  # the tagged face's name is its index in old
             return face_references.Previous(list(old), now, 10)
 
-        self.assertEqual(before([]).rivals(0, a), [2])
+        self.assertEqual(before([]).rivals(0, a, face_references.same_orientation), [2])
+        self.assertEqual(before([]).rivals(0, a, face_references.same_surface), [])
         # a rival that is still there is no candidate: a's face gone, the other remains
         self.assertEqual(m(a, "Face1", [rival, b], 10), ("Face1", "ok"))  # without: wrong
         now = [rival, b]
