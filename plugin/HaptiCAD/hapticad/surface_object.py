@@ -364,6 +364,15 @@ def sync_reference_state(obj):
     _write_reference_shapes(obj)
 
 
+def resign_reference(obj, part, face):
+    """The designer picked ``part``'s ``face`` again for a reference that broke: the
+    reference is signed afresh from the face as it is now."""
+    entries = [face_references.new_entry(part, face) if (e["object"], e["face"]) == (part.Name, face) else e
+               for e in read_reference_state(obj)]
+    _write_reference_state(obj, entries)
+    _write_reference_shapes(obj)
+
+
 def _reference_shapes(obj):
     return {o.Name: getattr(o, "Shape", None) for o, _ in reference_pairs(obj)}
 

@@ -176,6 +176,16 @@ class SimpleEditsTest(unittest.TestCase):
         self.box.Height, step.Height = 11, 13
         self.doc.recompute()
         self.assertEqual(HaptiCAD.reference_status(surface), [("Fuse", step_top, "broken")])
+        # the designer picks the face again (the panel's Add on it): signed afresh
+        from hapticad.surface_object import resign_reference
+
+        (step_top,) = faces_where(fuse.Shape, "Plane", lambda c: abs(c.z - 13) < 1e-6)
+        resign_reference(surface, fuse, step_top)
+        self.assertEqual(HaptiCAD.reference_status(surface), [("Fuse", step_top, "ok")])
+        step.Height = 14
+        self.doc.recompute()
+        (step_top,) = faces_where(fuse.Shape, "Plane", lambda c: abs(c.z - 14) < 1e-6)
+        self.assertEqual(HaptiCAD.reference_status(surface)[0][1:], (step_top, "ok"))
 
     def test_a_face_that_is_gone_is_broken(self):
         hole = self.doc.addObject("Part::Cylinder", "Hole")

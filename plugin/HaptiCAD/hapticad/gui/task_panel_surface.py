@@ -515,6 +515,9 @@ class SurfaceTaskPanel:
             return
         pairs = surface_object.reference_pairs(self.obj)
         if (obj, face) in pairs:
+            if (obj.Name, face, face_references.BROKEN) in surface_object.reference_status(self.obj):
+                surface_object.resign_reference(self.obj, obj, face)  # "pick it again"
+                self.load()
             return
         other = surface_object.surface_tagging(obj, face, besides=self.obj)
         if other is not None:
