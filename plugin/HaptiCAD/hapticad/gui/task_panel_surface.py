@@ -22,6 +22,7 @@ import FreeCADGui as Gui
 from PySide2 import QtCore, QtGui, QtWidgets
 
 from .. import _core, face_references, icon, materials, surface_object, vibration_object
+from .document_closing import DocumentClosingObserver
 from .selection import selected_curve
 
 # units shown after values, by property
@@ -105,6 +106,9 @@ class SurfaceTaskPanel:
         self.form.append(self._vibration_box())
         self.picker = _Picker(self)
         Gui.Selection.addObserver(self.picker)
+        # the document closing under the open panel: stop listening to clicks (it went on
+        # asking the deleted surface for its name at every later click) and close
+        self.closing = DocumentClosingObserver(self.doc, self.document_closing)
         self.set_mode(self.mode)  # the hint and the Add button say whether clicks add faces
         self.load()
 
@@ -586,6 +590,8 @@ class SurfaceTaskPanel:
         return int(QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel)
 
     def accept(self):
+        if getattr(self, "document_gone", False):
+            return True
         if self.validate():
             return False
         self._stop_picking()
@@ -595,6 +601,8 @@ class SurfaceTaskPanel:
         return True
 
     def reject(self):
+        if getattr(self, "document_gone", False):
+            return True
         self._stop_picking()
         # abort before leaving edit mode: resetEdit commits any open transaction
         self.doc.abortTransaction()
@@ -605,8 +613,19 @@ class SurfaceTaskPanel:
 
     def _stop_picking(self):
         Gui.Selection.removeObserver(self.picker)
+        if self.closing is not None:
+            self.closing.remove()
+            self.closing = None
         self.highlight([])
         Gui.Selection.clearSelection()
+
+    def document_closing(self):
+        """The document and the surface are going: nothing of them is touched any more."""
+        self.closing = None
+        self.document_gone = True
+        Gui.Selection.removeObserver(self.picker)
+        if Gui.Control.activeDialog():
+            Gui.Control.closeDialog()
 
     def _leave_edit(self):
         gui_doc = Gui.getDocument(self.doc.Name)

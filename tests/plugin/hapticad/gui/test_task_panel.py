@@ -159,6 +159,30 @@ class TaskPanelTest(unittest.TestCase):
         h.press_task_button("OK")
         self.assertEqual(HaptiCAD.reference_pairs(first), [(self.box, "Face6")])
 
+    def test_closing_the_document_under_the_panel_closes_it_and_stops_its_picking(self):
+        from hapticad.gui.task_panel_surface import SurfaceTaskPanel
+
+        surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])
+        panel = SurfaceTaskPanel(surface)
+        Gui.Control.showDialog(panel)
+        h.process_events()
+        picks = []
+        panel.picked = lambda *args: picks.append(args)
+        App.closeDocument(self.doc.Name)  # its clicks then asked the deleted surface its name
+        h.process_events()
+        self.assertFalse(Gui.Control.activeDialog())
+        other = App.newDocument("AfterClose")
+        try:
+            box = other.addObject("Part::Box", "Box")
+            other.recompute()
+            Gui.Selection.addSelection(box, "Face1")
+            h.process_events()
+            self.assertEqual(picks, [])
+        finally:
+            Gui.Selection.clearSelection()
+            App.closeDocument(other.Name)
+            self.doc = App.newDocument("PanelTest")  # for tearDown
+
     def test_a_material_this_machine_does_not_know_keeps_the_documents_values(self):
         surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])
         # as a document made with a colleague's own material card opens here
