@@ -95,6 +95,9 @@ class SurfaceTaskPanel:
         self._own_transaction = not self.doc.HasPendingTransaction
         if self._own_transaction:
             self.doc.openTransaction("Edit haptic surface")
+        # a circular centre whose part moved in its App::Part (no recompute since) is
+        # shown, and edited, where the part took it
+        surface_object.follow_pattern_anchor(surface)
         self.widgets = {}  # property (or "Prop.x") -> widget
         self.rows = {}  # property -> (label, field) to show or hide
         self.mode = "faces" if not surface.References else None

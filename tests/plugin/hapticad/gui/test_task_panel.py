@@ -159,6 +159,26 @@ class TaskPanelTest(unittest.TestCase):
         h.press_task_button("OK")
         self.assertEqual(HaptiCAD.reference_pairs(first), [(self.box, "Face6")])
 
+    def test_a_circular_centre_is_edited_where_its_moved_app_part_took_it(self):
+        container = self.doc.addObject("App::Part", "Assembly")
+        container.addObject(self.box)
+        self.doc.recompute()
+        surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], pattern="Circular",
+                                        pattern_center_mm=(10, 10, 20))
+        self.doc.recompute()
+        container.Placement.Base = App.Vector(50, 0, 0)  # the surface is not recomputed
+        Gui.ActiveDocument.setEdit(surface.Name, 0)
+        h.process_events()
+        self.assertEqual([h.widget(QtWidgets.QDoubleSpinBox, f"PatternCenter.{a}").value() for a in "xyz"],
+                         [60.0, 10.0, 20.0])
+        h.widget(QtWidgets.QDoubleSpinBox, "PatternCenter.y").setValue(15.0)  # it jumped back 50 mm
+        h.process_events()
+        from hapticad.surface_object import circular_centre_axis
+
+        centre, _ = circular_centre_axis(surface)
+        self.assertEqual((centre.x, centre.y, centre.z), (60.0, 15.0, 20.0))
+        h.press_task_button("OK")
+
     def test_closing_the_document_under_the_panel_closes_it_and_stops_its_picking(self):
         from hapticad.gui.task_panel_surface import SurfaceTaskPanel
 
