@@ -555,6 +555,8 @@ def _normalise_references(doc, references):
             raise ValueError(f"make_surface: {obj.Name} has no shape")
         if not (isinstance(sub, str) and sub.startswith("Face") and _has_subshape(obj, sub)):
             raise ValueError(f"make_surface: {obj.Name} has no face {sub!r}")
+        # a PartDesign feature's face is the Body's, as the panel and the command take it
+        obj, sub = face_references.owner_face(obj, sub)
         other = surface_tagging(obj, sub)
         if other is not None:
             raise ValueError(f"make_surface: {obj.Label}.{sub} is already tagged by {other.Label}; "

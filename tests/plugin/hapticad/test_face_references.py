@@ -357,6 +357,12 @@ class PartDesignBodyTest(unittest.TestCase):
         (name,) = faces_where(obj.Shape, "Plane", lambda c: abs(c.z - 20) < 1e-6)
         return name
 
+    def test_a_script_tagging_the_pads_face_tags_the_bodys_once(self):
+        surface = HaptiCAD.make_surface(self.doc, [(self.pad, self.top(self.pad))])
+        self.assertEqual(HaptiCAD.reference_pairs(surface), [(self.body, self.top(self.body))])
+        with self.assertRaisesRegex(ValueError, "already tagged"):  # it was accepted as the Pad's
+            HaptiCAD.make_surface(self.doc, [(self.pad, self.top(self.pad))])
+
     def test_a_face_picked_on_the_pad_belongs_to_the_body_and_survives_a_pocket(self):
         owner, face = face_references.owner_face(self.pad, self.top(self.pad))
         self.assertEqual((owner.Name, face), ("Body", self.top(self.body)))
