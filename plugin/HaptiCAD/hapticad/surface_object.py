@@ -266,7 +266,11 @@ def validate(obj, compile_faces=True):
     if broken:
         problems.append(f"broken face reference(s) {', '.join(broken)}: the model changed and the face "
                         "cannot be found unambiguously; pick it again")
-    others = {(o.Name, f): surface for surface in surfaces_of(obj.Document) if surface is not obj
+    # in a recompute, a surface still to run has not followed its faces yet: it checks
+    # against this one when its turn comes (else a renumbering edit reported a false clash)
+    recomputing = "Recompute" in obj.State
+    others = {(o.Name, f): surface for surface in surfaces_of(obj.Document)
+              if surface is not obj and not (recomputing and "Touched" in surface.State)
               for o, f in active_reference_pairs(surface)}
     shared = [(o, f, others[(o.Name, f)]) for o, f in active_reference_pairs(obj) if (o.Name, f) in others]
     if shared:

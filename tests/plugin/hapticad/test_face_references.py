@@ -62,6 +62,29 @@ class BoxMinusCylinderTest(unittest.TestCase):
         scene = build_document_scene(self.doc)
         self.assertEqual(scene.face_material, {f"Cut.{new_top}": "Steel"})
 
+    def test_two_surfaces_renumbered_in_one_edit_report_no_clash(self):
+        front = faces_where(self.cut.Shape, "Plane", lambda c: abs(c.y) < 1e-6)[0]
+        top = HaptiCAD.make_surface(self.doc, [(self.cut, self.top())], material="Steel")
+        side = HaptiCAD.make_surface(self.doc, [(self.cut, front)], material="ABS")
+        self.doc.recompute()
+        errors = []
+        original = App.Console.PrintError
+        App.Console.PrintError = errors.append
+        try:
+            self.cyl.Placement.Base = App.Vector(40, 30, -5)  # both faces renumbered
+            self.doc.recompute()
+            # the first surface checked itself against the second before the second had
+            # followed its face: "also tagged by", a clash that was not there
+            self.assertEqual(errors, [])
+            self.assertEqual([s for _, _, s in HaptiCAD.reference_status(top) + HaptiCAD.reference_status(side)],
+                             ["rematched", "rematched"])
+            # a real clash, made by a script, is still reported by the recompute
+            side.References = [(self.cut, (HaptiCAD.reference_pairs(side)[0][1], self.top()))]
+            self.doc.recompute()
+            self.assertTrue(any("also tagged by" in e for e in errors), errors)
+        finally:
+            App.Console.PrintError = original
+
     def test_moving_the_cylinder_back_reports_ok_at_the_old_name(self):
         old_top = self.top()
         surface = HaptiCAD.make_surface(self.doc, [(self.cut, old_top)])
