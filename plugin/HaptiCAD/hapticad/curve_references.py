@@ -115,7 +115,8 @@ def rematch(state, link):
             edges.append(dict(entry, signature=signatures[i], status=OK))
         elif len(exact) == 1:
             edges.append({"name": f"Edge{exact[0] + 1}", "signature": signatures[exact[0]], "status": REMATCHED})
-        elif (not exact and 0 <= i < len(signatures) and others_kept
+        elif (not exact and entry.get("status") != BROKEN  # a broken one comes back only exactly
+              and 0 <= i < len(signatures) and others_kept
               and not any(same_edge(o, signatures[i], size) for o in others)):
             edges.append(dict(entry, signature=signatures[i], status=OK))  # reshaped in place
         else:

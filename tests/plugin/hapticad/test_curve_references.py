@@ -108,6 +108,20 @@ class SketchEditsTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, r"Sketch\.Edge2, which Sketch no longer has \(it has 1 edges\)"):
             compile_surface(self.surface, self.box.Shape.Faces[5])
 
+    def test_a_broken_edge_is_not_revived_by_a_new_curve_in_its_place(self):
+        self.pick("Edge2")
+        self.sketch.delGeometry(1)
+        self.doc.recompute()
+        self.assertEqual(self.state(), [("Edge2", "broken")])
+        # a new spline drawn later takes the name Edge2: it is not the curve picked
+        self.sketch.addGeometry(Part.BSplineCurve([V(40, 2, 0), V(43, 15, 0), V(38, 25, 0), V(41, 38, 0)]), False)
+        self.doc.recompute()
+        self.assertEqual(self.state(), [("Edge2", "broken")])
+        # the picked spline itself back (an undo): followed again
+        self.sketch.Geometry = [self.along_x, self.along_y]
+        self.doc.recompute()
+        self.assertEqual(self.state(), [("Edge2", "ok")])
+
     def test_a_document_written_without_curve_state_signs_it_when_it_opens(self):
         self.pick("Edge1")
         self.surface.PatternCurveState = ""
