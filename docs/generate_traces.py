@@ -20,13 +20,18 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--mod", required=True, help="the HaptiCAD Mod folder (build/Mod/HaptiCAD)")
     parser.add_argument("--out", default=os.path.join(HERE, "traces"))
+    parser.add_argument("--only", metavar="FIGURE", help="one figure, by its method's name (e.g. texture_fit)")
     args = parser.parse_args()
     sys.path.insert(0, os.path.abspath(args.mod))
     from hapticad.freecad_env import ensure_freecad
 
     ensure_freecad()
     os.makedirs(args.out, exist_ok=True)
-    Figures(args.out).all()
+    figures = Figures(args.out)
+    if args.only:
+        getattr(figures, args.only)()
+    else:
+        figures.all()
 
 
 class Figures:
@@ -80,6 +85,7 @@ class Figures:
         self.curve()
         self.texture()
         self.texture_scale()
+        self.texture_fit()
         self.stick_slip()
         self.vibration()
 
@@ -254,6 +260,31 @@ class Figures:
         fig.suptitle("The same grating (f_DC 0.5) on glass: as a device force (8.9 N full range) it drags the same\n"
                      "however lightly you touch; as a friction level (seed 001's TPad) it scales with the press")
         self.save(fig, "texture_scale.png")
+
+    def texture_fit(self):
+        """A grating rendered by the servo loop, stroked at the paper's five speeds, its
+        traces fitted back (seed 001 §III): the fit's spectra and lines against speed."""
+        import tempfile
+
+        from hapticad import texture_fit
+        from hapticad.texture_fit_plot import plot_fit
+
+        truth = dict(TextureDC=0.4, TextureViscosity=0.2, TextureBeta=0.1, TextureAlpha=2.0, TextureFullRange=2.0)
+        scene = self.scene(size=(40, 100, 10), material="ABS", FeelRoughness=False, Texture="Custom", **truth)
+        with tempfile.TemporaryDirectory() as tmp:
+            paths = []
+            for speed in texture_fit.PAPER_SPEEDS_MM_S:
+                result = self.feel.run_stroke(scene, self.feel.Stroke((20, 10, 10), (20, 90, 10), speed, 1.0, 5000.0))
+                paths.append(os.path.join(tmp, f"trace_{speed:.0f}.csv"))
+                self.feel.write_trace_csv(paths[-1], result, scene)
+            report = texture_fit.fit_files(paths, 2.5, lowpass_hz=0)
+        fitted = texture_fit.levels(report.fit, 2.0)
+        path = os.path.join(self.out, "texture_fit.png")
+        plot_fit(path, report, title=(
+            "Fitting the rendered grating back (f_DC 0.4, f_vis 0.2, beta_h 0.1, alpha_h 2, 2 N full range): "
+            f"fitted {fitted['TextureDC']:.3f}, {fitted['TextureViscosity']:.3f}, {fitted['TextureBeta']:.3f}, "
+            f"{fitted['TextureAlpha']:.2f}"))
+        print(f"wrote {path}")
 
     def stick_slip(self):
         np, plt = self.np, self.plt

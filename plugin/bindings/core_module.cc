@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "hapticad/core/analysis/stroke_run.h"
+#include "hapticad/core/analysis/texture_fit.h"
 #include "hapticad/core/rendering/force_renderer.h"
 #include "hapticad/core/rendering/haptic_scene.h"
 #include "hapticad/core/surfaces/anisotropy.h"
@@ -716,6 +717,68 @@ void DefineAnalysis(py::module_& m) {
       py::arg("renderer"), py::arg("positions_w"), py::arg("velocities_w"), py::arg("times_s"));
 }
 
+std::vector<double> ToVector(const RowsD& a, const char* name) {
+  if (a.ndim() != 1) throw py::value_error(std::string(name) + " must be one-dimensional");
+  return std::vector<double>(a.data(), a.data() + a.shape(0));
+}
+
+void DefineTextureFit(py::module_& m) {
+  py::class_<TextureRecording>(m, "TextureRecording")
+      .def(py::init([](const RowsD& t, const RowsD& x, const RowsD& f) {
+             return TextureRecording{ToVector(t, "time_s"), ToVector(x, "position_m"),
+                                     ToVector(f, "lateral_force_n")};
+           }),
+           py::arg("time_s"), py::arg("position_m"), py::arg("lateral_force_n"))
+      .def_property_readonly("samples", [](const TextureRecording& r) { return r.time_s.size(); });
+  py::class_<TextureFitOptions>(m, "TextureFitOptions")
+      .def(py::init<>())
+      .def_readwrite("period_m", &TextureFitOptions::period_m)
+      .def_readwrite("speeds_mps", &TextureFitOptions::speeds_mps)
+      .def_readwrite("speed_tolerance", &TextureFitOptions::speed_tolerance)
+      .def_readwrite("lowpass_hz", &TextureFitOptions::lowpass_hz)
+      .def_readwrite("velocity_window_s", &TextureFitOptions::velocity_window_s)
+      .def_readwrite("min_periods", &TextureFitOptions::min_periods)
+      .def_readwrite("harmonics", &TextureFitOptions::harmonics)
+      .def_readwrite("samples_per_period", &TextureFitOptions::samples_per_period);
+  py::class_<TextureSection>(m, "TextureSection")
+      .def_readonly("recording", &TextureSection::recording)
+      .def_readonly("target_speed_mps", &TextureSection::target_speed_mps)
+      .def_readonly("speed_mps", &TextureSection::speed_mps)
+      .def_readonly("start_m", &TextureSection::start_m)
+      .def_readonly("end_m", &TextureSection::end_m)
+      .def_readonly("periods", &TextureSection::periods)
+      .def_readonly("dc_n", &TextureSection::dc_n)
+      .def_property_readonly("amplitude_n", [](const TextureSection& s) {
+        return py::array_t<double>(static_cast<py::ssize_t>(s.amplitude_n.size()), s.amplitude_n.data());
+      });
+  py::class_<PowerFit>(m, "PowerFit")
+      .def_readonly("beta", &PowerFit::beta)
+      .def_readonly("alpha", &PowerFit::alpha)
+      .def_readonly("points", &PowerFit::points)
+      .def_readonly("r_squared", &PowerFit::r_squared);
+  py::class_<SpeedFit>(m, "SpeedFit")
+      .def_readonly("target_speed_mps", &SpeedFit::target_speed_mps)
+      .def_readonly("speed_mps", &SpeedFit::speed_mps)
+      .def_readonly("sections", &SpeedFit::sections)
+      .def_readonly("dc_n", &SpeedFit::dc_n)
+      .def_readonly("dc_sd_n", &SpeedFit::dc_sd_n)
+      .def_readonly("harmonic", &SpeedFit::harmonic)
+      .def_readonly("background", &SpeedFit::background);
+  py::class_<SpeedLine>(m, "SpeedLine")
+      .def_readonly("intercept", &SpeedLine::intercept)
+      .def_readonly("slope", &SpeedLine::slope);
+  py::class_<TextureFit>(m, "TextureFit")
+      .def_readonly("period_m", &TextureFit::period_m)
+      .def_readonly("sections", &TextureFit::sections)
+      .def_readonly("speeds", &TextureFit::speeds)
+      .def_readonly("speeds_without_sections_mps", &TextureFit::speeds_without_sections_mps)
+      .def_readonly("dc_n", &TextureFit::dc_n)
+      .def_readonly("beta_h_n", &TextureFit::beta_h_n)
+      .def_readonly("alpha_h", &TextureFit::alpha_h);
+  m.def("fit_texture", &FitTexture, py::arg("recordings"), py::arg("options"),
+        py::call_guard<py::gil_scoped_release>());
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -729,4 +792,5 @@ PYBIND11_MODULE(_core, m) {
   DefineDeviceTypes(m);
   DefineDevices(m);
   DefineAnalysis(m);
+  DefineTextureFit(m);
 }

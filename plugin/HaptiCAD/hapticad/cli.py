@@ -35,14 +35,7 @@ def cmd_feel(args):
     from .document_scene import build_document_scene
     from .feel import Stroke, feel_document
 
-    if not os.path.exists(args.file):
-        raise ValueError(f"{args.file}: no such file")
-    if not zipfile.is_zipfile(args.file):
-        # FreeCAD opens a cut-short .FCStd and reads what it can: the parts come without
-        # their shapes, and every face looks gone
-        raise ValueError(f"{args.file}: not a FreeCAD document, or a damaged one (cut short in a copy or "
-                         "download?): it is not a readable zip archive")
-    doc = App.openDocument(os.path.abspath(args.file))
+    doc = _open_document(App, args.file)
     try:
         doc_scene = build_document_scene(doc, accuracy.preset(args.accuracy or preferences.load().accuracy))
         if not doc_scene.watertight:
@@ -150,6 +143,71 @@ def cmd_devices(args):
     return None
 
 
+def _speeds(text):
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        values = []
+    if not values or not all(v > 0 and v == v and v != float("inf") for v in values):
+        raise argparse.ArgumentTypeError(f"{text!r} is not a list of speeds > 0, like 50,80,120")
+    return values
+
+
+def _open_document(App, path):
+    if not os.path.exists(path):
+        raise ValueError(f"{path}: no such file")
+    if not zipfile.is_zipfile(path):
+        # FreeCAD opens a cut-short .FCStd and reads what it can: the parts come without
+        # their shapes, and every face looks gone
+        raise ValueError(f"{path}: not a FreeCAD document, or a damaged one (cut short in a copy or "
+                         "download?): it is not a readable zip archive")
+    return App.openDocument(os.path.abspath(path))
+
+
+def cmd_fit_texture(args):
+    from . import texture_fit
+
+    if bool(args.apply) != bool(args.surface):
+        raise ValueError("--apply DOCUMENT and --surface NAME go together")
+    speeds = args.speeds or texture_fit.PAPER_SPEEDS_MM_S
+    report = texture_fit.fit_files(args.recordings, args.period, speeds, args.tolerance, args.lowpass,
+                                   args.harmonics, args.min_periods)
+    result = texture_fit.summary(report)
+    if args.plot:
+        from .texture_fit_plot import plot_fit
+
+        plot_fit(args.plot, report)
+        result["plot"] = os.path.abspath(args.plot)
+    if args.apply:
+        App = ensure_freecad()
+        from .surface_object import surfaces_of, validate
+
+        doc = _open_document(App, args.apply)
+        try:
+            found = [o for o in surfaces_of(doc) if args.surface in (o.Name, o.Label)]
+            if not found:
+                names = ", ".join(o.Label for o in surfaces_of(doc)) or "none"
+                raise ValueError(f"{args.apply}: no haptic surface named {args.surface!r} (it has: {names})")
+            surface = found[0]
+            notes = texture_fit.apply_to_surface(surface, report)
+            doc.recompute()
+            problems = validate(surface)
+            if problems:
+                raise ValueError(f"{surface.Label}: the fitted texture is not valid: {'; '.join(problems)}; "
+                                 "the document was not saved")
+            doc.save()
+            result["applied"] = {"document": os.path.abspath(args.apply), "surface": surface.Label,
+                                 **{name: getattr(surface, name) for name in
+                                    (*texture_fit.FIELDS, "TexturePeriod", "TextureFullRange", "TextureScale")},
+                                 "notes": notes}
+        finally:
+            App.closeDocument(doc.Name)
+    if args.json:
+        return result
+    print(texture_fit.describe(result))
+    return None
+
+
 def build_parser():
     parser = argparse.ArgumentParser(prog="hapticad", description="Feel CAD parts: HaptiCAD's command line")
     sub = parser.add_subparsers(dest="command", required=True)
@@ -194,6 +252,28 @@ def build_parser():
     devices = sub.add_parser("devices", help="list the haptic devices (the simulated hand and HID devices)")
     devices.add_argument("--json", action="store_true", help="print JSON")
     devices.set_defaults(run=cmd_devices)
+
+    fit = sub.add_parser(
+        "fit-texture", help="fit a viscous grating texture to force recordings (seed 001 §III)",
+        description="Cuts the recordings into sections of constant speed, takes each one's spatial FFT "
+                    "and fits seed 001's eq. 2 (f_DC, f_vis, beta_h, alpha_h and their change with speed). "
+                    "A recording is a CSV with time_s, position_mm, lateral_force_n [, normal_force_n] "
+                    "(the lateral force on the finger), or a HaptiCAD trace.csv.")
+    fit.add_argument("recordings", nargs="+", metavar="CSV", help="recordings (CSV)")
+    fit.add_argument("--period", type=float, required=True, metavar="MM", help="the grating's period lambda, mm")
+    fit.add_argument("--speeds", type=_speeds, default=None, metavar="MM_S,...",
+                     help="target scanning speeds, mm/s (the paper's 50,80,120,180,270)")
+    fit.add_argument("--tolerance", type=float, default=2.5, metavar="PERCENT",
+                     help="how far a section's speed may stray from its target (2.5 %%)")
+    fit.add_argument("--lowpass", type=float, default=1000.0, metavar="HZ",
+                     help="first-order low-pass on the force, 0 for none (1000, as the paper's rig)")
+    fit.add_argument("--harmonics", type=int, default=3, help="harmonic peaks fitted (3, as the paper)")
+    fit.add_argument("--min-periods", type=int, default=4, metavar="N", help="shortest section, periods (4)")
+    fit.add_argument("--plot", metavar="PNG", help="draw the spectra and the fits against speed")
+    fit.add_argument("--apply", metavar="FCSTD", help="set the fitted texture on a surface of this document and save it")
+    fit.add_argument("--surface", metavar="NAME", help="the haptic surface (name or label) --apply sets")
+    fit.add_argument("--json", action="store_true", help="print JSON")
+    fit.set_defaults(run=cmd_fit_texture)
 
     demo = sub.add_parser("demo", help="open the example toothbrush and feel it")
     demo.add_argument("--headless", action="store_true", help="stroke every tagged face, even with a display")

@@ -21,7 +21,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 from PySide2 import QtCore, QtGui, QtWidgets
 
-from .. import _core, face_references, icon, materials, surface_object, vibration_object
+from .. import _core, face_references, icon, materials, surface_object, texture_fit, vibration_object
 from .document_closing import DocumentClosingObserver
 from .selection import selected_curve
 
@@ -187,7 +187,29 @@ class SurfaceTaskPanel:
                 self.roughness_info.setObjectName("roughnessInfo")
                 self.roughness_info.setWordWrap(True)
                 form.addRow(self.roughness_info)
+        if group == "Texture":
+            self._add_fit_rows(form)
         return box
+
+    def _add_fit_rows(self, form):
+        """Fit the texture to force recordings (seed 001 §III) at the grating period above."""
+        self.fit_speeds = QtWidgets.QLineEdit(", ".join(f"{s:g}" for s in texture_fit.PAPER_SPEEDS_MM_S))
+        self.fit_speeds.setObjectName("fitSpeeds")
+        self.fit_speeds.setToolTip("The scanning speeds the recordings hold, mm/s: sections within 2.5 % of "
+                                   "one of them are fitted")
+        form.addRow(QtWidgets.QLabel("Recorded speeds"), self.fit_speeds)
+        button = QtWidgets.QPushButton("Fit to recordings…")
+        button.setObjectName("fitTexture")
+        button.setToolTip("Choose CSV recordings of strokes over a grating of period λ (a rig's time_s, "
+                          "position_mm, lateral_force_n, or HaptiCAD traces): the texture's values are fitted "
+                          "to them (seed 001 §III)")
+        button.clicked.connect(self.choose_recordings)
+        form.addRow(button)
+        self.fit_info = QtWidgets.QLabel()
+        self.fit_info.setObjectName("fitInfo")
+        self.fit_info.setWordWrap(True)
+        self.fit_info.setTextInteractionFlags(QtCore.Qt.TextSelectableByMouse)
+        form.addRow(self.fit_info)
 
     def _make_field(self, name, kind, constraint):
         obj = self.obj
@@ -451,6 +473,39 @@ class SurfaceTaskPanel:
         self.obj.DynamicFriction = m.dynamic_friction
         self.obj.Stiffness = m.stiffness_n_per_mm
         self.load()
+
+    def choose_recordings(self):
+        paths, _ = QtWidgets.QFileDialog.getOpenFileNames(
+            None, "Recordings to fit the texture to", "", "CSV recordings (*.csv);;All files (*)")
+        if paths:
+            self.fit_recordings(paths)
+
+    def fit_recordings(self, paths):
+        """Fits the texture to the CSV files in ``paths`` and sets it; on an error nothing changes
+        and the panel says why."""
+        try:
+            speeds = [float(v) for v in self.fit_speeds.text().replace(";", ",").split(",") if v.strip()]
+        except ValueError:
+            speeds = []
+        if not speeds or not all(0 < v < 1e4 for v in speeds):
+            self.fit_info.setText("<span style='color:#b00000'>Recorded speeds: give speeds in mm/s, like "
+                                  "50, 80, 120</span>")
+            return False
+        try:
+            report = texture_fit.fit_files(paths, float(self.obj.TexturePeriod), speeds)
+            notes = texture_fit.apply_to_surface(self.obj, report)
+        except (ValueError, OSError) as exc:
+            self.fit_info.setText(f"<span style='color:#b00000'>Not fitted, nothing changed: {exc}</span>")
+            return False
+        self.load()
+        fit = report.fit
+        done = ", ".join(f"{s.speed_mps * 1e3:.0f}" for s in fit.speeds)
+        self.fit_info.setText(
+            f"Fitted to {len(fit.sections)} sections at {done} mm/s from {len(paths)} recording"
+            f"{'s' if len(paths) != 1 else ''} (period λ {self.obj.TexturePeriod:g} mm): f_DC + v f_vis = "
+            f"{fit.dc_n.intercept:.3f} + {fit.dc_n.slope:.3f} v N, β_h {fit.beta_h_n.intercept:.3f} N, "
+            f"α_h {fit.alpha_h.intercept:.2f} (v per 400 mm/s)." + "".join(f"<br>{n}" for n in notes))
+        return True
 
     def use_selected_curve(self):
         curve = selected_curve()

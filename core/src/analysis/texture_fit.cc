@@ -1,0 +1,380 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "hapticad/core/analysis/texture_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstddef>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <unsupported/Eigen/FFT>
+#include <utility>
+#include <vector>
+
+#include "hapticad/core/surfaces/viscous_texture.h"
+
+namespace hapticad {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+[[noreturn]] void Fail(const std::string& what) {
+  throw std::invalid_argument("texture fit: " + what);
+}
+
+std::string Mm(double metres) {
+  std::ostringstream out;
+  out << metres * 1e3;
+  return out.str();
+}
+
+void CheckOptions(const TextureFitOptions& o) {
+  if (!(std::isfinite(o.period_m) && o.period_m > 0)) Fail("the grating period must be > 0");
+  if (o.speeds_mps.empty()) Fail("give at least one target speed");
+  for (double s : o.speeds_mps) {
+    if (!(std::isfinite(s) && s > 0))
+      Fail("every target speed must be > 0, got " + Mm(s) + " mm/s");
+  }
+  if (!(o.speed_tolerance > 0 && o.speed_tolerance < 0.5))
+    Fail("the speed tolerance must lie in (0, 0.5)");
+  if (!(std::isfinite(o.lowpass_hz) && o.lowpass_hz >= 0))
+    Fail("the low-pass cut-off must be >= 0 Hz");
+  if (!(std::isfinite(o.velocity_window_s) && o.velocity_window_s > 0))
+    Fail("the velocity window must be > 0 s");
+  if (o.min_periods < 2) Fail("a section needs at least 2 periods");
+  if (o.harmonics < 2 || o.harmonics > 8) Fail("fit 2 to 8 harmonics");
+  if (o.samples_per_period < 16 || o.samples_per_period > 1024)
+    Fail("resample with 16 to 1024 samples a period");
+}
+
+void CheckRecording(const TextureRecording& r, std::size_t index) {
+  const std::string name = "recording " + std::to_string(index + 1) + ": ";
+  const std::size_t n = r.time_s.size();
+  if (r.position_m.size() != n || r.lateral_force_n.size() != n) {
+    Fail(name + "time, position and force have different lengths (" + std::to_string(n) + ", " +
+         std::to_string(r.position_m.size()) + ", " + std::to_string(r.lateral_force_n.size()) +
+         ")");
+  }
+  if (n < 3) Fail(name + "fewer than 3 samples");
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!std::isfinite(r.time_s[k]) || !std::isfinite(r.position_m[k]) ||
+        !std::isfinite(r.lateral_force_n[k])) {
+      Fail(name + "sample " + std::to_string(k + 1) + " is not a finite number");
+    }
+    if (k > 0 && !(r.time_s[k] > r.time_s[k - 1])) {
+      Fail(name + "time does not increase at sample " + std::to_string(k + 1));
+    }
+  }
+}
+
+// Centred-difference velocity over `window` seconds; NaN where the window does not fit.
+std::vector<double> WindowVelocity(const TextureRecording& r, double window) {
+  const std::vector<double>& t = r.time_s;
+  const std::size_t n = t.size();
+  const double half = 0.5 * window;
+  std::vector<double> v(n, std::nan(""));
+  std::size_t lo = 0;
+  std::size_t hi = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (t[i] - half < t.front() || t[i] + half > t.back()) continue;
+    while (t[lo] < t[i] - half) ++lo;
+    if (hi < i) hi = i;
+    while (hi + 1 < n && t[hi + 1] <= t[i] + half) ++hi;
+    if (hi > lo) v[i] = (r.position_m[hi] - r.position_m[lo]) / (t[hi] - t[lo]);
+  }
+  return v;
+}
+
+// Runs [first, last] of samples at `target` speed in one direction.
+std::vector<std::pair<std::size_t, std::size_t>> FindRuns(const std::vector<double>& v,
+                                                          double target, double tolerance) {
+  std::vector<std::pair<std::size_t, std::size_t>> runs;
+  const auto at_speed = [&](std::size_t i) {
+    return std::isfinite(v[i]) && std::abs(std::abs(v[i]) - target) <= tolerance * target;
+  };
+  std::size_t i = 0;
+  while (i < v.size()) {
+    if (!at_speed(i)) {
+      ++i;
+      continue;
+    }
+    const bool forward = v[i] > 0;
+    std::size_t j = i;
+    while (j + 1 < v.size() && at_speed(j + 1) && (v[j + 1] > 0) == forward) ++j;
+    runs.emplace_back(i, j);
+    i = j + 1;
+  }
+  return runs;
+}
+
+// The force averaged in N bins of width dx from x0, empty bins interpolated linearly
+// between their filled neighbours (held at the ends). False if fewer than 2 bins filled.
+bool ResampleInSpace(const TextureRecording& r, const std::vector<double>& resisting,
+                     std::size_t first, std::size_t last, double x0, double dx, std::size_t bins,
+                     std::vector<double>& out) {
+  std::vector<double> sum(bins, 0.0);
+  std::vector<int> count(bins, 0);
+  for (std::size_t i = first; i <= last; ++i) {
+    const double k = std::floor((r.position_m[i] - x0) / dx);
+    if (k < 0 || k >= static_cast<double>(bins)) continue;
+    sum[static_cast<std::size_t>(k)] += resisting[i];
+    ++count[static_cast<std::size_t>(k)];
+  }
+  std::vector<std::size_t> filled;
+  for (std::size_t k = 0; k < bins; ++k) {
+    if (count[k] > 0) filled.push_back(k);
+  }
+  if (filled.size() < 2) return false;
+  out.assign(bins, 0.0);
+  for (std::size_t k : filled) out[k] = sum[k] / count[k];
+  for (std::size_t k = 0; k < filled.front(); ++k) out[k] = out[filled.front()];
+  for (std::size_t k = filled.back() + 1; k < bins; ++k) out[k] = out[filled.back()];
+  for (std::size_t f = 0; f + 1 < filled.size(); ++f) {
+    const std::size_t a = filled[f];
+    const std::size_t b = filled[f + 1];
+    for (std::size_t k = a + 1; k < b; ++k) {
+      const double s = static_cast<double>(k - a) / static_cast<double>(b - a);
+      out[k] = (1 - s) * out[a] + s * out[b];
+    }
+  }
+  return true;
+}
+
+// Mean kept as DC, linear trend removed, periodic Hann window, one-sided amplitudes.
+std::vector<double> AmplitudeSpectrum(std::vector<double> y, double& dc) {
+  const std::size_t n = y.size();
+  double mean = 0;
+  for (double value : y) mean += value;
+  mean /= static_cast<double>(n);
+  const double centre = 0.5 * static_cast<double>(n - 1);
+  double sxy = 0;
+  double sxx = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double u = static_cast<double>(k) - centre;
+    sxy += u * (y[k] - mean);
+    sxx += u * u;
+  }
+  const double slope = sxx > 0 ? sxy / sxx : 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double hann =
+        0.5 - 0.5 * std::cos(2 * kPi * static_cast<double>(k) / static_cast<double>(n));
+    y[k] = (y[k] - mean - slope * (static_cast<double>(k) - centre)) * hann;
+  }
+  Eigen::FFT<double> fft;
+  std::vector<std::complex<double>> spectrum;
+  fft.fwd(spectrum, y);
+  // A sinusoid of amplitude A centred on bin k gives |X_k| = A N / 4 under the Hann window.
+  std::vector<double> amplitude(n / 2 + 1);
+  amplitude[0] = mean;
+  for (std::size_t k = 1; k < amplitude.size(); ++k)
+    amplitude[k] = 4.0 * std::abs(spectrum[k]) / static_cast<double>(n);
+  dc = mean;
+  return amplitude;
+}
+
+SpeedLine FitLine(const std::vector<double>& v, const std::vector<double>& y) {
+  SpeedLine line;
+  const double n = static_cast<double>(v.size());
+  double mv = 0;
+  double my = 0;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    mv += v[k] / n;
+    my += y[k] / n;
+  }
+  double svy = 0;
+  double svv = 0;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    svy += (v[k] - mv) * (y[k] - my);
+    svv += (v[k] - mv) * (v[k] - mv);
+  }
+  line.slope = svv > 0 ? svy / svv : 0.0;
+  line.intercept = my - line.slope * mv;
+  return line;
+}
+
+std::string SpeedList(const std::vector<double>& speeds) {
+  std::ostringstream out;
+  for (std::size_t k = 0; k < speeds.size(); ++k) out << (k ? ", " : "") << speeds[k] * 1e3;
+  return out.str();
+}
+
+}  // namespace
+
+void LowPassFirstOrder(const std::vector<double>& time_s, double cutoff_hz,
+                       std::vector<double>& signal) {
+  if (signal.size() != time_s.size()) Fail("low-pass: time and signal have different lengths");
+  for (std::size_t k = 1; k < signal.size(); ++k) {
+    const double gain = 1.0 - std::exp(-2 * kPi * cutoff_hz * (time_s[k] - time_s[k - 1]));
+    signal[k] = signal[k - 1] + gain * (signal[k] - signal[k - 1]);
+  }
+}
+
+PowerFit FitPowerLaw(const std::vector<double>& x, const std::vector<double>& y) {
+  PowerFit fit;
+  std::vector<double> lx;
+  std::vector<double> ly;
+  for (std::size_t k = 0; k < std::min(x.size(), y.size()); ++k) {
+    if (std::isfinite(x[k]) && std::isfinite(y[k]) && x[k] > 0 && y[k] > 0) {
+      lx.push_back(std::log(x[k]));
+      ly.push_back(std::log(y[k]));
+    }
+  }
+  const auto [lo, hi] = std::minmax_element(lx.begin(), lx.end());
+  if (lx.size() < 2 || *lo == *hi) return fit;
+  const SpeedLine line = FitLine(lx, ly);
+  fit.points = static_cast<int>(lx.size());
+  fit.beta = std::exp(line.intercept);
+  fit.alpha = -line.slope;
+  double mean = 0;
+  for (double value : ly) mean += value / static_cast<double>(ly.size());
+  double residual = 0;
+  double total = 0;
+  for (std::size_t k = 0; k < lx.size(); ++k) {
+    const double e = ly[k] - (line.intercept + line.slope * lx[k]);
+    residual += e * e;
+    total += (ly[k] - mean) * (ly[k] - mean);
+  }
+  fit.r_squared = total > 0 ? 1.0 - residual / total : 1.0;
+  return fit;
+}
+
+TextureFit FitTexture(const std::vector<TextureRecording>& recordings,
+                      const TextureFitOptions& options) {
+  CheckOptions(options);
+  if (recordings.empty()) Fail("no recording");
+  for (std::size_t r = 0; r < recordings.size(); ++r) CheckRecording(recordings[r], r);
+
+  std::vector<double> targets = options.speeds_mps;
+  std::sort(targets.begin(), targets.end());
+  const double lambda = options.period_m;
+  const double dx = lambda / options.samples_per_period;
+  const double half = 0.5 * options.velocity_window_s;
+
+  TextureFit fit;
+  fit.period_m = lambda;
+  double seen_min = INFINITY;
+  double seen_max = 0;
+  for (std::size_t r = 0; r < recordings.size(); ++r) {
+    const TextureRecording& rec = recordings[r];
+    std::vector<double> force = rec.lateral_force_n;
+    if (options.lowpass_hz > 0) LowPassFirstOrder(rec.time_s, options.lowpass_hz, force);
+    const std::vector<double> v = WindowVelocity(rec, options.velocity_window_s);
+    for (double value : v) {
+      if (!std::isfinite(value)) continue;
+      seen_min = std::min(seen_min, std::abs(value));
+      seen_max = std::max(seen_max, std::abs(value));
+    }
+    for (double target : targets) {
+      for (auto [a, b] : FindRuns(v, target, options.speed_tolerance)) {
+        // Half a window off each end: the velocity there averages motion outside the run.
+        std::size_t first = a;
+        while (first <= b && rec.time_s[first] < rec.time_s[a] + half) ++first;
+        std::size_t last = b;
+        while (last > first && rec.time_s[last] > rec.time_s[b] - half) --last;
+        if (last <= first) continue;
+        const double x_first = rec.position_m[first];
+        const double x_last = rec.position_m[last];
+        const double length = std::abs(x_last - x_first);
+        const int periods = static_cast<int>(std::floor(length / lambda));
+        if (periods < options.min_periods) continue;
+        const double sign = x_last > x_first ? 1.0 : -1.0;
+        std::vector<double> resisting(rec.position_m.size());
+        for (std::size_t i = first; i <= last; ++i) resisting[i] = -sign * force[i];
+        const double x0 = std::min(x_first, x_last) + 0.5 * (length - periods * lambda);
+        const std::size_t bins = static_cast<std::size_t>(periods) * options.samples_per_period;
+        std::vector<double> resampled;
+        if (!ResampleInSpace(rec, resisting, first, last, x0, dx, bins, resampled)) continue;
+        TextureSection section;
+        section.recording = static_cast<int>(r);
+        section.target_speed_mps = target;
+        section.speed_mps = length / (rec.time_s[last] - rec.time_s[first]);
+        section.start_m = x0;
+        section.end_m = x0 + periods * lambda;
+        section.periods = periods;
+        section.amplitude_n = AmplitudeSpectrum(std::move(resampled), section.dc_n);
+        if (options.lowpass_hz > 0) {
+          // undo the filter's known gain at each bin's frequency in time, f v: it is
+          // there to remove a rig's resonance, not to bend the harmonics' decay
+          for (std::size_t k = 1; k < section.amplitude_n.size(); ++k) {
+            const double hz = static_cast<double>(k) / periods / lambda * section.speed_mps;
+            section.amplitude_n[k] *=
+                std::sqrt(1.0 + (hz / options.lowpass_hz) * (hz / options.lowpass_hz));
+          }
+        }
+        fit.sections.push_back(std::move(section));
+      }
+    }
+  }
+
+  std::vector<double> speed_units;
+  std::vector<double> dcs;
+  std::vector<double> betas;
+  std::vector<double> alphas;
+  for (double target : targets) {
+    SpeedFit speed;
+    speed.target_speed_mps = target;
+    std::vector<double> hx;
+    std::vector<double> hy;
+    std::vector<double> bx;
+    std::vector<double> by;
+    std::vector<double> section_dcs;
+    for (const TextureSection& s : fit.sections) {
+      if (s.target_speed_mps != target) continue;
+      ++speed.sections;
+      speed.speed_mps += s.speed_mps;
+      section_dcs.push_back(s.dc_n);
+      const std::size_t p = static_cast<std::size_t>(s.periods);
+      for (int i = 1; i <= options.harmonics; ++i) {
+        const std::size_t k = p * static_cast<std::size_t>(i);
+        if (k < s.amplitude_n.size()) {
+          hx.push_back(i);
+          hy.push_back(s.amplitude_n[k]);
+        }
+      }
+      for (std::size_t k = 1; k < s.amplitude_n.size(); ++k) {
+        const std::size_t off = k % p;
+        if (off <= 1 || off >= p - 1) continue;  // a harmonic's bin or its Hann neighbours
+        const double fundamentals = static_cast<double>(k) / static_cast<double>(p);
+        if (options.lowpass_hz > 0 && fundamentals / lambda * s.speed_mps >= options.lowpass_hz)
+          break;
+        bx.push_back(fundamentals);
+        by.push_back(s.amplitude_n[k]);
+      }
+    }
+    if (speed.sections == 0) {
+      fit.speeds_without_sections_mps.push_back(target);
+      continue;
+    }
+    speed.speed_mps /= speed.sections;
+    for (double dc : section_dcs) speed.dc_n += dc / speed.sections;
+    if (speed.sections > 1) {
+      double ss = 0;
+      for (double dc : section_dcs) ss += (dc - speed.dc_n) * (dc - speed.dc_n);
+      speed.dc_sd_n = std::sqrt(ss / (speed.sections - 1));
+    }
+    speed.harmonic = FitPowerLaw(hx, hy);
+    speed.background = FitPowerLaw(bx, by);
+    fit.speeds.push_back(speed);
+    speed_units.push_back(speed.speed_mps / kViscousSpeedUnitMps);
+    dcs.push_back(speed.dc_n);
+    betas.push_back(speed.harmonic.beta);
+    alphas.push_back(speed.harmonic.alpha);
+  }
+  if (fit.speeds.empty()) {
+    std::ostringstream why;
+    why << "no section of constant speed: no recording keeps within "
+        << options.speed_tolerance * 100 << " % of " << SpeedList(targets)
+        << " mm/s in one direction over " << options.min_periods << " periods ("
+        << Mm(options.min_periods * lambda) << " mm) of the grating";
+    if (seen_max > 0)
+      why << "; its speeds range from " << seen_min * 1e3 << " to " << seen_max * 1e3 << " mm/s";
+    Fail(why.str());
+  }
+  fit.dc_n = FitLine(speed_units, dcs);
+  fit.beta_h_n = FitLine(speed_units, betas);
+  fit.alpha_h = FitLine(speed_units, alphas);
+  return fit;
+}
+
+}  // namespace hapticad

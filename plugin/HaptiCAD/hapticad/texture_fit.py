@@ -1,0 +1,267 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Fit a surface's viscous grating texture to force recordings (seed 001, §III).
+
+The fit itself is the core's (``_core.fit_texture``: low-pass, sections of constant
+speed, spatial FFT, power fits, lines in speed). This module reads recordings, turns the
+fit's newtons into a surface's texture levels and sets them. No GUI.
+
+Recordings are CSV files with a header, in one of two forms:
+
+* a rig's: ``time_s``, ``position_mm`` (the finger along the stroke), ``lateral_force_n``
+  (the lateral force on the finger along +position: negative while it moves to +),
+  optionally ``normal_force_n``;
+* HaptiCAD's own trace (``hapticad feel``'s ``trace.csv``): the contact rows, position
+  along the direction the proxy travelled most, force on the device along it.
+"""
+import csv
+import math
+import os
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import _core
+
+MM = 1e-3
+PAPER_SPEEDS_MM_S = (50.0, 80.0, 120.0, 180.0, 270.0)  # seed 001 §III
+RIG_COLUMNS = ("time_s", "position_mm", "lateral_force_n")
+TRACE_COLUMNS = ("time_s", "proxy_x_mm", "proxy_y_mm", "proxy_z_mm", "force_x_n", "force_y_n",
+                 "force_z_n", "normal_force_n", "contact")
+FIELDS = ("TextureDC", "TextureViscosity", "TextureBeta", "TextureBetaViscosity", "TextureAlpha",
+          "TextureAlphaViscosity")
+
+
+@dataclass
+class Recording:
+    path: str
+    kind: str  # "rig" or "trace"
+    data: object  # _core.TextureRecording
+    normal_force_n: float = None  # mean over the samples, when recorded
+
+
+@dataclass
+class FitReport:
+    fit: object  # _core.TextureFit
+    recordings: list
+    options: object  # _core.TextureFitOptions
+    notes: list = field(default_factory=list)
+
+    @property
+    def normal_force_n(self):
+        values = [r.normal_force_n for r in self.recordings if r.normal_force_n is not None]
+        return float(np.mean(values)) if values else None
+
+
+def _read_columns(path):
+    name = os.path.basename(path)
+    try:
+        with open(path, newline="") as handle:
+            rows = list(csv.reader(handle))
+    except UnicodeDecodeError:
+        raise ValueError(f"{name}: not a text CSV file") from None
+    if not rows:
+        raise ValueError(f"{name}: empty file")
+    header = [h.strip() for h in rows[0]]
+    body = [r for r in rows[1:] if r]
+    if set(TRACE_COLUMNS) <= set(header):
+        kind, wanted = "trace", TRACE_COLUMNS
+    elif set(RIG_COLUMNS) <= set(header):
+        kind = "rig"
+        wanted = RIG_COLUMNS + (("normal_force_n",) if "normal_force_n" in header else ())
+    else:
+        raise ValueError(f"{name}: needs the columns {', '.join(RIG_COLUMNS)} (a rig's recording) or "
+                         "a HaptiCAD trace.csv; its header is " + ", ".join(header))
+    index = {c: header.index(c) for c in wanted}
+    columns = {c: np.empty(len(body)) for c in wanted}
+    for line, row in enumerate(body, start=2):
+        for c, i in index.items():
+            try:
+                columns[c][line - 2] = float(row[i])
+            except (ValueError, IndexError):
+                raise ValueError(f"{name}, line {line}: {c} is not a number") from None
+    return kind, columns
+
+
+def load_recording(path):
+    """A Recording from a CSV file. Raises ValueError naming the file and line."""
+    kind, c = _read_columns(path)
+    name = os.path.basename(path)
+    if kind == "rig":
+        t, x, f = c["time_s"], c["position_mm"] * MM, c["lateral_force_n"]
+        normal = float(np.mean(c["normal_force_n"])) if "normal_force_n" in c else None
+    else:
+        touching = c["contact"] != 0
+        if touching.sum() < 3:
+            raise ValueError(f"{name}: the trace has no contact to fit")
+        p = np.column_stack([c["proxy_x_mm"], c["proxy_y_mm"], c["proxy_z_mm"]])[touching] * MM
+        force = np.column_stack([c["force_x_n"], c["force_y_n"], c["force_z_n"]])[touching]
+        # the stroke's direction: the axis along which the proxy travelled most
+        _, _, axes = np.linalg.svd(p - p.mean(axis=0), full_matrices=False)
+        direction = axes[0]
+        t, x, f = c["time_s"][touching], (p - p.mean(axis=0)) @ direction, force @ direction
+        normal = float(np.mean(c["normal_force_n"][touching]))
+    try:
+        data = _core.TextureRecording(np.ascontiguousarray(t), np.ascontiguousarray(x), np.ascontiguousarray(f))
+    except ValueError as exc:
+        raise ValueError(f"{name}: {exc}") from None
+    return Recording(os.path.abspath(path), kind, data, normal)
+
+
+def fit_files(paths, period_mm, speeds_mm_s=PAPER_SPEEDS_MM_S, tolerance_percent=2.5, lowpass_hz=1000.0,
+              harmonics=3, min_periods=4):
+    """Fits the recordings in ``paths``. Raises ValueError for unreadable files, bad options,
+    or recordings that hold no section of constant speed."""
+    if not paths:
+        raise ValueError("give at least one recording")
+    recordings = [load_recording(p) for p in paths]
+    options = _core.TextureFitOptions()
+    options.period_m = float(period_mm) * MM
+    options.speeds_mps = [float(s) * MM for s in speeds_mm_s]
+    options.speed_tolerance = float(tolerance_percent) / 100.0
+    options.lowpass_hz = float(lowpass_hz)
+    options.harmonics = int(harmonics)
+    options.min_periods = int(min_periods)
+    fit = _core.fit_texture([r.data for r in recordings], options)
+    notes = []
+    if fit.speeds_without_sections_mps:
+        missing = ", ".join(f"{s / MM:g}" for s in fit.speeds_without_sections_mps)
+        notes.append(f"no section at {missing} mm/s: those speeds are not in the fit")
+    if len(fit.speeds) == 1:
+        notes.append("one speed only: the viscous terms (f_vis, beta_vis, alpha_vis) are 0")
+    return FitReport(fit, recordings, options, notes)
+
+
+def peak_force_n(fit):
+    """The largest force eq. 2 gives with the fitted lines at the fitted speeds (N)."""
+    peak = 0.0
+    for s in fit.speeds:
+        v = s.speed_mps / _core.VISCOUS_SPEED_UNIT_MPS
+        beta = fit.beta_h_n.intercept + v * fit.beta_h_n.slope
+        alpha = fit.alpha_h.intercept + v * fit.alpha_h.slope
+        ripple = abs(beta) * sum(i ** -alpha for i in range(1, 5))
+        peak = max(peak, fit.dc_n.intercept + v * fit.dc_n.slope + ripple)
+    return peak
+
+
+def levels(fit, full_range_n):
+    """The surface properties eq. 2 needs to render the fit with ``full_range_n`` N as level 1."""
+    if not (math.isfinite(full_range_n) and full_range_n > 0):
+        raise ValueError(f"the full range must be > 0 N, got {full_range_n}")
+    return {
+        "TextureDC": fit.dc_n.intercept / full_range_n,
+        "TextureViscosity": fit.dc_n.slope / full_range_n,
+        "TextureBeta": fit.beta_h_n.intercept / full_range_n,
+        "TextureBetaViscosity": fit.beta_h_n.slope / full_range_n,
+        "TextureAlpha": fit.alpha_h.intercept,
+        "TextureAlphaViscosity": fit.alpha_h.slope,
+        "TexturePeriod": fit.period_m / MM,
+    }
+
+
+def full_range_for(surface, report):
+    """(newtons that level 1 stands for on ``surface``, what to set, notes).
+
+    Device force with a Full range: that. Device force with the device's full range (0):
+    a number of newtons no device knows in advance, so the fit sets Full range to its own
+    peak force rounded up to 0.1 N, and the recorded newtons are felt as recorded.
+    Friction level: static friction times the recordings' normal force."""
+    if surface.TextureScale == "Friction level":
+        normal = report.normal_force_n
+        if normal is None:
+            raise ValueError("the texture's level 1 is a friction level (static friction times the normal "
+                             "force): the recordings carry no normal_force_n column, so its newtons cannot be "
+                             "turned into levels; set 'Level 1 is' to Device force, or record the normal force")
+        if surface.StaticFriction <= 0:
+            raise ValueError("the texture's level 1 is a friction level, and the static friction is 0")
+        return surface.StaticFriction * normal, {}, [
+            f"level 1 = static friction {surface.StaticFriction:g} x the recorded normal force {normal:.3g} N"]
+    if surface.TextureFullRange > 0:
+        return surface.TextureFullRange, {}, []
+    chosen = math.ceil(peak_force_n(report.fit) * 10 - 1e-9) / 10
+    chosen = max(chosen, 0.1)
+    return chosen, {"TextureFullRange": chosen}, [
+        f"Full range set to {chosen:g} N (it was the device's full range), so the recorded forces are felt "
+        "as recorded"]
+
+
+def apply_to_surface(surface, report):
+    """Sets ``surface``'s texture to the fit (Texture = Custom, its values and period).
+    Returns the notes to show. Raises ValueError, changing nothing, if the fit cannot be
+    expressed on this surface."""
+    full, extra, notes = full_range_for(surface, report)
+    values = levels(report.fit, full)
+    values.update(extra)
+    bad = [k for k, v in values.items() if not math.isfinite(v)]
+    if bad:
+        raise ValueError(f"the fit gave a non-finite {', '.join(bad)}; nothing was changed")
+    if values["TexturePeriod"] < 1e-3:
+        raise ValueError("the grating period is below 0.001 mm; nothing was changed")
+    surface.Texture = "Custom"
+    for name, value in values.items():
+        setattr(surface, name, value)
+    peak = peak_force_n(report.fit) / full
+    if peak > 1:
+        notes.append(f"the fitted force reaches {peak:.2f} x level 1: above level 1 it is clipped")
+    low = [s for s in report.fit.speeds
+           if report.fit.dc_n.intercept + report.fit.dc_n.slope * s.speed_mps / _core.VISCOUS_SPEED_UNIT_MPS < 0]
+    if low:
+        notes.append(f"the fitted DC level is below 0 at {low[0].speed_mps / MM:.0f} mm/s: clipped to 0 there")
+    return report.notes + notes
+
+
+def summary(report):
+    """The fit as JSON-able data: per speed and the eq. 2 lines (N, per 400 mm/s)."""
+    fit = report.fit
+    return {
+        "recordings": [{"path": r.path, "kind": r.kind, "samples": r.data.samples,
+                        "normal_force_n": r.normal_force_n} for r in report.recordings],
+        "period_mm": fit.period_m / MM,
+        "sections": len(fit.sections),
+        "speeds": [{
+            "target_mm_s": s.target_speed_mps / MM,
+            "measured_mm_s": s.speed_mps / MM,
+            "sections": s.sections,
+            "dc_n": s.dc_n,
+            "dc_sd_n": s.dc_sd_n,
+            "harmonic_beta_n": s.harmonic.beta,
+            "harmonic_alpha": s.harmonic.alpha,
+            "harmonic_r2": s.harmonic.r_squared,
+            "background_beta_n": s.background.beta,
+            "background_alpha": s.background.alpha,
+            "background_points": s.background.points,
+        } for s in fit.speeds],
+        "speeds_without_sections_mm_s": [s / MM for s in fit.speeds_without_sections_mps],
+        "eq2_newtons": {
+            "f_dc_n": fit.dc_n.intercept,
+            "f_vis_n_per_400mm_s": fit.dc_n.slope,
+            "beta_h_n": fit.beta_h_n.intercept,
+            "beta_vis_n_per_400mm_s": fit.beta_h_n.slope,
+            "alpha_h": fit.alpha_h.intercept,
+            "alpha_vis_per_400mm_s": fit.alpha_h.slope,
+        },
+        "peak_force_n": peak_force_n(fit),
+        "notes": list(report.notes),
+    }
+
+
+def describe(result):
+    """``summary()``'s data (and what --apply set) as text for a terminal."""
+    lines = [f"grating period {result['period_mm']:g} mm, {result['sections']} sections of constant speed"]
+    lines.append("  speed mm/s  sections  DC N (sd)        harmonics beta N, alpha  background beta N, alpha")
+    for s in result["speeds"]:
+        lines.append(f"  {s['measured_mm_s']:9.1f}  {s['sections']:8d}  {s['dc_n']:.4f} ({s['dc_sd_n']:.4f})"
+                     f"  {s['harmonic_beta_n']:.4f}, {s['harmonic_alpha']:.2f}"
+                     f"          {s['background_beta_n']:.2e}, {s['background_alpha']:.2f}")
+    e = result["eq2_newtons"]
+    lines.append(f"eq. 2 in newtons (v in units of 400 mm/s): f_DC {e['f_dc_n']:.4f} + v {e['f_vis_n_per_400mm_s']:.4f}, "
+                 f"beta_h {e['beta_h_n']:.4f} + v {e['beta_vis_n_per_400mm_s']:.4f}, "
+                 f"alpha_h {e['alpha_h']:.3f} + v {e['alpha_vis_per_400mm_s']:.3f}")
+    applied = result.get("applied")
+    if applied:
+        values = ", ".join(f"{k} {applied[k]:.4g}" for k in (*FIELDS, "TexturePeriod", "TextureFullRange"))
+        lines.append(f"set on {applied['surface']} in {applied['document']}: {values}")
+        result = {**result, "notes": applied["notes"]}
+    lines += [f"note: {n}" for n in result["notes"]]
+    if result.get("plot"):
+        lines.append(f"plot: {result['plot']}")
+    return "\n".join(lines)

@@ -1,0 +1,106 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""`hapticad fit-texture` end to end: a rig's recording is fitted (JSON, text and a plot),
+the fit is set on a document's surface and saved; bad input gets a clear error (exit 2)
+and leaves the document as it was.
+
+Environment: HAPTICAD_CLI (the launcher), HAPTICAD_MOD (the staged Mod folder).
+Runs under /usr/bin/python3 (FreeCAD's interpreter)."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+CLI = os.environ["HAPTICAD_CLI"]
+sys.path.insert(0, os.environ["HAPTICAD_MOD"])
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+
+from hapticad.freecad_env import ensure_freecad  # noqa: E402
+
+App = ensure_freecad()
+import HaptiCAD  # noqa: E402
+from hapticad import _core  # noqa: E402
+from texture_recordings import write_rig_csv  # noqa: E402
+
+assert HaptiCAD.__file__.startswith(os.environ["HAPTICAD_MOD"]), HaptiCAD.__file__
+
+
+def run_cli(*args):
+    return subprocess.run([CLI, *args], capture_output=True, text=True, timeout=120)
+
+
+class FitTextureCommandTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.rig = os.path.join(cls.tmp.name, "rig.csv")
+        write_rig_csv(_core, cls.rig, speeds_mm_s=(50.0, 120.0), f_dc=0.4, f_vis=0.2, full_range_n=2.0)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def make_document(self, name):
+        path = os.path.join(self.tmp.name, name)
+        doc = App.newDocument("CliFit")
+        box = doc.addObject("Part::Box", "Box")
+        doc.recompute()
+        surface = HaptiCAD.make_surface(doc, [(box, "Face6")], material="ABS", FeelRoughness=False,
+                                        TextureFullRange=2.0)
+        surface.Label = "Grip"
+        doc.saveAs(path)
+        App.closeDocument(doc.Name)
+        return path
+
+    def test_fits_a_recording_and_plots_it(self):
+        plot = os.path.join(self.tmp.name, "fit.png")
+        proc = run_cli("fit-texture", self.rig, "--period", "2.5", "--speeds", "50,120", "--json", "--plot", plot)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        result = json.loads(proc.stdout)
+        self.assertEqual([s["sections"] for s in result["speeds"]], [2, 2])
+        self.assertAlmostEqual(result["eq2_newtons"]["f_dc_n"], 0.8, delta=0.01)
+        self.assertAlmostEqual(result["eq2_newtons"]["f_vis_n_per_400mm_s"], 0.4, delta=0.02)
+        self.assertGreater(os.path.getsize(plot), 10000)
+        text = run_cli("fit-texture", self.rig, "--period", "2.5", "--speeds", "50,120")
+        self.assertEqual(text.returncode, 0, text.stderr)
+        self.assertIn("eq. 2 in newtons", text.stdout)
+
+    def test_sets_the_fit_on_a_surface_and_saves_the_document(self):
+        path = self.make_document("apply.FCStd")
+        proc = run_cli("fit-texture", self.rig, "--period", "2.5", "--speeds", "50,120", "--json",
+                       "--apply", path, "--surface", "Grip")
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertEqual(json.loads(proc.stdout)["applied"]["surface"], "Grip")
+        doc = App.openDocument(path)
+        try:
+            surface = doc.getObjectsByLabel("Grip")[0]
+            self.assertEqual(surface.Texture, "Custom")
+            self.assertAlmostEqual(surface.TextureDC, 0.4, delta=0.005)
+            self.assertAlmostEqual(surface.TextureViscosity, 0.2, delta=0.01)
+            self.assertAlmostEqual(surface.TexturePeriod, 2.5)
+        finally:
+            App.closeDocument(doc.Name)
+
+    def test_bad_input_is_refused_and_the_document_is_left_alone(self):
+        path = self.make_document("untouched.FCStd")
+        before = os.path.getmtime(path)
+        cases = [
+            (("fit-texture", os.path.join(self.tmp.name, "missing.csv"), "--period", "2.5"), "No such file"),
+            (("fit-texture", self.rig, "--period", "2.5", "--apply", path), "go together"),
+            (("fit-texture", self.rig, "--period", "2.5", "--speeds", "50,120", "--apply", path, "--surface",
+              "Handle"), "no haptic surface named 'Handle' (it has: Grip)"),
+            (("fit-texture", self.rig, "--period", "2.5", "--speeds", "300"), "no section of constant speed"),
+            (("fit-texture", self.rig, "--period", "0", "--speeds", "50"), "period must be > 0"),
+            (("fit-texture", self.rig, "--period", "2.5", "--speeds", "fast"), "not a list of speeds"),
+        ]
+        for args, message in cases:
+            with self.subTest(message=message):
+                proc = run_cli(*args)
+                self.assertEqual(proc.returncode, 2, proc.stderr)
+                self.assertIn(message, proc.stderr)
+        self.assertEqual(os.path.getmtime(path), before)
+
+
+if __name__ == "__main__":
+    unittest.main()

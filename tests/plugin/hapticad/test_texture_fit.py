@@ -1,0 +1,180 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Fitting a texture to recordings: a round trip through the real servo loop (a textured
+face stroked by the simulated probe at three speeds, its traces fitted, the fit set on
+another surface), a rig's CSV, and clear errors that change nothing."""
+import os
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+
+import FreeCAD as App
+
+import HaptiCAD
+from hapticad import _core, texture_fit
+from hapticad.document_scene import build_document_scene
+from hapticad.feel import Stroke, run_stroke, write_trace_csv
+from hapticad.surface_object import validate
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
+from texture_recordings import write_rig_csv as _write_rig_csv  # noqa: E402
+
+
+def write_rig_csv(path, **kwargs):
+    _write_rig_csv(_core, path, **kwargs)
+
+TRUTH = {"TextureDC": 0.4, "TextureViscosity": 0.2, "TextureBeta": 0.1, "TextureAlpha": 2.0}
+FULL_RANGE_N = 2.0
+SPEEDS = (50.0, 120.0, 270.0)
+
+
+class RoundTripTest(unittest.TestCase):
+    """A grating rendered by the servo loop is fitted back to its own values."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.doc = App.newDocument("TextureFitRoundTrip")
+        box = cls.doc.addObject("Part::Box", "Box")
+        box.Length, box.Width, box.Height = 40, 100, 10
+        cls.doc.recompute()
+        cls.source = HaptiCAD.make_surface(cls.doc, [(box, "Face6")], material="ABS", FeelRoughness=False,
+                                           Texture="Custom", TextureFullRange=FULL_RANGE_N, **TRUTH)
+        scene = build_document_scene(cls.doc)
+        cls.paths = []
+        for speed in SPEEDS:
+            # across the grating: its coordinate runs along the face frame's e2, +y on this face
+            result = run_stroke(scene, Stroke((20, 10, 10), (20, 90, 10), speed_mm_s=speed, depth_mm=1.0,
+                                              rate_hz=5000))
+            path = os.path.join(cls.tmp.name, f"trace_{speed:.0f}.csv")
+            write_trace_csv(path, result, scene)
+            cls.paths.append(path)
+        cls.report = texture_fit.fit_files(cls.paths, 2.5, SPEEDS, lowpass_hz=0)
+
+    @classmethod
+    def tearDownClass(cls):
+        App.closeDocument(cls.doc.Name)
+        cls.tmp.cleanup()
+
+    def test_traces_are_read_as_recordings_along_the_stroke(self):
+        for recording in self.report.recordings:
+            self.assertEqual(recording.kind, "trace")
+            self.assertGreater(recording.normal_force_n, 0.1)  # k * 1 mm, the probe pressing
+        self.assertEqual([s.sections for s in self.report.fit.speeds], [1, 1, 1])
+        for s, target in zip(self.report.fit.speeds, SPEEDS):
+            self.assertAlmostEqual(s.speed_mps * 1e3, target, delta=0.01 * target)
+
+    def test_the_fit_gives_back_the_rendered_texture(self):
+        values = texture_fit.levels(self.report.fit, FULL_RANGE_N)
+        self.assertAlmostEqual(values["TextureDC"], TRUTH["TextureDC"], delta=0.01)
+        self.assertAlmostEqual(values["TextureViscosity"], TRUTH["TextureViscosity"], delta=0.02)
+        self.assertAlmostEqual(values["TextureBeta"], TRUTH["TextureBeta"], delta=0.005)
+        self.assertAlmostEqual(values["TextureAlpha"], TRUTH["TextureAlpha"], delta=0.1)
+        self.assertAlmostEqual(values["TextureBetaViscosity"], 0.0, delta=0.01)
+        self.assertAlmostEqual(values["TexturePeriod"], 2.5, places=12)
+
+    def test_applied_to_another_surface_it_renders_the_same_newtons(self):
+        doc = App.newDocument("TextureFitTarget")
+        try:
+            box = doc.addObject("Part::Box", "Box")
+            doc.recompute()
+            target = HaptiCAD.make_surface(doc, [(box, "Face6")], material="PP", FeelRoughness=False)
+            self.assertEqual(target.TextureFullRange, 0.0)  # the device's full range
+            notes = texture_fit.apply_to_surface(target, self.report)
+            doc.recompute()
+            self.assertEqual(validate(target), [])
+            self.assertEqual(target.Texture, "Custom")
+            # the device's range is unknown here: the fit pins level 1 to its own peak, rounded up
+            peak = texture_fit.peak_force_n(self.report.fit)
+            self.assertGreaterEqual(target.TextureFullRange, peak)
+            self.assertLess(target.TextureFullRange, peak + 0.1 + 1e-9)
+            self.assertTrue(any("Full range set to" in n for n in notes), notes)
+            self.assertAlmostEqual(target.TextureDC * target.TextureFullRange,
+                                   TRUTH["TextureDC"] * FULL_RANGE_N, delta=0.02)
+            self.assertAlmostEqual(target.TextureViscosity * target.TextureFullRange,
+                                   TRUTH["TextureViscosity"] * FULL_RANGE_N, delta=0.04)
+            self.assertAlmostEqual(target.TextureAlpha, TRUTH["TextureAlpha"], delta=0.1)
+        finally:
+            App.closeDocument(doc.Name)
+
+    def test_a_friction_level_texture_takes_level_1_from_the_recorded_normal_force(self):
+        doc = App.newDocument("TextureFitFriction")
+        try:
+            box = doc.addObject("Part::Box", "Box")
+            doc.recompute()
+            target = HaptiCAD.make_surface(doc, [(box, "Face6")], material="ABS", FeelRoughness=False,
+                                           TextureScale="Friction level")
+            texture_fit.apply_to_surface(target, self.report)
+            full = target.StaticFriction * self.report.normal_force_n
+            self.assertAlmostEqual(target.TextureDC * full, TRUTH["TextureDC"] * FULL_RANGE_N, delta=0.02)
+        finally:
+            App.closeDocument(doc.Name)
+
+
+class RigRecordingTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def path(self, name):
+        return os.path.join(self.tmp.name, name)
+
+    def test_a_rig_csv_is_fitted(self):
+        write_rig_csv(self.path("rig.csv"), normal_force_n=0.8)
+        report = texture_fit.fit_files([self.path("rig.csv")], 2.5, (50, 120, 180))
+        self.assertEqual(report.recordings[0].kind, "rig")
+        self.assertAlmostEqual(report.normal_force_n, 0.8)
+        self.assertEqual([s.sections for s in report.fit.speeds], [2, 2])
+        self.assertTrue(any("no section at 180 mm/s" in n for n in report.notes), report.notes)
+        values = texture_fit.levels(report.fit, 2.0)
+        self.assertAlmostEqual(values["TextureDC"], 0.4, delta=0.005)
+        self.assertAlmostEqual(values["TextureViscosity"], 0.2, delta=0.01)
+        data = texture_fit.summary(report)
+        self.assertEqual(data["sections"], 4)
+        self.assertEqual(data["speeds_without_sections_mm_s"], [180.0])
+
+    def test_unreadable_recordings_are_refused_by_name_and_line(self):
+        with open(self.path("columns.csv"), "w") as f:
+            f.write("t,x,f\n0,0,0\n")
+        with open(self.path("number.csv"), "w") as f:
+            f.write("time_s,position_mm,lateral_force_n\n0,0,0\n0.001,0.1,zero\n")
+        with open(self.path("empty.csv"), "w"):
+            pass
+        cases = [("columns.csv", "needs the columns time_s, position_mm, lateral_force_n"),
+                 ("number.csv", "number.csv, line 3: lateral_force_n is not a number"),
+                 ("empty.csv", "empty file"),
+                 ("missing.csv", "No such file")]
+        for name, message in cases:
+            with self.subTest(name=name):
+                with self.assertRaises((ValueError, OSError)) as caught:
+                    texture_fit.fit_files([self.path(name)], 2.5)
+                self.assertIn(message, str(caught.exception))
+
+    def test_a_recording_at_other_speeds_says_which_it_holds(self):
+        write_rig_csv(self.path("slow.csv"), speeds_mm_s=(20.0,))
+        with self.assertRaises(ValueError) as caught:
+            texture_fit.fit_files([self.path("slow.csv")], 2.5)
+        self.assertIn("no section of constant speed", str(caught.exception))
+        self.assertIn("range from", str(caught.exception))
+
+    def test_a_fit_that_cannot_be_set_changes_nothing(self):
+        write_rig_csv(self.path("no_normal.csv"))
+        report = texture_fit.fit_files([self.path("no_normal.csv")], 2.5, (50, 120))
+        doc = App.newDocument("TextureFitRefused")
+        try:
+            box = doc.addObject("Part::Box", "Box")
+            doc.recompute()
+            surface = HaptiCAD.make_surface(doc, [(box, "Face6")], material="ABS", FeelRoughness=False,
+                                            TextureScale="Friction level", Texture="Custom", TextureDC=0.7)
+            before = {name: getattr(surface, name) for name in (*texture_fit.FIELDS, "Texture", "TexturePeriod")}
+            with self.assertRaises(ValueError) as caught:
+                texture_fit.apply_to_surface(surface, report)
+            self.assertIn("no normal_force_n column", str(caught.exception))
+            self.assertEqual({name: getattr(surface, name) for name in before}, before)
+        finally:
+            App.closeDocument(doc.Name)
