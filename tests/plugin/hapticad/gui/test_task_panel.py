@@ -5,6 +5,7 @@ the 3D view, live validation, curve and circular-centre picking, vibration, brok
 references shown. Run through gui_test_runner.py."""
 import os
 import sys
+import tempfile
 import unittest
 
 import FreeCAD as App
@@ -91,6 +92,49 @@ class TaskPanelTest(unittest.TestCase):
         self.doc.undo()
         self.assertEqual(HaptiCAD.surfaces_of(self.doc), [])
         self.assertEqual(HaptiCAD.vibrations_of(self.doc), [])
+
+    def test_the_texture_is_fitted_to_recordings_and_cancel_reverts_it(self):
+        sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "support"))
+        from texture_recordings import write_rig_csv
+
+        from hapticad import _core
+
+        surface = self.open_new_surface()
+        folder = tempfile.mkdtemp()
+        rig, bad = os.path.join(folder, "rig.csv"), os.path.join(folder, "bad.csv")
+        write_rig_csv(_core, rig, speeds_mm_s=(50.0, 120.0), f_dc=0.4, f_vis=0.2, full_range_n=2.0)
+        with open(bad, "w") as handle:
+            handle.write("t,x,f\n0,0,0\n")
+        chosen = []
+        original = QtWidgets.QFileDialog.getOpenFileNames
+        QtWidgets.QFileDialog.getOpenFileNames = staticmethod(lambda *a, **k: (chosen, "CSV recordings (*.csv)"))
+        try:
+            info = h.widget(QtWidgets.QLabel, "fitInfo")
+            h.widget(QtWidgets.QLineEdit, "fitSpeeds").setText("50, 120")
+            chosen[:] = [bad]
+            h.widget(QtWidgets.QPushButton, "fitTexture").click()
+            self.assertIn("Not fitted, nothing changed", info.text())
+            self.assertIn("needs the columns time_s, position_mm, lateral_force_n", info.text())
+            self.assertEqual(surface.Texture, "None")
+            chosen[:] = [rig]
+            h.widget(QtWidgets.QPushButton, "fitTexture").click()
+        finally:
+            QtWidgets.QFileDialog.getOpenFileNames = original
+        self.assertIn("Fitted to 4 sections at 50, 120 mm/s", info.text())
+        self.assertEqual(surface.Texture, "Custom")
+        self.assertEqual(h.widget(QtWidgets.QComboBox, "Texture").currentText(), "Custom")
+        # the recorded newtons, whatever level 1 became
+        self.assertAlmostEqual(surface.TextureDC * surface.TextureFullRange, 0.8, delta=0.01)
+        self.assertAlmostEqual(surface.TextureViscosity * surface.TextureFullRange, 0.4, delta=0.02)
+        self.assertAlmostEqual(h.widget(QtWidgets.QDoubleSpinBox, "TextureDC").value(), surface.TextureDC, places=4)
+        self.assertIn("Full range set to", info.text())
+        h.widen_panel()
+        for area in Gui.getMainWindow().findChildren(QtWidgets.QScrollArea):
+            if area.isVisible() and area.widget() is not None and area.widget().isAncestorOf(info):
+                area.ensureWidgetVisible(info, 0, 0)
+        h.grab_screen("task_panel_texture_fit.png")
+        h.press_task_button("Cancel")
+        self.assertEqual(HaptiCAD.surfaces_of(self.doc), [])
 
     def test_cancel_on_a_new_surface_removes_it(self):
         self.open_new_surface()
