@@ -145,9 +145,15 @@ class RigRecordingTest(unittest.TestCase):
             f.write("time_s,position_mm,lateral_force_n\n0,0,0\n0.001,0.1,zero\n")
         with open(self.path("empty.csv"), "w"):
             pass
+        with open(self.path("header.csv"), "w") as f:
+            f.write("time_s,position_mm,lateral_force_n\n")
+        with open(self.path("backwards.csv"), "w") as f:
+            f.write("time_s,position_mm,lateral_force_n\n0,0,0\n0.001,0.1,0\n0.001,0.2,0\n")
         cases = [("columns.csv", "needs the columns time_s, position_mm, lateral_force_n"),
                  ("number.csv", "number.csv, line 3: lateral_force_n is not a number"),
                  ("empty.csv", "empty file"),
+                 ("header.csv", "header.csv: fewer than 3 samples"),
+                 ("backwards.csv", "backwards.csv: time does not increase at sample 3"),
                  ("missing.csv", "No such file")]
         for name, message in cases:
             with self.subTest(name=name):
