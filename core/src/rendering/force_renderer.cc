@@ -176,10 +176,11 @@ void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
   const std::uint32_t effects = surfaces_->effects(out->cad_face);
   out->flags |= kContact;
 
+  const bool law = (effects & kEffectForceTravel) != 0u;
   double k = surface.stiffness_n_per_m;
   if (k > limits_.max_stiffness_n_per_m) {
     k = limits_.max_stiffness_n_per_m;
-    out->flags |= kStiffnessClamped;
+    if (!law) out->flags |= kStiffnessClamped;  // a law's own slopes are clamped below
   }
   // spring from the device to the proxy; its direction is the contact normal, or the
   // shading normal on a face
@@ -188,10 +189,19 @@ void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
     const Vec3 shaded = SmoothShadingNormal();
     if (shaded.squaredNorm() > 0.0) spring = std::max(spring.dot(shaded), 0.0) * shaded;
   }
-  const double spring_only_n = spring.norm();
+  double spring_only_n = spring.norm();
   const Vec3 normal =
       spring_only_n > 0.0 ? Vec3(spring / spring_only_n) : proxy_.constraints().plane(0).normal;
   const double depth = spring_only_n / k;
+  // the force the face pushes back with at a depth: its law's, or stiffness x depth
+  const auto press = [&](double d) {
+    if (!law) return k * d;
+    bool clamped = false;
+    const double f = surface.force_travel->ForceClamped(d, limits_.max_stiffness_n_per_m, &clamped);
+    if (clamped) out->flags |= kStiffnessClamped;
+    return f;
+  };
+  if (law) spring_only_n = press(depth);
   // the face's damping on the normal motion: resists, never pulls
   double b = surface.damping_n_s_per_m;
   if (b > limits_.max_damping_n_s_per_m) {
@@ -228,7 +238,7 @@ void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
   double friction_scale = 1.0;
   if (effects & kEffectRoughness) {
     const RoughnessSample r = SampleRoughness(*surface.roughness, contact_w);
-    normal_force = std::max(k * (depth + r.height_m) + damper, 0.0);
+    normal_force = std::max(press(depth + r.height_m) + damper, 0.0);
     const Vec3 slope = r.gradient_w - r.gradient_w.dot(normal) * normal;
     normal_direction = (normal - slope).normalized();
     friction_scale = r.friction_scale;

@@ -111,6 +111,7 @@ void ValidateSurfaceProperties(const SurfaceProperties& s) {
     Require(NonNegative(s.texture->full_range_n), "texture full range", s.texture->full_range_n,
             ">= 0 N");
   }
+  if (s.force_travel) ValidateForceTravel(*s.force_travel);
 }
 
 SurfaceTable::SurfaceTable(std::vector<SurfaceProperties> by_face,
@@ -143,6 +144,7 @@ SurfaceTable::SurfaceTable(std::vector<SurfaceProperties> by_face,
     if (s.texture) mask |= kEffectTexture;
     if (s.vibration >= 0) mask |= kEffectVibration;
     if (s.friction_mode == FrictionMode::kCone) mask |= kEffectCone;
+    if (s.force_travel) mask |= kEffectForceTravel;
     effects_[i] = mask;
   }
 }

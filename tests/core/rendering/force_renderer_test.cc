@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "alloc_counter.h"
+#include "hapticad/core/analysis/energy_observer.h"
 #include "test_meshes.h"
 
 namespace hapticad {
@@ -117,6 +118,48 @@ TEST_F(RendererOnBox, FiniteButAbsurdInputGivesZeroForceAndAFaultNotNaN) {
   RenderOutput out;
   r.Render({Vec3(0, 0, 0.048), Vec3::Zero()}, &out);
   EXPECT_EQ(out.force_w, pressed.force_w);
+}
+
+TEST_F(RendererOnBox, AForceTravelLawReplacesStiffnessTimesDepth) {
+  std::vector<SurfaceProperties> faces(6, kUntaggedSurface);
+  faces[5].force_travel = MakePushButton({});  // 1.47 N at 0.25 mm, snaps to 0.735 N
+  limits_.max_stiffness_n_per_m = 10000.0;     // steeper than the snap: nothing clamped
+  ForceRenderer r(scene_, std::make_shared<SurfaceTable>(faces), limits_);
+  for (const auto& [depth, force] : {std::pair{0.1e-3, 0.588}, {0.25e-3, 1.47}, {0.35e-3, 0.735},
+                                     {0.6e-3, 1.47}, {0.8e-3, 2.27}}) {
+    const RenderOutput out = Press(r, depth);
+    // the proxy rests a fraction of a nanometre off the face: 1 nm of depth on the
+    // steepest slope (7350 N/m) is 7e-6 N
+    EXPECT_NEAR(out.normal_force_n, force, faces[5].force_travel->MaxSlope() * 1e-9) << depth;
+    EXPECT_FALSE(out.flags & kStiffnessClamped) << depth;
+  }
+}
+
+TEST_F(RendererOnBox, AForceTravelLawIsClampedToTheDeviceAndMakesNoEnergyThroughTheSnap) {
+  std::vector<SurfaceProperties> faces(6, kUntaggedSurface);
+  faces[5].force_travel = MakePushButton({});
+  limits_.max_stiffness_n_per_m = 3000.0;
+  ForceRenderer r(scene_, std::make_shared<SurfaceTable>(faces), limits_);
+  EXPECT_TRUE(Press(r, 0.1e-3).flags & kStiffnessClamped);
+  // press through the snap to 0.8 mm and back at 1 kHz; the device damps as Colgate's
+  // bound asks of the steepest slope rendered (b = K T / 2): the sampled law never
+  // gives out more than it took
+  const double period = 1e-3;
+  EnergyObserver observer(limits_.max_stiffness_n_per_m * period / 2);
+  RenderOutput out;
+  r.Render({Vec3(0, 0, 0.06), Vec3::Zero()}, &out);
+  Vec3 x = Vec3(0, 0, 0.05);
+  double previous_force = 0.0;
+  for (int i = 1; i <= 2000; ++i) {
+    const double depth = (i <= 1000 ? i : 2000 - i) * 0.8e-6;
+    const Vec3 next(0, 0, 0.05 - depth);
+    r.Render({x, Vec3::Zero()}, &out);
+    EXPECT_LE(std::abs(out.normal_force_n - previous_force), 3000.0 * 0.8e-6 + 1e-9) << i;
+    previous_force = out.normal_force_n;
+    observer.Observe(out.force_w, x, next, period);
+    x = next;
+  }
+  EXPECT_GE(observer.lowest_j(), -1e-12);
 }
 
 TEST_F(RendererOnBox, RenderDoesNotAllocate) {
@@ -351,6 +394,7 @@ TEST_F(EffectsOnBox, NonFiniteInputWithEveryEffectGivesZeroForceAndAFault) {
   top_.roughness =
       MakeRoughnessGrid(5, SurfaceFrame{Vec3(0, 0, 0.05), Vec3::UnitX(), Vec3::UnitY()});
   top_.vibration = 0;
+  top_.force_travel = MakePushButton({});
   auto r = Make({Vibration{150.0, 0.3, Vec3::UnitX(), true}});
   Stroke(r, Vec3::UnitX(), 0.05, 10);
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -375,6 +419,7 @@ TEST_F(EffectsOnBox, EveryEffectRendersWithoutAllocating) {
   top_.texture = ViscousGrating{PaperPreset(2, 0),
                                 SurfaceFrame{Vec3(0, 0, 0.05), Vec3::UnitX(), Vec3::UnitY()}};
   top_.vibration = 0;
+  top_.force_travel = MakePushButton({});
   auto r = Make({Vibration{150.0, 0.3, Vec3::UnitX(), true}});
   Stroke(r, Vec3::UnitX(), 0.05, 5);
   testing::AllocationCounter counter;

@@ -6,7 +6,9 @@
 //   a stripe pattern   linear, circular or curve (seed 000 §2.2) with its anisotropy;
 //   roughness          the grid texture of its Table 2 category (seed 000 §2.3);
 //   a viscous grating  seed 001 eq. 2 (it replaces Coulomb friction as the lateral force);
-//   a vibration        of the part the face belongs to.
+//   a vibration        of the part the face belongs to;
+//   a force-travel law a mechanism's give (seed 000 §3: a bending neck, a push
+//                      button's snap) in place of the contact stiffness.
 // SurfaceTable compiles each face into a bit mask of the effects it uses; the renderer
 // runs only those, so a plain face pays for none of them.
 //
@@ -25,6 +27,7 @@
 #include <vector>
 
 #include "hapticad/core/surfaces/anisotropy.h"
+#include "hapticad/core/surfaces/force_travel.h"
 #include "hapticad/core/surfaces/curve_pattern.h"
 #include "hapticad/core/surfaces/friction.h"
 #include "hapticad/core/surfaces/roughness_texture.h"
@@ -76,6 +79,8 @@ struct SurfaceProperties {
   std::optional<RoughnessGrid> roughness;
   std::optional<ViscousGrating> texture;
   int vibration = -1;  // index into the table's vibrations, -1 for none
+  // The normal force against the depth pressed in, instead of stiffness x depth.
+  std::optional<ForceTravel> force_travel;
 };
 
 inline const SurfaceProperties kUntaggedSurface{};
@@ -99,6 +104,7 @@ enum EffectBits : std::uint32_t {
   kEffectTexture = 1u << 2,
   kEffectVibration = 1u << 3,
   kEffectCone = 1u << 4,
+  kEffectForceTravel = 1u << 5,
 };
 
 class SurfaceTable {

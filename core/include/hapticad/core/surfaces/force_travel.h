@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// ForceTravel: how hard a face pushes back against how far it has been pressed in, for
+// parts whose give is a mechanism's, not the material's (seed 000 §3): a toothbrush
+// head on its bending neck, a push button's switch.
+//
+// The law is piecewise linear through (0, 0) and up to kMaxPoints points (travel
+// increasing, force >= 0), and continues past the last point with the last segment's
+// slope. Segments may fall (a tactile switch's snap): the force is a function of travel
+// alone, so a press and release along it gives back what it took, and under the
+// device's zero-order hold a falling segment dissipates (Colgate's sampled spring with
+// K < 0). A device renders no slope steeper than its stable stiffness: ForceClamped()
+// integrates the law with every slope clamped to +-max_slope, so the force never steps.
+//
+// Builders for the two case studies:
+//   CantileverStiffness   a beam clamped at one end, loaded at the other:
+//                         k = 3 E I / L^3, I = b h^3 / 12 (rectangular neck, bent across h).
+//   MakePushButton        a tactile switch: rises to the operating force at the
+//                         pretravel, snaps down by the snap ratio over `snap_travel`,
+//                         rises again to the operating force at the total travel, then
+//                         bottoms out with `bottom_stiffness`.
+// Units: SI (m, N, N/m, Pa). Force() and ForceClamped() are servo-tick safe.
+#pragma once
+
+#include <array>
+
+namespace hapticad {
+
+struct ForceTravel {
+  static constexpr int kMaxPoints = 8;
+  std::array<double, kMaxPoints> travel_m{};
+  std::array<double, kMaxPoints> force_n{};
+  int points = 0;
+
+  // The force (N) at travel x_m (0 and below: 0).
+  double Force(double x_m) const { return ForceClamped(x_m, 0.0, nullptr); }
+  // The same with each segment's slope clamped to +-max_slope (N/m; 0: no clamp); sets
+  // *clamped when the travel lies on or past a clamped segment.
+  double ForceClamped(double x_m, double max_slope, bool* clamped) const;
+  double MaxSlope() const;  // N/m: the steepest segment, rising or falling
+};
+
+// Throws std::invalid_argument saying what is wrong: no point, more than kMaxPoints,
+// travel not increasing from > 0, a force < 0, anything not finite.
+void ValidateForceTravel(const ForceTravel& law);
+
+// A straight law of stiffness k (N/m > 0) through one point at 1 mm.
+ForceTravel MakeLinearForceTravel(double stiffness_n_per_m);
+
+// N/m. Preconditions: all > 0.
+double CantileverStiffness(double youngs_modulus_pa, double width_m, double thickness_m,
+                           double length_m);
+// Springs in series (the neck bends and the material gives): 1 / (1/a + 1/b).
+double SeriesStiffness(double a_n_per_m, double b_n_per_m);
+
+struct PushButtonParams {
+  double operating_force_n = 1.47;   // Omron B3F's middle rating
+  double pretravel_m = 0.25e-3;      // travel to the operating point
+  double snap_ratio = 0.5;           // (F_op - F_return) / F_op, in (0, 1)
+  double snap_travel_m = 0.1e-3;     // over which the force falls to F_return
+  double total_travel_m = 0.6e-3;    // where the plunger bottoms out, > pretravel + snap
+  double bottom_stiffness_n_per_m = 4000.0;  // past the total travel
+};
+// Throws std::invalid_argument naming a value out of range.
+ForceTravel MakePushButton(const PushButtonParams& params);
+
+}  // namespace hapticad

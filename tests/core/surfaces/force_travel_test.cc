@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "hapticad/core/surfaces/force_travel.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace hapticad {
+namespace {
+
+TEST(ForceTravelTest, ALinearLawIsStiffnessTimesTravelAndGoesOnPastItsPoint) {
+  const ForceTravel law = MakeLinearForceTravel(560.0);
+  EXPECT_DOUBLE_EQ(law.Force(0.0), 0.0);
+  EXPECT_DOUBLE_EQ(law.Force(-1e-3), 0.0);
+  EXPECT_NEAR(law.Force(0.5e-3), 0.28, 1e-12);
+  EXPECT_NEAR(law.Force(4e-3), 2.24, 1e-12);  // past the last point: the same slope
+  EXPECT_NEAR(law.MaxSlope(), 560.0, 1e-9);
+}
+
+TEST(ForceTravelTest, APushButtonRisesSnapsRisesAndBottomsOut) {
+  PushButtonParams p;  // 1.47 N at 0.25 mm, snap 50 % over 0.1 mm, bottom at 0.6 mm
+  const ForceTravel law = MakePushButton(p);
+  EXPECT_NEAR(law.Force(0.125e-3), 0.735, 1e-12);
+  EXPECT_NEAR(law.Force(0.25e-3), 1.47, 1e-12);   // the operating point
+  EXPECT_NEAR(law.Force(0.35e-3), 0.735, 1e-12);  // after the snap
+  EXPECT_NEAR(law.Force(0.6e-3), 1.47, 1e-12);    // bottomed out
+  EXPECT_NEAR(law.Force(0.8e-3), 1.47 + 4000.0 * 0.2e-3, 1e-12);
+  // the snap ratio as the field notes define it
+  const double snap = (law.Force(0.25e-3) - law.Force(0.35e-3)) / law.Force(0.25e-3);
+  EXPECT_NEAR(snap, 0.5, 1e-12);
+  EXPECT_NEAR(law.MaxSlope(), 0.735 / 0.1e-3, 1e-6);  // the snap is the steepest
+}
+
+TEST(ForceTravelTest, ClampedSlopesKeepTheForceContinuousAndSaySo) {
+  const ForceTravel law = MakePushButton({});
+  const double limit = 3000.0;
+  double previous = 0.0;
+  for (int i = 1; i <= 1000; ++i) {
+    const double x = i * 1e-6;
+    bool clamped = false;
+    const double f = law.ForceClamped(x, limit, &clamped);
+    EXPECT_LE(std::abs(f - previous), limit * 1e-6 + 1e-12) << x;
+    previous = f;
+  }
+  bool clamped = false;
+  EXPECT_NEAR(law.ForceClamped(0.1e-3, limit, &clamped), 0.3, 1e-12);  // 5880 N/m asked
+  EXPECT_TRUE(clamped);
+  bool unclamped = false;
+  EXPECT_NEAR(law.ForceClamped(0.1e-3, 10000.0, &unclamped), law.Force(0.1e-3), 1e-12);
+  EXPECT_FALSE(unclamped);
+}
+
+TEST(ForceTravelTest, ACantileverMatchesTheFieldNotesToothbrush) {
+  // PP (1.5 GPa), a 5 x 4 mm neck bent across its 4 mm: 0.56 N/mm over 60 mm, 1.9 over 40
+  EXPECT_NEAR(CantileverStiffness(1.5e9, 5e-3, 4e-3, 60e-3), 555.6, 0.1);
+  EXPECT_NEAR(CantileverStiffness(1.5e9, 5e-3, 4e-3, 40e-3), 1875.0, 0.1);
+  // k goes with h^3 and 1/L^3
+  EXPECT_NEAR(CantileverStiffness(1.5e9, 5e-3, 8e-3, 60e-3) / CantileverStiffness(1.5e9, 5e-3, 4e-3, 60e-3),
+              8.0, 1e-12);
+  EXPECT_NEAR(SeriesStiffness(400.0, 400.0), 200.0, 1e-12);
+  EXPECT_THROW(CantileverStiffness(1.5e9, 0.0, 4e-3, 60e-3), std::invalid_argument);
+}
+
+TEST(ForceTravelTest, BadLawsAndButtonsAreRefusedWithAReason) {
+  const auto message = [](const auto& make) {
+    try {
+      make();
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  ForceTravel law = MakePushButton({});
+  law.travel_m[2] = law.travel_m[1];
+  EXPECT_NE(message([&] { ValidateForceTravel(law); }).find("point 3: travel must increase"),
+            std::string::npos);
+  law = MakePushButton({});
+  law.force_n[1] = -0.1;
+  EXPECT_NE(message([&] { ValidateForceTravel(law); }).find("point 2: force must be >= 0"),
+            std::string::npos);
+  law.points = 0;
+  EXPECT_NE(message([&] { ValidateForceTravel(law); }).find("1 to 8 points"), std::string::npos);
+  PushButtonParams p;
+  p.snap_ratio = 1.0;
+  EXPECT_NE(message([&] { MakePushButton(p); }).find("snap ratio"), std::string::npos);
+  p = {};
+  p.total_travel_m = 0.3e-3;
+  EXPECT_NE(message([&] { MakePushButton(p); }).find("total travel"), std::string::npos);
+  p = {};
+  p.operating_force_n = std::nan("");
+  EXPECT_NE(message([&] { MakePushButton(p); }).find("operating force"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace hapticad
