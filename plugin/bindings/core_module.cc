@@ -19,6 +19,7 @@
 #include "hapticad/core/rendering/haptic_scene.h"
 #include "hapticad/core/surfaces/anisotropy.h"
 #include "hapticad/core/surfaces/curve_pattern.h"
+#include "hapticad/core/surfaces/force_travel.h"
 #include "hapticad/core/surfaces/friction.h"
 #include "hapticad/core/surfaces/nurbs_curve.h"
 #include "hapticad/core/surfaces/roughness.h"
@@ -237,6 +238,38 @@ void DefineTextures(py::module_& m) {
       .def_readwrite("powered", &Vibration::powered);
 }
 
+void DefineForceTravel(py::module_& m) {
+  py::class_<ForceTravel>(m, "ForceTravel")
+      .def(py::init<>())
+      .def_readonly("points", &ForceTravel::points)
+      .def_property_readonly("travel_m",
+                             [](const ForceTravel& l) {
+                               return std::vector<double>(l.travel_m.begin(),
+                                                          l.travel_m.begin() + l.points);
+                             })
+      .def_property_readonly("force_n",
+                             [](const ForceTravel& l) {
+                               return std::vector<double>(l.force_n.begin(),
+                                                          l.force_n.begin() + l.points);
+                             })
+      .def("force", &ForceTravel::Force, py::arg("x_m"))
+      .def("max_slope", &ForceTravel::MaxSlope);
+  m.def("validate_force_travel", &ValidateForceTravel, py::arg("law"));
+  m.def("make_linear_force_travel", &MakeLinearForceTravel, py::arg("stiffness_n_per_m"));
+  m.def("cantilever_stiffness", &CantileverStiffness, py::arg("youngs_modulus_pa"),
+        py::arg("width_m"), py::arg("thickness_m"), py::arg("length_m"));
+  m.def("series_stiffness", &SeriesStiffness, py::arg("a_n_per_m"), py::arg("b_n_per_m"));
+  py::class_<PushButtonParams>(m, "PushButtonParams")
+      .def(py::init<>())
+      .def_readwrite("operating_force_n", &PushButtonParams::operating_force_n)
+      .def_readwrite("pretravel_m", &PushButtonParams::pretravel_m)
+      .def_readwrite("snap_ratio", &PushButtonParams::snap_ratio)
+      .def_readwrite("snap_travel_m", &PushButtonParams::snap_travel_m)
+      .def_readwrite("total_travel_m", &PushButtonParams::total_travel_m)
+      .def_readwrite("bottom_stiffness_n_per_m", &PushButtonParams::bottom_stiffness_n_per_m);
+  m.def("make_push_button", &MakePushButton, py::arg("params"));
+}
+
 void DefineSurfaces(py::module_& m) {
   py::class_<SurfaceProperties>(m, "SurfaceProperties")
       .def(py::init<>())
@@ -248,6 +281,7 @@ void DefineSurfaces(py::module_& m) {
       .def_readwrite("roughness", &SurfaceProperties::roughness)
       .def_readwrite("texture", &SurfaceProperties::texture)
       .def_readwrite("vibration", &SurfaceProperties::vibration)
+      .def_readwrite("force_travel", &SurfaceProperties::force_travel)
       // the pattern is one of None, LinearPattern, CircularPattern, CurvePattern
       .def_property(
           "pattern",
@@ -292,6 +326,7 @@ void DefineSurfaces(py::module_& m) {
   m.attr("EFFECT_TEXTURE") = static_cast<std::uint32_t>(kEffectTexture);
   m.attr("EFFECT_VIBRATION") = static_cast<std::uint32_t>(kEffectVibration);
   m.attr("EFFECT_CONE") = static_cast<std::uint32_t>(kEffectCone);
+  m.attr("EFFECT_FORCE_TRAVEL") = static_cast<std::uint32_t>(kEffectForceTravel);
 }
 
 void DefineScene(py::module_& m) {
@@ -787,6 +822,7 @@ PYBIND11_MODULE(_core, m) {
   DefineFriction(m);
   DefinePatterns(m);
   DefineTextures(m);
+  DefineForceTravel(m);
   DefineSurfaces(m);
   DefineScene(m);
   DefineDeviceTypes(m);

@@ -13,6 +13,7 @@ import numpy as np
 import FreeCAD as App
 
 from . import _core, curve_references
+from .stiffness_study import force_travel_of
 from .surface_object import circular_centre_axis
 
 MM = 1e-3
@@ -133,6 +134,9 @@ def compile_surface(surface, face):
     friction.stribeck_speed_mps = surface.StribeckSpeed * MM
     props.friction = friction
     props.stiffness_n_per_m = surface.Stiffness / MM
+    law = force_travel_of(surface)  # a stiffness study's mechanism gives instead
+    if law is not None:
+        props.force_travel = law
     props.damping_n_s_per_m = surface.Damping
     props.friction_mode = (_core.FrictionMode.CONE if surface.FrictionModel.startswith("Friction cone")
                            else _core.FrictionMode.VELOCITY)

@@ -643,10 +643,16 @@ def attach_view_provider(obj):
     """Gives a HaptiCAD object its view provider when the GUI is up and it has none yet."""
     if not App.GuiUp or obj.ViewObject is None or obj.ViewObject.Proxy:
         return
+    from .stiffness_study import is_stiffness_study
+
     if is_haptic_surface(obj):
         from .gui.view_provider_surface import ViewProviderHapticSurface
 
         ViewProviderHapticSurface(obj.ViewObject)
+    elif is_stiffness_study(obj):
+        from .gui.view_provider_study import ViewProviderStiffnessStudy
+
+        ViewProviderStiffnessStudy(obj.ViewObject)
     else:
         from .gui.view_provider_vibration import ViewProviderHapticVibration
 

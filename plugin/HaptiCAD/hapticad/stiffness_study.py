@@ -1,0 +1,342 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The StiffnessStudy document object: how a product gives under the finger, and what
+participants prefer (seed 000 §3).
+
+A study links the HapticSurface whose faces the participants press (a toothbrush's
+head, a button's top) and models the mechanism behind them:
+
+* Bending beam: the head sits on a neck clamped at the handle, a rectangular section
+  b x h bent across h over length L, of a material's Young's modulus E:
+  k = 3 E I / L^3, I = b h^3 / 12 (field notes: PP, 5 x 4 mm over 60 mm, 0.56 N/mm).
+  The head gives k; the plastic's own give is far stiffer and left out.
+* Push button: a tactile switch that rises to its operating force at the pretravel,
+  snaps down by the snap ratio, and bottoms out on the housing with the surface's own
+  stiffness.
+
+While a study holds, its law replaces the surface's contact stiffness in the Feel
+session (surface_compile), so a slider moving one design parameter (``Adjust``, between
+``AdjustMin`` and ``AdjustMax``) is felt at the next servo tick. When a participant
+finds the design right, :func:`record_preference` keeps their personal data and the
+value they chose (cohort.Record), saved with the document. App-only.
+"""
+import json
+from datetime import datetime
+
+import FreeCAD as App
+
+from . import _core, cohort, materials
+from .proxy_state import SchemaState
+
+TYPE = "HaptiCAD::StiffnessStudy"
+SCHEMA_VERSION = 1
+MM = 1e-3
+BEAM, BUTTON = "Bending beam", "Push button"
+MODELS = [BEAM, BUTTON]
+# (name, kind, group, tooltip, default, (min, max, step) of a constrained float)
+PROPERTIES = [
+    ("Surface", "App::PropertyLink", "Study", "The haptic surface whose faces the participants press", None, None),
+    ("Model", "App::PropertyEnumeration", "Study", "The mechanism behind the pressed faces", None, None),
+    ("BeamMaterial", "App::PropertyEnumeration", "Beam", "Material of the neck: sets its Young's modulus", None, None),
+    ("YoungsModulus", "App::PropertyFloatConstraint", "Beam", "Young's modulus E of the neck, GPa", 1.5,
+     (0.001, 1000.0, 0.1)),
+    ("BeamWidth", "App::PropertyFloatConstraint", "Beam", "Width b of the neck's section, mm", 5.0, (0.1, 200.0, 0.5)),
+    ("BeamThickness", "App::PropertyFloatConstraint", "Beam", "Thickness h of the neck's section, bent across it, mm",
+     4.0, (0.1, 200.0, 0.25)),
+    ("BeamLength", "App::PropertyFloatConstraint", "Beam", "Length L from the clamp to where the finger presses, mm",
+     60.0, (1.0, 2000.0, 5.0)),
+    ("BendingStiffness", "App::PropertyFloat", "Beam", "k = 3 E I / L^3, N/mm (computed)", 0.0, None),
+    ("OperatingForce", "App::PropertyFloatConstraint", "Button", "Force at the operating point, N", 1.47,
+     (0.05, 50.0, 0.1)),
+    ("Pretravel", "App::PropertyFloatConstraint", "Button", "Travel to the operating point, mm", 0.25,
+     (0.01, 20.0, 0.05)),
+    ("SnapRatio", "App::PropertyFloatConstraint", "Button", "(F_op - F_return) / F_op: how far the force drops",
+     0.5, (0.01, 0.99, 0.05)),
+    ("SnapTravel", "App::PropertyFloatConstraint", "Button", "Travel over which the force drops, mm", 0.1,
+     (0.01, 20.0, 0.05)),
+    ("TotalTravel", "App::PropertyFloatConstraint", "Button", "Travel where the button bottoms out, mm", 0.6,
+     (0.02, 50.0, 0.1)),
+    ("Adjust", "App::PropertyEnumeration", "Customise", "The design parameter the Feel panel's slider moves",
+     None, None),
+    ("AdjustMin", "App::PropertyFloat", "Customise", "The slider's low end, in the parameter's unit", 2.0, None),
+    ("AdjustMax", "App::PropertyFloat", "Customise", "The slider's high end, in the parameter's unit", 8.0, None),
+    ("Participants", "App::PropertyInteger", "Cohort", "Participants who recorded a preference", 0, None),
+]
+HIDDEN_STATE = [("Cohort", "The participants' records (JSON)")]
+# what a slider can move, per model: property -> (label, unit, default range)
+ADJUSTABLE = {
+    BEAM: {"BeamThickness": ("thickness h", "mm", (2.0, 8.0)), "BeamWidth": ("width b", "mm", (2.0, 12.0)),
+           "BeamLength": ("length L", "mm", (30.0, 120.0)), "YoungsModulus": ("Young's modulus E", "GPa", (0.5, 5.0))},
+    BUTTON: {"OperatingForce": ("operating force", "N", (0.5, 5.0)), "SnapRatio": ("snap ratio", "", (0.2, 0.8))},
+}
+ALL_ADJUSTABLE = [name for model in MODELS for name in ADJUSTABLE[model]]
+
+
+def _material_names():
+    return [m.name for m in materials.default_database()]
+
+
+class StiffnessStudy(SchemaState):
+    """Proxy of a StiffnessStudy object."""
+
+    SCHEMA = SCHEMA_VERSION
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.setup(obj, new=True)
+
+    def setup(self, obj, new=False):
+        if "HaptiCADType" not in obj.PropertiesList:
+            obj.addProperty("App::PropertyString", "HaptiCADType", "Base", "Type tag of HaptiCAD objects")
+            obj.setEditorMode("HaptiCADType", 2)
+        obj.HaptiCADType = TYPE
+        for name, kind, group, tip, default, constraint in PROPERTIES:
+            if name in obj.PropertiesList:
+                continue
+            obj.addProperty(kind, name, group, tip)
+            if constraint is not None:
+                setattr(obj, name, (default, *constraint))
+            elif default is not None:
+                setattr(obj, name, default)
+        for name, tip in HIDDEN_STATE:
+            if name not in obj.PropertiesList:
+                obj.addProperty("App::PropertyString", name, "Cohort", tip)
+                obj.setEditorMode(name, 2)
+        obj.setEditorMode("BendingStiffness", 1)
+        obj.setEditorMode("Participants", 1)
+        if new:
+            obj.Adjust = ALL_ADJUSTABLE  # before Model: its change looks at Adjust
+            obj.Adjust = "BeamThickness"
+            obj.Model = MODELS
+            names = _material_names()
+            obj.BeamMaterial = names
+            if "PP" in names:
+                obj.BeamMaterial = "PP"
+            obj.Cohort = "[]"
+        _update_stiffness(obj)
+
+    def onChanged(self, obj, prop):
+        if "Restore" in obj.State or getattr(obj.Document, "Transacting", False):
+            return
+        if prop == "BeamMaterial" and obj.BeamMaterial in materials.default_database():
+            obj.YoungsModulus = materials.default_database().get(obj.BeamMaterial).youngs_modulus_gpa
+        elif prop == "Model" and "Adjust" in obj.PropertiesList and obj.Adjust not in ADJUSTABLE[obj.Model]:
+            name, (_, _, (low, high)) = next(iter(ADJUSTABLE[obj.Model].items()))
+            obj.Adjust = name
+            obj.AdjustMin, obj.AdjustMax = low, high
+        if prop in ("YoungsModulus", "BeamWidth", "BeamThickness", "BeamLength"):
+            _update_stiffness(obj)
+
+    def onDocumentRestored(self, obj):
+        self.setup(obj)
+        from .surface_object import attach_view_provider
+
+        attach_view_provider(obj)
+        obj.purgeTouched()
+
+    def execute(self, obj):
+        _update_stiffness(obj)
+        found = validate(obj)
+        if found:
+            App.Console.PrintError(f"{obj.Label}: {'; '.join(found)}\n")
+
+
+def _update_stiffness(obj):
+    if not {"YoungsModulus", "BeamWidth", "BeamThickness", "BeamLength", "BendingStiffness"} <= set(
+            obj.PropertiesList):
+        return  # still being set up
+    try:
+        k = _core.cantilever_stiffness(obj.YoungsModulus * 1e9, obj.BeamWidth * MM, obj.BeamThickness * MM,
+                                       obj.BeamLength * MM) * MM
+    except ValueError:
+        k = 0.0
+    if abs(obj.BendingStiffness - k) > 1e-12:
+        obj.BendingStiffness = k
+
+
+def is_stiffness_study(obj):
+    return getattr(obj, "HaptiCADType", None) == TYPE
+
+
+def studies_of(doc):
+    return [o for o in doc.Objects if is_stiffness_study(o)]
+
+
+def study_of(surface):
+    """The study whose law the surface's faces feel, or None."""
+    found = [s for s in studies_of(surface.Document) if s.Surface == surface]
+    return found[0] if found else None
+
+
+def force_travel(study):
+    """The study's force-travel law (_core.ForceTravel). Raises ValueError saying what
+    is wrong with the study's values."""
+    if study.Model == BEAM:
+        k = _core.cantilever_stiffness(study.YoungsModulus * 1e9, study.BeamWidth * MM, study.BeamThickness * MM,
+                                       study.BeamLength * MM)
+        return _core.make_linear_force_travel(k)
+    params = _core.PushButtonParams()
+    params.operating_force_n = study.OperatingForce
+    params.pretravel_m = study.Pretravel * MM
+    params.snap_ratio = study.SnapRatio
+    params.snap_travel_m = study.SnapTravel * MM
+    params.total_travel_m = study.TotalTravel * MM
+    if study.Surface is not None:  # the button bottoms out on its housing: the face's own stiffness
+        params.bottom_stiffness_n_per_m = study.Surface.Stiffness / MM
+    return _core.make_push_button(params)
+
+
+def force_travel_of(surface):
+    """The law a surface's faces feel, or None when no valid study holds it."""
+    study = study_of(surface)
+    if study is None or validate(study):
+        return None
+    return force_travel(study)
+
+
+def device_note(study, max_stiffness_n_per_m):
+    """A sentence when the study's law is steeper than a device renders (it then feels
+    softer there: the renderer clamps the slope), else ""."""
+    try:
+        steepest = force_travel(study).max_slope()
+    except ValueError:
+        return ""
+    if steepest <= max_stiffness_n_per_m:
+        return ""
+    what = "the neck's stiffness" if study.Model == BEAM else "the button's steepest slope"
+    return (f"{what}, {steepest * MM:.3g} N/mm, is more than the device renders stably "
+            f"({max_stiffness_n_per_m * MM:.3g} N/mm): it feels softer there")
+
+
+def design_value(study):
+    """(value, unit) a participant's preference is recorded as: the bending stiffness
+    (N/mm) of a beam, the operating force (N) of a button."""
+    if study.Model == BEAM:
+        return study.BendingStiffness, "N/mm"
+    return study.OperatingForce, "N"
+
+
+def design(study):
+    """The study's model parameters now, by property name."""
+    names = (["YoungsModulus", "BeamWidth", "BeamThickness", "BeamLength", "BendingStiffness"] if study.Model == BEAM
+             else ["OperatingForce", "Pretravel", "SnapRatio", "SnapTravel", "TotalTravel"])
+    return {name: float(getattr(study, name)) for name in names}
+
+
+def validate(study):
+    """Problems with a study's current values, as sentences (empty when fine)."""
+    from .surface_object import is_haptic_surface
+
+    found = []
+    if study.Surface is None:
+        found.append("no surface: link the haptic surface whose faces the participants press")
+    elif not is_haptic_surface(study.Surface):
+        found.append(f"{study.Surface.Label} is not a haptic surface")
+    else:
+        others = [s.Label for s in studies_of(study.Document) if s is not study and s.Surface == study.Surface]
+        if others:
+            found.append(f"{study.Surface.Label} is also studied by {', '.join(others)}: a face gives one way; "
+                         "link another surface")
+    if study.Adjust not in ADJUSTABLE[study.Model]:
+        found.append(f"the slider moves {study.Adjust}, which the {study.Model.lower()} model does not use")
+    if not study.AdjustMin < study.AdjustMax:
+        found.append(f"the slider's range {study.AdjustMin:g}..{study.AdjustMax:g} is empty")
+    else:
+        prop = next(p for p in PROPERTIES if p[0] == study.Adjust)
+        low, high = prop[5][0], prop[5][1]
+        if study.AdjustMin < low or study.AdjustMax > high:
+            found.append(f"the slider's range {study.AdjustMin:g}..{study.AdjustMax:g} leaves {low:g}..{high:g}, "
+                         f"what {study.Adjust} allows")
+    try:
+        if study.Surface is None or is_haptic_surface(study.Surface):
+            force_travel(study)
+    except ValueError as exc:
+        found.append(str(exc))
+    return found
+
+
+def records(study):
+    """The participants' records (cohort.Record), oldest first."""
+    try:
+        data = json.loads(study.Cohort or "[]")
+    except ValueError:
+        raise ValueError(f"{study.Label}: the stored cohort is not readable JSON") from None
+    return [cohort.from_dict(d) for d in data]
+
+
+def _write_records(study, kept):
+    study.Cohort = json.dumps([r.as_dict() for r in kept])
+    study.Participants = len(kept)
+
+
+def record_preference(study, name, gender, age_band, weight_kg, height_mm):
+    """Keeps a participant's preference for the design as it is now. Raises ValueError,
+    keeping nothing, if the record or the study is not valid."""
+    wrong = validate(study)
+    if wrong:
+        raise ValueError(f"{study.Label}: {'; '.join(wrong)}")
+    value, unit = design_value(study)
+    record = cohort.Record(name.strip(), gender, age_band, float(weight_kg), float(height_mm), float(value), unit,
+                           study.Model, design(study), datetime.now().isoformat(timespec="seconds"))
+    wrong = cohort.problems(record)
+    if wrong:
+        raise ValueError("; ".join(wrong))
+    _write_records(study, [*records(study), record])
+    return record
+
+
+def remove_record(study, index):
+    kept = records(study)
+    if not 0 <= index < len(kept):
+        raise ValueError(f"{study.Label}: no participant {index + 1} (it has {len(kept)})")
+    del kept[index]
+    _write_records(study, kept)
+
+
+def import_records(study, path):
+    """Adds the records of a cohort CSV. Raises ValueError, adding none, on a bad line or
+    on records of another model's unit."""
+    added = cohort.read_csv(path)
+    _, unit = design_value(study)
+    other = [r for r in added if r.unit != unit]
+    if other:
+        raise ValueError(f"{path}: {len(other)} record(s) are in {other[0].unit}, this study's preferences in {unit}")
+    _write_records(study, [*records(study), *added])
+    return len(added)
+
+
+def adjust_info(study):
+    """(label, unit) of the parameter the slider moves."""
+    label, unit, _ = ADJUSTABLE[study.Model].get(study.Adjust, (study.Adjust, "", None))
+    return label, unit
+
+
+def make_study(doc, surface, model=BEAM, name="StiffnessStudy", **properties):
+    """A study of how ``surface``'s faces give. Properties may be given by name. Raises
+    ValueError on bad input, adding nothing."""
+    from .surface_object import attach_view_provider, is_haptic_surface
+
+    if isinstance(surface, str):
+        surface = doc.getObject(surface) or next(iter(doc.getObjectsByLabel(surface)), None)
+    if surface is None or not is_haptic_surface(surface) or surface.Document != doc:
+        raise ValueError("make_study: give a haptic surface of this document")
+    if model not in MODELS:
+        raise ValueError(f"make_study: model {model!r} is not one of {', '.join(MODELS)}")
+    existing = study_of(surface)
+    if existing is not None:
+        raise ValueError(f"make_study: {surface.Label} is already studied by {existing.Label}")
+    unknown = [k for k in properties if k not in {p[0] for p in PROPERTIES}]
+    if unknown:
+        raise ValueError(f"make_study: unknown properties {', '.join(unknown)}")
+    obj = doc.addObject("App::FeaturePython", name)
+    StiffnessStudy(obj)
+    obj.Surface = surface
+    obj.Model = model
+    try:
+        for key, value in properties.items():
+            setattr(obj, key, value)
+    except Exception as exc:  # a value the property refuses: no half-made study
+        doc.removeObject(obj.Name)
+        raise ValueError(f"make_study: {exc}") from None
+    attach_view_provider(obj)
+    obj.recompute()
+    return obj

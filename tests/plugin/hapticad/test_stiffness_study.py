@@ -1,0 +1,153 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Stiffness studies (seed 000 §3): a bending neck and a push button felt through the
+real servo loop, participants' preferences kept with the document, clear errors."""
+import os
+import tempfile
+import unittest
+
+import numpy as np
+
+import FreeCAD as App
+
+import HaptiCAD
+from hapticad import cohort, stiffness_study
+from hapticad.document_scene import build_document_scene, recompile_surfaces
+from hapticad.feel import Stroke, run_stroke
+
+PARTICIPANT = ("Steven", "M", "26-40", 70, 1700)
+
+
+def pressed_normal_force(doc, depth_mm, start=(20, 20, 10)):
+    """Mean normal force while the simulated probe holds ``depth_mm`` deep at a point."""
+    scene = build_document_scene(doc)
+    p0 = np.asarray(start, float)
+    result = run_stroke(scene, Stroke(tuple(p0), tuple(p0 + [0.01, 0, 0]), speed_mm_s=25.0, depth_mm=depth_mm,
+                                      rate_hz=1000))
+    trace, plan = result.trace, result.plan
+    held = (trace["time_s"] > plan.slide_start_s - 0.05) & (trace["time_s"] < plan.slide_start_s)
+    return float(np.mean(trace["normal_force_n"][held]))
+
+
+class StudyTest(unittest.TestCase):
+    def setUp(self):
+        self.doc = App.newDocument("StudyTest")
+        self.box = self.doc.addObject("Part::Box", "Head")
+        self.box.Length, self.box.Width, self.box.Height = 40, 40, 10
+        self.doc.recompute()
+        self.head = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="PP", FeelRoughness=False)
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def test_a_toothbrush_neck_gives_its_bending_stiffness(self):
+        study = HaptiCAD.make_study(self.doc, self.head, YoungsModulus=1.5, BeamWidth=5, BeamThickness=4,
+                                    BeamLength=60)
+        self.assertAlmostEqual(study.BendingStiffness, 0.5556, places=4)  # the field notes' toothbrush
+        self.assertEqual(stiffness_study.validate(study), [])
+        # pressed 1 mm, the head pushes back with the neck's 0.56 N, not the plastic's 0.8
+        self.assertAlmostEqual(pressed_normal_force(self.doc, 1.0), 0.5556, delta=0.01)
+        study.BeamThickness = 6  # k goes with h^3
+        self.doc.recompute()
+        self.assertAlmostEqual(study.BendingStiffness, 27 / 8 * 0.5556, places=3)
+        self.assertAlmostEqual(pressed_normal_force(self.doc, 0.5), 0.5 * 27 / 8 * 0.5556, delta=0.02)
+        self.assertEqual(stiffness_study.device_note(study, 3000.0), "")
+        # 8 mm: 4.4 N/mm, more than the simulated probe's 3 N/mm: felt at the device's limit, and said so
+        study.BeamThickness = 8
+        self.doc.recompute()
+        self.assertAlmostEqual(pressed_normal_force(self.doc, 0.5), 0.5 * 3.0, delta=0.02)
+        self.assertIn("4.44 N/mm, is more than the device renders stably (3 N/mm)",
+                      stiffness_study.device_note(study, 3000.0))
+
+    def test_the_beams_material_sets_its_modulus(self):
+        study = HaptiCAD.make_study(self.doc, self.head)
+        study.BeamMaterial = "ABS"
+        self.assertAlmostEqual(study.YoungsModulus, 2.3)
+        self.assertAlmostEqual(study.BendingStiffness, 0.5556 * 2.3 / 1.5, places=3)
+
+    def test_a_push_button_snaps_and_bottoms_out_on_the_faces_stiffness(self):
+        # slopes the simulated probe renders (2 N/mm, under its 3): 0.8 N at 0.4 mm, halved by 0.6 mm
+        study = HaptiCAD.make_study(self.doc, self.head, model="Push button", OperatingForce=0.8, Pretravel=0.4,
+                                    SnapRatio=0.5, SnapTravel=0.2, TotalTravel=1.0)
+        self.assertEqual(study.Adjust, "OperatingForce")  # the slider follows the model
+        scene = build_document_scene(self.doc)
+        law = scene.surface_properties(scene.face_id("Head.Face6")).force_travel
+        self.assertAlmostEqual(law.force(0.4e-3), 0.8)
+        self.assertAlmostEqual(law.force(0.6e-3), 0.4)
+        self.assertAlmostEqual(law.force(1.0e-3 + 1e-4) - law.force(1.0e-3), self.head.Stiffness * 1e3 * 1e-4)
+        # on the way down to 1.5 mm, the probe felt the operating force, then the snap
+        result = run_stroke(scene, Stroke((20, 20, 10), (20.01, 20, 10), speed_mm_s=5.0, depth_mm=1.5))
+        fn = result.trace["normal_force_n"][result.trace["time_s"] < result.plan.slide_start_s]
+        peak = int(np.argmax(fn[: np.argmax(fn > 0.5) + 200]))
+        self.assertAlmostEqual(fn[peak], 0.8, delta=0.03)
+        self.assertLess(fn[peak:].min(), 0.45)  # the drop after the operating point
+        self.assertAlmostEqual(fn[-1], 0.8 + 0.8 * 0.5, delta=0.03)  # bottomed out, 0.5 mm on 0.8 N/mm
+        self.assertEqual(stiffness_study.device_note(study, 3000.0), "")
+        study.OperatingForce = 1.47  # Omron B3F's: 5.9 N/mm to the operating point
+        self.assertIn("the button's steepest slope", stiffness_study.device_note(study, 3000.0))
+
+    def test_a_study_that_cannot_hold_says_why_and_the_face_keeps_its_stiffness(self):
+        study = HaptiCAD.make_study(self.doc, self.head, model="Push button")
+        study.TotalTravel = 0.3  # less than pretravel and snap
+        self.assertIn("push button: total travel must exceed pretravel plus snap travel",
+                      stiffness_study.validate(study))
+        self.assertIsNone(stiffness_study.force_travel_of(self.head))
+        self.assertAlmostEqual(pressed_normal_force(self.doc, 1.0), 0.8, delta=0.02)  # PP's 0.8 N/mm
+        with self.assertRaises(ValueError) as caught:
+            HaptiCAD.make_study(self.doc, self.head)
+        self.assertIn("already studied by", str(caught.exception))
+        other = self.doc.addObject("App::FeaturePython", "Other")
+        stiffness_study.StiffnessStudy(other)
+        other.Surface = self.head
+        self.assertTrue(any("also studied by" in p for p in stiffness_study.validate(other)))
+        other.Surface = self.box
+        self.assertIn("Head is not a haptic surface", stiffness_study.validate(other))
+        with self.assertRaises(ValueError):
+            HaptiCAD.make_study(self.doc, self.box)
+
+    def test_preferences_are_kept_with_the_document(self):
+        study = HaptiCAD.make_study(self.doc, self.head, YoungsModulus=1.5, BeamThickness=4)
+        record = HaptiCAD.record_preference(study, *PARTICIPANT)
+        self.assertAlmostEqual(record.value, study.BendingStiffness)
+        self.assertEqual((record.unit, record.design["BeamThickness"]), ("N/mm", 4.0))
+        study.BeamThickness = 6
+        HaptiCAD.record_preference(study, "Zhang", "F", "26-40", 52, 1650)
+        with self.assertRaises(ValueError) as caught:
+            HaptiCAD.record_preference(study, "Yang", "M", "41-60", 5, 1680)
+        self.assertIn("weight 5", str(caught.exception))
+        self.assertEqual(study.Participants, 2)
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "study.FCStd")
+            self.doc.saveAs(path)
+            name = self.doc.Name
+            App.closeDocument(name)
+            self.doc = App.openDocument(path)
+            (study,) = HaptiCAD.studies_of(self.doc)
+            kept = stiffness_study.records(study)
+            self.assertEqual([r.name for r in kept], ["Steven", "Zhang"])
+            self.assertAlmostEqual(kept[1].value, 0.5556 * 27 / 8, places=3)
+            self.assertEqual(study.Participants, 2)
+            # exported and imported into another study of the same kind
+            csv_path = os.path.join(tmp, "cohort.csv")
+            cohort.write_csv(csv_path, kept)
+            stiffness_study.remove_record(study, 0)
+            self.assertEqual([r.name for r in stiffness_study.records(study)], ["Zhang"])
+            self.assertEqual(stiffness_study.import_records(study, csv_path), 2)
+            self.assertEqual(study.Participants, 3)
+            study.Model = "Push button"
+            with self.assertRaises(ValueError) as caught:
+                stiffness_study.import_records(study, csv_path)
+            self.assertIn("this study's preferences in N", str(caught.exception))
+            self.assertEqual(study.Participants, 3)
+
+    def test_a_live_edit_of_the_study_recompiles_the_faces_law(self):
+        study = HaptiCAD.make_study(self.doc, self.head, YoungsModulus=1.5, BeamThickness=4)
+        scene = build_document_scene(self.doc)
+        face = scene.face_id("Head.Face6")
+        self.assertAlmostEqual(scene.surface_properties(face).force_travel.max_slope(), 555.6, delta=0.1)
+        study.BeamLength = 30  # 1/L^3: 8 x
+        scene = recompile_surfaces(self.doc, scene)
+        self.assertAlmostEqual(scene.surface_properties(face).force_travel.max_slope(), 8 * 555.6, delta=1)
+
+
+if __name__ == "__main__":
+    unittest.main()
