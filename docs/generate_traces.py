@@ -86,6 +86,7 @@ class Figures:
         self.texture()
         self.texture_scale()
         self.texture_fit()
+        self.stiffness_study()
         self.stick_slip()
         self.vibration()
 
@@ -285,6 +286,47 @@ class Figures:
             f"fitted {fitted['TextureDC']:.3f}, {fitted['TextureViscosity']:.3f}, {fitted['TextureBeta']:.3f}, "
             f"{fitted['TextureAlpha']:.2f}"))
         print(f"wrote {path}")
+
+    def stiffness_study(self):
+        """Seed 000 §3: a toothbrush head on necks of three thicknesses, and a push
+        button pressed through its snap and released: force against depth."""
+        np, plt = self.np, self.plt
+        from hapticad import stiffness_study
+
+        def press(model, depth, **values):
+            doc = self.App.newDocument("Study")
+            box = doc.addObject("Part::Box", "Head")
+            box.Length, box.Width, box.Height = 40, 40, 10
+            doc.recompute()
+            surface = self.HaptiCAD.make_surface(doc, [(box, "Face6")], material="PP", FeelRoughness=False)
+            study = self.HaptiCAD.make_study(doc, surface, model=model, **values)
+            label = (f"h = {study.BeamThickness:g} mm: k = {study.BendingStiffness:.2f} N/mm" if model == "Bending beam"
+                     else f"F_op {study.OperatingForce:g} N at {study.Pretravel:g} mm, snap {study.SnapRatio:.0%}")
+            scene = self.build(doc)
+            self.App.closeDocument(doc.Name)
+            result = self.feel.run_stroke(scene, self.feel.Stroke((20, 20, 10), (20.01, 20, 10), 2.0, depth, 1000.0))
+            z = (10.0 - np.asarray(result.trace["device_m"])[:, 2] * 1e3)
+            return z, result.trace["normal_force_n"], result.trace["time_s"] < result.plan.slide_start_s, label
+
+        fig, (beam, button) = plt.subplots(1, 2, figsize=(11, 4.2), constrained_layout=True)
+        for h in (3.0, 4.0, 5.0):
+            z, fn, down, label = press("Bending beam", 2.0, YoungsModulus=1.5, BeamWidth=5, BeamThickness=h,
+                                       BeamLength=60)
+            beam.plot(z[down], fn[down], lw=1.2, label=label)
+        beam.set_title("toothbrush: PP neck 5 x h mm, 60 mm long (k = 3EI/L^3)", fontsize=9)
+        z, fn, down, label = press("Push button", 1.5, OperatingForce=0.8, Pretravel=0.4, SnapRatio=0.5,
+                                   SnapTravel=0.2, TotalTravel=1.0)
+        button.plot(z[down], fn[down], lw=1.2, label="pressing")
+        button.plot(z[~down], fn[~down], lw=1.0, ls="--", label="releasing")
+        button.set_title(f"push button: {label}, bottoms out at 1 mm (PP's 0.8 N/mm)", fontsize=9)
+        for ax in (beam, button):
+            ax.set_xlabel("depth pressed (mm)")
+            ax.set_ylabel("normal force (N)")
+            ax.set_xlim(left=0)
+            ax.grid(alpha=0.3)
+            ax.legend(fontsize=8)
+        fig.suptitle("Stiffness studies through the servo loop (simulated probe, 1 kHz, pressing at 2 mm/s)")
+        self.save(fig, "stiffness_study.png")
 
     def stick_slip(self):
         np, plt = self.np, self.plt
