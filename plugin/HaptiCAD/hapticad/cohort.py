@@ -98,9 +98,12 @@ def place_design(value, records):
             where = f"within the middle half of the preferences ({q1:.3g}-{q3:.3g})"
         else:
             where = f"{'above' if value > q3 else 'below'} the middle half of the preferences ({q1:.3g}-{q3:.3g})"
+    elif len(values) == 1:
+        where = f"{'at' if value == values[0] else 'beside'} the one preference so far ({values[0]:.3g})"
     else:
         where = f"among {len(values)} preferences ({values[0]:.3g}-{values[-1]:.3g})"
-    return below, f"{value:.3g} is {where}; {below:.0%} of the {len(values)} participants preferred less"
+    people = "the one participant" if len(values) == 1 else f"the {len(values)} participants"
+    return below, f"{value:.3g} is {where}; {below:.0%} of {people} preferred less"
 
 
 def write_csv(path, records):

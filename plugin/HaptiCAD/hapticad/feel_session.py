@@ -239,5 +239,10 @@ class LiveSession:
         props = self.doc_scene.surface_properties(cad_face)
         friction = props.friction
         what = f"{self.doc_scene.face_material.get(name)}" if surface else "untagged"
+        law = props.force_travel
+        # a stiffness study's mechanism gives instead of the material: say which
+        give = (f"{props.stiffness_n_per_m * MM:.2f} N/mm" if law is None else
+                f"{law.max_slope() * MM:.2f} N/mm bending" if law.points == 1 else
+                f"button, operating force {law.force_n[0]:.2f} N")
         return (f"{name}: {surface or 'no surface'} ({what}, μs {friction.static_coefficient:.2f}, "
-                f"μd {friction.dynamic_coefficient:.2f}, {props.stiffness_n_per_m * MM:.2f} N/mm)")
+                f"μd {friction.dynamic_coefficient:.2f}, {give})")

@@ -14,10 +14,12 @@ import FreeCADGui as Gui
 from PySide2 import QtCore, QtGui, QtWidgets
 
 from .. import _core, feel_session, icon, preferences
+from ..stiffness_study import studies_of
 from .document_closing import DocumentClosingObserver
 from .feel_view import FeelView, MouseSteering
 from .strip_chart import StripChart
 from .session_edit_observer import SessionEditObserver
+from .study_controls import StudyControls
 
 DISPLAY_HZ = 60
 _ACTIVE = []  # the open panel, for tests and for the Stop of a closing document
@@ -43,7 +45,10 @@ class FeelTaskPanel:
         self.doc_scene = None
         self.frames = 0  # display updates with new samples
         self.last_sample = None
-        self.form = self._build()
+        self.main = self._build()
+        # a stiffness study's slider and participant form, next to the session (seed 000 Fig. 10)
+        self.study_controls = [StudyControls(study) for study in studies_of(doc)]
+        self.form = [self.main, *(self._study_box(c) for c in self.study_controls)]
         self.timer = QtCore.QTimer()
         self.timer.setInterval(int(1000 / DISPLAY_HZ))
         self.timer.timeout.connect(self.update_display)
@@ -51,7 +56,7 @@ class FeelTaskPanel:
         self.set_running(False)
         self.closing = DocumentClosingObserver(doc, self.document_closing)
         # closed without Close (Gui.Control.closeDialog()): the session must not outlive it
-        self.form.destroyed.connect(self._form_destroyed)
+        self.main.destroyed.connect(self._form_destroyed)
         _ACTIVE.append(self)
 
     # --- widgets -----------------------------------------------------------------------
@@ -100,6 +105,14 @@ class FeelTaskPanel:
         for widget in (self.face_label, self.rate_label, self.message):
             layout.addWidget(widget)
         self.depth_set(self.depth.value())
+        return box
+
+    def _study_box(self, controls):
+        box = QtWidgets.QWidget()
+        box.setWindowTitle(f"Stiffness study: {controls.study.Label}")
+        box.setWindowIcon(QtGui.QIcon(icon("HaptiCAD_Study")))
+        layout = QtWidgets.QVBoxLayout(box)
+        layout.addWidget(controls)
         return box
 
     def refresh_devices(self):

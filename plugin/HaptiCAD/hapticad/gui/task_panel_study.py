@@ -1,0 +1,322 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Task panel of a stiffness study (seed 000 §3, Fig. 10): the mechanism and its values,
+the slider a participant moves, the form that records their preference, and the cohort:
+its table, its statistics by gender and age, where the design lies among the
+preferences, CSV export and import.
+
+Edits go to the study at once, each its own undo step, and the panel has only Close:
+participants recorded during a session are never lost to a Cancel. To feel the design,
+close the panel and press Feel: the Feel panel shows the same slider and form.
+"""
+import FreeCADGui as Gui
+from PySide2 import QtCore, QtGui, QtWidgets
+
+from .. import cohort, icon, preferences, stiffness_study
+from .document_closing import DocumentClosingObserver
+from .study_controls import StudyControls, set_study_property
+
+UNITS = {"YoungsModulus": " GPa", "BeamWidth": " mm", "BeamThickness": " mm", "BeamLength": " mm",
+         "OperatingForce": " N", "Pretravel": " mm", "SnapTravel": " mm", "TotalTravel": " mm"}
+LABELS = {"YoungsModulus": "Young's modulus E", "BeamWidth": "Width b", "BeamThickness": "Thickness h",
+          "BeamLength": "Length L", "OperatingForce": "Operating force", "Pretravel": "Pretravel",
+          "SnapRatio": "Snap ratio", "SnapTravel": "Snap travel", "TotalTravel": "Total travel",
+          "BeamMaterial": "Material"}
+TABLE_COLUMNS = ("Participant", "Gender", "Age", "Weight (kg)", "Height (mm)", "Preferred")
+
+
+def _device_stiffness_n_per_m():
+    """The stable stiffness (N/m) of the device the preferences choose; the simulated
+    probe's when that one is not connected."""
+    from .. import _core
+
+    chosen = preferences.load().device
+    try:
+        for info in _core.list_devices():
+            if info["path"] == chosen and info["limits"]:
+                return info["limits"]["max_stiffness_n_per_m"]
+    except RuntimeError:  # a device that fails to enumerate: judge by the simulated probe
+        pass
+    return _core.simulated_probe_limits().max_stiffness_n_per_m
+
+
+class StudyTaskPanel:
+    def __init__(self, study):
+        self.obj = study
+        self.doc = study.Document
+        self.widgets = {}
+        self._loading = False
+        self.form = [self._status_box(), self._model_box(), self._customise_box(), self._cohort_box()]
+        self.closing = DocumentClosingObserver(self.doc, self.document_closing)
+        self.load()
+
+    # --- building -------------------------------------------------------------------
+
+    def _box(self, title):
+        box = QtWidgets.QWidget()
+        box.setWindowTitle(title)
+        box.setWindowIcon(QtGui.QIcon(icon("HaptiCAD_Study")))
+        return box
+
+    def _status_box(self):
+        box = self._box("Stiffness study")
+        layout = QtWidgets.QVBoxLayout(box)
+        self.status = QtWidgets.QLabel()
+        self.status.setObjectName("studyStatus")
+        self.status.setWordWrap(True)
+        layout.addWidget(self.status)
+        return box
+
+    def _spin(self, name, constraint):
+        box = QtWidgets.QDoubleSpinBox()
+        box.setObjectName(name)
+        box.setRange(constraint[0], constraint[1])
+        box.setSingleStep(constraint[2])
+        box.setDecimals(3)
+        box.setSuffix(UNITS.get(name, ""))
+        box.setKeyboardTracking(False)
+        box.valueChanged.connect(lambda v, n=name: self.set_property(n, float(v)))
+        return box
+
+    def _model_box(self):
+        box = self._box("Mechanism")
+        form = QtWidgets.QFormLayout(box)
+        self.surface_label = QtWidgets.QLabel()
+        form.addRow("Pressed surface", self.surface_label)
+        model = QtWidgets.QComboBox()
+        model.setObjectName("Model")
+        model.addItems(stiffness_study.MODELS)
+        model.currentTextChanged.connect(lambda text: self.set_property("Model", text))
+        self.widgets["Model"] = model
+        form.addRow("Model", model)
+        self.rows = {}
+        for name, kind, group, tip, _, constraint in stiffness_study.PROPERTIES:
+            if group not in ("Beam", "Button") or name == "BendingStiffness":
+                continue
+            if name == "BeamMaterial":
+                field = QtWidgets.QComboBox()
+                field.setObjectName(name)
+                field.addItems(self.obj.getEnumerationsOfProperty(name))
+                field.currentTextChanged.connect(lambda text: self.set_property("BeamMaterial", text))
+            else:
+                field = self._spin(name, constraint)
+            field.setToolTip(tip)
+            label = QtWidgets.QLabel(LABELS.get(name, name))
+            form.addRow(label, field)
+            self.widgets[name] = field
+            self.rows[name] = (group, label, field)
+        self.law_label = QtWidgets.QLabel()
+        self.law_label.setObjectName("studyLaw")
+        self.law_label.setWordWrap(True)
+        form.addRow(self.law_label)
+        return box
+
+    def _customise_box(self):
+        box = self._box("Customise (what the participant moves)")
+        layout = QtWidgets.QVBoxLayout(box)
+        form = QtWidgets.QFormLayout()
+        adjust = QtWidgets.QComboBox()
+        adjust.setObjectName("Adjust")
+        adjust.currentIndexChanged.connect(self.adjust_chosen)
+        self.widgets["Adjust"] = adjust
+        form.addRow("Slider moves", adjust)
+        for name in ("AdjustMin", "AdjustMax"):
+            spin = QtWidgets.QDoubleSpinBox()
+            spin.setObjectName(name)
+            spin.setRange(0.0, 2000.0)
+            spin.setDecimals(3)
+            spin.setKeyboardTracking(False)
+            spin.valueChanged.connect(lambda v, n=name: self.set_property(n, float(v)))
+            self.widgets[name] = spin
+            form.addRow("From" if name == "AdjustMin" else "To", spin)
+        layout.addLayout(form)
+        self.controls_holder = QtWidgets.QVBoxLayout()
+        layout.addLayout(self.controls_holder)
+        self.controls = None
+        return box
+
+    def _cohort_box(self):
+        box = self._box("Cohort")
+        layout = QtWidgets.QVBoxLayout(box)
+        self.table = QtWidgets.QTableWidget(0, len(TABLE_COLUMNS))
+        self.table.setObjectName("cohortTable")
+        self.table.setHorizontalHeaderLabels(TABLE_COLUMNS)
+        self.table.setEditTriggers(QtWidgets.QAbstractItemView.NoEditTriggers)
+        self.table.setSelectionBehavior(QtWidgets.QAbstractItemView.SelectRows)
+        self.table.horizontalHeader().setStretchLastSection(True)
+        self.table.setMinimumHeight(140)
+        layout.addWidget(self.table)
+        buttons = QtWidgets.QHBoxLayout()
+        for text, name, slot in (("Remove", "removeParticipant", self.remove_selected),
+                                 ("Export CSV…", "exportCohort", self.choose_export),
+                                 ("Import CSV…", "importCohort", self.choose_import)):
+            button = QtWidgets.QPushButton(text)
+            button.setObjectName(name)
+            button.clicked.connect(slot)
+            buttons.addWidget(button)
+        layout.addLayout(buttons)
+        self.stats = QtWidgets.QLabel()
+        self.stats.setObjectName("cohortStats")
+        self.stats.setWordWrap(True)
+        self.stats.setTextInteractionFlags(QtCore.Qt.TextSelectableByMouse)
+        layout.addWidget(self.stats)
+        return box
+
+    # --- object -> widgets -------------------------------------------------------------
+
+    def load(self):
+        self._loading = True
+        try:
+            self._load()
+        finally:
+            self._loading = False
+
+    def _load(self):
+        obj = self.obj
+        self.surface_label.setText(obj.Surface.Label if obj.Surface is not None else "none")
+        for name, widget in self.widgets.items():
+            if name == "Adjust":
+                continue
+            value = getattr(obj, name)
+            widget.blockSignals(True)
+            if isinstance(widget, QtWidgets.QComboBox):
+                widget.setCurrentText(str(value))
+            else:
+                widget.setValue(float(value))
+            widget.blockSignals(False)
+        adjust = self.widgets["Adjust"]
+        adjust.blockSignals(True)
+        adjust.clear()
+        for name, (label, unit, _) in stiffness_study.ADJUSTABLE[obj.Model].items():
+            adjust.addItem(f"{label} ({unit})" if unit else label, name)
+        adjust.setCurrentIndex(max(adjust.findData(obj.Adjust), 0))
+        adjust.blockSignals(False)
+        for name, (group, label, field) in self.rows.items():
+            shown = (group == "Beam") == (obj.Model == stiffness_study.BEAM)
+            label.setVisible(shown)
+            field.setVisible(shown)
+        value, unit = stiffness_study.design_value(obj)
+        law = (f"Bending stiffness k = 3EI/L³ = <b>{obj.BendingStiffness:.3g} N/mm</b>" if obj.Model ==
+               stiffness_study.BEAM else f"Operating force <b>{obj.OperatingForce:.3g} N</b> at "
+               f"{obj.Pretravel:g} mm, returning at {obj.OperatingForce * (1 - obj.SnapRatio):.3g} N; bottoms "
+               f"out at {obj.TotalTravel:g} mm on the surface's stiffness")
+        note = stiffness_study.device_note(obj, _device_stiffness_n_per_m())
+        self.law_label.setText(law + (f"<br><span style='color:#a06000'>Note: {note}.</span>" if note else ""))
+        if self.controls is None or self.controls.study.Model != obj.Model:
+            if self.controls is not None:
+                self.controls.setParent(None)
+            self.controls = StudyControls(obj)
+            self.controls.changed.connect(self.load)
+            self.controls_holder.addWidget(self.controls)
+        else:
+            self.controls.load()
+        self._load_cohort()
+        problems = stiffness_study.validate(obj)
+        if problems:
+            self.status.setText("<span style='color:#b00000'>⚠ " + "<br>⚠ ".join(problems) + "</span>")
+        else:
+            self.status.setText(f"<span style='color:#006000'>✓ {obj.Model} under "
+                                f"{obj.Surface.Label}: {value:.3g} {unit}. Close, then Feel it.</span>")
+
+    def _load_cohort(self):
+        records = stiffness_study.records(self.obj)
+        self.table.setRowCount(len(records))
+        for row, r in enumerate(records):
+            for column, text in enumerate((r.name, r.gender, r.age_band, f"{r.weight_kg:g}", f"{r.height_mm:g}",
+                                           f"{r.value:.3g} {r.unit}")):
+                self.table.setItem(row, column, QtWidgets.QTableWidgetItem(text))
+        rows = cohort.statistics(records)
+        if not rows:
+            self.stats.setText("No participant yet: each records what feels right with the slider above.")
+            return
+        lines = [f"{s['group']}: n {s['n']}, mean {s['mean']:.3g} ± {s['sd']:.2g}, median {s['median']:.3g} "
+                 f"({s['min']:.3g}-{s['max']:.3g}) {records[0].unit}" for s in rows]
+        value, _ = stiffness_study.design_value(self.obj)
+        lines.append("This design: " + cohort.place_design(value, records)[1])
+        self.stats.setText("<br>".join(lines))
+
+    # --- widgets -> object -------------------------------------------------------------
+
+    def set_property(self, name, value):
+        if self._loading:
+            return
+        if not set_study_property(self.obj, name, value):
+            self.status.setText(f"<span style='color:#b00000'>⚠ {LABELS.get(name, name)}: {value} refused</span>")
+            return
+        self.load()
+
+    def adjust_chosen(self, index):
+        if self._loading or index < 0:
+            return
+        name = self.widgets["Adjust"].itemData(index)
+        low, high = stiffness_study.ADJUSTABLE[self.obj.Model][name][2]
+        doc = self.doc
+        doc.openTransaction("Stiffness study: slider")
+        self.obj.Adjust = name
+        self.obj.AdjustMin, self.obj.AdjustMax = low, high
+        doc.commitTransaction()
+        self.load()
+
+    def remove_selected(self):
+        rows = sorted({i.row() for i in self.table.selectedIndexes()}, reverse=True)
+        if not rows:
+            return
+        self.doc.openTransaction("Remove participants")
+        for row in rows:
+            stiffness_study.remove_record(self.obj, row)
+        self.doc.commitTransaction()
+        self.load()
+
+    def choose_export(self):
+        path, _ = QtWidgets.QFileDialog.getSaveFileName(None, "Export the cohort", f"{self.obj.Label}.csv",
+                                                        "CSV (*.csv)")
+        if path:
+            self.export_to(path)
+
+    def export_to(self, path):
+        try:
+            cohort.write_csv(path, stiffness_study.records(self.obj))
+        except OSError as exc:
+            self.stats.setText(f"<span style='color:#b00000'>Not exported: {exc}</span>")
+            return False
+        return True
+
+    def choose_import(self):
+        path, _ = QtWidgets.QFileDialog.getOpenFileName(None, "Import participants", "", "CSV (*.csv)")
+        if path:
+            self.import_from(path)
+
+    def import_from(self, path):
+        self.doc.openTransaction("Import participants")
+        try:
+            added = stiffness_study.import_records(self.obj, path)
+        except (ValueError, OSError) as exc:
+            self.doc.abortTransaction()
+            self.load()
+            self.stats.setText(f"<span style='color:#b00000'>Nothing imported: {exc}</span>")
+            return 0
+        self.doc.commitTransaction()
+        self.load()
+        return added
+
+    # --- FreeCAD's task dialog -----------------------------------------------------------
+
+    def document_closing(self):
+        self.document_gone = True
+        Gui.Control.closeDialog()
+
+    def getStandardButtons(self):
+        return int(QtWidgets.QDialogButtonBox.Close)
+
+    def _leave(self):
+        self.closing.remove()
+        if not getattr(self, "document_gone", False):
+            gui_doc = Gui.getDocument(self.doc.Name)
+            if gui_doc is not None and gui_doc.getInEdit() is not None:
+                gui_doc.resetEdit()
+        return True
+
+    def reject(self):
+        return self._leave()
+
+    def accept(self):
+        return self._leave()

@@ -1,0 +1,172 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Stiffness studies in FreeCAD's real GUI (Xvfb): the command makes a study of the
+selected surface and its panel edits the mechanism, records participants, shows the
+cohort's statistics and exports and imports it; during a Feel session the slider changes
+what the probe feels at once and a participant's preference is recorded from the Feel
+panel. Run by gui_test_runner.py."""
+import os
+import sys
+import tempfile
+import time
+import unittest
+
+import numpy as np
+
+import FreeCAD as App
+import FreeCADGui as Gui
+from PySide2 import QtWidgets
+
+import HaptiCAD
+from hapticad import preferences, stiffness_study
+from hapticad.gui import task_panel_feel
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import gui_helpers as h  # noqa: E402
+
+
+def wait(seconds):
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        h.process_events(1)
+        time.sleep(0.005)
+
+
+def fill_participant(name, gender="M", age="26-40", weight=70.0, height=1700.0):
+    h.widget(QtWidgets.QLineEdit, "participantName").setText(name)
+    h.widget(QtWidgets.QComboBox, "participantGender").setCurrentText(gender)
+    h.widget(QtWidgets.QComboBox, "participantAge").setCurrentText(age)
+    h.widget(QtWidgets.QDoubleSpinBox, "participantWeight").setValue(weight)
+    h.widget(QtWidgets.QDoubleSpinBox, "participantHeight").setValue(height)
+
+
+class StudyGuiTest(unittest.TestCase):
+    def setUp(self):
+        preferences.update(device="simulated", servo_rate_hz=1000)
+        self.doc = App.newDocument("StudyGui")
+        self.doc.UndoMode = 1
+        self.box = self.doc.addObject("Part::Box", "Head")
+        self.box.Length, self.box.Width, self.box.Height = 40, 30, 20
+        self.doc.recompute()
+        self.surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="PP", FeelRoughness=False)
+        self.doc.recompute()
+        Gui.Selection.clearSelection()
+        h.show_workbench()
+        self.tmp = tempfile.TemporaryDirectory()
+
+    def tearDown(self):
+        if Gui.Control.activeDialog():
+            h.press_task_button("Close")
+        Gui.Selection.clearSelection()
+        App.closeDocument(self.doc.Name)
+        self.tmp.cleanup()
+
+    def open_study(self):
+        Gui.Selection.addSelection(self.surface)
+        Gui.runCommand("HaptiCAD_Study")
+        h.process_events()
+        self.assertTrue(Gui.Control.activeDialog())
+        (study,) = HaptiCAD.studies_of(self.doc)
+        return study
+
+    def test_the_panel_edits_the_mechanism_and_keeps_the_cohort(self):
+        study = self.open_study()
+        self.assertEqual(study.Surface, self.surface)
+        self.assertIn("0.556 N/mm", h.widget(QtWidgets.QLabel, "studyLaw").text())
+        h.widget(QtWidgets.QDoubleSpinBox, "BeamThickness").setValue(5.0)
+        self.assertAlmostEqual(study.BendingStiffness, 0.5556 * 125 / 64, places=3)
+        self.assertIn("1.09 N/mm", h.widget(QtWidgets.QLabel, "studyLaw").text())
+        h.widget(QtWidgets.QComboBox, "BeamMaterial").setCurrentText("ABS")
+        self.assertAlmostEqual(study.YoungsModulus, 2.3)
+        # each edit is its own undo step
+        self.doc.undo()
+        self.assertAlmostEqual(study.YoungsModulus, 1.5)
+        self.assertAlmostEqual(study.BeamThickness, 5.0)
+        h.process_events()
+
+        # three participants of Table 3, each at the design the slider gives
+        slider = h.widget(QtWidgets.QSlider, "studySlider")
+        for name, gender, age, weight, position in (("Steven", "M", "26-40", 70, 200), ("Yang", "M", "41-60", 60, 150),
+                                                    ("Zhang", "F", "26-40", 52, 150)):
+            slider.setValue(position)
+            fill_participant(name, gender, age, weight)
+            h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        self.assertEqual(study.Participants, 3)
+        self.assertEqual(h.widget(QtWidgets.QTableWidget, "cohortTable").rowCount(), 3)
+        self.assertAlmostEqual(study.BeamThickness, 6.5)  # 2 + 6 x 150/200
+        stats = h.widget(QtWidgets.QLabel, "cohortStats").text()
+        self.assertIn("all: n 3", stats)
+        self.assertIn("gender M: n 2", stats)
+        self.assertIn("This design:", stats)
+        # a participant without a name is not recorded, and the panel says why
+        fill_participant("")
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        self.assertIn("needs a name", h.widget(QtWidgets.QLabel, "studyMessage").text())
+        self.assertEqual(study.Participants, 3)
+        h.widen_panel(520)
+        h.grab_screen("study_panel.png")
+
+        from hapticad.gui import task_panel_study  # noqa: F401  (the open panel's module)
+
+        panel = _open_panel()
+        path = os.path.join(self.tmp.name, "cohort.csv")
+        self.assertTrue(panel.export_to(path))
+        with open(path) as handle:
+            self.assertEqual(len(handle.readlines()), 4)
+        table = h.widget(QtWidgets.QTableWidget, "cohortTable")
+        table.selectRow(0)
+        h.widget(QtWidgets.QPushButton, "removeParticipant").click()
+        self.assertEqual([r.name for r in stiffness_study.records(study)], ["Yang", "Zhang"])
+        self.assertEqual(panel.import_from(path), 3)
+        self.assertEqual(study.Participants, 5)
+        h.press_task_button("Close")
+        self.assertFalse(Gui.Control.activeDialog())
+        self.assertEqual(study.Participants, 5)  # Close keeps everything
+
+    def test_while_feeling_the_slider_is_felt_at_once_and_a_preference_is_recorded(self):
+        study = HaptiCAD.make_study(self.doc, self.surface, YoungsModulus=1.5, BeamWidth=5, BeamLength=60)
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        self.assertTrue(h.widget(QtWidgets.QPushButton, "feelStop").isEnabled(),
+                        h.widget(QtWidgets.QLabel, "feelMessage").text())
+        chart = h.widget(QtWidgets.QWidget, "stripChart")
+        slider = h.widget(QtWidgets.QSlider, "studySlider")
+        top = np.array([20.0, 15.0, 20.0])
+        h.mouse("move", h.screen_pos(top))
+        wait(0.3)
+        h.wheel(h.screen_pos(top), 2)  # the hand presses harder
+        felt = {}
+        for position, thickness in ((0, 2.0), (100, 5.0)):  # 0.07 and 1.09 N/mm
+            slider.setValue(position)
+            wait(0.8)
+            self.assertAlmostEqual(study.BeamThickness, thickness)
+            # the live session felt the new neck: force over the depth pressed is its k
+            sample = task_panel_feel.active_panel().last_sample
+            depth_mm = float(np.linalg.norm(np.asarray(sample["proxy_m"]) - np.asarray(sample["device_m"]))) * 1e3
+            self.assertGreater(depth_mm, 0.05)
+            self.assertAlmostEqual(float(sample["normal_force_n"]) / depth_mm, study.BendingStiffness,
+                                   delta=0.05 * study.BendingStiffness)
+            felt[thickness] = float(chart.values["normal_force_n"][-200:].mean())
+        # the simulated hand gives too: a stiffer neck pushes it back, but still feels stiffer
+        self.assertGreater(felt[5.0], 3 * felt[2.0])
+        self.assertIn("1.09 N/mm bending", h.widget(QtWidgets.QLabel, "feelFace").text())
+        fill_participant("Steven")
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        self.assertEqual(study.Participants, 1)
+        self.assertIn("Recorded Steven", h.widget(QtWidgets.QLabel, "studyMessage").text())
+        h.widen_panel(480)
+        h.grab_screen("feel_study.png")
+        h.widget(QtWidgets.QPushButton, "feelStop").click()
+
+
+def _open_panel():
+    """The StudyTaskPanel FreeCAD shows (Gui.Control keeps the Python object)."""
+    import gc
+
+    from hapticad.gui.task_panel_study import StudyTaskPanel
+
+    panels = [o for o in gc.get_objects() if isinstance(o, StudyTaskPanel) and not getattr(o, "_left", False)]
+    return panels[-1]
+
+
+if __name__ == "__main__":
+    unittest.main()
