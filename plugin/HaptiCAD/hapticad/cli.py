@@ -208,6 +208,42 @@ def cmd_fit_texture(args):
     return None
 
 
+def cmd_cohort(args):
+    App = ensure_freecad()
+    from . import cohort, stiffness_study
+
+    doc = _open_document(App, args.file)
+    try:
+        studies = [s for s in stiffness_study.studies_of(doc) if not args.study or args.study in (s.Name, s.Label)]
+        if not studies:
+            names = ", ".join(s.Label for s in stiffness_study.studies_of(doc)) or "none"
+            raise ValueError(f"{args.file}: no stiffness study{' named ' + repr(args.study) if args.study else ''} "
+                             f"(it has: {names})")
+        if args.csv and len(studies) > 1:
+            raise ValueError("--csv writes one study's cohort: name it with --study")
+        result = []
+        for study in studies:
+            records = stiffness_study.records(study)
+            value, unit = stiffness_study.design_value(study)
+            result.append({"study": study.Label, "model": study.Model, "design_value": value, "unit": unit,
+                           "participants": len(records), "statistics": cohort.statistics(records),
+                           "design_among_preferences": cohort.place_design(value, records)[1]})
+            if args.csv:
+                cohort.write_csv(args.csv, records)
+    finally:
+        App.closeDocument(doc.Name)
+    if args.json:
+        return result
+    for study in result:
+        print(f"{study['study']} ({study['model']}): design {study['design_value']:.3g} {study['unit']}, "
+              f"{study['participants']} participants")
+        for row in study["statistics"]:
+            print(f"  {row['group']:<20} n {row['n']:<3} mean {row['mean']:.3g} sd {row['sd']:.2g} "
+                  f"median {row['median']:.3g} range {row['min']:.3g}-{row['max']:.3g}")
+        print(f"  this design: {study['design_among_preferences']}")
+    return None
+
+
 def build_parser():
     parser = argparse.ArgumentParser(prog="hapticad", description="Feel CAD parts: HaptiCAD's command line")
     sub = parser.add_subparsers(dest="command", required=True)
@@ -274,6 +310,13 @@ def build_parser():
     fit.add_argument("--surface", metavar="NAME", help="the haptic surface (name or label) --apply sets")
     fit.add_argument("--json", action="store_true", help="print JSON")
     fit.set_defaults(run=cmd_fit_texture)
+
+    coh = sub.add_parser("cohort", help="a document's stiffness studies: participants' preferences by group")
+    coh.add_argument("file", help="FreeCAD document (.FCStd) with StiffnessStudy objects")
+    coh.add_argument("--study", metavar="NAME", help="only this study (name or label)")
+    coh.add_argument("--csv", metavar="FILE", help="also write the study's participants as CSV")
+    coh.add_argument("--json", action="store_true", help="print JSON")
+    coh.set_defaults(run=cmd_cohort)
 
     demo = sub.add_parser("demo", help="open the example toothbrush and feel it")
     demo.add_argument("--headless", action="store_true", help="stroke every tagged face, even with a display")

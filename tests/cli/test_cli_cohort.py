@@ -1,0 +1,82 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""`hapticad cohort` end to end: a document's stiffness study and its participants'
+preferences, as statistics (JSON and text) and CSV; bad input gets a clear error (exit 2).
+
+Environment: HAPTICAD_CLI (the launcher), HAPTICAD_MOD (the staged Mod folder).
+Runs under /usr/bin/python3 (FreeCAD's interpreter)."""
+import csv
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+CLI = os.environ["HAPTICAD_CLI"]
+sys.path.insert(0, os.environ["HAPTICAD_MOD"])
+
+from hapticad.freecad_env import ensure_freecad  # noqa: E402
+
+App = ensure_freecad()
+import HaptiCAD  # noqa: E402
+
+assert HaptiCAD.__file__.startswith(os.environ["HAPTICAD_MOD"]), HaptiCAD.__file__
+
+
+def run_cli(*args):
+    return subprocess.run([CLI, *args], capture_output=True, text=True, timeout=120)
+
+
+class CohortCommandTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.path = os.path.join(cls.tmp.name, "toothbrush.FCStd")
+        doc = App.newDocument("CliCohort")
+        box = doc.addObject("Part::Box", "Head")
+        doc.recompute()
+        surface = HaptiCAD.make_surface(doc, [(box, "Face6")], material="PP", FeelRoughness=False)
+        study = HaptiCAD.make_study(doc, surface, YoungsModulus=1.5, BeamWidth=5, BeamLength=60)
+        study.Label = "Neck"
+        # seed 000's Table 3: 4.5, 3.5 and 3.5 N/mm, made by the neck's thickness
+        for name, gender, age, weight, height, k in (("Steven", "M", "26-40", 70, 1700, 4.5),
+                                                     ("Yang", "M", "41-60", 60, 1680, 3.5),
+                                                     ("Zhang", "F", "26-40", 52, 1650, 3.5)):
+            study.BeamThickness = 4.0 * (k / study.BendingStiffness * study.BeamThickness ** 3 / 64) ** (1 / 3)
+            HaptiCAD.record_preference(study, name, gender, age, weight, height)
+        study.BeamThickness = 4.0
+        doc.saveAs(cls.path)
+        App.closeDocument(doc.Name)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def test_statistics_of_the_cohort(self):
+        out_csv = os.path.join(self.tmp.name, "neck.csv")
+        proc = run_cli("cohort", self.path, "--json", "--csv", out_csv)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        (study,) = json.loads(proc.stdout)
+        self.assertEqual((study["study"], study["participants"], study["unit"]), ("Neck", 3, "N/mm"))
+        rows = {r["group"]: r for r in study["statistics"]}
+        self.assertAlmostEqual(rows["all"]["mean"], 11.5 / 3, places=6)
+        self.assertAlmostEqual(rows["gender M"]["mean"], 4.0, places=6)
+        self.assertIn("0% of the 3 participants preferred less", study["design_among_preferences"])
+        with open(out_csv) as handle:
+            self.assertEqual([r["name"] for r in csv.DictReader(handle)], ["Steven", "Yang", "Zhang"])
+        text = run_cli("cohort", self.path)
+        self.assertEqual(text.returncode, 0, text.stderr)
+        self.assertIn("Neck (Bending beam): design 0.556 N/mm, 3 participants", text.stdout)
+
+    def test_bad_input_is_refused(self):
+        for args, message in ((("cohort", os.path.join(self.tmp.name, "none.FCStd")), "no such file"),
+                              (("cohort", self.path, "--study", "Handle"), "no stiffness study named 'Handle' "
+                                                                          "(it has: Neck)")):
+            with self.subTest(message=message):
+                proc = run_cli(*args)
+                self.assertEqual(proc.returncode, 2, proc.stderr)
+                self.assertIn(message, proc.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()
