@@ -784,7 +784,8 @@ void DefineTextureFit(py::module_& m) {
       .def_readonly("periods", &TextureSection::periods)
       .def_readonly("dc_n", &TextureSection::dc_n)
       .def_property_readonly("amplitude_n", [](const TextureSection& s) {
-        return py::array_t<double>(static_cast<py::ssize_t>(s.amplitude_n.size()), s.amplitude_n.data());
+        return py::array_t<double>(static_cast<py::ssize_t>(s.amplitude_n.size()),
+                                   s.amplitude_n.data());
       });
   py::class_<PowerFit>(m, "PowerFit")
       .def_readonly("beta", &PowerFit::beta)

@@ -53,3 +53,18 @@ def rerun_after_host_stall(test):
                 self.tearDown()
         self.fail(f"the host stalled the loop in all {ATTEMPTS} attempts; the last: {last}")
     return attempts
+
+
+def run_without_host_stall(run, watchdog_flag):
+    """Calls `run()` (returning something with a `.trace`) up to ATTEMPTS times and returns
+    the first result whose trace shows no host stall; for set-ups that run the live loop
+    outside a test method. Raises HostStall when every attempt stalled."""
+    for attempt in range(1, ATTEMPTS + 1):
+        result = run()
+        try:
+            check_host_stall(result.trace, watchdog_flag)
+            return result
+        except HostStall as stall:
+            print(f"live run: attempt {attempt} of {ATTEMPTS}: {stall}", file=sys.stderr)
+            last = stall
+    raise HostStall(f"the host stalled the loop in all {ATTEMPTS} attempts; the last: {last}")

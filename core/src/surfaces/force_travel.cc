@@ -18,8 +18,8 @@ void Require(bool ok, const std::string& what) {
 double ForceTravel::ForceClamped(double x_m, double max_slope, bool* clamped) const {
   if (!(x_m > 0.0) || points <= 0) return 0.0;
   double x0 = 0.0;
-  double f_law = 0.0;   // the law's force at x0
-  double f_out = 0.0;   // the clamped law's force at x0
+  double f_law = 0.0;  // the law's force at x0
+  double f_out = 0.0;  // the clamped law's force at x0
   for (int i = 0; i < points; ++i) {
     const double x1 = travel_m[i];
     double slope = (force_n[i] - f_law) / (x1 - x0);

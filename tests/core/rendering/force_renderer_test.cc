@@ -125,8 +125,11 @@ TEST_F(RendererOnBox, AForceTravelLawReplacesStiffnessTimesDepth) {
   faces[5].force_travel = MakePushButton({});  // 1.47 N at 0.25 mm, snaps to 0.735 N
   limits_.max_stiffness_n_per_m = 10000.0;     // steeper than the snap: nothing clamped
   ForceRenderer r(scene_, std::make_shared<SurfaceTable>(faces), limits_);
-  for (const auto& [depth, force] : {std::pair{0.1e-3, 0.588}, {0.25e-3, 1.47}, {0.35e-3, 0.735},
-                                     {0.6e-3, 1.47}, {0.8e-3, 2.27}}) {
+  for (const auto& [depth, force] : {std::pair{0.1e-3, 0.588},
+                                     {0.25e-3, 1.47},
+                                     {0.35e-3, 0.735},
+                                     {0.6e-3, 1.47},
+                                     {0.8e-3, 2.27}}) {
     const RenderOutput out = Press(r, depth);
     // the proxy rests a fraction of a nanometre off the face: 1 nm of depth on the
     // steepest slope (7350 N/m) is 7e-6 N

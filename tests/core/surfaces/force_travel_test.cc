@@ -57,8 +57,9 @@ TEST(ForceTravelTest, ACantileverMatchesTheFieldNotesToothbrush) {
   EXPECT_NEAR(CantileverStiffness(1.5e9, 5e-3, 4e-3, 60e-3), 555.6, 0.1);
   EXPECT_NEAR(CantileverStiffness(1.5e9, 5e-3, 4e-3, 40e-3), 1875.0, 0.1);
   // k goes with h^3 and 1/L^3
-  EXPECT_NEAR(CantileverStiffness(1.5e9, 5e-3, 8e-3, 60e-3) / CantileverStiffness(1.5e9, 5e-3, 4e-3, 60e-3),
-              8.0, 1e-12);
+  EXPECT_NEAR(
+      CantileverStiffness(1.5e9, 5e-3, 8e-3, 60e-3) / CantileverStiffness(1.5e9, 5e-3, 4e-3, 60e-3),
+      8.0, 1e-12);
   EXPECT_NEAR(SeriesStiffness(400.0, 400.0), 200.0, 1e-12);
   EXPECT_THROW(CantileverStiffness(1.5e9, 0.0, 4e-3, 60e-3), std::invalid_argument);
 }

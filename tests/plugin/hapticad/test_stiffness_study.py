@@ -2,6 +2,7 @@
 """Stiffness studies (seed 000 §3): a bending neck and a push button felt through the
 real servo loop, participants' preferences kept with the document, clear errors."""
 import os
+import sys
 import tempfile
 import unittest
 
@@ -12,7 +13,11 @@ import FreeCAD as App
 import HaptiCAD
 from hapticad import cohort, stiffness_study
 from hapticad.document_scene import build_document_scene, recompile_surfaces
+from hapticad import _core
 from hapticad.feel import Stroke, run_stroke
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from host_stalls import run_without_host_stall  # noqa: E402
 
 PARTICIPANT = ("Steven", "M", "26-40", 70, 1700)
 
@@ -21,8 +26,8 @@ def pressed_normal_force(doc, depth_mm, start=(20, 20, 10)):
     """Mean normal force while the simulated probe holds ``depth_mm`` deep at a point."""
     scene = build_document_scene(doc)
     p0 = np.asarray(start, float)
-    result = run_stroke(scene, Stroke(tuple(p0), tuple(p0 + [0.01, 0, 0]), speed_mm_s=25.0, depth_mm=depth_mm,
-                                      rate_hz=1000))
+    stroke = Stroke(tuple(p0), tuple(p0 + [0.01, 0, 0]), speed_mm_s=25.0, depth_mm=depth_mm, rate_hz=1000)
+    result = run_without_host_stall(lambda: run_stroke(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
     trace, plan = result.trace, result.plan
     held = (trace["time_s"] > plan.slide_start_s - 0.05) & (trace["time_s"] < plan.slide_start_s)
     return float(np.mean(trace["normal_force_n"][held]))
@@ -75,7 +80,8 @@ class StudyTest(unittest.TestCase):
         self.assertAlmostEqual(law.force(0.6e-3), 0.4)
         self.assertAlmostEqual(law.force(1.0e-3 + 1e-4) - law.force(1.0e-3), self.head.Stiffness * 1e3 * 1e-4)
         # on the way down to 1.5 mm, the probe felt the operating force, then the snap
-        result = run_stroke(scene, Stroke((20, 20, 10), (20.01, 20, 10), speed_mm_s=5.0, depth_mm=1.5))
+        stroke = Stroke((20, 20, 10), (20.01, 20, 10), speed_mm_s=5.0, depth_mm=1.5)
+        result = run_without_host_stall(lambda: run_stroke(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
         fn = result.trace["normal_force_n"][result.trace["time_s"] < result.plan.slide_start_s]
         highest = np.maximum.accumulate(fn)
         snap = int(np.argmax(highest - fn > 0.2))  # the first tick 0.2 N below the highest so far

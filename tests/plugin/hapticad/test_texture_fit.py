@@ -18,6 +18,8 @@ from hapticad.feel import Stroke, run_stroke, write_trace_csv
 from hapticad.surface_object import validate
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from host_stalls import run_without_host_stall  # noqa: E402
 from texture_recordings import write_rig_csv as _write_rig_csv  # noqa: E402
 
 
@@ -45,8 +47,8 @@ class RoundTripTest(unittest.TestCase):
         cls.paths = []
         for speed in SPEEDS:
             # across the grating: its coordinate runs along the face frame's e2, +y on this face
-            result = run_stroke(scene, Stroke((20, 10, 10), (20, 90, 10), speed_mm_s=speed, depth_mm=1.0,
-                                              rate_hz=5000))
+            stroke = Stroke((20, 10, 10), (20, 90, 10), speed_mm_s=speed, depth_mm=1.0, rate_hz=5000)
+            result = run_without_host_stall(lambda: run_stroke(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
             path = os.path.join(cls.tmp.name, f"trace_{speed:.0f}.csv")
             write_trace_csv(path, result, scene)
             cls.paths.append(path)

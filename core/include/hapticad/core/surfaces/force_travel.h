@@ -53,11 +53,11 @@ double CantileverStiffness(double youngs_modulus_pa, double width_m, double thic
 double SeriesStiffness(double a_n_per_m, double b_n_per_m);
 
 struct PushButtonParams {
-  double operating_force_n = 1.47;   // Omron B3F's middle rating
-  double pretravel_m = 0.25e-3;      // travel to the operating point
-  double snap_ratio = 0.5;           // (F_op - F_return) / F_op, in (0, 1)
-  double snap_travel_m = 0.1e-3;     // over which the force falls to F_return
-  double total_travel_m = 0.6e-3;    // where the plunger bottoms out, > pretravel + snap
+  double operating_force_n = 1.47;           // Omron B3F's middle rating
+  double pretravel_m = 0.25e-3;              // travel to the operating point
+  double snap_ratio = 0.5;                   // (F_op - F_return) / F_op, in (0, 1)
+  double snap_travel_m = 0.1e-3;             // over which the force falls to F_return
+  double total_travel_m = 0.6e-3;            // where the plunger bottoms out, > pretravel + snap
   double bottom_stiffness_n_per_m = 4000.0;  // past the total travel
 };
 // Throws std::invalid_argument naming a value out of range.

@@ -27,8 +27,8 @@
 #include <vector>
 
 #include "hapticad/core/surfaces/anisotropy.h"
-#include "hapticad/core/surfaces/force_travel.h"
 #include "hapticad/core/surfaces/curve_pattern.h"
+#include "hapticad/core/surfaces/force_travel.h"
 #include "hapticad/core/surfaces/friction.h"
 #include "hapticad/core/surfaces/roughness_texture.h"
 #include "hapticad/core/surfaces/stripe_pattern.h"
