@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""What HaptiCAD's Python proxies save in the document, in one place.
+"""What HaptiCAD's Python proxies save in the document, and the properties and checks
+every HaptiCAD object shares (its type tag, hidden bookkeeping, "is it being restored").
 
 FreeCAD 0.20 with Python 3.11 pickles a proxy through both protocols, ``dumps``/
 ``loads`` and ``__getstate__``/``__setstate__``; a proxy without all four makes
@@ -40,3 +41,25 @@ class NoState:
 
     def __setstate__(self, state):
         return None
+
+
+def add_type_tag(obj, type_tag):
+    """The hidden ``HaptiCADType`` string by which HaptiCAD finds its objects."""
+    if "HaptiCADType" not in obj.PropertiesList:
+        obj.addProperty("App::PropertyString", "HaptiCADType", "Base", "Type tag of HaptiCAD objects")
+        obj.setEditorMode("HaptiCADType", 2)  # hidden
+    obj.HaptiCADType = type_tag
+
+
+def add_hidden_state(obj, entries, group="Base"):
+    """Hidden string properties, (name, tooltip) each, for an object's own bookkeeping."""
+    for name, tip in entries:
+        if name not in obj.PropertiesList:
+            obj.addProperty("App::PropertyString", name, group, tip)
+            obj.setEditorMode(name, 2)
+
+
+def is_restoring(obj):
+    """Loading, or undoing / redoing: every property comes back as it was, and one must
+    not set others from it (undoing a material change would reset an overridden mu)."""
+    return "Restore" in obj.State or obj.Document.Restoring or obj.Document.Transacting

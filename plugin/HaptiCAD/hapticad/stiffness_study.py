@@ -25,7 +25,7 @@ from datetime import datetime
 import FreeCAD as App
 
 from . import _core, cohort, materials
-from .proxy_state import SchemaState
+from .proxy_state import SchemaState, add_hidden_state, add_type_tag, is_restoring
 
 TYPE = "HaptiCAD::StiffnessStudy"
 SCHEMA_VERSION = 1
@@ -85,10 +85,7 @@ class StiffnessStudy(SchemaState):
         self.setup(obj, new=True)
 
     def setup(self, obj, new=False):
-        if "HaptiCADType" not in obj.PropertiesList:
-            obj.addProperty("App::PropertyString", "HaptiCADType", "Base", "Type tag of HaptiCAD objects")
-            obj.setEditorMode("HaptiCADType", 2)
-        obj.HaptiCADType = TYPE
+        add_type_tag(obj, TYPE)
         for name, kind, group, tip, default, constraint in PROPERTIES:
             if name in obj.PropertiesList:
                 continue
@@ -97,10 +94,7 @@ class StiffnessStudy(SchemaState):
                 setattr(obj, name, (default, *constraint))
             elif default is not None:
                 setattr(obj, name, default)
-        for name, tip in HIDDEN_STATE:
-            if name not in obj.PropertiesList:
-                obj.addProperty("App::PropertyString", name, "Cohort", tip)
-                obj.setEditorMode(name, 2)
+        add_hidden_state(obj, HIDDEN_STATE, "Cohort")
         obj.setEditorMode("BendingStiffness", 1)
         obj.setEditorMode("Participants", 1)
         if new:
@@ -115,7 +109,7 @@ class StiffnessStudy(SchemaState):
         _update_stiffness(obj)
 
     def onChanged(self, obj, prop):
-        if "Restore" in obj.State or getattr(obj.Document, "Transacting", False):
+        if is_restoring(obj):
             return
         if prop == "BeamMaterial" and obj.BeamMaterial in materials.default_database():
             obj.YoungsModulus = materials.default_database().get(obj.BeamMaterial).youngs_modulus_gpa

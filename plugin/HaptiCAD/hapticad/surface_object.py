@@ -13,7 +13,7 @@ import math
 
 import FreeCAD as App
 
-from .proxy_state import SchemaState
+from .proxy_state import SchemaState, add_hidden_state, add_type_tag, is_restoring
 from . import curve_references, face_references, materials, textures
 
 TYPE = "HaptiCAD::HapticSurface"
@@ -128,12 +128,6 @@ TEXTURE_VALUES = ("TextureDC", "TextureViscosity", "TextureBeta", "TextureAlpha"
                   "TextureBetaViscosity", "TextureAlphaViscosity")
 
 
-def _is_restoring(obj):
-    """Loading, or undoing / redoing: every property comes back as it was, and one must
-    not set others from it (undoing a material change would reset an overridden mu)."""
-    return "Restore" in obj.State or obj.Document.Restoring or obj.Document.Transacting
-
-
 class HapticSurface(SchemaState):
     """Proxy of a HapticSurface object."""
 
@@ -144,14 +138,8 @@ class HapticSurface(SchemaState):
         self.setup(obj, new=True)
 
     def setup(self, obj, new=False):
-        if "HaptiCADType" not in obj.PropertiesList:
-            obj.addProperty("App::PropertyString", "HaptiCADType", "Base", "Type tag of HaptiCAD objects")
-            obj.setEditorMode("HaptiCADType", 2)  # hidden
-        obj.HaptiCADType = TYPE
-        for name, tip in HIDDEN_STATE:
-            if name not in obj.PropertiesList:
-                obj.addProperty("App::PropertyString", name, "Base", tip)
-                obj.setEditorMode(name, 2)
+        add_type_tag(obj, TYPE)
+        add_hidden_state(obj, HIDDEN_STATE)
         for name, kind, group, tip, default, constraint in PROPERTIES:
             added = name not in obj.PropertiesList
             if added:
@@ -180,7 +168,7 @@ class HapticSurface(SchemaState):
             obj.Material = current
 
     def onChanged(self, obj, prop):
-        if _is_restoring(obj) or getattr(self, "_applying", False):
+        if is_restoring(obj) or getattr(self, "_applying", False):
             return
         self._applying = True
         try:

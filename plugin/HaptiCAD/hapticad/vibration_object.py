@@ -11,7 +11,7 @@ import math
 
 import FreeCAD as App
 
-from .proxy_state import SchemaState
+from .proxy_state import SchemaState, add_type_tag
 
 TYPE = "HaptiCAD::HapticVibration"
 SCHEMA_VERSION = 1
@@ -36,9 +36,7 @@ class HapticVibration(SchemaState):
                 return True
             return False
 
-        if add("App::PropertyString", "HaptiCADType", "Base", "Type tag of HaptiCAD objects"):
-            obj.setEditorMode("HaptiCADType", 2)
-        obj.HaptiCADType = TYPE
+        add_type_tag(obj, TYPE)
         add("App::PropertyLinkGlobal", "Part", "Vibration", "The part that vibrates")
         add("App::PropertyBool", "Powered", "Vibration", "Whether the part is switched on")
         if add("App::PropertyFloatConstraint", "Frequency", "Vibration", "Vibration frequency, Hz"):

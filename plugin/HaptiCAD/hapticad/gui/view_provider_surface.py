@@ -11,12 +11,13 @@ opens the task panel.
 from .. import icon, overlay, preferences
 from ..face_references import BROKEN
 from ..proxy_state import NoState
+from .view_provider_base import EditsInTaskPanel
 
 # stripe texture: black, face colour, white, face colour (one stripe pair per period)
 _STRIPE_TEXELS = 4
 
 
-class ViewProviderHapticSurface(NoState):
+class ViewProviderHapticSurface(EditsInTaskPanel, NoState):
     def __init__(self, vobj):
         vobj.Proxy = self
 
@@ -162,29 +163,10 @@ class ViewProviderHapticSurface(NoState):
 
     # --- editing ----------------------------------------------------------------------
 
-    def setEdit(self, vobj, mode=0):
-        if mode != 0:
-            return None
+    def task_panel(self, obj):
         from .task_panel_surface import SurfaceTaskPanel
 
-        import FreeCADGui as Gui
-
-        Gui.Control.showDialog(SurfaceTaskPanel(vobj.Object))
-        return True
-
-    def unsetEdit(self, vobj, mode=0):
-        import FreeCADGui as Gui
-
-        Gui.Control.closeDialog()
-        return True
-
-    def doubleClicked(self, vobj):
-        import FreeCADGui as Gui
-
-        if Gui.Control.activeDialog():
-            return False
-        vobj.Document.setEdit(vobj.Object.Name, 0)
-        return True
+        return SurfaceTaskPanel(obj)
 
     def setupContextMenu(self, vobj, menu):
         from PySide2 import QtGui

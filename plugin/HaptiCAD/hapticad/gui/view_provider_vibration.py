@@ -1,26 +1,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """View provider of HapticVibration objects: icon; double-click edits the surface panel's
 vibration through the properties (a vibration draws nothing of its own)."""
-from .. import icon
-from ..proxy_state import NoState
+from .view_provider_base import DrawsNothing
 
 
-class ViewProviderHapticVibration(NoState):
-    def __init__(self, vobj):
-        vobj.Proxy = self
-
-    def attach(self, vobj):
-        from pivy import coin
-
-        self.Object = vobj.Object
-        vobj.addDisplayMode(coin.SoSeparator(), "Default")  # FreeCAD needs one display mode
-
-    def getDisplayModes(self, vobj):
-        return ["Default"]
-
-    def getDefaultDisplayMode(self):
-        return "Default"
-
-    def getIcon(self):
-        return icon("HaptiCAD_Vibration")
-
+class ViewProviderHapticVibration(DrawsNothing):
+    ICON = "HaptiCAD_Vibration"
