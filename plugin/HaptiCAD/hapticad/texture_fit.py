@@ -151,16 +151,22 @@ def fit_files(paths, period_mm, speeds_mm_s=PAPER_SPEEDS_MM_S, tolerance_percent
     return FitReport(fit, recordings, options, notes)
 
 
-def peak_force_n(fit):
-    """The largest force eq. 2 gives with the fitted lines at the fitted speeds (N)."""
-    peak = 0.0
-    for s in fit.speeds:
-        v = s.speed_mps / _core.VISCOUS_SPEED_UNIT_MPS
-        beta = fit.beta_h_n.intercept + v * fit.beta_h_n.slope
-        alpha = fit.alpha_h.intercept + v * fit.alpha_h.slope
-        ripple = abs(beta) * sum(i ** -alpha for i in range(1, 5))
-        peak = max(peak, fit.dc_n.intercept + v * fit.dc_n.slope + ripple)
-    return peak
+def eq2_newtons(fit):
+    """The fit as eq. 2's parameters in newtons (level 1 = 1 N): _core.ViscousTextureParams."""
+    params = _core.ViscousTextureParams()
+    params.f_dc, params.f_vis = fit.dc_n.intercept, fit.dc_n.slope
+    params.beta_h, params.beta_vis = fit.beta_h_n.intercept, fit.beta_h_n.slope
+    params.alpha_h, params.alpha_vis = fit.alpha_h.intercept, fit.alpha_h.slope
+    params.period_m = fit.period_m
+    return params
+
+
+def peak_force_n(fit, samples=256):
+    """The largest force eq. 2 (the core's) gives with the fit over a period, at the
+    fitted speeds (N)."""
+    params = eq2_newtons(fit)
+    xs = np.arange(samples) * fit.period_m / samples
+    return max((_core.viscous_texture_level(params, x, s.speed_mps) for s in fit.speeds for x in xs), default=0.0)
 
 
 def levels(fit, full_range_n):
