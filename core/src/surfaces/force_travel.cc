@@ -17,21 +17,23 @@ void Require(bool ok, const std::string& what) {
 
 double ForceTravel::ForceClamped(double x_m, double max_slope, bool* clamped) const {
   if (!(x_m > 0.0) || points <= 0) return 0.0;
-  double x0 = 0.0;
-  double f_law = 0.0;  // the law's force at x0
-  double f_out = 0.0;  // the clamped law's force at x0
-  for (int i = 0; i < points; ++i) {
-    const double x1 = travel_m[i];
-    double slope = (force_n[i] - f_law) / (x1 - x0);
-    const bool last = i + 1 == points;
-    if (max_slope > 0.0 && std::abs(slope) > max_slope) {
-      slope = std::copysign(max_slope, slope);
+  if (max_slope > 0.0) {
+    const double steepest = MaxSlope();
+    if (steepest > max_slope) {
+      // stretch the travel, keep the forces: the operating force and the snap ratio stay
+      x_m *= max_slope / steepest;
       if (clamped != nullptr) *clamped = true;
     }
-    if (x_m <= x1 || last) return std::max(f_out + slope * (x_m - x0), 0.0);
-    f_out += slope * (x1 - x0);
-    f_law = force_n[i];
+  }
+  double x0 = 0.0;
+  double f0 = 0.0;
+  for (int i = 0; i < points; ++i) {
+    const double x1 = travel_m[i];
+    if (x_m <= x1 || i + 1 == points) {
+      return std::max(f0 + (force_n[i] - f0) / (x1 - x0) * (x_m - x0), 0.0);
+    }
     x0 = x1;
+    f0 = force_n[i];
   }
   return 0.0;
 }
@@ -60,6 +62,11 @@ void ValidateForceTravel(const ForceTravel& law) {
     Require(law.force_n[i] >= 0.0, at + "force must be >= 0");
     previous = law.travel_m[i];
   }
+  const int last = law.points - 1;
+  const double before = last > 0 ? law.force_n[last - 1] : 0.0;
+  Require(law.force_n[last] > before,
+          "force-travel law: the last segment must rise (past it the law goes on with its "
+          "slope; a face that gave way for good would let the finger through)");
 }
 
 ForceTravel MakeLinearForceTravel(double stiffness_n_per_m) {

@@ -196,9 +196,12 @@ def device_note(study, max_stiffness_n_per_m):
         return ""
     if steepest <= max_stiffness_n_per_m:
         return ""
-    what = "the neck's stiffness" if study.Model == BEAM else "the button's steepest slope"
-    return (f"{what}, {steepest * MM:.3g} N/mm, is more than the device renders stably "
-            f"({max_stiffness_n_per_m * MM:.3g} N/mm): it feels softer there")
+    limit = f"({max_stiffness_n_per_m * MM:.3g} N/mm)"
+    if study.Model == BEAM:
+        return (f"the neck's stiffness, {steepest * MM:.3g} N/mm, is more than the device renders stably "
+                f"{limit}: it is felt as {max_stiffness_n_per_m * MM:.3g} N/mm, and stiffer necks alike")
+    return (f"the button's steepest slope, {steepest * MM:.3g} N/mm, is more than the device renders stably "
+            f"{limit}: its forces are kept, over a travel {steepest / max_stiffness_n_per_m:.2g} x longer")
 
 
 def design_value(study):

@@ -144,6 +144,9 @@ TEST_F(RendererOnBox, AForceTravelLawIsClampedToTheDeviceAndMakesNoEnergyThrough
   limits_.max_stiffness_n_per_m = 3000.0;
   ForceRenderer r(scene_, std::make_shared<SurfaceTable>(faces), limits_);
   EXPECT_TRUE(Press(r, 0.1e-3).flags & kStiffnessClamped);
+  // stretched 2.45 x: the operating force 1.47 N comes at 0.61 mm instead of 0.25
+  const double stretch = faces[5].force_travel->MaxSlope() / 3000.0;
+  EXPECT_NEAR(Press(r, 0.25e-3 * stretch).normal_force_n, 1.47, 1e-4);
   // press through the snap to 0.8 mm and back at 1 kHz; the device damps as Colgate's
   // bound asks of the steepest slope rendered (b = K T / 2): the sampled law never
   // gives out more than it took

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -33,23 +34,41 @@ TEST(ForceTravelTest, APushButtonRisesSnapsRisesAndBottomsOut) {
   EXPECT_NEAR(law.MaxSlope(), 0.735 / 0.1e-3, 1e-6);  // the snap is the steepest
 }
 
-TEST(ForceTravelTest, ClampedSlopesKeepTheForceContinuousAndSaySo) {
-  const ForceTravel law = MakePushButton({});
-  const double limit = 3000.0;
-  double previous = 0.0;
-  for (int i = 1; i <= 1000; ++i) {
-    const double x = i * 1e-6;
-    bool clamped = false;
-    const double f = law.ForceClamped(x, limit, &clamped);
-    EXPECT_LE(std::abs(f - previous), limit * 1e-6 + 1e-12) << x;
-    previous = f;
+TEST(ForceTravelTest, ADeviceTooSoftForTheLawFeelsItsForcesOverALongerTravel) {
+  const ForceTravel law = MakePushButton({});  // steepest: the snap, 7350 N/m
+  for (double limit : {400.0, 700.0, 3000.0}) {  // Touch, Omni, the simulated probe
+    const double stretch = law.MaxSlope() / limit;
+    double previous = 0.0;
+    double peak = 0.0;
+    for (int i = 1; i <= 20000; ++i) {
+      const double x = i * 1e-7 * stretch;
+      bool clamped = false;
+      const double f = law.ForceClamped(x, limit, &clamped);
+      EXPECT_TRUE(clamped);
+      EXPECT_LE(std::abs(f - previous), limit * 1e-7 * stretch + 1e-12) << x;
+      EXPECT_GE(f, 0.0);
+      if (x < 0.35e-3 * stretch) peak = std::max(peak, f);  // up to the snap's end
+      previous = f;
+    }
+    // the operating force and the snap ratio are kept, at a longer travel
+    EXPECT_NEAR(peak, 1.47, 1e-9) << limit;
+    EXPECT_NEAR(law.ForceClamped(0.25e-3 * stretch, limit, nullptr), 1.47, 1e-9);
+    EXPECT_NEAR(law.ForceClamped(0.35e-3 * stretch, limit, nullptr), 0.735, 1e-9);
   }
-  bool clamped = false;
-  EXPECT_NEAR(law.ForceClamped(0.1e-3, limit, &clamped), 0.3, 1e-12);  // 5880 N/m asked
-  EXPECT_TRUE(clamped);
-  bool unclamped = false;
-  EXPECT_NEAR(law.ForceClamped(0.1e-3, 10000.0, &unclamped), law.Force(0.1e-3), 1e-12);
-  EXPECT_FALSE(unclamped);
+  // a button pressed 0.1-0.6 mm never loses its force on a soft device (summing
+  // clamped slopes did: 0 N from 0.2 to 0.4 mm on a Touch)
+  PushButtonParams quick;
+  quick.pretravel_m = 0.1e-3;
+  quick.snap_travel_m = 0.2e-3;
+  const ForceTravel steep = MakePushButton(quick);
+  for (int i = 1; i <= 100; ++i) {
+    const double x = i * 1e-5;
+    EXPECT_GT(steep.ForceClamped(x, 400.0, nullptr), 0.0) << x;
+  }
+  // a law the device renders is untouched
+  bool untouched = false;
+  EXPECT_NEAR(law.ForceClamped(0.1e-3, 10000.0, &untouched), law.Force(0.1e-3), 1e-12);
+  EXPECT_FALSE(untouched);
 }
 
 TEST(ForceTravelTest, ACantileverMatchesTheFieldNotesToothbrush) {
@@ -83,6 +102,10 @@ TEST(ForceTravelTest, BadLawsAndButtonsAreRefusedWithAReason) {
             std::string::npos);
   law.points = 0;
   EXPECT_NE(message([&] { ValidateForceTravel(law); }).find("1 to 8 points"), std::string::npos);
+  law = MakePushButton({});
+  law.force_n[3] = law.force_n[2];  // gives way for good past the bottom
+  EXPECT_NE(message([&] { ValidateForceTravel(law); }).find("the last segment must rise"),
+            std::string::npos);
   PushButtonParams p;
   p.snap_ratio = 1.0;
   EXPECT_NE(message([&] { MakePushButton(p); }).find("snap ratio"), std::string::npos);

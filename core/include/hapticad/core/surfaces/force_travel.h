@@ -4,13 +4,14 @@
 // head on its bending neck, a push button's switch.
 //
 // The law is piecewise linear through (0, 0) and up to kMaxPoints points (travel
-// increasing, force >= 0), and continues past the last point with the last segment's
-// slope. Segments may fall (a tactile switch's snap): the force is a function of travel
-// alone, so a press and release along it gives back what it took, and under the
-// device's zero-order hold a falling segment dissipates (Colgate's sampled spring with
-// K < 0). A device renders no slope steeper than its stable stiffness: ForceClamped()
-// integrates the law with every slope clamped to +-max_slope, so the force never steps.
-//
+// increasing, force >= 0, the last segment rising), and continues past the last point
+// with the last segment's slope. Segments may fall (a tactile switch's snap): the force
+// is a function of travel alone, so a press and release along it gives back what it
+// took, and under the device's zero-order hold a falling segment dissipates (Colgate's
+// sampled spring with K < 0). A device renders no slope steeper than its stable
+// stiffness: ForceClamped() stretches the law's travel until its steepest segment is
+// that stiffness, so every force level (a button's operating force, its snap ratio) is
+// kept and only the travel grows; the force never steps.
 // Builders for the two case studies:
 //   CantileverStiffness   a beam clamped at one end, loaded at the other:
 //                         k = 3 E I / L^3, I = b h^3 / 12 (rectangular neck, bent across h).
@@ -33,14 +34,15 @@ struct ForceTravel {
 
   // The force (N) at travel x_m (0 and below: 0).
   double Force(double x_m) const { return ForceClamped(x_m, 0.0, nullptr); }
-  // The same with each segment's slope clamped to +-max_slope (N/m; 0: no clamp); sets
-  // *clamped when the travel lies on or past a clamped segment.
+  // The same with the travel stretched so that no slope exceeds max_slope (N/m; 0: no
+  // limit): F(x s) with s = min(1, max_slope / MaxSlope()). Sets *clamped when stretched.
   double ForceClamped(double x_m, double max_slope, bool* clamped) const;
   double MaxSlope() const;  // N/m: the steepest segment, rising or falling
 };
 
 // Throws std::invalid_argument saying what is wrong: no point, more than kMaxPoints,
-// travel not increasing from > 0, a force < 0, anything not finite.
+// travel not increasing from > 0, a force < 0, a last segment that does not rise,
+// anything not finite.
 void ValidateForceTravel(const ForceTravel& law);
 
 // A straight law of stiffness k (N/m > 0) through one point at 1 mm.
