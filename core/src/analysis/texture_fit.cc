@@ -18,16 +18,19 @@ namespace hapticad {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kMaxPeriods = 1e6;  // a section longer is a period given in the wrong unit
 
 [[noreturn]] void Fail(const std::string& what) {
   throw std::invalid_argument("texture fit: " + what);
 }
 
-std::string Mm(double metres) {
+std::string Text(double value) {
   std::ostringstream out;
-  out << metres * 1e3;
+  out << value;
   return out.str();
 }
+
+std::string Mm(double metres) { return Text(metres * 1e3); }
 
 void CheckOptions(const TextureFitOptions& o) {
   if (!(std::isfinite(o.period_m) && o.period_m > 0)) Fail("the grating period must be > 0");
@@ -38,14 +41,27 @@ void CheckOptions(const TextureFitOptions& o) {
   }
   if (!(o.speed_tolerance > 0 && o.speed_tolerance < 0.5))
     Fail("the speed tolerance must lie in (0, 0.5)");
+  std::vector<double> sorted = o.speeds_mps;
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t k = 1; k < sorted.size(); ++k) {
+    if (sorted[k] - sorted[k - 1] <= o.speed_tolerance * (sorted[k] + sorted[k - 1])) {
+      Fail("the speeds " + Mm(sorted[k - 1]) + " and " + Mm(sorted[k]) + " mm/s overlap within " +
+           Text(o.speed_tolerance * 100) + " %: a section would count for both");
+    }
+  }
   if (!(std::isfinite(o.lowpass_hz) && o.lowpass_hz >= 0))
     Fail("the low-pass cut-off must be >= 0 Hz");
   if (!(std::isfinite(o.velocity_window_s) && o.velocity_window_s > 0))
     Fail("the velocity window must be > 0 s");
-  if (o.min_periods < 2) Fail("a section needs at least 2 periods");
+  if (o.min_periods < 6) {
+    Fail("a section needs at least 6 periods (each harmonic's main lobe spans 5 bins, and the "
+         "background needs bins between them)");
+  }
   if (o.harmonics < 2 || o.harmonics > 8) Fail("fit 2 to 8 harmonics");
-  if (o.samples_per_period < 16 || o.samples_per_period > 1024)
-    Fail("resample with 16 to 1024 samples a period");
+  if (o.samples_per_period < 4 * o.harmonics || o.samples_per_period > 1024) {
+    Fail("resample with 4 x harmonics (" + std::to_string(4 * o.harmonics) +
+         ") to 1024 samples a period");
+  }
 }
 
 void CheckRecording(const TextureRecording& r, std::size_t index) {
@@ -66,6 +82,13 @@ void CheckRecording(const TextureRecording& r, std::size_t index) {
       Fail(name + "time does not increase at sample " + std::to_string(k + 1));
     }
   }
+}
+
+// The velocity window: as asked, or four sampling periods if that is longer (a 100 Hz
+// recording has one sample in 10 ms).
+double VelocityWindow(const TextureRecording& r, double asked) {
+  const double step = (r.time_s.back() - r.time_s.front()) / static_cast<double>(r.time_s.size() - 1);
+  return std::max(asked, 4.0 * step);
 }
 
 // Centred-difference velocity over `window` seconds; NaN where the window does not fit.
@@ -108,9 +131,10 @@ std::vector<std::pair<std::size_t, std::size_t>> FindRuns(const std::vector<doub
   return runs;
 }
 
-// The force averaged in N bins of width dx from x0, empty bins interpolated linearly
-// between their filled neighbours (held at the ends). False if fewer than 2 bins filled.
-bool ResampleInSpace(const TextureRecording& r, const std::vector<double>& resisting,
+// The resisting force (-sign x the force along +x) averaged in N bins of width dx from
+// x0, empty bins interpolated linearly between their filled neighbours (held at the
+// ends). False if fewer than 2 bins filled.
+bool ResampleInSpace(const TextureRecording& r, const std::vector<double>& force, double sign,
                      std::size_t first, std::size_t last, double x0, double dx, std::size_t bins,
                      std::vector<double>& out) {
   std::vector<double> sum(bins, 0.0);
@@ -118,7 +142,7 @@ bool ResampleInSpace(const TextureRecording& r, const std::vector<double>& resis
   for (std::size_t i = first; i <= last; ++i) {
     const double k = std::floor((r.position_m[i] - x0) / dx);
     if (k < 0 || k >= static_cast<double>(bins)) continue;
-    sum[static_cast<std::size_t>(k)] += resisting[i];
+    sum[static_cast<std::size_t>(k)] -= sign * force[i];  // the force resisting the motion
     ++count[static_cast<std::size_t>(k)];
   }
   std::vector<std::size_t> filled;
@@ -142,7 +166,8 @@ bool ResampleInSpace(const TextureRecording& r, const std::vector<double>& resis
 }
 
 // Mean kept as DC, linear trend removed, periodic Hann window, one-sided amplitudes.
-std::vector<double> AmplitudeSpectrum(std::vector<double> y, double& dc) {
+// y becomes the detrended, windowed signal the spectrum is taken of.
+std::vector<double> AmplitudeSpectrum(std::vector<double>& y, double& dc) {
   const std::size_t n = y.size();
   double mean = 0;
   for (double value : y) mean += value;
@@ -171,6 +196,34 @@ std::vector<double> AmplitudeSpectrum(std::vector<double> y, double& dc) {
     amplitude[k] = 4.0 * std::abs(spectrum[k]) / static_cast<double>(n);
   dc = mean;
   return amplitude;
+}
+
+// The amplitude of a sinusoid at `bins` cycles over the windowed signal y (a fractional
+// bin: the transform evaluated there, not at the FFT's integer bins).
+double AmplitudeAt(const std::vector<double>& windowed, double bins) {
+  std::complex<double> sum = 0;
+  const double step = -2 * kPi * bins / static_cast<double>(windowed.size());
+  for (std::size_t n = 0; n < windowed.size(); ++n) {
+    sum += windowed[n] * std::polar(1.0, step * static_cast<double>(n));
+  }
+  return 4.0 * std::abs(sum) / static_cast<double>(windowed.size());
+}
+
+// Where the fundamental lies, in bins, near bin P: the highest of bins P-2..P+2, refined
+// by a parabola through the logarithms of it and its neighbours (Hann's lobe is nearly
+// Gaussian there).
+double FindFundamental(const std::vector<double>& amplitude, std::size_t p) {
+  std::size_t best = p;
+  for (std::size_t k = p - 2; k <= p + 2 && k + 1 < amplitude.size(); ++k) {
+    if (amplitude[k] > amplitude[best]) best = k;
+  }
+  if (best < 1 || best + 1 >= amplitude.size()) return static_cast<double>(best);
+  const double a = std::log(std::max(amplitude[best - 1], 1e-300));
+  const double b = std::log(std::max(amplitude[best], 1e-300));
+  const double c = std::log(std::max(amplitude[best + 1], 1e-300));
+  const double curve = a - 2 * b + c;
+  const double shift = curve < 0 ? 0.5 * (a - c) / curve : 0.0;
+  return static_cast<double>(best) + std::clamp(shift, -0.5, 0.5);
 }
 
 SpeedLine FitLine(const std::vector<double>& v, const std::vector<double>& y) {
@@ -249,7 +302,6 @@ TextureFit FitTexture(const std::vector<TextureRecording>& recordings,
   std::sort(targets.begin(), targets.end());
   const double lambda = options.period_m;
   const double dx = lambda / options.samples_per_period;
-  const double half = 0.5 * options.velocity_window_s;
 
   TextureFit fit;
   fit.period_m = lambda;
@@ -259,7 +311,9 @@ TextureFit FitTexture(const std::vector<TextureRecording>& recordings,
     const TextureRecording& rec = recordings[r];
     std::vector<double> force = rec.lateral_force_n;
     if (options.lowpass_hz > 0) LowPassFirstOrder(rec.time_s, options.lowpass_hz, force);
-    const std::vector<double> v = WindowVelocity(rec, options.velocity_window_s);
+    const double window = VelocityWindow(rec, options.velocity_window_s);
+    const double half = 0.5 * window;
+    const std::vector<double> v = WindowVelocity(rec, window);
     for (double value : v) {
       if (!std::isfinite(value)) continue;
       seen_min = std::min(seen_min, std::abs(value));
@@ -276,31 +330,50 @@ TextureFit FitTexture(const std::vector<TextureRecording>& recordings,
         const double x_first = rec.position_m[first];
         const double x_last = rec.position_m[last];
         const double length = std::abs(x_last - x_first);
-        const int periods = static_cast<int>(std::floor(length / lambda));
+        const double whole = std::floor(length / lambda);
+        if (whole > kMaxPeriods) {
+          Fail("a section of " + Mm(length) + " mm holds " + std::to_string(whole) +
+               " periods of " + Mm(lambda) + " mm: is the grating's period given in mm?");
+        }
+        const int periods = static_cast<int>(whole);
         if (periods < options.min_periods) continue;
         const double sign = x_last > x_first ? 1.0 : -1.0;
-        std::vector<double> resisting(rec.position_m.size());
-        for (std::size_t i = first; i <= last; ++i) resisting[i] = -sign * force[i];
         const double x0 = std::min(x_first, x_last) + 0.5 * (length - periods * lambda);
         const std::size_t bins = static_cast<std::size_t>(periods) * options.samples_per_period;
         std::vector<double> resampled;
-        if (!ResampleInSpace(rec, resisting, first, last, x0, dx, bins, resampled)) continue;
+        if (!ResampleInSpace(rec, force, sign, first, last, x0, dx, bins, resampled)) continue;
         TextureSection section;
         section.recording = static_cast<int>(r);
+        section.first_sample = first;
+        section.last_sample = last;
         section.target_speed_mps = target;
-        section.speed_mps = length / (rec.time_s[last] - rec.time_s[first]);
+        const double duration = rec.time_s[last] - rec.time_s[first];
+        section.speed_mps = length / duration;
+        section.samples_per_period = static_cast<double>(last - first) / (length / lambda);
         section.start_m = x0;
         section.end_m = x0 + periods * lambda;
         section.periods = periods;
-        section.amplitude_n = AmplitudeSpectrum(std::move(resampled), section.dc_n);
-        if (options.lowpass_hz > 0) {
-          // undo the filter's known gain at each bin's frequency in time, f v: it is
-          // there to remove a rig's resonance, not to bend the harmonics' decay
-          for (std::size_t k = 1; k < section.amplitude_n.size(); ++k) {
-            const double hz = static_cast<double>(k) / periods / lambda * section.speed_mps;
-            section.amplitude_n[k] *=
-                std::sqrt(1.0 + (hz / options.lowpass_hz) * (hz / options.lowpass_hz));
-          }
+        section.amplitude_n = AmplitudeSpectrum(resampled, section.dc_n);
+        // the filter's known gain at a frequency of `bins` cycles a section (f v in time),
+        // the discrete filter's (LowPassFirstOrder's) at the section's mean step: divided
+        // out, so the filter removes a rig's resonance without bending the harmonics' decay
+        const double dt = duration / static_cast<double>(last - first);
+        const double keep = std::exp(-2 * kPi * options.lowpass_hz * dt);
+        const auto gain = [&](double bins) {
+          if (options.lowpass_hz <= 0) return 1.0;
+          const double theta = 2 * kPi * bins / periods / lambda * section.speed_mps * dt;
+          return (1 - keep) / std::sqrt(1 - 2 * keep * std::cos(theta) + keep * keep);
+        };
+        for (std::size_t k = 1; k < section.amplitude_n.size(); ++k) {
+          section.amplitude_n[k] /= gain(static_cast<double>(k));
+        }
+        // the harmonics at whole multiples of the fundamental found near bin P: a grating
+        // a little off the period given still reads right (its bin i P alone lost 15 %
+        // half a bin off, and more for higher harmonics)
+        const double fundamental = FindFundamental(section.amplitude_n, static_cast<std::size_t>(periods));
+        section.period_found_m = periods * lambda / fundamental;
+        for (int i = 1; i <= options.harmonics; ++i) {
+          section.harmonic_n.push_back(AmplitudeAt(resampled, i * fundamental) / gain(i * fundamental));
         }
         fit.sections.push_back(std::move(section));
       }
@@ -326,15 +399,15 @@ TextureFit FitTexture(const std::vector<TextureRecording>& recordings,
       section_dcs.push_back(s.dc_n);
       const std::size_t p = static_cast<std::size_t>(s.periods);
       for (int i = 1; i <= options.harmonics; ++i) {
-        const std::size_t k = p * static_cast<std::size_t>(i);
-        if (k < s.amplitude_n.size()) {
-          hx.push_back(i);
-          hy.push_back(s.amplitude_n[k]);
-        }
+        hx.push_back(i);
+        hy.push_back(s.harmonic_n[static_cast<std::size_t>(i - 1)]);
       }
+      speed.samples_per_period = speed.sections == 1
+                                     ? s.samples_per_period
+                                     : std::min(speed.samples_per_period, s.samples_per_period);
       for (std::size_t k = 1; k < s.amplitude_n.size(); ++k) {
         const std::size_t off = k % p;
-        if (off <= 1 || off >= p - 1) continue;  // a harmonic's bin or its Hann neighbours
+        if (off <= 2 || off >= p - 2) continue;  // a harmonic's main lobe under the Hann window
         const double fundamentals = static_cast<double>(k) / static_cast<double>(p);
         if (options.lowpass_hz > 0 && fundamentals / lambda * s.speed_mps >= options.lowpass_hz)
           break;

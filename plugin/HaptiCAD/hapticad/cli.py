@@ -304,7 +304,7 @@ def build_parser():
     fit.add_argument("--lowpass", type=float, default=1000.0, metavar="HZ",
                      help="first-order low-pass on the force, 0 for none (1000, as the paper's rig)")
     fit.add_argument("--harmonics", type=int, default=3, help="harmonic peaks fitted (3, as the paper)")
-    fit.add_argument("--min-periods", type=int, default=4, metavar="N", help="shortest section, periods (4)")
+    fit.add_argument("--min-periods", type=int, default=6, metavar="N", help="shortest section, periods (6)")
     fit.add_argument("--plot", metavar="PNG", help="draw the spectra and the fits against speed")
     fit.add_argument("--apply", metavar="FCSTD", help="set the fitted texture on a surface of this document and save it")
     fit.add_argument("--surface", metavar="NAME", help="the haptic surface (name or label) --apply sets")

@@ -38,7 +38,7 @@ class Recording:
     path: str
     kind: str  # "rig" or "trace"
     data: object  # _core.TextureRecording
-    normal_force_n: float = None  # mean over the samples, when recorded
+    normal_n: np.ndarray = None  # the normal force at each sample, when recorded
 
 
 @dataclass
@@ -50,16 +50,19 @@ class FitReport:
 
     @property
     def normal_force_n(self):
-        values = [r.normal_force_n for r in self.recordings if r.normal_force_n is not None]
-        return float(np.mean(values)) if values else None
+        """The mean normal force over the fitted sections' samples (N), when recorded:
+        what the finger pressed with while the texture was measured, not while idle."""
+        values = [self.recordings[s.recording].normal_n[s.first_sample:s.last_sample + 1]
+                  for s in self.fit.sections if self.recordings[s.recording].normal_n is not None]
+        return float(np.mean(np.concatenate(values))) if values else None
 
 
 def _read_columns(path):
     name = os.path.basename(path)
     try:
-        with open(path, newline="") as handle:
+        with open(path, newline="", encoding="utf-8-sig") as handle:  # a spreadsheet's BOM too
             header = [h.strip() for h in next(csv.reader([handle.readline()]), [])]
-    except UnicodeDecodeError:
+    except (UnicodeDecodeError, csv.Error):
         raise ValueError(f"{name}: not a text CSV file") from None
     if not header:
         raise ValueError(f"{name}: empty file")
@@ -82,8 +85,11 @@ def _read_columns(path):
 
 
 def _read_rows(path, name, wanted, index):
-    with open(path, newline="") as handle:
-        rows = list(csv.reader(handle))[1:]
+    try:
+        with open(path, newline="", encoding="utf-8-sig") as handle:
+            rows = list(csv.reader(handle))[1:]
+    except (UnicodeDecodeError, csv.Error) as exc:
+        raise ValueError(f"{name}: not a readable CSV file ({exc})") from None
     table = np.empty((len(rows), len(wanted)))
     kept = 0
     for line, row in enumerate(rows, start=2):
@@ -104,7 +110,7 @@ def load_recording(path):
     name = os.path.basename(path)
     if kind == "rig":
         t, x, f = c["time_s"], c["position_mm"] * MM, c["lateral_force_n"]
-        normal = float(np.mean(c["normal_force_n"])) if "normal_force_n" in c else None
+        normal = c.get("normal_force_n")
     else:
         touching = c["contact"] != 0
         if touching.sum() < 3:
@@ -115,7 +121,7 @@ def load_recording(path):
         _, _, axes = np.linalg.svd(p - p.mean(axis=0), full_matrices=False)
         direction = axes[0]
         t, x, f = c["time_s"][touching], (p - p.mean(axis=0)) @ direction, force @ direction
-        normal = float(np.mean(c["normal_force_n"][touching]))
+        normal = c["normal_force_n"][touching]
     try:
         data = _core.TextureRecording(np.ascontiguousarray(t), np.ascontiguousarray(x), np.ascontiguousarray(f))
     except ValueError as exc:
@@ -124,7 +130,7 @@ def load_recording(path):
 
 
 def fit_files(paths, period_mm, speeds_mm_s=PAPER_SPEEDS_MM_S, tolerance_percent=2.5, lowpass_hz=1000.0,
-              harmonics=3, min_periods=4):
+              harmonics=3, min_periods=6):
     """Fits the recordings in ``paths``. Raises ValueError for unreadable files, bad options,
     or recordings that hold no section of constant speed."""
     if not paths:
@@ -132,23 +138,57 @@ def fit_files(paths, period_mm, speeds_mm_s=PAPER_SPEEDS_MM_S, tolerance_percent
     recordings = [load_recording(p) for p in paths]
     options = _core.TextureFitOptions()
     options.period_m = float(period_mm) * MM
-    options.speeds_mps = [float(s) * MM for s in speeds_mm_s]
+    options.speeds_mps = sorted({float(s) * MM for s in speeds_mm_s})  # "50, 50" is one speed
     options.speed_tolerance = float(tolerance_percent) / 100.0
     options.lowpass_hz = float(lowpass_hz)
     options.harmonics = int(harmonics)
     options.min_periods = int(min_periods)
     try:
         fit = _core.fit_texture([r.data for r in recordings], options)
-    except ValueError as exc:  # the core counts recordings; the designer knows their files
-        raise ValueError(re.sub(r"recording (\d+):", lambda m: f"{os.path.basename(paths[int(m.group(1)) - 1])}:",
-                                str(exc))) from None
+    except ValueError as exc:  # the core counts recordings and samples; the designer knows files and lines
+        raise ValueError(re.sub(r"recording (\d+): (.*?)sample (\d+)|recording (\d+):",
+                                lambda m: _where(recordings, paths, m), str(exc))) from None
     notes = []
     if fit.speeds_without_sections_mps:
         missing = ", ".join(f"{s / MM:g}" for s in fit.speeds_without_sections_mps)
         notes.append(f"no section at {missing} mm/s: those speeds are not in the fit")
     if len(fit.speeds) == 1:
         notes.append("one speed only: the viscous terms (f_vis, beta_vis, alpha_vis) are 0")
+    notes += _quality_notes(fit, options)
     return FitReport(fit, recordings, options, notes)
+
+
+def _where(recordings, paths, match):
+    """A core message's "recording N: ... sample K" as the file and, for a rig's CSV, its line."""
+    if match.group(4):
+        return f"{os.path.basename(paths[int(match.group(4)) - 1])}:"
+    index, what, sample = int(match.group(1)) - 1, match.group(2), int(match.group(3))
+    name = os.path.basename(paths[index])
+    if index < len(recordings) and recordings[index].kind == "rig":
+        return f"{name}: {what}line {sample + 1}"
+    return f"{name}: {what}contact row {sample}"
+
+
+def _quality_notes(fit, options):
+    """What a designer should know before trusting the fit."""
+    notes = []
+    for s in fit.speeds:
+        wanted = 8 * options.harmonics
+        if s.samples_per_period < wanted:
+            rate = s.speed_mps / fit.period_m * wanted
+            notes.append(f"at {s.speed_mps / MM:.0f} mm/s the recording has {s.samples_per_period:.1f} samples a "
+                         f"period (fewer than {wanted}): interpolating between them lowers the higher harmonics "
+                         f"and bends alpha_h; record at {rate:.0f} Hz or more")
+        if s.harmonic.r_squared < 0.9:
+            notes.append(f"at {s.speed_mps / MM:.0f} mm/s the harmonics do not follow a power law "
+                         f"(r^2 {s.harmonic.r_squared:.2f}): is the grating's period right?")
+    found = [s.period_found_m for s in fit.sections]
+    if found:
+        median = float(np.median(found))
+        if abs(median - fit.period_m) > 0.01 * fit.period_m:
+            notes.append(f"the recordings show a grating period of {median / MM:.4g} mm, not the "
+                         f"{fit.period_m / MM:g} mm given: the harmonics were read at the period found")
+    return notes
 
 
 def eq2_newtons(fit):
@@ -167,6 +207,14 @@ def peak_force_n(fit, samples=256):
     params = eq2_newtons(fit)
     xs = np.arange(samples) * fit.period_m / samples
     return max((_core.viscous_texture_level(params, x, s.speed_mps) for s in fit.speeds for x in xs), default=0.0)
+
+
+def trough_force_n(fit, samples=256):
+    """The smallest force eq. 2 (the core's) gives with the fit over a period, at the
+    fitted speeds (N); below 0 the renderer clips it."""
+    params = eq2_newtons(fit)
+    xs = np.arange(samples) * fit.period_m / samples
+    return min((_core.viscous_texture_level(params, x, s.speed_mps) for s in fit.speeds for x in xs), default=0.0)
 
 
 def levels(fit, full_range_n):
@@ -220,6 +268,10 @@ def apply_to_surface(surface, report):
     bad = [k for k, v in values.items() if not math.isfinite(v)]
     if bad:
         raise ValueError(f"the fit gave a non-finite {', '.join(bad)}; nothing was changed")
+    if report.fit.beta_h_n.intercept <= 0 or report.fit.alpha_h.intercept <= 0:
+        raise ValueError(f"the fit is no grating of period {report.fit.period_m / MM:g} mm (beta_h "
+                         f"{report.fit.beta_h_n.intercept:.3g} N, alpha_h {report.fit.alpha_h.intercept:.3g}: "
+                         "its harmonics do not fall off); check the period. Nothing was changed")
     if values["TexturePeriod"] < 1e-3:
         raise ValueError("the grating period is below 0.001 mm; nothing was changed")
     surface.Texture = "Custom"
@@ -228,10 +280,10 @@ def apply_to_surface(surface, report):
     peak = peak_force_n(report.fit) / full
     if peak > 1:
         notes.append(f"the fitted force reaches {peak:.2f} x level 1: above level 1 it is clipped")
-    low = [s for s in report.fit.speeds
-           if report.fit.dc_n.intercept + report.fit.dc_n.slope * s.speed_mps / _core.VISCOUS_SPEED_UNIT_MPS < 0]
-    if low:
-        notes.append(f"the fitted DC level is below 0 at {low[0].speed_mps / MM:.0f} mm/s: clipped to 0 there")
+    trough = trough_force_n(report.fit)
+    if trough < 0:
+        notes.append(f"the fitted force dips to {trough:.3g} N in the grating's troughs: below 0 it is clipped "
+                     "(the texture only resists)")
     return report.notes + notes
 
 
@@ -239,14 +291,15 @@ def summary(report):
     """The fit as JSON-able data: per speed and the eq. 2 lines (N, per 400 mm/s)."""
     fit = report.fit
     return {
-        "recordings": [{"path": r.path, "kind": r.kind, "samples": r.data.samples,
-                        "normal_force_n": r.normal_force_n} for r in report.recordings],
+        "recordings": [{"path": r.path, "kind": r.kind, "samples": r.data.samples} for r in report.recordings],
+        "normal_force_n": report.normal_force_n,
         "period_mm": fit.period_m / MM,
         "sections": len(fit.sections),
         "speeds": [{
             "target_mm_s": s.target_speed_mps / MM,
             "measured_mm_s": s.speed_mps / MM,
             "sections": s.sections,
+            "samples_per_period": s.samples_per_period,
             "dc_n": s.dc_n,
             "dc_sd_n": s.dc_sd_n,
             "harmonic_beta_n": s.harmonic.beta,
@@ -257,6 +310,7 @@ def summary(report):
             "background_points": s.background.points,
         } for s in fit.speeds],
         "speeds_without_sections_mm_s": [s / MM for s in fit.speeds_without_sections_mps],
+        "period_found_mm": float(np.median([s.period_found_m for s in fit.sections])) / MM,
         "eq2_newtons": {
             "f_dc_n": fit.dc_n.intercept,
             "f_vis_n_per_400mm_s": fit.dc_n.slope,

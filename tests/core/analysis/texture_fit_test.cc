@@ -236,6 +236,53 @@ TEST(TextureFitTest, TheFiltersGainIsUndoneOnTheHarmonics) {
   EXPECT_NEAR(fit.speeds.at(0).harmonic.alpha, truth.alpha_h, 0.02);
 }
 
+TEST(TextureFitTest, AGratingALittleOffThePeriodGivenStillReadsRight) {
+  ViscousTextureParams truth;
+  truth.alpha_h = 2.5;
+  TextureFitOptions options = Unfiltered();
+  options.speeds_mps = {0.05, 0.12};
+  for (double off : {0.995, 1.01, 1.02}) {  // the period given, relative to the true 2.5 mm
+    options.period_m = truth.period_m * off;
+    const TextureFit fit = FitTexture({MakeRecording(truth, options.speeds_mps, 20000)}, options);
+    for (const SpeedFit& s : fit.speeds) {
+      // read at the single bin i P, these were 2.60, 2.88 and 4.45 (found by review)
+      EXPECT_NEAR(s.harmonic.alpha, truth.alpha_h, 0.05) << off;
+      EXPECT_NEAR(s.harmonic.beta, kFullRangeN * truth.beta_h, 0.02 * kFullRangeN * truth.beta_h) << off;
+    }
+    for (const TextureSection& s : fit.sections) {
+      EXPECT_NEAR(s.period_found_m, truth.period_m, 0.003 * truth.period_m) << off;
+    }
+  }
+}
+
+TEST(TextureFitTest, SaysHowDenselyEachSectionWasRecorded) {
+  const ViscousTextureParams truth;
+  TextureFitOptions options;
+  options.speeds_mps = {0.05, 0.27};
+  const TextureRecording r = MakeRecording(truth, options.speeds_mps, 1000);
+  const TextureFit fit = FitTexture({r}, options);
+  ASSERT_EQ(fit.speeds.size(), 2u);
+  EXPECT_NEAR(fit.speeds[0].samples_per_period, 1000 * 2.5e-3 / 0.05, 1.0);  // 50
+  EXPECT_NEAR(fit.speeds[1].samples_per_period, 1000 * 2.5e-3 / 0.27, 0.5);  // 9.3
+  for (const TextureSection& s : fit.sections) {
+    ASSERT_LT(s.last_sample, r.time_s.size());
+    // the samples span the section: its whole periods and less than one more
+    const double travelled = (r.time_s[s.last_sample] - r.time_s[s.first_sample]) * s.speed_mps;
+    EXPECT_GE(travelled, s.end_m - s.start_m - 1e-9);
+    EXPECT_LT(travelled, s.end_m - s.start_m + 2.5e-3);
+  }
+}
+
+TEST(TextureFitTest, ARecordingTooSparseForTheVelocityWindowStillFindsItsSpeeds) {
+  // 100 Hz: one sample in the 10 ms window; the window widens to four samples
+  const ViscousTextureParams truth;
+  TextureFitOptions options = Unfiltered();
+  options.speeds_mps = {0.05};
+  const TextureFit fit = FitTexture({MakeRecording(truth, {0.05}, 100)}, options);
+  EXPECT_EQ(fit.speeds.at(0).sections, 2);
+  EXPECT_NEAR(fit.dc_n.intercept, kFullRangeN * truth.f_dc, 0.01);
+}
+
 TEST(TextureFitTest, LowPassHasHalfPowerAtItsCutOff) {
   std::vector<double> t;
   std::vector<double> y;
@@ -292,6 +339,21 @@ TEST(TextureFitTest, RefusesInputItCannotFitAndSaysWhy) {
   bad = {};
   bad.harmonics = 1;
   EXPECT_NE(message({good}, bad).find("harmonics"), std::string::npos);
+  bad = {};
+  bad.speeds_mps = {0.05, 0.051};  // a section at 50.5 mm/s would count twice
+  EXPECT_NE(message({good}, bad).find("the speeds 50 and 51 mm/s overlap within 2.5 %"), std::string::npos)
+      << message({good}, bad);
+  bad = {};
+  bad.min_periods = 5;  // no background bins between the harmonics' lobes
+  EXPECT_NE(message({good}, bad).find("at least 6 periods"), std::string::npos);
+  bad = {};
+  bad.harmonics = 8;
+  bad.samples_per_period = 16;  // harmonic 8 on the Nyquist bin
+  EXPECT_NE(message({good}, bad).find("4 x harmonics (32)"), std::string::npos);
+  bad = {};
+  bad.period_m = 2.5e-9;  // 2.5 mm given in metres and mm at once: 28 million periods
+  bad.speeds_mps = {0.05};
+  EXPECT_NE(message({good}, bad).find("is the grating's period given in mm?"), std::string::npos);
 }
 
 }  // namespace

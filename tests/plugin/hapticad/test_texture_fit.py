@@ -62,7 +62,7 @@ class RoundTripTest(unittest.TestCase):
     def test_traces_are_read_as_recordings_along_the_stroke(self):
         for recording in self.report.recordings:
             self.assertEqual(recording.kind, "trace")
-            self.assertGreater(recording.normal_force_n, 0.1)  # k * 1 mm, the probe pressing
+        self.assertGreater(self.report.normal_force_n, 0.1)  # k * 1 mm, the probe pressing
         self.assertEqual([s.sections for s in self.report.fit.speeds], [1, 1, 1])
         for s, target in zip(self.report.fit.speeds, SPEEDS):
             self.assertAlmostEqual(s.speed_mps * 1e3, target, delta=0.01 * target)
@@ -100,16 +100,27 @@ class RoundTripTest(unittest.TestCase):
         finally:
             App.closeDocument(doc.Name)
 
-    def test_a_friction_level_texture_takes_level_1_from_the_recorded_normal_force(self):
+    def test_a_friction_level_texture_renders_the_recorded_newtons_at_the_recorded_press(self):
         doc = App.newDocument("TextureFitFriction")
         try:
             box = doc.addObject("Part::Box", "Box")
+            box.Length, box.Width, box.Height = 40, 100, 10
             doc.recompute()
-            target = HaptiCAD.make_surface(doc, [(box, "Face6")], material="ABS", FeelRoughness=False,
-                                           TextureScale="Friction level")
-            texture_fit.apply_to_surface(target, self.report)
-            full = target.StaticFriction * self.report.normal_force_n
-            self.assertAlmostEqual(target.TextureDC * full, TRUTH["TextureDC"] * FULL_RANGE_N, delta=0.02)
+            # level 1 = mu_s x the press: 2 x 0.8 N holds the recorded 1.3 N at most
+            target = HaptiCAD.make_surface(doc, [(box, "Face6")], material="ABS", static_friction=2.0,
+                                           FeelRoughness=False, TextureScale="Friction level")
+            notes = texture_fit.apply_to_surface(target, self.report)
+            self.assertFalse(any("clipped" in n for n in notes), notes)
+            # stroked as the source was (same material, same press), it drags as the source did
+            scene = build_document_scene(doc)
+            stroke = Stroke((20, 10, 10), (20, 90, 10), speed_mm_s=120.0, depth_mm=1.0, rate_hz=5000)
+            result = run_without_host_stall(lambda: run_stroke(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
+            path = os.path.join(self.tmp.name, "friction_level.csv")
+            write_trace_csv(path, result, scene)
+            again = texture_fit.fit_files([path], 2.5, (120,), lowpass_hz=0).fit.speeds[0]
+            source = self.report.fit.speeds[1]  # 120 mm/s
+            self.assertAlmostEqual(again.dc_n, source.dc_n, delta=0.02 * source.dc_n)
+            self.assertAlmostEqual(again.harmonic.beta, source.harmonic.beta, delta=0.03 * source.harmonic.beta)
         finally:
             App.closeDocument(doc.Name)
 
@@ -155,13 +166,42 @@ class RigRecordingTest(unittest.TestCase):
                  ("number.csv", "number.csv, line 3: lateral_force_n is not a number"),
                  ("empty.csv", "empty file"),
                  ("header.csv", "header.csv: fewer than 3 samples"),
-                 ("backwards.csv", "backwards.csv: time does not increase at sample 3"),
+                 ("backwards.csv", "backwards.csv: time does not increase at line 4"),
                  ("missing.csv", "No such file")]
         for name, message in cases:
             with self.subTest(name=name):
                 with self.assertRaises((ValueError, OSError)) as caught:
                     texture_fit.fit_files([self.path(name)], 2.5)
                 self.assertIn(message, str(caught.exception))
+
+    def test_the_normal_force_is_the_press_while_stroking_not_while_idle(self):
+        write_rig_csv(self.path("pressed.csv"), normal_force_n=0.8)
+        with open(self.path("pressed.csv")) as f:
+            header, *rows = f.read().splitlines()
+        idle = [f"{-2 + 0.001 * k:.6f},0.000000,0.000000,0.000" for k in range(2000)]  # 2 s resting at 0 N
+        with open(self.path("idle_first.csv"), "w") as f:
+            f.write("\n".join([header, *idle, *rows]) + "\n")
+        report = texture_fit.fit_files([self.path("idle_first.csv")], 2.5, (50, 120))
+        self.assertAlmostEqual(report.normal_force_n, 0.8, places=6)
+
+    def test_a_wrong_period_is_said_and_not_set(self):
+        write_rig_csv(self.path("grating.csv"))
+        near = texture_fit.fit_files([self.path("grating.csv")], 2.55, (50, 120))  # 2 % off
+        self.assertTrue(any("show a grating period of 2.5 mm" in n for n in near.notes), near.notes)
+        self.assertAlmostEqual(texture_fit.levels(near.fit, 2.0)["TextureAlpha"], 2.5, delta=0.05)
+        wrong = texture_fit.fit_files([self.path("grating.csv")], 5.0, (50, 120))  # the designer's slip
+        self.assertTrue(any("do not follow a power law" in n for n in wrong.notes), wrong.notes)
+        doc = App.newDocument("TextureFitWrongPeriod")
+        try:
+            box = doc.addObject("Part::Box", "Box")
+            doc.recompute()
+            surface = HaptiCAD.make_surface(doc, [(box, "Face6")], material="ABS", FeelRoughness=False)
+            with self.assertRaises(ValueError) as caught:
+                texture_fit.apply_to_surface(surface, wrong)
+            self.assertIn("no grating of period 5 mm", str(caught.exception))
+            self.assertEqual(surface.Texture, "None")
+        finally:
+            App.closeDocument(doc.Name)
 
     def test_a_recording_at_other_speeds_says_which_it_holds(self):
         write_rig_csv(self.path("slow.csv"), speeds_mm_s=(20.0,))

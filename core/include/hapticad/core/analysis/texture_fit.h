@@ -13,18 +13,21 @@
 //     period / samples_per_period, empty bins interpolated linearly), trimmed to a whole
 //     number P of periods, detrended (its mean kept) and Hann-windowed, and its spatial
 //     FFT taken. Harmonic i of the grating falls in bin i P. Each bin's amplitude is
-//     divided by the filter's gain at its frequency in time, f v (so the filter removes
+//     divided by the (discrete) filter's gain at its frequency in time, f v (so the filter removes
 //     a rig's resonance without bending the harmonics' decay: the paper's 1000 Hz
 //     filter lowered its fourth harmonic at high speeds).
 //  4. Per speed: f_DC is the mean resisting force; the first `harmonics` harmonic
-//     amplitudes of all sections are fitted with A_i = beta_h i^-alpha_h, and the
-//     non-harmonic bins (each harmonic's bin and the one either side, where the Hann
-//     window spreads it, excluded; and only those below
-//     the filter's cut-off in time, f v < lowpass_hz) with B(f) = beta_b f^-alpha_b.
+//     amplitudes of all sections (read at whole multiples of the fundamental found
+//     within 2 bins of bin P, so a grating a little off the period given reads right)
+//     are fitted with A_i = beta_h i^-alpha_h, and the non-harmonic bins (each harmonic's
+//     Hann main lobe, bins i P - 2 .. i P + 2, excluded; and only those below the filter's cut-off in time, f v < lowpass_hz) with B(f) = beta_b f^-alpha_b.
 //     Both are least squares on logarithms, as the paper's "best fit power model".
 //     Frequencies are in multiples of the grating's fundamental 1/lambda, so beta_h is
 //     the fundamental's amplitude (eq. 2's beta_h) and beta_b the noise at the
-//     fundamental's frequency (eq. 1's f_k = i / lambda, rescaled).
+//     fundamental's frequency (eq. 1's f_k = i / lambda, rescaled). beta_b is an
+//     amplitude per bin, so a random background's beta_b falls as 1 / sqrt(section
+//     length): compare it only between fits of like sections; alpha_b does not depend
+//     on the length.
 //  5. Across speeds, with v in units of 400 mm/s as in eq. 2: f_DC + v f_vis,
 //     beta_h + v beta_vis and alpha_h + v alpha_vis are straight lines fitted through the
 //     per-speed values (one speed: the viscous terms are 0).
@@ -37,6 +40,7 @@
 // options, no section at any speed). Allocates; not for the servo thread.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -56,22 +60,33 @@ struct TextureFitOptions {
   double speed_tolerance = 0.025;                                   // relative, in (0, 0.5)
   double lowpass_hz = 1000.0;                                       // 0: no filter
   double velocity_window_s = 0.01;                                  // > 0
-  int min_periods = 4;                                              // >= 2
+  int min_periods = 6;          // >= 6: each harmonic's Hann lobe spans 5 bins
   int harmonics = 3;            // fitted; the paper used the first three, 2..8
-  int samples_per_period = 64;  // spatial resampling, 16..1024
+  int samples_per_period = 64;  // spatial resampling, 4 x harmonics .. 1024
 };
 
 // One section of constant velocity and its one-sided amplitude spectrum.
 struct TextureSection {
-  int recording = 0;  // index into the recordings
+  int recording = 0;             // index into the recordings
+  std::size_t first_sample = 0;  // the section's samples in its recording, inclusive
+  std::size_t last_sample = 0;
   double target_speed_mps = 0;
   double speed_mps = 0;  // measured: distance / time over the section
   double start_m = 0;    // the section's extent along x
   double end_m = 0;
   int periods = 0;  // P
   double dc_n = 0;  // mean resisting force
+  // recorded samples a period: below some 8 a harmonic, interpolating between them
+  // lowers the higher harmonics (and bends alpha_h)
+  double samples_per_period = 0;
   // amplitude_n[k] at frequency k / P fundamentals, k = 0 .. N/2 (amplitude_n[0] = dc_n)
   std::vector<double> amplitude_n;
+  // harmonic i's amplitude at [i - 1], i = 1..harmonics, read at i times the fundamental
+  // found near bin P
+  std::vector<double> harmonic_n;
+  // the grating's period as the section shows it: the fundamental found near bin P (a
+  // period given wrong by more than 2 / P of itself is not found: see the fit's r^2)
+  double period_found_m = 0;
 };
 
 // A power law y = beta x^-alpha fitted by least squares on logarithms.
@@ -86,6 +101,7 @@ struct SpeedFit {
   double target_speed_mps = 0;
   double speed_mps = 0;  // mean measured speed of its sections
   int sections = 0;
+  double samples_per_period = 0;  // the fewest recorded samples a period of its sections
   double dc_n = 0;      // mean of the sections' DC
   double dc_sd_n = 0;   // their standard deviation (0 for one section)
   PowerFit harmonic;    // A_i = beta i^-alpha, beta in N
