@@ -223,7 +223,7 @@ def cmd_cohort(args):
             raise ValueError("--csv writes one study's cohort: name it with --study")
         result = []
         for study in studies:
-            records = stiffness_study.records(study)
+            records = stiffness_study.comparable_records(study)
             value, unit = stiffness_study.design_value(study)
             result.append({"study": study.Label, "model": study.Model, "design_value": value, "unit": unit,
                            "participants": len(records), "statistics": cohort.statistics(records),

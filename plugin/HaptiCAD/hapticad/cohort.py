@@ -11,6 +11,7 @@ are kept in the study object as JSON and exported and imported as CSV. No GUI.
 """
 import csv
 import math
+import os
 import statistics as stats
 from dataclasses import asdict, dataclass, field
 
@@ -112,6 +113,8 @@ def write_csv(path, records):
         out.writerow(CSV_COLUMNS)
         for r in records:
             d = r.as_dict()
+            if d["name"][:1] in ("=", "+", "-", "@"):  # a spreadsheet would run it as a formula
+                d["name"] = "'" + d["name"]
             d["design"] = ";".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in r.design.items())
             out.writerow([d[c] for c in CSV_COLUMNS])
 
@@ -119,22 +122,34 @@ def write_csv(path, records):
 def read_csv(path):
     """Records from a CSV written by write_csv (or by hand with its columns). Raises
     ValueError naming the line of a record that cannot be kept; nothing is returned then."""
-    with open(path, newline="") as handle:
-        rows = list(csv.DictReader(handle))
+    name = os.path.basename(path)
+    try:
+        with open(path, newline="", encoding="utf-8-sig") as handle:  # a spreadsheet's BOM too
+            reader = csv.DictReader(handle)
+            rows = list(reader)
+            header = reader.fieldnames or []
+    except UnicodeDecodeError:
+        raise ValueError(f"{name}: not UTF-8 text; save it from the spreadsheet as CSV UTF-8") from None
+    except csv.Error as exc:
+        raise ValueError(f"{name}: not a readable CSV file ({exc})") from None
+    missing = [c for c in CSV_COLUMNS[:7] if c not in header]
+    if missing:
+        raise ValueError(f"{name}: needs the comma-separated columns {', '.join(CSV_COLUMNS[:7])}; its header is "
+                         f"{', '.join(header) or 'empty'}")
     records = []
     for line, row in enumerate(rows, start=2):
         missing = [c for c in CSV_COLUMNS[:7] if not row.get(c)]
         if missing:
-            raise ValueError(f"{path}, line {line}: no {', '.join(missing)}")
+            raise ValueError(f"{name}, line {line}: no {', '.join(missing)}")
         try:
             design = dict(item.split("=", 1) for item in (row.get("design") or "").split(";") if "=" in item)
             record = Record(row["name"], row["gender"], row["age_band"], float(row["weight_kg"]),
                             float(row["height_mm"]), float(row["value"]), row["unit"], row.get("model", ""),
                             design, row.get("recorded", ""))
         except ValueError:
-            raise ValueError(f"{path}, line {line}: weight, height and value must be numbers") from None
+            raise ValueError(f"{name}, line {line}: weight, height and value must be numbers") from None
         wrong = problems(record)
         if wrong:
-            raise ValueError(f"{path}, line {line}: {'; '.join(wrong)}")
+            raise ValueError(f"{name}, line {line}: {'; '.join(wrong)}")
         records.append(record)
     return records

@@ -180,9 +180,10 @@ def force_travel(study):
 
 
 def force_travel_of(surface):
-    """The law a surface's faces feel, or None when no valid study holds it."""
+    """The law a surface's faces feel, or None when no study holds it or its law cannot
+    be made (law_problems says why). Problems of the slider alone do not drop the law."""
     study = study_of(surface)
-    if study is None or validate(study):
+    if study is None or law_problems(study):
         return None
     return force_travel(study)
 
@@ -206,9 +207,12 @@ def device_note(study, max_stiffness_n_per_m):
 
 def design_value(study):
     """(value, unit) a participant's preference is recorded as: the bending stiffness
-    (N/mm) of a beam, the operating force (N) of a button."""
+    (N/mm) of a beam, whatever the slider moves; of a button, what the slider moves (its
+    operating force in N, its snap ratio)."""
     if study.Model == BEAM:
         return study.BendingStiffness, "N/mm"
+    if study.Adjust == "SnapRatio":
+        return study.SnapRatio, "snap ratio"
     return study.OperatingForce, "N"
 
 
@@ -219,9 +223,9 @@ def design(study):
     return {name: float(getattr(study, name)) for name in names}
 
 
-def validate(study):
-    """Problems with a study's current values, as sentences (empty when fine)."""
-    from .surface_object import is_haptic_surface
+def law_problems(study):
+    """Problems that keep the study's law off its surface's faces, as sentences."""
+    from .surface_object import active_reference_pairs, is_haptic_surface
 
     found = []
     if study.Surface is None:
@@ -233,9 +237,23 @@ def validate(study):
         if others:
             found.append(f"{study.Surface.Label} is also studied by {', '.join(others)}: a face gives one way; "
                          "link another surface")
+        if not active_reference_pairs(study.Surface):
+            found.append(f"{study.Surface.Label} tags no face (its faces are gone or broken): nothing to press")
+    try:
+        if study.Surface is None or is_haptic_surface(study.Surface):
+            force_travel(study)
+    except ValueError as exc:
+        found.append(str(exc))
+    return found
+
+
+def validate(study):
+    """Problems with a study's current values, as sentences (empty when fine): its law's
+    (law_problems), and its slider's."""
+    found = law_problems(study)
     if study.Adjust not in ADJUSTABLE[study.Model]:
         found.append(f"the slider moves {study.Adjust}, which the {study.Model.lower()} model does not use")
-    if not study.AdjustMin < study.AdjustMax:
+    elif not study.AdjustMin < study.AdjustMax:
         found.append(f"the slider's range {study.AdjustMin:g}..{study.AdjustMax:g} is empty")
     else:
         prop = next(p for p in PROPERTIES if p[0] == study.Adjust)
@@ -243,11 +261,6 @@ def validate(study):
         if study.AdjustMin < low or study.AdjustMax > high:
             found.append(f"the slider's range {study.AdjustMin:g}..{study.AdjustMax:g} leaves {low:g}..{high:g}, "
                          f"what {study.Adjust} allows")
-    try:
-        if study.Surface is None or is_haptic_surface(study.Surface):
-            force_travel(study)
-    except ValueError as exc:
-        found.append(str(exc))
     return found
 
 
@@ -265,15 +278,27 @@ def _write_records(study, kept):
     study.Participants = len(kept)
 
 
-def record_preference(study, name, gender, age_band, weight_kg, height_mm):
-    """Keeps a participant's preference for the design as it is now. Raises ValueError,
-    keeping nothing, if the record or the study is not valid."""
+def comparable_records(study):
+    """The records in the unit the study records in now (a study switched from a beam
+    to a button keeps its beam records, but they are not compared with button ones)."""
+    _, unit = design_value(study)
+    return [r for r in records(study) if r.unit == unit]
+
+
+def record_preference(study, name, gender, age_band, weight_kg, height_mm, device_max_stiffness_n_per_m=None):
+    """Keeps a participant's preference for the design as it is now. With the device's
+    stable stiffness, a design beyond it is marked (the participant felt less than it).
+    Raises ValueError, keeping nothing, if the record or the study is not valid."""
     wrong = validate(study)
     if wrong:
         raise ValueError(f"{study.Label}: {'; '.join(wrong)}")
     value, unit = design_value(study)
+    kept = design(study)
+    if device_max_stiffness_n_per_m:
+        kept["DeviceStiffness"] = device_max_stiffness_n_per_m * MM  # N/mm
+        kept["BeyondDevice"] = float(bool(device_note(study, device_max_stiffness_n_per_m)))
     record = cohort.Record(name.strip(), gender, age_band, float(weight_kg), float(height_mm), float(value), unit,
-                           study.Model, design(study), datetime.now().isoformat(timespec="seconds"))
+                           study.Model, kept, datetime.now().isoformat(timespec="seconds"))
     wrong = cohort.problems(record)
     if wrong:
         raise ValueError("; ".join(wrong))
@@ -290,15 +315,18 @@ def remove_record(study, index):
 
 
 def import_records(study, path):
-    """Adds the records of a cohort CSV. Raises ValueError, adding none, on a bad line or
-    on records of another model's unit."""
-    added = cohort.read_csv(path)
+    """Adds the records of a cohort CSV that the study does not hold yet (same name,
+    time and value); returns (added, already held). Raises ValueError, adding none, on a
+    bad line or on records of another unit."""
+    read = cohort.read_csv(path)
     _, unit = design_value(study)
-    other = [r for r in added if r.unit != unit]
+    other = [r for r in read if r.unit != unit]
     if other:
         raise ValueError(f"{path}: {len(other)} record(s) are in {other[0].unit}, this study's preferences in {unit}")
+    held = {(r.name, r.recorded, r.value) for r in records(study)}
+    added = [r for r in read if (r.name, r.recorded, r.value) not in held]
     _write_records(study, [*records(study), *added])
-    return len(added)
+    return len(added), len(read) - len(added)
 
 
 def adjust_info(study):

@@ -57,6 +57,21 @@ class CohortTest(unittest.TestCase):
             self.assertEqual(len(back), 4)
             self.assertEqual((back[0].name, back[0].value, back[0].design["BeamThickness"]), ("Ana", 0.9, "4.5"))
             self.assertEqual(back[1].as_dict()["gender"], "M")
+            # a spreadsheet's "CSV UTF-8" starts with a BOM; its formulas are not run
+            with open(path, encoding="utf-8") as handle:
+                text = handle.read()
+            with open(path, "w", encoding="utf-8-sig") as handle:
+                handle.write(text)
+            self.assertEqual(len(cohort.read_csv(path)), 4)
+            formula = os.path.join(tmp, "formula.csv")
+            cohort.write_csv(formula, [cohort.Record("=1+1", "F", "18-25", 58, 1620, 0.9, "N/mm", "Bending beam")])
+            self.assertEqual(cohort.read_csv(formula)[0].name, "'=1+1")
+            semicolons = os.path.join(tmp, "semicolons.csv")
+            with open(semicolons, "w") as handle:
+                handle.write(text.replace(",", ";"))
+            with self.assertRaises(ValueError) as caught:
+                cohort.read_csv(semicolons)
+            self.assertIn("semicolons.csv: needs the comma-separated columns name, gender", str(caught.exception))
             with open(path, "a") as handle:
                 handle.write("Bo,M,26-40,heavy,1800,2.0,N/mm,Bending beam,,\n")
             with self.assertRaises(ValueError) as caught:

@@ -112,6 +112,19 @@ class StudyTest(unittest.TestCase):
         with self.assertRaises(ValueError):
             HaptiCAD.make_study(self.doc, self.box)
 
+    def test_a_slider_problem_does_not_take_the_law_off_the_face(self):
+        study = HaptiCAD.make_study(self.doc, self.head, YoungsModulus=1.5, BeamThickness=4)
+        study.AdjustMin, study.AdjustMax = 8.0, 2.0
+        self.assertIn("the slider's range 8..2 is empty", stiffness_study.validate(study))
+        self.assertEqual(stiffness_study.law_problems(study), [])
+        self.assertAlmostEqual(stiffness_study.force_travel_of(self.head).max_slope(), 555.6, delta=0.1)
+        with self.assertRaises(ValueError):  # but nobody records on a study that is not right
+            HaptiCAD.record_preference(study, *PARTICIPANT)
+        # a surface whose faces are gone leaves nothing to press: said, and no law
+        self.head.References = []
+        self.assertTrue(any("tags no face" in p for p in stiffness_study.law_problems(study)))
+        self.assertIsNone(stiffness_study.force_travel_of(self.head))
+
     def test_preferences_are_kept_with_the_document(self):
         study = HaptiCAD.make_study(self.doc, self.head, YoungsModulus=1.5, BeamThickness=4)
         record = HaptiCAD.record_preference(study, *PARTICIPANT)
@@ -139,13 +152,21 @@ class StudyTest(unittest.TestCase):
             cohort.write_csv(csv_path, kept)
             stiffness_study.remove_record(study, 0)
             self.assertEqual([r.name for r in stiffness_study.records(study)], ["Zhang"])
-            self.assertEqual(stiffness_study.import_records(study, csv_path), 2)
-            self.assertEqual(study.Participants, 3)
+            # Zhang is held already: only Steven comes back, once
+            self.assertEqual(stiffness_study.import_records(study, csv_path), (1, 1))
+            self.assertEqual([r.name for r in stiffness_study.records(study)], ["Zhang", "Steven"])
+            self.assertEqual(study.Participants, 2)
             study.Model = "Push button"
             with self.assertRaises(ValueError) as caught:
                 stiffness_study.import_records(study, csv_path)
             self.assertIn("this study's preferences in N", str(caught.exception))
-            self.assertEqual(study.Participants, 3)
+            self.assertEqual(study.Participants, 2)
+            # the beam's records stay, but a button's preferences are not compared with them
+            self.assertEqual(stiffness_study.comparable_records(study), [])
+            HaptiCAD.record_preference(study, "Yang", "M", "41-60", 60, 1680)
+            self.assertEqual([r.unit for r in stiffness_study.comparable_records(study)], ["N"])
+            study.Adjust = "SnapRatio"  # a button whose snap the participants choose records the snap
+            self.assertEqual(stiffness_study.design_value(study), (study.SnapRatio, "snap ratio"))
 
     def test_a_live_edit_of_the_study_recompiles_the_faces_law(self):
         study = HaptiCAD.make_study(self.doc, self.head, YoungsModulus=1.5, BeamThickness=4)

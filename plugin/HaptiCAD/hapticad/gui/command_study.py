@@ -41,8 +41,11 @@ class CommandStiffnessStudy:
         surface = selected_surface()
         study = study_of(surface)
         if study is None:
+            # its own undo step (the panel has only Close, and commits nothing)
+            App.ActiveDocument.openTransaction("Stiffness study")
             Gui.doCommand("import HaptiCAD")
             Gui.doCommand(f"_study = HaptiCAD.make_study(App.ActiveDocument, App.ActiveDocument.{surface.Name})")
+            App.ActiveDocument.commitTransaction()
             Gui.doCommand("Gui.ActiveDocument.setEdit(_study.Name, 0)")
         else:
             Gui.doCommand(f"Gui.ActiveDocument.setEdit({study.Name!r}, 0)")

@@ -29,16 +29,55 @@ def set_study_property(study, name, value):
     return True
 
 
+class _StudyObserver:
+    """Calls back, once per event-loop turn, when the study changes by any way (an undo,
+    the property editor), so the controls never show a design that is not the study's."""
+
+    def __init__(self, study, callback):
+        self.study, self.callback, self.pending = study, callback, False
+        App.addDocumentObserver(self)
+
+    def remove(self):
+        App.removeDocumentObserver(self)
+
+    def slotChangedObject(self, obj, prop):
+        try:
+            ours = obj is self.study or obj == self.study.Surface
+        except Exception:  # noqa: BLE001 (an object being deleted)
+            ours = False
+        if ours and not self.pending:
+            self.pending = True
+            QtCore.QTimer.singleShot(0, self._fire)
+
+    def slotDeletedObject(self, obj):
+        self.slotChangedObject(obj, "")
+
+    def _fire(self):
+        self.pending = False
+        self.callback()
+
+
+def _alive(obj):
+    try:
+        return bool(obj.Name)
+    except Exception:  # noqa: BLE001 (deleted)
+        return False
+
+
 class StudyControls(QtWidgets.QWidget):
-    """Slider, value and participant form of one study. ``changed`` is emitted after
-    the study changed through these controls."""
+    """Slider, value and participant form of one study. ``changed`` is emitted after the
+    study changed through these controls or any other way. ``device_stiffness``: a
+    callable giving the device's stable stiffness (N/m), to say when a design is beyond
+    it and to keep that with each record."""
 
     changed = QtCore.Signal()
 
-    def __init__(self, study, parent=None):
+    def __init__(self, study, device_stiffness=None, parent=None):
         super().__init__(parent)
         self.study = study
+        self.device_stiffness = device_stiffness or (lambda: None)
         self._loading = False
+        self._dragging = False
         layout = QtWidgets.QVBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
         self.slider_label = QtWidgets.QLabel()
@@ -50,6 +89,9 @@ class StudyControls(QtWidgets.QWidget):
         self.slider.setObjectName("studySlider")
         self.slider.setRange(0, SLIDER_STEPS)
         self.slider.valueChanged.connect(self.slid)
+        # a drag is one undo step, not one per position it passed
+        self.slider.sliderPressed.connect(self.drag_started)
+        self.slider.sliderReleased.connect(self.drag_ended)
         row.addWidget(self.slider, 1)
         self.harder = QtWidgets.QLabel()
         row.addWidget(self.harder)
@@ -93,7 +135,17 @@ class StudyControls(QtWidgets.QWidget):
         self.message.setObjectName("studyMessage")
         self.message.setWordWrap(True)
         layout.addWidget(self.message)
+        self.observer = _StudyObserver(study, self.external_change)
+        self.destroyed.connect(lambda *_: self.observer.remove())
         self.load()
+
+    def external_change(self):
+        if not _alive(self.study):
+            self.setEnabled(False)
+            self.show_message("The study was deleted.", error=True)
+            return
+        self.load()
+        self.changed.emit()
 
     def _range(self):
         return float(self.study.AdjustMin), float(self.study.AdjustMax)
@@ -111,17 +163,34 @@ class StudyControls(QtWidgets.QWidget):
             self.slider_label.setText(f"Slide to change the {label}: {low:g}-{high:g} {unit}".rstrip())
             self.harder.setText("stiffer" if self.study.Model == stiffness_study.BEAM else "heavier")
             value, value_unit = stiffness_study.design_value(self.study)
-            placed = cohort.place_design(value, stiffness_study.records(self.study))[1]
-            self.value_label.setText(f"{label} {current:.3g} {unit} → <b>{value:.3g} {value_unit}</b>. "
-                                     f"{placed[0].upper() + placed[1:]}.")
+            placed = cohort.place_design(value, stiffness_study.comparable_records(self.study))[1]
+            problems = stiffness_study.law_problems(self.study)
+            limit = self.device_stiffness()
+            note = stiffness_study.device_note(self.study, limit) if limit else ""
+            self.value_label.setText(
+                f"{label} {current:.3g} {unit} → <b>{value:.3g} {value_unit}</b>. {placed[0].upper() + placed[1:]}."
+                + (f"<br><span style='color:#a06000'>Note: {note}.</span>" if note else "")
+                + (f"<br><span style='color:#b00000'>Not felt: {'; '.join(problems)}.</span>" if problems else ""))
         finally:
             self._loading = False
+
+    def drag_started(self):
+        self._dragging = True
+        self.study.Document.openTransaction("Stiffness study: slider")
+
+    def drag_ended(self):
+        self._dragging = False
+        self.study.Document.commitTransaction()
 
     def slid(self, position):
         if self._loading:
             return
         low, high = self._range()
-        set_study_property(self.study, self.study.Adjust, low + (high - low) * position / SLIDER_STEPS)
+        value = low + (high - low) * position / SLIDER_STEPS
+        if self._dragging:  # inside the drag's own transaction
+            setattr(self.study, self.study.Adjust, value)
+        else:
+            set_study_property(self.study, self.study.Adjust, value)
         self.load()
         self.changed.emit()
 
@@ -136,13 +205,14 @@ class StudyControls(QtWidgets.QWidget):
         try:
             record = stiffness_study.record_preference(self.study, self.name.text(), self.gender.currentText(),
                                                        self.age.currentText(), self.weight.value(),
-                                                       self.height.value())
+                                                       self.height.value(), self.device_stiffness())
         except ValueError as exc:
             doc.abortTransaction()
             self.show_message(f"Not recorded: {exc}", error=True)
             return None
         doc.commitTransaction()
-        self.show_message(f"Recorded {record.name}: {record.value:.3g} {record.unit} "
+        beyond = " (beyond what the device renders: marked)" if record.design.get("BeyondDevice") else ""
+        self.show_message(f"Recorded {record.name}: {record.value:.3g} {record.unit}{beyond} "
                           f"({self.study.Participants} participant{'s' if self.study.Participants != 1 else ''}).")
         self.name.clear()
         self.load()

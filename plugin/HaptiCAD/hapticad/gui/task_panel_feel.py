@@ -47,7 +47,7 @@ class FeelTaskPanel:
         self.last_sample = None
         self.main = self._build()
         # a stiffness study's slider and participant form, next to the session (seed 000 Fig. 10)
-        self.study_controls = [StudyControls(study) for study in studies_of(doc)]
+        self.study_controls = [StudyControls(study, self.device_stiffness) for study in studies_of(doc)]
         self.form = [self.main, *(self._study_box(c) for c in self.study_controls)]
         self.timer = QtCore.QTimer()
         self.timer.setInterval(int(1000 / DISPLAY_HZ))
@@ -106,6 +106,10 @@ class FeelTaskPanel:
             layout.addWidget(widget)
         self.depth_set(self.depth.value())
         return box
+
+    def device_stiffness(self):
+        """The running session's stable stiffness (N/m, in the world), or None."""
+        return self.session.render_limits.max_stiffness_n_per_m if self.session is not None else None
 
     def _study_box(self, controls):
         box = QtWidgets.QWidget()
@@ -176,6 +180,8 @@ class FeelTaskPanel:
             return False
         self.chart.clear()
         self.timer.start()
+        for controls in self.study_controls:  # now a device's limit can be told
+            controls.load()
         self.edits = SessionEditObserver(self.doc, self.edited, lambda: self.doc_scene.shapes)
         self.set_running(True)
         self.show_message("Move the mouse over the part; the wheel or the slider sets how hard you press."

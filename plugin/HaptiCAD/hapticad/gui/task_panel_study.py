@@ -45,6 +45,9 @@ class StudyTaskPanel:
         self.doc = study.Document
         self.widgets = {}
         self._loading = False
+        self.device_k = _device_stiffness_n_per_m()  # asked once: it probes HID devices
+        self.controls = None
+        self.controls_model = None
         self.form = [self._status_box(), self._model_box(), self._customise_box(), self._cohort_box()]
         self.closing = DocumentClosingObserver(self.doc, self.document_closing)
         self.load()
@@ -131,7 +134,6 @@ class StudyTaskPanel:
         layout.addLayout(form)
         self.controls_holder = QtWidgets.QVBoxLayout()
         layout.addLayout(self.controls_holder)
-        self.controls = None
         return box
 
     def _cohort_box(self):
@@ -199,14 +201,16 @@ class StudyTaskPanel:
                stiffness_study.BEAM else f"Operating force <b>{obj.OperatingForce:.3g} N</b> at "
                f"{obj.Pretravel:g} mm, returning at {obj.OperatingForce * (1 - obj.SnapRatio):.3g} N; bottoms "
                f"out at {obj.TotalTravel:g} mm on the surface's stiffness")
-        note = stiffness_study.device_note(obj, _device_stiffness_n_per_m())
+        note = stiffness_study.device_note(obj, self.device_k)
         self.law_label.setText(law + (f"<br><span style='color:#a06000'>Note: {note}.</span>" if note else ""))
-        if self.controls is None or self.controls.study.Model != obj.Model:
+        if self.controls is None or self.controls_model != obj.Model:  # "softer" or "lighter"
             if self.controls is not None:
                 self.controls.setParent(None)
-            self.controls = StudyControls(obj)
+                self.controls.deleteLater()
+            self.controls = StudyControls(obj, lambda: self.device_k)
             self.controls.changed.connect(self.load)
             self.controls_holder.addWidget(self.controls)
+            self.controls_model = obj.Model
         else:
             self.controls.load()
         self._load_cohort()
@@ -218,21 +222,24 @@ class StudyTaskPanel:
                                 f"{obj.Surface.Label}: {value:.3g} {unit}. Close, then Feel it.</span>")
 
     def _load_cohort(self):
-        records = stiffness_study.records(self.obj)
+        records = stiffness_study.comparable_records(self.obj)
+        others = len(stiffness_study.records(self.obj)) - len(records)
         self.table.setRowCount(len(records))
         for row, r in enumerate(records):
             for column, text in enumerate((r.name, r.gender, r.age_band, f"{r.weight_kg:g}", f"{r.height_mm:g}",
                                            f"{r.value:.3g} {r.unit}")):
                 self.table.setItem(row, column, QtWidgets.QTableWidgetItem(text))
         rows = cohort.statistics(records)
+        aside = (f"<br>{others} record(s) in another unit (made with the other model) are kept but not "
+                 "compared." if others else "")
         if not rows:
-            self.stats.setText("No participant yet: each records what feels right with the slider above.")
+            self.stats.setText("No participant yet: each records what feels right with the slider above." + aside)
             return
         lines = [f"{s['group']}: n {s['n']}, mean {s['mean']:.3g} ± {s['sd']:.2g}, median {s['median']:.3g} "
                  f"({s['min']:.3g}-{s['max']:.3g}) {records[0].unit}" for s in rows]
         value, _ = stiffness_study.design_value(self.obj)
         lines.append("This design: " + cohort.place_design(value, records)[1])
-        self.stats.setText("<br>".join(lines))
+        self.stats.setText("<br>".join(lines) + aside)
 
     # --- widgets -> object -------------------------------------------------------------
 
@@ -288,14 +295,19 @@ class StudyTaskPanel:
     def import_from(self, path):
         self.doc.openTransaction("Import participants")
         try:
-            added = stiffness_study.import_records(self.obj, path)
+            added, held = stiffness_study.import_records(self.obj, path)
         except (ValueError, OSError) as exc:
             self.doc.abortTransaction()
             self.load()
             self.stats.setText(f"<span style='color:#b00000'>Nothing imported: {exc}</span>")
             return 0
-        self.doc.commitTransaction()
+        if added:
+            self.doc.commitTransaction()
+        else:
+            self.doc.abortTransaction()
         self.load()
+        self.stats.setText(f"Imported {added} participant{'s' if added != 1 else ''}"
+                           + (f"; {held} already held were left out" if held else "") + ".<br>" + self.stats.text())
         return added
 
     # --- FreeCAD's task dialog -----------------------------------------------------------

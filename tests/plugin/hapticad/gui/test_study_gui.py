@@ -71,17 +71,33 @@ class StudyGuiTest(unittest.TestCase):
     def test_the_panel_edits_the_mechanism_and_keeps_the_cohort(self):
         study = self.open_study()
         self.assertEqual(study.Surface, self.surface)
+        self.assertIn("Stiffness study", self.doc.UndoNames)  # making it is an undo step
         self.assertIn("0.556 N/mm", h.widget(QtWidgets.QLabel, "studyLaw").text())
         h.widget(QtWidgets.QDoubleSpinBox, "BeamThickness").setValue(5.0)
         self.assertAlmostEqual(study.BendingStiffness, 0.5556 * 125 / 64, places=3)
         self.assertIn("1.09 N/mm", h.widget(QtWidgets.QLabel, "studyLaw").text())
         h.widget(QtWidgets.QComboBox, "BeamMaterial").setCurrentText("ABS")
         self.assertAlmostEqual(study.YoungsModulus, 2.3)
-        # each edit is its own undo step
+        # each edit is its own undo step, and the panel shows what the undo restored
         self.doc.undo()
         self.assertAlmostEqual(study.YoungsModulus, 1.5)
         self.assertAlmostEqual(study.BeamThickness, 5.0)
         h.process_events()
+        self.assertAlmostEqual(h.widget(QtWidgets.QDoubleSpinBox, "YoungsModulus").value(), 1.5)
+        self.assertIn("1.09 N/mm", h.widget(QtWidgets.QLabel, "studyValue").text())
+        # a drag of the slider, however many positions it passes, is one undo step
+        slider = h.widget(QtWidgets.QSlider, "studySlider")
+        steps = self.doc.UndoCount
+        slider.sliderPressed.emit()
+        for position in range(100, 160, 5):
+            slider.setValue(position)
+        slider.sliderReleased.emit()
+        self.assertEqual(self.doc.UndoCount, steps + 1)
+        self.assertAlmostEqual(study.BeamThickness, 2 + 6 * 155 / 200)
+        self.doc.undo()
+        h.process_events()
+        self.assertAlmostEqual(study.BeamThickness, 5.0)
+        self.assertAlmostEqual(h.widget(QtWidgets.QDoubleSpinBox, "BeamThickness").value(), 5.0)
 
         # three participants of Table 3, each at the design the slider gives
         slider = h.widget(QtWidgets.QSlider, "studySlider")
@@ -116,11 +132,13 @@ class StudyGuiTest(unittest.TestCase):
         table.selectRow(0)
         h.widget(QtWidgets.QPushButton, "removeParticipant").click()
         self.assertEqual([r.name for r in stiffness_study.records(study)], ["Yang", "Zhang"])
-        self.assertEqual(panel.import_from(path), 3)
-        self.assertEqual(study.Participants, 5)
+        self.assertEqual(panel.import_from(path), 1)  # Steven back; the two still held are left out
+        self.assertIn("Imported 1 participant; 2 already held were left out",
+                      h.widget(QtWidgets.QLabel, "cohortStats").text())
+        self.assertEqual(study.Participants, 3)
         h.press_task_button("Close")
         self.assertFalse(Gui.Control.activeDialog())
-        self.assertEqual(study.Participants, 5)  # Close keeps everything
+        self.assertEqual(study.Participants, 3)  # Close keeps everything
 
     def test_while_feeling_the_slider_is_felt_at_once_and_a_preference_is_recorded(self):
         study = HaptiCAD.make_study(self.doc, self.surface, YoungsModulus=1.5, BeamWidth=5, BeamLength=60)
@@ -153,6 +171,15 @@ class StudyGuiTest(unittest.TestCase):
         h.widget(QtWidgets.QPushButton, "recordPreference").click()
         self.assertEqual(study.Participants, 1)
         self.assertIn("Recorded Steven", h.widget(QtWidgets.QLabel, "studyMessage").text())
+        # h = 8 mm: 4.44 N/mm, beyond the simulated hand's 3 N/mm: said beside the slider, and kept with the record
+        slider.setValue(200)
+        wait(0.3)
+        self.assertIn("is more than the device renders stably", h.widget(QtWidgets.QLabel, "studyValue").text())
+        fill_participant("Yang", age="41-60", weight=60)
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        self.assertIn("beyond what the device renders: marked", h.widget(QtWidgets.QLabel, "studyMessage").text())
+        steven, yang = stiffness_study.records(study)
+        self.assertEqual((steven.design["BeyondDevice"], yang.design["BeyondDevice"]), (0.0, 1.0))
         h.widen_panel(480)
         h.grab_screen("feel_study.png")
         h.widget(QtWidgets.QPushButton, "feelStop").click()
