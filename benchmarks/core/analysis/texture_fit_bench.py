@@ -5,7 +5,7 @@ and the spatial resampling (samples a period). A finger strokes a grating (eq. 2
 paper's five speeds, position quantised like its encoder (3.8 um), 0.01 N of seeded
 sensor noise; the fit runs with the paper's defaults (1000 Hz low-pass, 2.5 %, three
 harmonics). Prints JSON: per configuration the fit's time (median of 5) and the errors
-of the four levels.
+of the four levels; last, one long session (every stroke 160 times at 10 kHz).
 
     /usr/bin/python3 benchmarks/core/analysis/texture_fit_bench.py --mod build/Mod/HaptiCAD
 """
@@ -22,13 +22,13 @@ FULL_RANGE_N = 2.0
 SPEEDS_MPS = (0.05, 0.08, 0.12, 0.18, 0.27)
 
 
-def recording(core, rate_hz, seed=1):
+def recording(core, rate_hz, seed=1, repeats=1):
     params = core.ViscousTextureParams()
     params.f_dc, params.f_vis, params.beta_h, params.alpha_h = (TRUTH[k] for k in ("f_dc", "f_vis", "beta_h",
                                                                                  "alpha_h"))
     dt, t, x = 1.0 / rate_hz, [], []
     now, pos, speeds = 0.0, 0.0, []
-    for speed in SPEEDS_MPS:
+    for speed in [s for s in SPEEDS_MPS for _ in range(repeats)]:
         for direction in (1, -1):
             start, v = pos, 0.0
             while abs(pos - start) < 0.07:
@@ -46,11 +46,11 @@ def recording(core, rate_hz, seed=1):
     return core.TextureRecording(np.asarray(t), quantised, force)
 
 
-def run(core, data, samples_per_period):
+def run(core, data, samples_per_period, repetitions=5):
     options = core.TextureFitOptions()
     options.samples_per_period = samples_per_period
     times = []
-    for _ in range(5):
+    for _ in range(repetitions):
         start = time.perf_counter()
         fit = core.fit_texture([data], options)
         times.append(time.perf_counter() - start)
@@ -77,6 +77,8 @@ def main():
         data = recording(_core, rate)
         for spp in ((16, 32, 64, 128, 256) if rate == 20000 else (64,)):
             rows.append({"rate_hz": rate, **run(_core, data, spp)})
+    # a long session: every stroke 160 times at 10 kHz (4.9 M samples, 1600 sections)
+    rows.append({"rate_hz": 10000, "repeats": 160, **run(_core, recording(_core, 10000, repeats=160), 64, 1)})
     json.dump(rows, sys.stdout, indent=1)
     sys.stdout.write("\n")
 
