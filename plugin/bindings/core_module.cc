@@ -253,6 +253,12 @@ void DefineForceTravel(py::module_& m) {
                                                           l.force_n.begin() + l.points);
                              })
       .def("force", &ForceTravel::Force, py::arg("x_m"))
+      .def(
+          "force_clamped",
+          [](const ForceTravel& l, double x_m, double max_slope) {
+            return l.ForceClamped(x_m, max_slope, nullptr);
+          },
+          py::arg("x_m"), py::arg("max_slope"))
       .def("max_slope", &ForceTravel::MaxSlope);
   m.def("validate_force_travel", &ValidateForceTravel, py::arg("law"));
   m.def("make_linear_force_travel", &MakeLinearForceTravel, py::arg("stiffness_n_per_m"));

@@ -54,8 +54,9 @@ void CheckOptions(const TextureFitOptions& o) {
   if (!(std::isfinite(o.velocity_window_s) && o.velocity_window_s > 0))
     Fail("the velocity window must be > 0 s");
   if (o.min_periods < 6) {
-    Fail("a section needs at least 6 periods (each harmonic's main lobe spans 5 bins, and the "
-         "background needs bins between them)");
+    Fail(
+        "a section needs at least 6 periods (each harmonic's main lobe spans 5 bins, and the "
+        "background needs bins between them)");
   }
   if (o.harmonics < 2 || o.harmonics > 8) Fail("fit 2 to 8 harmonics");
   if (o.samples_per_period < 4 * o.harmonics || o.samples_per_period > 1024) {
@@ -87,7 +88,8 @@ void CheckRecording(const TextureRecording& r, std::size_t index) {
 // The velocity window: as asked, or four sampling periods if that is longer (a 100 Hz
 // recording has one sample in 10 ms).
 double VelocityWindow(const TextureRecording& r, double asked) {
-  const double step = (r.time_s.back() - r.time_s.front()) / static_cast<double>(r.time_s.size() - 1);
+  const double step =
+      (r.time_s.back() - r.time_s.front()) / static_cast<double>(r.time_s.size() - 1);
   return std::max(asked, 4.0 * step);
 }
 
@@ -370,10 +372,12 @@ TextureFit FitTexture(const std::vector<TextureRecording>& recordings,
         // the harmonics at whole multiples of the fundamental found near bin P: a grating
         // a little off the period given still reads right (its bin i P alone lost 15 %
         // half a bin off, and more for higher harmonics)
-        const double fundamental = FindFundamental(section.amplitude_n, static_cast<std::size_t>(periods));
+        const double fundamental =
+            FindFundamental(section.amplitude_n, static_cast<std::size_t>(periods));
         section.period_found_m = periods * lambda / fundamental;
         for (int i = 1; i <= options.harmonics; ++i) {
-          section.harmonic_n.push_back(AmplitudeAt(resampled, i * fundamental) / gain(i * fundamental));
+          section.harmonic_n.push_back(AmplitudeAt(resampled, i * fundamental) /
+                                       gain(i * fundamental));
         }
         fit.sections.push_back(std::move(section));
       }

@@ -145,6 +145,15 @@ def effective_stiffness_n_per_mm(doc_scene, face, limits):
     return k * MM
 
 
+def expected_normal_force_n(doc_scene, face, limits, depth_mm):
+    """What the face pushes back with at ``depth_mm`` on this device: its stiffness
+    study's law (stretched to the device as the renderer does), else k x depth."""
+    law = doc_scene.surface_properties(face).force_travel
+    if law is not None:
+        return law.force_clamped(depth_mm * MM, limits.max_stiffness_n_per_m)
+    return effective_stiffness_n_per_mm(doc_scene, face, limits) * depth_mm
+
+
 def summarize(result, doc_scene):
     """The JSON-ready summary of a stroke."""
     trace = result.trace
@@ -176,8 +185,8 @@ def summarize(result, doc_scene):
         "ticks": int(len(trace)),
         "contact_ticks": int(contact.sum()),
         "max_normal_force_n": float(trace["normal_force_n"].max()) if len(trace) else 0.0,
-        "expected_normal_force_n": effective_stiffness_n_per_mm(doc_scene, start_face, result.limits)
-        * result.stroke.depth_mm,
+        "expected_normal_force_n": expected_normal_force_n(doc_scene, start_face, result.limits,
+                                                           result.stroke.depth_mm),
         "faces": faces,
         "tick_us": _percentiles(tick_us),
         "contact_tick_us": _percentiles(contact_us),

@@ -247,7 +247,8 @@ TEST(TextureFitTest, AGratingALittleOffThePeriodGivenStillReadsRight) {
     for (const SpeedFit& s : fit.speeds) {
       // read at the single bin i P, these were 2.60, 2.88 and 4.45 (found by review)
       EXPECT_NEAR(s.harmonic.alpha, truth.alpha_h, 0.05) << off;
-      EXPECT_NEAR(s.harmonic.beta, kFullRangeN * truth.beta_h, 0.02 * kFullRangeN * truth.beta_h) << off;
+      EXPECT_NEAR(s.harmonic.beta, kFullRangeN * truth.beta_h, 0.02 * kFullRangeN * truth.beta_h)
+          << off;
     }
     for (const TextureSection& s : fit.sections) {
       EXPECT_NEAR(s.period_found_m, truth.period_m, 0.003 * truth.period_m) << off;
@@ -341,7 +342,8 @@ TEST(TextureFitTest, RefusesInputItCannotFitAndSaysWhy) {
   EXPECT_NE(message({good}, bad).find("harmonics"), std::string::npos);
   bad = {};
   bad.speeds_mps = {0.05, 0.051};  // a section at 50.5 mm/s would count twice
-  EXPECT_NE(message({good}, bad).find("the speeds 50 and 51 mm/s overlap within 2.5 %"), std::string::npos)
+  EXPECT_NE(message({good}, bad).find("the speeds 50 and 51 mm/s overlap within 2.5 %"),
+            std::string::npos)
       << message({good}, bad);
   bad = {};
   bad.min_periods = 5;  // no background bins between the harmonics' lobes

@@ -35,7 +35,7 @@ TEST(ForceTravelTest, APushButtonRisesSnapsRisesAndBottomsOut) {
 }
 
 TEST(ForceTravelTest, ADeviceTooSoftForTheLawFeelsItsForcesOverALongerTravel) {
-  const ForceTravel law = MakePushButton({});  // steepest: the snap, 7350 N/m
+  const ForceTravel law = MakePushButton({});    // steepest: the snap, 7350 N/m
   for (double limit : {400.0, 700.0, 3000.0}) {  // Touch, Omni, the simulated probe
     const double stretch = law.MaxSlope() / limit;
     double previous = 0.0;

@@ -14,7 +14,7 @@ import HaptiCAD
 from hapticad import cohort, stiffness_study
 from hapticad.document_scene import build_document_scene, recompile_surfaces
 from hapticad import _core
-from hapticad.feel import Stroke, run_stroke
+from hapticad.feel import Stroke, expected_normal_force_n, run_stroke
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from host_stalls import run_without_host_stall  # noqa: E402
@@ -51,6 +51,11 @@ class StudyTest(unittest.TestCase):
         self.assertEqual(stiffness_study.validate(study), [])
         # pressed 1 mm, the head pushes back with the neck's 0.56 N, not the plastic's 0.8
         self.assertAlmostEqual(pressed_normal_force(self.doc, 1.0), 0.5556, delta=0.01)
+        # and `hapticad feel`'s summary expects what the neck gives, not the plastic
+        scene = build_document_scene(self.doc)
+        face = scene.face_id("Head.Face6")
+        self.assertAlmostEqual(expected_normal_force_n(scene, face, _core.simulated_probe_limits(), 1.0), 0.5556,
+                               places=3)
         study.BeamThickness = 6  # k goes with h^3
         self.doc.recompute()
         self.assertAlmostEqual(study.BendingStiffness, 27 / 8 * 0.5556, places=3)

@@ -20,14 +20,13 @@
 //     amplitudes of all sections (read at whole multiples of the fundamental found
 //     within 2 bins of bin P, so a grating a little off the period given reads right)
 //     are fitted with A_i = beta_h i^-alpha_h, and the non-harmonic bins (each harmonic's
-//     Hann main lobe, bins i P - 2 .. i P + 2, excluded; and only those below the filter's cut-off in time, f v < lowpass_hz) with B(f) = beta_b f^-alpha_b.
-//     Both are least squares on logarithms, as the paper's "best fit power model".
-//     Frequencies are in multiples of the grating's fundamental 1/lambda, so beta_h is
-//     the fundamental's amplitude (eq. 2's beta_h) and beta_b the noise at the
-//     fundamental's frequency (eq. 1's f_k = i / lambda, rescaled). beta_b is an
-//     amplitude per bin, so a random background's beta_b falls as 1 / sqrt(section
-//     length): compare it only between fits of like sections; alpha_b does not depend
-//     on the length.
+//     Hann main lobe, bins i P - 2 .. i P + 2, excluded; and only those below the filter's cut-off
+//     in time, f v < lowpass_hz) with B(f) = beta_b f^-alpha_b. Both are least squares on
+//     logarithms, as the paper's "best fit power model". Frequencies are in multiples of the
+//     grating's fundamental 1/lambda, so beta_h is the fundamental's amplitude (eq. 2's beta_h) and
+//     beta_b the noise at the fundamental's frequency (eq. 1's f_k = i / lambda, rescaled). beta_b
+//     is an amplitude per bin, so a random background's beta_b falls as 1 / sqrt(section length):
+//     compare it only between fits of like sections; alpha_b does not depend on the length.
 //  5. Across speeds, with v in units of 400 mm/s as in eq. 2: f_DC + v f_vis,
 //     beta_h + v beta_vis and alpha_h + v alpha_vis are straight lines fitted through the
 //     per-speed values (one speed: the viscous terms are 0).
@@ -102,10 +101,10 @@ struct SpeedFit {
   double speed_mps = 0;  // mean measured speed of its sections
   int sections = 0;
   double samples_per_period = 0;  // the fewest recorded samples a period of its sections
-  double dc_n = 0;      // mean of the sections' DC
-  double dc_sd_n = 0;   // their standard deviation (0 for one section)
-  PowerFit harmonic;    // A_i = beta i^-alpha, beta in N
-  PowerFit background;  // B(f) = beta f^-alpha, f in fundamentals, beta in N
+  double dc_n = 0;                // mean of the sections' DC
+  double dc_sd_n = 0;             // their standard deviation (0 for one section)
+  PowerFit harmonic;              // A_i = beta i^-alpha, beta in N
+  PowerFit background;            // B(f) = beta f^-alpha, f in fundamentals, beta in N
 };
 
 // A straight line y = intercept + slope v, v in units of 400 mm/s.
