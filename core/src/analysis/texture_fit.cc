@@ -356,14 +356,14 @@ TextureFit FitTexture(const std::vector<TextureRecording>& recordings,
         section.end_m = x0 + periods * lambda;
         section.periods = periods;
         section.amplitude_n = AmplitudeSpectrum(resampled, section.dc_n);
-        // the filter's known gain at a frequency of `bins` cycles a section (f v in time),
+        // the filter's known gain at a frequency of `cycles` a section (f v in time),
         // the discrete filter's (LowPassFirstOrder's) at the section's mean step: divided
         // out, so the filter removes a rig's resonance without bending the harmonics' decay
         const double dt = duration / static_cast<double>(last - first);
         const double keep = std::exp(-2 * kPi * options.lowpass_hz * dt);
-        const auto gain = [&](double bins) {
+        const auto gain = [&](double cycles) {
           if (options.lowpass_hz <= 0) return 1.0;
-          const double theta = 2 * kPi * bins / periods / lambda * section.speed_mps * dt;
+          const double theta = 2 * kPi * cycles / periods / lambda * section.speed_mps * dt;
           return (1 - keep) / std::sqrt(1 - 2 * keep * std::cos(theta) + keep * keep);
         };
         for (std::size_t k = 1; k < section.amplitude_n.size(); ++k) {
