@@ -449,6 +449,8 @@ class SurfaceTaskPanel:
     def set_property(self, name, value):
         if self._loading:
             return
+        if name == "TexturePeriod":  # a fit's message names the period it was made at
+            self.fit_info.setText("")
         try:
             setattr(self.obj, name, value)
         except Exception as exc:  # a value the property refuses: say so, keep the old one

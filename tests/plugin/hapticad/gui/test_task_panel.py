@@ -133,6 +133,8 @@ class TaskPanelTest(unittest.TestCase):
             if area.isVisible() and area.widget() is not None and area.widget().isAncestorOf(info):
                 area.ensureWidgetVisible(info, 0, 0)
         h.grab_screen("task_panel_texture_fit.png")
+        h.widget(QtWidgets.QDoubleSpinBox, "TexturePeriod").setValue(3.0)
+        self.assertEqual(info.text(), "")  # the fit's message named 2.5 mm
         h.press_task_button("Cancel")
         self.assertEqual(HaptiCAD.surfaces_of(self.doc), [])
 
