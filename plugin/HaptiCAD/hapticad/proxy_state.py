@@ -63,3 +63,11 @@ def is_restoring(obj):
     """Loading, or undoing / redoing: every property comes back as it was, and one must
     not set others from it (undoing a material change would reset an overridden mu)."""
     return "Restore" in obj.State or obj.Document.Restoring or obj.Document.Transacting
+
+
+def is_alive(obj):
+    """False once a document object is deleted (its proxy outlives it in Python)."""
+    try:
+        return bool(obj.Name)
+    except Exception:  # noqa: BLE001 (FreeCAD raises its own error for a deleted object)
+        return False

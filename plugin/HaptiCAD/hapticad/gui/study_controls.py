@@ -12,6 +12,7 @@ import FreeCAD as App
 from PySide2 import QtCore, QtWidgets
 
 from .. import cohort, stiffness_study
+from ..proxy_state import is_alive
 
 SLIDER_STEPS = 200
 
@@ -57,11 +58,6 @@ class _StudyObserver:
         self.callback()
 
 
-def _alive(obj):
-    try:
-        return bool(obj.Name)
-    except Exception:  # noqa: BLE001 (deleted)
-        return False
 
 
 class StudyControls(QtWidgets.QWidget):
@@ -140,7 +136,7 @@ class StudyControls(QtWidgets.QWidget):
         self.load()
 
     def external_change(self):
-        if not _alive(self.study):
+        if not is_alive(self.study):
             self.setEnabled(False)
             self.show_message("The study was deleted.", error=True)
             return

@@ -22,6 +22,7 @@ import FreeCADGui as Gui
 from PySide2 import QtCore, QtGui, QtWidgets
 
 from .. import _core, face_references, icon, materials, surface_object, texture_fit, vibration_object
+from ..proxy_state import is_alive
 from .document_closing import DocumentClosingObserver
 from .selection import selected_curve
 
@@ -667,7 +668,7 @@ class SurfaceTaskPanel:
         # abort before leaving edit mode: resetEdit commits any open transaction
         self.doc.abortTransaction()
         self._leave_edit()
-        if _alive(self.obj):  # an edit, not a creation: show the restored values
+        if is_alive(self.obj):  # an edit, not a creation: show the restored values
             self.obj.ViewObject.Proxy.refresh()
         return True
 
@@ -693,11 +694,6 @@ class SurfaceTaskPanel:
             gui_doc.resetEdit()
 
 
-def _alive(obj):
-    try:
-        return bool(obj.Name)
-    except Exception:
-        return False
 
 
 def _resolve(obj, sub):
