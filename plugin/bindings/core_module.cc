@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "hapticad/core/analysis/perceptual_space.h"
 #include "hapticad/core/analysis/stroke_run.h"
 #include "hapticad/core/analysis/texture_fit.h"
 #include "hapticad/core/rendering/force_renderer.h"
@@ -827,6 +828,21 @@ void DefineTextureFit(py::module_& m) {
         py::call_guard<py::gil_scoped_release>());
 }
 
+void DefinePerceptualSpace(py::module_& m) {
+  py::class_<PerceptualSpace>(m, "PerceptualSpace")
+      .def_readonly("points", &PerceptualSpace::points)
+      .def_readonly("eigenvalues", &PerceptualSpace::eigenvalues)
+      .def_readonly("explained", &PerceptualSpace::explained)
+      .def_readonly("stress", &PerceptualSpace::stress);
+  py::class_<PropertyVector>(m, "PropertyVector")
+      .def_readonly("direction", &PropertyVector::direction)
+      .def_readonly("length", &PropertyVector::length)
+      .def_readonly("correlation", &PropertyVector::correlation);
+  m.def("compute_perceptual_space", &ComputePerceptualSpace, py::arg("dissimilarity"), py::arg("dimensions"));
+  m.def("fit_property_vector", &FitPropertyVector, py::arg("points"), py::arg("q"));
+  m.def("scale_to_unit_range", &ScaleToUnitRange, py::arg("values"));
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -842,4 +858,5 @@ PYBIND11_MODULE(_core, m) {
   DefineDevices(m);
   DefineAnalysis(m);
   DefineTextureFit(m);
+  DefinePerceptualSpace(m);
 }

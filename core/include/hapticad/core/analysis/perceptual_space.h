@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The perceptual space of a similarity study (seed 001 §IV, Fig. 7).
+//
+// Participants rate how alike each pair of n stimuli (virtual textures) feels; the
+// ratings, inverted, give an n x n dissimilarity matrix. ComputePerceptualSpace places
+// the stimuli as points in a space of `dimensions` dimensions whose distances follow
+// the dissimilarities: classical (Torgerson) multidimensional scaling, the metric MDS
+// that needs no starting guess and gives the same answer every run. Then
+// FitPropertyVector draws a physical parameter through that space by the paper's eq. 3:
+// the vector p minimising sum_i |x_i - q_i p|^2, i.e. p = sum q_i x_i / sum q_i^2,
+// where q_i is stimulus i's parameter scaled to -0.5..0.5 (ScaleToUnitRange). Its
+// direction is the parameter's trend through the space, its length how strongly the
+// parameter shapes what was felt.
+//
+// Units: dissimilarities in any unit (the points come out in the same unit). The
+// space's axes mean nothing on their own: the points are centred on the origin and
+// axis k is the k-th principal direction (largest spread first), signed so that the
+// first stimulus off its middle lies on its positive side (the same input gives the
+// same picture; two axes of equal spread have no preferred directions within their
+// plane).
+// Throws std::invalid_argument, saying what is wrong, on input that cannot be scaled.
+// Allocates; not for the servo thread.
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+namespace hapticad {
+
+struct PerceptualSpace {
+  Eigen::MatrixXd points;            // n x dimensions, row i is stimulus i; centred
+  std::vector<double> eigenvalues;   // of the double-centred squared dissimilarities, all n, largest
+                                     // first, over the largest (1 first; all 0 when every
+                                     // dissimilarity is 0): a scree of how many axes the data need
+  double explained = 0;              // the axes' kept eigenvalues over the sum of all eigenvalues'
+                                     // magnitudes, 0..1 (Mardia): below 1 for axes left out and for
+                                     // dissimilarities no space of any dimension holds
+  double stress = 0;                 // Kruskal's stress-1 of the points' distances against the
+                                     // dissimilarities (0: exact; 0 when all are 0)
+};
+
+// Preconditions: `dissimilarity` is square, n >= 3, finite, >= 0, symmetric (within
+// 1e-9 of its largest entry) with a zero diagonal; 1 <= dimensions < n. A dissimilarity
+// that is not Euclidean gives negative eigenvalues; the axes kept take the largest
+// (a negative one among them gives a zero axis), and `explained` and `stress` say how
+// well the space holds the data.
+PerceptualSpace ComputePerceptualSpace(const Eigen::MatrixXd& dissimilarity, int dimensions);
+
+struct PropertyVector {
+  Eigen::VectorXd direction;  // eq. 3's p, in the space's units per unit of q
+  double length = 0;          // |p|
+  double correlation = 0;     // Pearson r between q_i and x_i . p / |p| (0 when p = 0): how
+                              // well the points line up along the vector
+};
+
+// Eq. 3. Preconditions: q.size() == points.rows() >= 2, q finite and not all zero.
+PropertyVector FitPropertyVector(const Eigen::MatrixXd& points, const std::vector<double>& q);
+
+// The paper's scaling of a parameter to q: the lowest value to -0.5, the highest to
+// +0.5, linearly between (three levels give -0.5, 0, +0.5). Precondition: finite values,
+// not all equal (a parameter that does not vary draws no vector).
+std::vector<double> ScaleToUnitRange(const std::vector<double>& values);
+
+}  // namespace hapticad
