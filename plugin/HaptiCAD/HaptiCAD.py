@@ -16,3 +16,4 @@ from hapticad.surface_object import (  # noqa: F401
 )
 from hapticad.vibration_object import is_haptic_vibration, make_vibration, vibrations_of  # noqa: F401
 from hapticad.stiffness_study import make_study, record_preference, studies_of  # noqa: F401
+from hapticad.similarity_study import make_similarity_study, similarity_studies_of  # noqa: F401

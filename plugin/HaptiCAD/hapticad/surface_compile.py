@@ -13,6 +13,7 @@ import numpy as np
 import FreeCAD as App
 
 from . import _core, curve_references
+from .similarity_study import rendered_texture
 from .stiffness_study import force_travel_of
 from .surface_object import circular_centre_axis
 
@@ -164,18 +165,19 @@ def compile_surface(surface, face):
     if surface.FeelRoughness:
         props.roughness = _core.make_roughness_grid(surface.RoughnessCategory, surface_frame,
                                                     surface.RoughnessHeight, surface.RoughnessFrictionModulation)
-    if surface.Texture != "None":
+    texture = rendered_texture(surface)  # a similarity study's stimulus while one is held out
+    if texture is not None:
         params = _core.ViscousTextureParams()
-        params.f_dc = surface.TextureDC
-        params.f_vis = surface.TextureViscosity
-        params.beta_h = surface.TextureBeta
-        params.alpha_h = surface.TextureAlpha
-        params.beta_vis = surface.TextureBetaViscosity
-        params.alpha_vis = surface.TextureAlphaViscosity
-        params.period_m = surface.TexturePeriod * MM
+        params.f_dc = texture["TextureDC"]
+        params.f_vis = texture["TextureViscosity"]
+        params.beta_h = texture["TextureBeta"]
+        params.alpha_h = texture["TextureAlpha"]
+        params.beta_vis = texture["TextureBetaViscosity"]
+        params.alpha_vis = texture["TextureAlphaViscosity"]
+        params.period_m = texture["TexturePeriod"] * MM
         grating = _core.ViscousGrating(params, surface_frame)
-        grating.full_range_n = surface.TextureFullRange
-        grating.scale = (_core.TextureScale.FRICTION_LEVEL if surface.TextureScale == "Friction level"
+        grating.full_range_n = texture["TextureFullRange"]
+        grating.scale = (_core.TextureScale.FRICTION_LEVEL if texture["TextureScale"] == "Friction level"
                          else _core.TextureScale.DEVICE_FORCE)
         props.texture = grating
     try:

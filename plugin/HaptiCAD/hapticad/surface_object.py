@@ -631,6 +631,7 @@ def attach_view_provider(obj):
     """Gives a HaptiCAD object its view provider when the GUI is up and it has none yet."""
     if not App.GuiUp or obj.ViewObject is None or obj.ViewObject.Proxy:
         return
+    from .similarity_study import is_similarity_study
     from .stiffness_study import is_stiffness_study
 
     if is_haptic_surface(obj):
@@ -641,6 +642,10 @@ def attach_view_provider(obj):
         from .gui.view_provider_study import ViewProviderStiffnessStudy
 
         ViewProviderStiffnessStudy(obj.ViewObject)
+    elif is_similarity_study(obj):
+        from .gui.view_provider_similarity import ViewProviderSimilarityStudy
+
+        ViewProviderSimilarityStudy(obj.ViewObject)
     else:
         from .gui.view_provider_vibration import ViewProviderHapticVibration
 

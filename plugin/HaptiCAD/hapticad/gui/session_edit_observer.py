@@ -9,7 +9,8 @@ recompute that reshapes several objects, are gathered into one call):
   dimension, a new feature), moved (its placement, or that of a Body or App::Part
   holding it) or was deleted: the scene must be tessellated again and swapped into the
   loop (LiveSession.update_scene);
-- callback(geometry=False) when only a HapticSurface, HapticVibration or StiffnessStudy changed (any
+- callback(geometry=False) when only a HapticSurface, HapticVibration, StiffnessStudy or
+  SimilarityStudy changed (any
   property: material, friction, roughness, pattern, texture, vibration, the faces it
   tags), or one was created or deleted: the surfaces are compiled again and handed to
   the loop without a new scene (LiveSession.update_surfaces).
@@ -47,11 +48,13 @@ class SessionEditObserver:
             return False
 
     def _haptic(self, obj):
+        from ..similarity_study import is_similarity_study
         from ..stiffness_study import is_stiffness_study
         from ..surface_object import is_haptic_surface
         from ..vibration_object import is_haptic_vibration
 
-        return self._ours(obj) and (is_haptic_surface(obj) or is_haptic_vibration(obj) or is_stiffness_study(obj))
+        return self._ours(obj) and (is_haptic_surface(obj) or is_haptic_vibration(obj) or is_stiffness_study(obj)
+                                    or is_similarity_study(obj))
 
     def _reshapes(self, obj, prop):
         """A change of shape or placement of a part in the scene, or of a container

@@ -1,0 +1,568 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The SimilarityStudy document object: which virtual textures feel alike, and which
+physical parameters make them so (seed 001 §IV, Fig. 7, eq. 3).
+
+A study links the HapticSurface whose faces the participants stroke and holds a list of
+stimuli, each a viscous grating (eq. 2's f_DC, f_vis, beta_h, alpha_h, beta_vis,
+alpha_vis; the period, scale and full range stay the surface's). By default the paper's
+nine: three DC friction levels by three viscosities. Optionally two reference surfaces,
+A and B (textures fitted from recordings of real samples, say), whose own textures are
+presented whole.
+
+A participant's run (:class:`Run`) follows the paper's protocol:
+
+1. warm-up comparisons (12 by default) of random pairs, not kept, for context;
+2. every pair of stimuli once (36 for nine), in a random order and with a random one
+   felt first, each rated on a scale of ``RatingSteps`` (1: nothing alike, the top: the
+   same);
+3. with references A and B, each stimulus ``Repeats`` times (3) in a random order,
+   classed as closer to A or to B.
+
+While a run holds a stimulus out to feel, :func:`presented_texture` gives it and
+surface_compile renders it on the surface in place of the surface's own texture, so the
+participant feels it at the next servo tick and never sees which it is. A finished run
+is kept in the document (:func:`record_run`).
+
+:func:`analyse` inverts the cohort's mean similarities into a dissimilarity matrix,
+places the stimuli in a perceptual space (classical MDS, _core.compute_perceptual_space)
+and draws through it, by eq. 3, a vector for each parameter that varies among the
+stimuli (scaled to -0.5..0.5) and one for likeness to the references (always B: -0.5,
+always A: +0.5). App-only.
+"""
+import itertools
+import json
+import math
+import random
+from dataclasses import dataclass
+from datetime import datetime
+
+import FreeCAD as App
+import numpy as np
+
+from . import _core, textures
+from .proxy_state import SchemaState, add_hidden_state, add_type_tag, is_alive, is_restoring
+
+TYPE = "HaptiCAD::SimilarityStudy"
+SCHEMA_VERSION = 1
+# eq. 2's parameters a stimulus sets, as the surface's properties and as the paper writes them
+TEXTURE_VALUES = ("TextureDC", "TextureViscosity", "TextureBeta", "TextureAlpha", "TextureBetaViscosity",
+                  "TextureAlphaViscosity")
+SYMBOLS = dict(zip(TEXTURE_VALUES, ("f_DC", "f_vis", "beta_h", "alpha_h", "beta_vis", "alpha_vis")))
+# what a reference brings along with those: it is presented as it is on its own surface
+REFERENCE_VALUES = (*TEXTURE_VALUES, "TexturePeriod", "TextureScale", "TextureFullRange")
+LIKENESS = "closer to A"
+PROPERTIES = [
+    ("Surface", "App::PropertyLink", "Study", "The haptic surface whose faces the participants stroke", None, None),
+    ("ReferenceA", "App::PropertyLink", "References",
+     "A haptic surface with the texture of reference A (e.g. fitted to recordings of a real sample)", None, None),
+    ("ReferenceB", "App::PropertyLink", "References", "A haptic surface with the texture of reference B", None, None),
+    ("RatingSteps", "App::PropertyIntegerConstraint", "Protocol",
+     "Steps of the similarity scale: 1 is nothing alike, the top the same", 7, (3, 11, 1)),
+    ("WarmUps", "App::PropertyIntegerConstraint", "Protocol", "Warm-up comparisons before the kept ones (not kept)",
+     12, (0, 100, 1)),
+    ("Repeats", "App::PropertyIntegerConstraint", "Protocol",
+     "Times each stimulus is classed as closer to A or to B", 3, (1, 20, 1)),
+    ("Dimensions", "App::PropertyIntegerConstraint", "Analysis", "Dimensions of the perceptual space", 2, (1, 3, 1)),
+    ("Participants", "App::PropertyInteger", "Cohort", "Participants whose runs are kept", 0, None),
+]
+HIDDEN_STATE = [("Stimuli", "The stimuli: name and eq. 2's values of each (JSON)"),
+                ("Responses", "The participants' runs (JSON)")]
+MAX_STIMULI = 20  # 190 pairs: about what a participant rates in one sitting
+
+
+def paper_stimuli():
+    """The paper's nine textures, as [{name, values}]."""
+    return [{"name": name.replace("Paper ", ""), "values": dict(zip(TEXTURE_VALUES, values))}
+            for name, values in textures.PRESETS.items()]
+
+
+class SimilarityStudy(SchemaState):
+    """Proxy of a SimilarityStudy object."""
+
+    SCHEMA = SCHEMA_VERSION
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.setup(obj, new=True)
+
+    def setup(self, obj, new=False):
+        add_type_tag(obj, TYPE)
+        for name, kind, group, tip, default, constraint in PROPERTIES:
+            if name in obj.PropertiesList:
+                continue
+            obj.addProperty(kind, name, group, tip)
+            if constraint is not None:
+                setattr(obj, name, (default, *constraint))
+            elif default is not None:
+                setattr(obj, name, default)
+        add_hidden_state(obj, HIDDEN_STATE, "Cohort")
+        obj.setEditorMode("Participants", 1)
+        if new:
+            obj.Stimuli = json.dumps(paper_stimuli())
+            obj.Responses = "[]"
+
+    def onChanged(self, obj, prop):
+        if prop in ("Surface", "Stimuli") and not is_restoring(obj):
+            stop_presenting(obj)  # what was held out may no longer be
+
+    def onDocumentRestored(self, obj):
+        self.setup(obj)
+        from .surface_object import attach_view_provider
+
+        attach_view_provider(obj)
+        obj.purgeTouched()
+
+    def execute(self, obj):
+        found = validate(obj)
+        if found:
+            App.Console.PrintError(f"{obj.Label}: {'; '.join(found)}\n")
+
+
+def is_similarity_study(obj):
+    return getattr(obj, "HaptiCADType", None) == TYPE
+
+
+def similarity_studies_of(doc):
+    return [o for o in doc.Objects if is_similarity_study(o)]
+
+
+# --- stimuli -------------------------------------------------------------------------
+
+def stimuli(study):
+    """The study's stimuli, [{name, values}], in order."""
+    try:
+        data = json.loads(study.Stimuli or "[]")
+    except ValueError:
+        raise ValueError(f"{study.Label}: the stored stimuli are not readable JSON") from None
+    return data
+
+
+def stimulus_problems(items):
+    """What is wrong with a list of stimuli, as sentences."""
+    found = []
+    if len(items) < 3:
+        found.append(f"{len(items)} stimuli: a perceptual space needs at least 3")
+    if len(items) > MAX_STIMULI:
+        found.append(f"{len(items)} stimuli make {len(items) * (len(items) - 1) // 2} pairs to rate; "
+                     f"keep to {MAX_STIMULI} or fewer")
+    names = [str(s.get("name", "")).strip() for s in items]
+    if any(not str(n).strip() for n in names):
+        found.append("every stimulus needs a name")
+    repeated = sorted({n for n in names if names.count(n) > 1})
+    if repeated:
+        found.append(f"stimulus names repeat: {', '.join(repeated)}")
+    for item in items:
+        values = item.get("values", {})
+        missing = [SYMBOLS[k] for k in TEXTURE_VALUES if k not in values]
+        if missing:
+            found.append(f"{item.get('name')}: no {', '.join(missing)}")
+        elif not all(isinstance(values[k], (int, float)) and not isinstance(values[k], bool)
+                     and math.isfinite(values[k]) for k in TEXTURE_VALUES):
+            found.append(f"{item.get('name')}: a value is not a finite number")
+    seen = {}
+    for item in items:
+        key = tuple(item.get("values", {}).get(k) for k in TEXTURE_VALUES)
+        if key in seen:
+            found.append(f"{item.get('name')} is the same texture as {seen[key]}: nothing to tell apart")
+        seen.setdefault(key, item.get("name"))
+    return found
+
+
+def set_stimuli(study, items):
+    """Replaces the stimuli. Raises ValueError, changing nothing, if they are not valid."""
+    if not all(isinstance(s, dict) and isinstance(s.get("values"), dict) for s in items):
+        raise ValueError(f"{study.Label}: each stimulus is {{name, values}}")
+    found = stimulus_problems(items)
+    if found:
+        raise ValueError(f"{study.Label}: {'; '.join(found)}")
+    study.Stimuli = json.dumps([{"name": str(s["name"]).strip(),
+                                 "values": {k: float(s["values"][k]) for k in TEXTURE_VALUES}} for s in items])
+
+
+def texture_of(surface):
+    """A surface's eq. 2 values, {property: value}; ValueError if it renders no texture."""
+    if surface.Texture == "None":
+        raise ValueError(f"{surface.Label} has no texture (its Texture is None): nothing to present")
+    return {k: float(getattr(surface, k)) for k in TEXTURE_VALUES}
+
+
+def add_stimulus_from(study, surface, name=None):
+    """Adds a surface's texture as a stimulus (a texture fitted to a recording, say)."""
+    items = [*stimuli(study), {"name": name or surface.Label, "values": texture_of(surface)}]
+    set_stimuli(study, items)
+
+
+# --- validity ------------------------------------------------------------------------
+
+def references(study):
+    """{"A": surface, "B": surface} of the references set (both or neither count)."""
+    return {key: getattr(study, f"Reference{key}") for key in "AB" if getattr(study, f"Reference{key}") is not None}
+
+
+def validate(study):
+    """Problems that keep a run from starting, as sentences (empty when fine)."""
+    from .surface_object import active_reference_pairs, is_haptic_surface
+
+    found = []
+    if study.Surface is None:
+        found.append("no surface: link the haptic surface whose faces the participants stroke")
+    elif not is_haptic_surface(study.Surface):
+        found.append(f"{study.Surface.Label} is not a haptic surface")
+    else:
+        others = [s.Label for s in similarity_studies_of(study.Document) if s is not study and s.Surface == study.Surface]
+        if others:
+            found.append(f"{study.Surface.Label} is also studied by {', '.join(others)}: "
+                         "a face presents one texture at a time; link another surface")
+        if not active_reference_pairs(study.Surface):
+            found.append(f"{study.Surface.Label} tags no face (its faces are gone or broken): nothing to stroke")
+        if study.Surface.TextureScale == "Friction level" and study.Surface.StaticFriction == 0:
+            found.append(f"{study.Surface.Label}'s texture level 1 is its friction, and its static friction is 0: "
+                         "the stimuli would render nothing; raise the friction, or make level 1 a device force")
+    try:
+        found.extend(stimulus_problems(stimuli(study)))
+    except ValueError as exc:
+        found.append(str(exc))
+    refs = references(study)
+    if len(refs) == 1:
+        missing = "B" if "A" in refs else "A"
+        found.append(f"reference {missing} is not set: classing needs both references, or neither")
+    for key, surface in refs.items():
+        if not is_haptic_surface(surface):
+            found.append(f"reference {key}, {surface.Label}, is not a haptic surface")
+        elif surface.Texture == "None":
+            found.append(f"reference {key}, {surface.Label}, has no texture")
+    if len(refs) == 2 and refs["A"] == refs["B"]:
+        found.append("references A and B are the same surface")
+    return found
+
+
+# --- presenting ----------------------------------------------------------------------
+
+_presented = {}  # (document name, study name) -> {surface property: value}
+
+
+def _key(study):
+    return study.Document.Name, study.Name
+
+
+def present(study, values):
+    """Holds ``values`` ({surface property: value}, a stimulus's or a reference's) out on
+    the study's surface, or nothing (None). Not saved and not an undo step: it is what a
+    participant feels now, not the design. Return the values presented."""
+    if values is None:
+        _presented.pop(_key(study), None)
+    else:
+        _presented[_key(study)] = dict(values)
+    return values
+
+
+def stop_presenting(study):
+    present(study, None)
+
+
+def presented_texture(surface):
+    """What a running similarity study holds out on ``surface`` now ({surface property:
+    value}, over the surface's own), or None."""
+    if not _presented:
+        return None
+    for (doc, name), values in list(_presented.items()):
+        study = App.getDocument(doc).getObject(name) if doc in App.listDocuments() else None
+        if study is None or not is_alive(study):
+            del _presented[(doc, name)]  # the study is gone: nothing stays held out
+        elif study.Surface == surface:
+            return values
+    return None
+
+
+def rendered_texture(surface):
+    """The grating a surface's faces render now, {surface property: value} over
+    REFERENCE_VALUES: what a study holds out on it, over its own texture; None when it
+    has no texture and nothing is held out."""
+    presented = presented_texture(surface)
+    if presented is None and surface.Texture == "None":
+        return None
+    return {**{k: getattr(surface, k) for k in REFERENCE_VALUES}, **(presented or {})}
+
+
+def reference_texture(surface):
+    """A reference surface's texture, whole, as presented values."""
+    texture_of(surface)  # refuses a surface without one
+    return {k: getattr(surface, k) for k in REFERENCE_VALUES}
+
+
+# --- a participant's run -------------------------------------------------------------
+
+@dataclass
+class Trial:
+    kind: str  # "warm-up", "pair" or "class"
+    first: int  # stimulus index
+    second: int = -1  # stimulus index (pairs), -1 for a class trial
+
+
+class Run:
+    """One participant's run through the protocol, in the order a seeded shuffle gives.
+    ``answer`` takes a rating (1..steps) for a pair or warm-up, "A" or "B" for a class
+    trial; ``back`` takes the last answer back. Nothing is kept in the document until
+    record_run."""
+
+    def __init__(self, study, participant, seed=None):
+        found = validate(study)
+        if found:
+            raise ValueError(f"{study.Label}: {'; '.join(found)}")
+        if not str(participant).strip():
+            raise ValueError("a participant needs a name (or an alias)")
+        self.study = study
+        self.participant = str(participant).strip()
+        self.seed = random.SystemRandom().randrange(2**31) if seed is None else int(seed)
+        self.stimuli = stimuli(study)
+        self.steps = int(study.RatingSteps)
+        self.has_references = len(references(study)) == 2
+        rng = random.Random(self.seed)
+        n = len(self.stimuli)
+        pairs = list(itertools.combinations(range(n), 2))
+        warm = [rng.choice(pairs) for _ in range(int(study.WarmUps))]
+        kept = pairs[:]
+        rng.shuffle(kept)
+        self.trials = [Trial("warm-up", *(p if rng.random() < 0.5 else p[::-1])) for p in warm]
+        self.trials += [Trial("pair", *(p if rng.random() < 0.5 else p[::-1])) for p in kept]
+        if self.has_references:
+            classed = [i for i in range(n) for _ in range(int(study.Repeats))]
+            rng.shuffle(classed)
+            self.trials += [Trial("class", i) for i in classed]
+        self.answers = []
+
+    @property
+    def done(self):
+        return len(self.answers) == len(self.trials)
+
+    @property
+    def current(self):
+        return None if self.done else self.trials[len(self.answers)]
+
+    def progress(self):
+        """(kind, number within its kind, count of its kind) of the current trial."""
+        trial = self.current
+        if trial is None:
+            return "done", 0, 0
+        same = [t for t in self.trials if t.kind == trial.kind]
+        before = sum(1 for t in self.trials[:len(self.answers)] if t.kind == trial.kind)
+        return trial.kind, before + 1, len(same)
+
+    def values(self, slot):
+        """What to present for the current trial's ``slot``: 1 or 2 (a pair's first or
+        second texture, a class trial's texture: 1), "A" or "B" (the references)."""
+        trial = self.current
+        if trial is None:
+            raise ValueError("the run is done: nothing to present")
+        if slot in ("A", "B"):
+            if not self.has_references:
+                raise ValueError("this study has no references")
+            return reference_texture(getattr(self.study, f"Reference{slot}"))
+        if slot == 2 and trial.kind == "class":
+            raise ValueError("a class trial presents one texture, and references A and B")
+        index = trial.first if slot == 1 else trial.second
+        return self.stimuli[index]["values"]
+
+    def present(self, slot):
+        return present(self.study, self.values(slot))
+
+    def answer(self, value):
+        trial = self.current
+        if trial is None:
+            raise ValueError("the run is done")
+        if trial.kind == "class":
+            if value not in ("A", "B"):
+                raise ValueError(f"class the texture as A or B, not {value!r}")
+        elif not (isinstance(value, int) and 1 <= value <= self.steps):
+            raise ValueError(f"rate the pair 1..{self.steps}, not {value!r}")
+        self.answers.append(value)
+        stop_presenting(self.study)  # the next trial starts with nothing held out
+
+    def back(self):
+        if self.answers:
+            self.answers.pop()
+        stop_presenting(self.study)
+
+    def as_record(self):
+        """The run as it is kept: the pairs' ratings (not the warm-ups) and the classes."""
+        if not self.done:
+            raise ValueError(f"{self.participant}'s run is not done: {len(self.trials) - len(self.answers)} "
+                             "trials remain")
+        ratings = [[min(t.first, t.second), max(t.first, t.second), a]
+                   for t, a in zip(self.trials, self.answers) if t.kind == "pair"]
+        choices = [[t.first, a] for t, a in zip(self.trials, self.answers) if t.kind == "class"]
+        return {"name": self.participant, "recorded": datetime.now().isoformat(timespec="seconds"),
+                "seed": self.seed, "steps": self.steps, "stimuli": self.stimuli, "ratings": ratings,
+                "choices": choices}
+
+
+def record_problems(record, n=None):
+    """What is wrong with a kept run, as sentences."""
+    found = []
+    try:
+        steps, items = int(record["steps"]), record["stimuli"]
+        count = len(items)
+        pairs = {(int(i), int(j)) for i, j, _ in record["ratings"]}
+        if not str(record["name"]).strip():
+            found.append("a run needs a participant's name")
+        if pairs != set(itertools.combinations(range(count), 2)) or len(record["ratings"]) != len(pairs):
+            found.append(f"{record['name']}: the ratings are not every pair of {count} stimuli once")
+        if any(not (isinstance(s, int) and 1 <= s <= steps) for _, _, s in record["ratings"]):
+            found.append(f"{record['name']}: a rating is outside 1..{steps}")
+        if any(c not in ("A", "B") or not 0 <= int(i) < count for i, c in record["choices"]):
+            found.append(f"{record['name']}: a class is not A or B of a stimulus")
+        found.extend(stimulus_problems(items))
+    except (KeyError, TypeError, ValueError) as exc:
+        found.append(f"not a similarity run: {exc}")
+    return found
+
+
+def runs(study):
+    """The kept runs, oldest first."""
+    try:
+        return json.loads(study.Responses or "[]")
+    except ValueError:
+        raise ValueError(f"{study.Label}: the stored runs are not readable JSON") from None
+
+
+def record_run(study, run):
+    """Keeps a finished run in the study. Raises ValueError, keeping nothing, if it is not done."""
+    record = run.as_record() if isinstance(run, Run) else run
+    found = record_problems(record)
+    if found:
+        raise ValueError("; ".join(found))
+    kept = [*runs(study), record]
+    study.Responses = json.dumps(kept)
+    study.Participants = len(kept)
+    return record
+
+
+def remove_run(study, index):
+    kept = runs(study)
+    if not 0 <= index < len(kept):
+        raise ValueError(f"{study.Label}: no participant {index + 1} (it has {len(kept)})")
+    del kept[index]
+    study.Responses = json.dumps(kept)
+    study.Participants = len(kept)
+
+
+def _same_stimuli(a, b):
+    return len(a) == len(b) and all(
+        all(math.isclose(x["values"][k], y["values"][k], rel_tol=0, abs_tol=1e-12) for k in TEXTURE_VALUES)
+        for x, y in zip(a, b))
+
+
+def comparable_runs(study):
+    """The runs made on the stimuli the study holds now (runs on another set are kept but
+    not pooled with these)."""
+    now = stimuli(study)
+    return [r for r in runs(study) if _same_stimuli(r["stimuli"], now)]
+
+
+# --- analysis ------------------------------------------------------------------------
+
+def dissimilarity(kept, n):
+    """The cohort's dissimilarity matrix: 1 - the mean similarity of each pair, every
+    rating first scaled to 0 (nothing alike) .. 1 (the same) by its run's steps."""
+    total = np.zeros((n, n))
+    for record in kept:
+        steps = record["steps"]
+        for i, j, s in record["ratings"]:
+            total[i, j] += (s - 1) / (steps - 1)
+    mean = total / len(kept)
+    mean = mean + mean.T
+    d = 1.0 - mean
+    np.fill_diagonal(d, 0.0)
+    return d
+
+
+def analyse(study):
+    """The perceptual space of the study's comparable runs, as a dict:
+    ``stimuli`` (names), ``points`` (n x dims), ``stress``, ``explained``,
+    ``eigenvalues``, ``vectors`` ({label: {direction, length, correlation, low, high}}),
+    ``likeness`` (per stimulus, the share classed closer to A, or None), ``participants``,
+    ``held`` (runs on other stimuli), ``notes``. Raises ValueError when there is nothing
+    to analyse."""
+    items = stimuli(study)
+    kept = comparable_runs(study)
+    held = len(runs(study)) - len(kept)
+    if not kept:
+        other = f" ({held} runs on other stimuli are kept but not pooled with these)" if held else ""
+        raise ValueError(f"{study.Label}: no participant has rated these stimuli yet{other}")
+    n = len(items)
+    dims = int(study.Dimensions)
+    if dims >= n:
+        raise ValueError(f"{study.Label}: {dims} dimensions for {n} stimuli; give fewer than {n}")
+    space = _core.compute_perceptual_space(dissimilarity(kept, n), dims)
+    notes = []
+    vectors = {}
+    for key in TEXTURE_VALUES:
+        values = [s["values"][key] for s in items]
+        try:
+            q = _core.scale_to_unit_range(values)
+        except ValueError:
+            continue  # held constant, as the paper's beta_h and alpha_h: no vector
+        vectors[SYMBOLS[key]] = _vector(space.points, q, f"low {SYMBOLS[key]}", f"high {SYMBOLS[key]}")
+    likeness = [None] * n
+    counts = [[0, 0] for _ in range(n)]
+    for record in kept:
+        for i, choice in record["choices"]:
+            counts[i][0 if choice == "A" else 1] += 1
+    if any(a + b for a, b in counts):
+        likeness = [a / (a + b) if a + b else None for a, b in counts]
+        if None in likeness:
+            notes.append("some stimuli were never classed: no vector for likeness to the references")
+        else:
+            q = [share - 0.5 for share in likeness]  # the paper: always B -0.5, always A +0.5
+            if any(q):
+                vectors[LIKENESS] = _vector(space.points, q, "like B", "like A")
+            else:
+                notes.append("every stimulus was classed A and B equally often: no vector for likeness")
+    if space.stress > 0.2:
+        notes.append(f"stress {space.stress:.2f}: the space holds the ratings poorly (above 0.2); "
+                     "more dimensions or more participants may help")
+    if len(kept) < 3:
+        notes.append(f"{len(kept)} participant{'s' if len(kept) != 1 else ''}: the space shows one or two people's "
+                     "impressions, not a cohort's")
+    return {"stimuli": [s["name"] for s in items], "points": space.points.tolist(), "stress": space.stress,
+            "explained": space.explained, "eigenvalues": list(space.eigenvalues), "vectors": vectors,
+            "likeness": likeness, "participants": len(kept), "held": held, "notes": notes}
+
+
+def _vector(points, q, low, high):
+    v = _core.fit_property_vector(points, q)
+    return {"direction": [float(x) for x in v.direction], "length": v.length, "correlation": v.correlation,
+            "low": low, "high": high}
+
+
+def make_similarity_study(doc, surface, name="SimilarityStudy", items=None, **properties):
+    """A similarity study of textures felt on ``surface``'s faces: the paper's nine, or
+    ``items`` ([{name, values}]). Properties may be given by name. Raises ValueError on
+    bad input, adding nothing."""
+    from .surface_object import attach_view_provider, is_haptic_surface
+
+    if isinstance(surface, str):
+        surface = doc.getObject(surface) or next(iter(doc.getObjectsByLabel(surface)), None)
+    if surface is None or not is_haptic_surface(surface) or surface.Document != doc:
+        raise ValueError("make_similarity_study: give a haptic surface of this document")
+    unknown = [k for k in properties if k not in {p[0] for p in PROPERTIES}]
+    if unknown:
+        raise ValueError(f"make_similarity_study: unknown properties {', '.join(unknown)}")
+    if items is not None:
+        found = stimulus_problems(items)
+        if found:
+            raise ValueError(f"make_similarity_study: {'; '.join(found)}")
+    obj = doc.addObject("App::FeaturePython", name)
+    SimilarityStudy(obj)
+    try:
+        obj.Surface = surface
+        if items is not None:
+            set_stimuli(obj, items)
+        for key, value in properties.items():
+            setattr(obj, key, value)
+    except Exception as exc:  # a value the property refuses: no half-made study
+        doc.removeObject(obj.Name)
+        raise ValueError(f"make_similarity_study: {exc}") from None
+    attach_view_provider(obj)
+    obj.recompute()
+    return obj

@@ -1,0 +1,305 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Similarity studies (seed 001 §IV): the protocol of a participant's run, stimuli felt
+through the real servo loop in place of the surface's texture, runs kept with the
+document, the perceptual space and eq. 3's vectors of a simulated cohort, clear errors."""
+import itertools
+import json
+import math
+import os
+import random
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+
+import FreeCAD as App
+
+import HaptiCAD
+from hapticad import _core, similarity_study as ss
+from hapticad.document_scene import build_document_scene, recompile_surfaces
+from hapticad.feel import Stroke, run_stroke, sliding_mask
+from hapticad.surface_compile import compile_surface
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from host_stalls import run_without_host_stall  # noqa: E402
+
+FULL_RANGE_N = 2.0
+
+
+def simulated_answer(run, trial, weights, rng, noise, likes_a=None):
+    """A participant whose sense of difference is a weighted distance in (f_DC, f_vis)
+    with seeded noise; who classes a texture as A when ``likes_a(values)``."""
+    values = [run.stimuli[i]["values"] for i in (trial.first, trial.second) if i >= 0]
+    if trial.kind == "class":
+        return "A" if likes_a(values[0]) else "B"
+    a, b = values
+    distance = math.hypot(weights[0] * (a["TextureDC"] - b["TextureDC"]) / 0.35,
+                          weights[1] * (a["TextureViscosity"] - b["TextureViscosity"]) / 0.4)
+    similarity = 1.0 - distance / math.hypot(*weights) + rng.gauss(0, noise)
+    return int(min(run.steps, max(1, round(1 + similarity * (run.steps - 1)))))
+
+
+def finish(run, weights=(1.0, 0.5), seed=0, noise=0.05, likes_a=None):
+    rng = random.Random(seed)
+    likes_a = likes_a or (lambda v: v["TextureDC"] + v["TextureViscosity"] < 0.5)
+    while not run.done:
+        run.answer(simulated_answer(run, run.current, weights, rng, noise, likes_a))
+    return run
+
+
+class StudyTest(unittest.TestCase):
+    def setUp(self):
+        self.doc = App.newDocument("SimilarityTest")
+        self.box = self.doc.addObject("Part::Box", "Plate")
+        self.box.Length, self.box.Width, self.box.Height = 40, 100, 10
+        self.doc.recompute()
+        self.plate = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS", FeelRoughness=False,
+                                           TextureScale="Device force", TextureFullRange=FULL_RANGE_N)
+        self.tmp = tempfile.TemporaryDirectory()
+
+    def tearDown(self):
+        for study in ss.similarity_studies_of(self.doc):
+            ss.stop_presenting(study)
+        App.closeDocument(self.doc.Name)
+        self.tmp.cleanup()
+
+    def references(self):
+        """Two surfaces with the textures of a stiff and a soft real grating."""
+        box = self.doc.addObject("Part::Box", "Samples")
+        self.doc.recompute()
+        a = HaptiCAD.make_surface(self.doc, [(box, "Face1")], material="ABS", FeelRoughness=False, Texture="Custom",
+                                  TextureDC=0.2, TextureViscosity=-0.3, TexturePeriod=2.0)
+        b = HaptiCAD.make_surface(self.doc, [(box, "Face2")], material="ABS", FeelRoughness=False, Texture="Custom",
+                                  TextureDC=0.8, TextureViscosity=0.3, TexturePeriod=3.0)
+        return a, b
+
+    def test_a_new_study_holds_the_papers_nine_textures(self):
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate)
+        self.assertEqual(ss.validate(study), [])
+        items = ss.stimuli(study)
+        self.assertEqual(len(items), 9)
+        dcs = sorted({s["values"]["TextureDC"] for s in items})
+        viss = sorted({s["values"]["TextureViscosity"] for s in items})
+        self.assertEqual([round(x, 3) for x in dcs], [0.325, 0.5, 0.675])
+        self.assertEqual([round(x, 3) for x in viss], [-0.2, 0.0, 0.2])
+        for s in items:  # the values the paper held
+            self.assertEqual(s["values"]["TextureBeta"], 0.125)
+            self.assertEqual(s["values"]["TextureAlpha"], 2.5)
+        self.assertEqual((study.RatingSteps, study.WarmUps, study.Repeats, study.Dimensions), (7, 12, 3, 2))
+
+    def test_a_run_follows_the_papers_protocol(self):
+        a, b = self.references()
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, ReferenceA=a, ReferenceB=b)
+        run = ss.Run(study, "P1", seed=5)
+        kinds = [t.kind for t in run.trials]
+        # 12 warm-ups, then the 36 pairs, then each of nine classed three times: 75 trials
+        self.assertEqual(kinds, ["warm-up"] * 12 + ["pair"] * 36 + ["class"] * 27)
+        pairs = [tuple(sorted((t.first, t.second))) for t in run.trials if t.kind == "pair"]
+        self.assertEqual(sorted(pairs), list(itertools.combinations(range(9), 2)))
+        firsts = [t.first < t.second for t in run.trials if t.kind == "pair"]
+        self.assertTrue(any(firsts) and not all(firsts))  # either may be felt first
+        classed = [t.first for t in run.trials if t.kind == "class"]
+        self.assertEqual(sorted(classed), sorted(list(range(9)) * 3))
+        self.assertNotEqual(classed, sorted(classed))
+        # seeded: the same seed, the same order; another, another
+        self.assertEqual([(t.first, t.second) for t in ss.Run(study, "P1", seed=5).trials],
+                         [(t.first, t.second) for t in run.trials])
+        self.assertNotEqual([(t.first, t.second) for t in ss.Run(study, "P2", seed=6).trials],
+                            [(t.first, t.second) for t in run.trials])
+        self.assertEqual(run.progress(), ("warm-up", 1, 12))
+        for _ in range(12):
+            run.answer(4)
+        self.assertEqual(run.progress(), ("pair", 1, 36))
+        run.back()
+        self.assertEqual(run.progress(), ("warm-up", 12, 12))
+        # without references there is nothing to class
+        study.ReferenceA = study.ReferenceB = None
+        self.assertEqual([t.kind for t in ss.Run(study, "P3", seed=1).trials].count("class"), 0)
+
+    def test_a_presented_stimulus_replaces_the_surfaces_texture_and_is_felt(self):
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate)
+        items = ss.stimuli(study)
+        low = next(i for i, s in enumerate(items) if s["values"]["TextureDC"] == 0.325
+                   and s["values"]["TextureViscosity"] == 0.0)
+        high = next(i for i, s in enumerate(items) if s["values"]["TextureDC"] == 0.675
+                    and s["values"]["TextureViscosity"] == 0.0)
+        face = self.box.Shape.Face6
+        self.assertIsNone(compile_surface(self.plate, face).texture)  # the plate's own: no texture
+        scene = build_document_scene(self.doc)
+
+        def resisting_force_n():
+            stroke = Stroke((20, 10, 10), (20, 90, 10), speed_mm_s=100.0, depth_mm=1.0, rate_hz=1000)
+            result = run_without_host_stall(lambda: run_stroke(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
+            sliding = sliding_mask(result, scene)
+            self.assertGreater(sliding.sum(), 300)
+            return float(np.mean(result.trace["tangential_force_n"][sliding]))
+
+        forces = {}
+        for index in (low, high):
+            ss.present(study, items[index]["values"])
+            texture = compile_surface(self.plate, face).texture
+            self.assertAlmostEqual(texture.params.f_dc, items[index]["values"]["TextureDC"])
+            self.assertAlmostEqual(texture.params.period_m, self.plate.TexturePeriod * 1e-3)
+            scene = recompile_surfaces(self.doc, scene)  # what a running session does on a change
+            forces[index] = resisting_force_n()
+        # eq. 2 at f_vis 0: the mean resisting force is f_DC of the full range (the
+        # harmonics average out over whole periods)
+        self.assertAlmostEqual(forces[low], 0.325 * FULL_RANGE_N, delta=0.03)
+        self.assertAlmostEqual(forces[high], 0.675 * FULL_RANGE_N, delta=0.03)
+        ss.stop_presenting(study)
+        self.assertIsNone(compile_surface(self.plate, face).texture)
+
+    def test_a_reference_is_presented_whole_and_an_answer_clears_what_was_held(self):
+        a, b = self.references()
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, ReferenceA=a, ReferenceB=b, WarmUps=0)
+        run = ss.Run(study, "P1", seed=2)
+        while run.current.kind != "class":
+            run.answer(3)
+        with self.assertRaises(ValueError):
+            run.values(2)  # a class trial has one texture
+        run.present("B")
+        texture = ss.rendered_texture(self.plate)
+        self.assertEqual((texture["TextureDC"], texture["TexturePeriod"]), (0.8, 3.0))  # B's own period
+        run.present(1)
+        self.assertEqual(ss.rendered_texture(self.plate)["TexturePeriod"], self.plate.TexturePeriod)
+        run.answer("A")
+        self.assertIsNone(ss.presented_texture(self.plate))
+        with self.assertRaises(ValueError):
+            run.answer(4)  # a class trial takes A or B
+        # the study's own deletion leaves nothing held out
+        run.present(1)
+        self.doc.removeObject(study.Name)
+        self.assertIsNone(ss.presented_texture(self.plate))
+
+    def test_a_finished_run_is_kept_with_the_document_and_nothing_before(self):
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate)
+        run = ss.Run(study, "Ada", seed=1)
+        run.answer(5)
+        with self.assertRaisesRegex(ValueError, "not done: 47 trials remain"):
+            ss.record_run(study, run)
+        self.assertEqual((ss.runs(study), study.Participants), ([], 0))
+        with self.assertRaisesRegex(ValueError, r"rate the pair 1\.\.7"):
+            run.answer(8)
+        finish(run)
+        record = ss.record_run(study, run)
+        self.assertEqual(len(record["ratings"]), 36)  # the warm-ups are not kept
+        self.assertEqual(study.Participants, 1)
+        ss.present(study, ss.stimuli(study)[0]["values"])
+        path = os.path.join(self.tmp.name, "study.FCStd")
+        self.doc.saveAs(path)
+        name = self.doc.Name
+        App.closeDocument(name)
+        self.doc = App.openDocument(path)
+        study = ss.similarity_studies_of(self.doc)[0]
+        self.assertEqual(study.Participants, 1)
+        self.assertEqual(ss.runs(study)[0]["ratings"], record["ratings"])
+        self.assertIsNone(ss.presented_texture(study.Surface))  # what was held out is not saved
+        # undo takes a kept run back
+        run = finish(ss.Run(study, "Bea", seed=2))
+        self.doc.UndoMode = 1
+        self.doc.openTransaction("Similarity run")
+        ss.record_run(study, run)
+        self.doc.commitTransaction()
+        self.assertEqual(study.Participants, 2)
+        self.doc.undo()
+        self.assertEqual((study.Participants, len(ss.runs(study))), (1, 1))
+
+    def test_the_cohorts_space_shows_what_it_was_made_of(self):
+        a, b = self.references()
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, ReferenceA=a, ReferenceB=b)
+        # ten participants who weigh friction twice as much as viscosity (seeded noise),
+        # and class low friction and viscosity as A
+        for p in range(10):
+            ss.record_run(study, finish(ss.Run(study, f"P{p}", seed=p), weights=(1.0, 0.5), seed=100 + p))
+        result = ss.analyse(study)
+        self.assertEqual(result["participants"], 10)
+        self.assertLess(result["stress"], 0.15)
+        self.assertGreater(result["explained"], 0.8)
+        vectors = result["vectors"]
+        self.assertEqual(set(vectors), {"f_DC", "f_vis", ss.LIKENESS})  # beta_h, alpha_h held: no vector
+        dc, vis, like = vectors["f_DC"], vectors["f_vis"], vectors[ss.LIKENESS]
+        self.assertGreater(dc["correlation"], 0.9)
+        self.assertGreater(vis["correlation"], 0.8)
+        self.assertAlmostEqual(dc["length"] / vis["length"], 2.0, delta=0.5)
+        # friction and viscosity are separate directions of the space ...
+        cos = np.dot(dc["direction"], vis["direction"]) / (dc["length"] * vis["length"])
+        self.assertLess(abs(cos), 0.3)
+        # ... and higher friction and viscosity both lead away from A
+        unit = np.asarray(like["direction"]) / like["length"]
+        self.assertLess(np.dot(dc["direction"], unit), 0)
+        self.assertLess(np.dot(vis["direction"], unit), 0)
+        names = result["stimuli"]
+        self.assertEqual(result["likeness"][names.index("f_DC 0.325 f_vis -0.2")], 1.0)
+        self.assertEqual(result["likeness"][names.index("f_DC 0.675 f_vis +0.2")], 0.0)
+
+    def test_runs_on_other_stimuli_are_kept_but_not_pooled(self):
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=0)
+        ss.record_run(study, finish(ss.Run(study, "P1", seed=1)))
+        items = ss.stimuli(study)[:4]
+        ss.set_stimuli(study, items)
+        with self.assertRaisesRegex(ValueError, "no participant has rated these stimuli yet \\(1 runs"):
+            ss.analyse(study)
+        ss.record_run(study, finish(ss.Run(study, "P2", seed=2)))
+        result = ss.analyse(study)
+        self.assertEqual((result["participants"], result["held"]), (1, 1))
+        self.assertEqual(len(result["points"]), 4)
+        self.assertTrue(any("one or two people" in n for n in result["notes"]))
+
+    def test_bad_input_is_refused_and_changes_nothing(self):
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate)
+        before = study.Stimuli
+        items = ss.stimuli(study)
+        for bad, message in (
+                (items[:2], "at least 3"),
+                ([*items, dict(items[0], name="again")], "same texture as"),
+                ([*items[:8], dict(items[8], name=items[0]["name"])], "names repeat"),
+                ([*items[:8], {"name": "x", "values": dict(items[8]["values"], TextureDC=float("nan"))}],
+                 "not a finite number"),
+                ([*items[:8], {"name": "x", "values": {"TextureDC": 0.3}}], "no f_vis"),
+                ([*items[:8], "a string"], "each stimulus")):
+            with self.assertRaisesRegex(ValueError, message):
+                ss.set_stimuli(study, bad)
+            self.assertEqual(study.Stimuli, before)
+        a, _ = self.references()
+        study.ReferenceA = a
+        self.assertIn("reference B is not set: classing needs both references, or neither", ss.validate(study))
+        with self.assertRaisesRegex(ValueError, "reference B is not set"):
+            ss.Run(study, "P1")
+        study.ReferenceA = None
+        with self.assertRaisesRegex(ValueError, "needs a name"):
+            ss.Run(study, "  ")
+        other = HaptiCAD.make_similarity_study(self.doc, self.plate, name="Other")
+        self.assertTrue(any("also studied by" in p for p in ss.validate(other)))
+        self.doc.removeObject(other.Name)
+        with self.assertRaisesRegex(ValueError, "a haptic surface"):
+            HaptiCAD.make_similarity_study(self.doc, self.box)
+        with self.assertRaisesRegex(ValueError, "unknown properties Colour"):
+            HaptiCAD.make_similarity_study(self.doc, self.plate, Colour=1)
+        self.assertEqual(len(ss.similarity_studies_of(self.doc)), 1)
+        # a stored run that is not a run
+        self.assertTrue(ss.record_problems({"name": "x"}))
+        study.Responses = "{not json"
+        with self.assertRaisesRegex(ValueError, "not readable JSON"):
+            ss.runs(study)
+        study.Responses = "[]"
+        study.Dimensions = 3
+        ss.set_stimuli(study, items[:3])
+        ss.record_run(study, finish(ss.Run(study, "P", seed=1)))
+        with self.assertRaisesRegex(ValueError, "3 dimensions for 3 stimuli"):
+            ss.analyse(study)
+
+    def test_a_stimulus_can_come_from_a_surfaces_texture(self):
+        a, _ = self.references()
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate)
+        ss.add_stimulus_from(study, a, "Fitted A")
+        added = ss.stimuli(study)[-1]
+        self.assertEqual(added["name"], "Fitted A")
+        self.assertEqual(added["values"]["TextureDC"], 0.2)
+        with self.assertRaisesRegex(ValueError, "has no texture"):
+            ss.add_stimulus_from(study, self.plate)
+        self.assertEqual(len(ss.stimuli(study)), 10)
+
+
+if __name__ == "__main__":
+    unittest.main()
