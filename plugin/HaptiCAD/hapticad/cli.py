@@ -244,6 +244,35 @@ def cmd_cohort(args):
     return None
 
 
+def cmd_similarity(args):
+    App = ensure_freecad()
+    from . import similarity_study
+
+    doc = _open_document(App, args.file)
+    try:
+        found = similarity_study.similarity_studies_of(doc)
+        studies = [s for s in found if not args.study or args.study in (s.Name, s.Label)]
+        if not studies:
+            names = ", ".join(s.Label for s in found) or "none"
+            raise ValueError(f"{args.file}: no similarity study{' named ' + repr(args.study) if args.study else ''} "
+                             f"(it has: {names})")
+        if args.plot and len(studies) > 1:
+            raise ValueError("--plot draws one study's space: name it with --study")
+        result = []
+        for study in studies:
+            analysis = similarity_study.analyse(study)
+            result.append({"study": study.Label, **analysis})
+            if args.plot:
+                from .similarity_plot import plot_space
+
+                plot_space(args.plot, analysis, f"{study.Label}: perceptual space")
+            if not args.json:
+                print(similarity_study.describe(study, analysis))
+    finally:
+        App.closeDocument(doc.Name)
+    return result if args.json else None
+
+
 def build_parser():
     parser = argparse.ArgumentParser(prog="hapticad", description="Feel CAD parts: HaptiCAD's command line")
     sub = parser.add_subparsers(dest="command", required=True)
@@ -317,6 +346,14 @@ def build_parser():
     coh.add_argument("--csv", metavar="FILE", help="also write the study's participants as CSV")
     coh.add_argument("--json", action="store_true", help="print JSON")
     coh.set_defaults(run=cmd_cohort)
+
+    sim = sub.add_parser("similarity", help="a document's similarity studies: the perceptual space of the "
+                         "textures (MDS) and each parameter's vector through it")
+    sim.add_argument("file", help="FreeCAD document (.FCStd) with SimilarityStudy objects")
+    sim.add_argument("--study", metavar="NAME", help="only this study (name or label)")
+    sim.add_argument("--plot", metavar="PNG", help="draw the space and its vectors (seed 001 Fig. 7)")
+    sim.add_argument("--json", action="store_true", help="print JSON")
+    sim.set_defaults(run=cmd_similarity)
 
     demo = sub.add_parser("demo", help="open the example toothbrush and feel it")
     demo.add_argument("--headless", action="store_true", help="stroke every tagged face, even with a display")

@@ -529,6 +529,17 @@ def analyse(study):
             "likeness": likeness, "participants": len(kept), "held": held, "notes": notes}
 
 
+def describe(study, result):
+    """A few lines of text of ``result`` (analyse) for the console and the panel."""
+    lines = [f"{study.Label}: {len(result['stimuli'])} stimuli, {result['participants']} participants"
+             + (f" ({result['held']} runs on other stimuli not pooled)" if result["held"] else ""),
+             f"  stress {result['stress']:.3f}, the axes hold {100 * result['explained']:.0f} % of the spread"]
+    for label, v in sorted(result["vectors"].items(), key=lambda kv: -kv[1]["length"]):
+        lines.append(f"  {label:<12} |p| {v['length']:.3f}  r {v['correlation']:.2f}")
+    lines.extend(f"  note: {n}" for n in result["notes"])
+    return "\n".join(lines)
+
+
 def _vector(points, q, low, high):
     v = _core.fit_property_vector(points, q)
     return {"direction": [float(x) for x in v.direction], "length": v.length, "correlation": v.correlation,

@@ -1,0 +1,92 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""`hapticad similarity` end to end: a document's similarity study, its participants'
+runs, the perceptual space as JSON, text and a plot; bad input gets a clear error (exit 2).
+
+Environment: HAPTICAD_CLI (the launcher), HAPTICAD_MOD (the staged Mod folder).
+Runs under /usr/bin/python3 (FreeCAD's interpreter)."""
+import json
+import os
+import random
+import subprocess
+import sys
+import tempfile
+import unittest
+
+CLI = os.environ["HAPTICAD_CLI"]
+sys.path.insert(0, os.environ["HAPTICAD_MOD"])
+
+from hapticad.freecad_env import ensure_freecad  # noqa: E402
+
+App = ensure_freecad()
+import HaptiCAD  # noqa: E402
+from hapticad import similarity_study as ss  # noqa: E402
+
+
+def run_cli(*args):
+    return subprocess.run([CLI, *args], capture_output=True, text=True, timeout=120)
+
+
+def rate(run, seed):
+    """A participant who tells textures apart by their DC friction alone."""
+    rng = random.Random(seed)
+    while not run.done:
+        t = run.current
+        a, b = (run.stimuli[i]["values"]["TextureDC"] for i in (t.first, t.second))
+        alike = 1 - abs(a - b) / 0.35 + rng.gauss(0, 0.05)
+        run.answer(int(min(run.steps, max(1, round(1 + alike * (run.steps - 1))))))
+    return run
+
+
+class SimilarityCommandTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.path = os.path.join(cls.tmp.name, "gratings.FCStd")
+        doc = App.newDocument("CliSimilarity")
+        box = doc.addObject("Part::Box", "Plate")
+        doc.recompute()
+        surface = HaptiCAD.make_surface(doc, [(box, "Face6")], material="ABS", FeelRoughness=False)
+        study = HaptiCAD.make_similarity_study(doc, surface, WarmUps=0)
+        study.Label = "Gratings"
+        for p in range(4):
+            ss.record_run(study, rate(ss.Run(study, f"P{p}", seed=p), 10 + p))
+        HaptiCAD.make_similarity_study(doc, HaptiCAD.make_surface(doc, [(box, "Face1")]), name="Empty")
+        doc.saveAs(cls.path)
+        App.closeDocument(doc.Name)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def test_the_space_of_one_study_as_json_and_a_plot(self):
+        png = os.path.join(self.tmp.name, "space.png")
+        proc = run_cli("similarity", self.path, "--study", "Gratings", "--json", "--plot", png)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        (study,) = json.loads(proc.stdout)
+        self.assertEqual((study["study"], study["participants"], len(study["points"])), ("Gratings", 4, 9))
+        # friction alone made the ratings: its vector is long and the points line up on it
+        self.assertGreater(study["vectors"]["f_DC"]["correlation"], 0.95)
+        self.assertGreater(study["vectors"]["f_DC"]["length"], 3 * study["vectors"]["f_vis"]["length"])
+        with open(png, "rb") as f:
+            self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+        self.assertGreater(os.path.getsize(png), 20000)
+
+    def test_text_summary(self):
+        proc = run_cli("similarity", self.path, "--study", "Gratings")
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertIn("Gratings: 9 stimuli, 4 participants", proc.stdout)
+        self.assertRegex(proc.stdout, r"f_DC +\|p\| \d\.\d{3}  r (0\.9[5-9]|1\.00)")
+
+    def test_bad_input_gets_a_clear_error(self):
+        for args, message in ((["--study", "Nope"], "no similarity study named 'Nope' (it has: Gratings, Empty)"),
+                              (["--study", "Empty"], "Empty: no participant has rated these stimuli yet"),
+                              (["--plot", os.path.join(self.tmp.name, "x.png")], "--plot draws one study's space")):
+            proc = run_cli("similarity", self.path, *args)
+            self.assertEqual(proc.returncode, 2, proc.stdout)
+            self.assertIn(message, proc.stderr)
+            self.assertNotIn("Traceback", proc.stderr)
+        self.assertFalse(os.path.exists(os.path.join(self.tmp.name, "x.png")))
+
+
+if __name__ == "__main__":
+    unittest.main()
