@@ -67,6 +67,8 @@ PROPERTIES = [
 ]
 HIDDEN_STATE = [("Stimuli", "The stimuli: name and eq. 2's values of each (JSON)"),
                 ("Responses", "The participants' runs (JSON)")]
+# the properties that change what the study's face renders (the others are bookkeeping)
+FELT_PROPERTIES = ("Surface", "Stimuli", "ReferenceA", "ReferenceB")
 MAX_STIMULI = 20  # 190 pairs: about what a participant rates in one sitting
 
 
@@ -446,7 +448,7 @@ def remove_run(study, index):
     study.Participants = len(kept)
 
 
-def _same_stimuli(a, b):
+def same_stimuli(a, b):
     return len(a) == len(b) and all(
         all(math.isclose(x["values"][k], y["values"][k], rel_tol=0, abs_tol=1e-12) for k in TEXTURE_VALUES)
         for x, y in zip(a, b))
@@ -456,7 +458,7 @@ def comparable_runs(study):
     """The runs made on the stimuli the study holds now (runs on another set are kept but
     not pooled with these)."""
     now = stimuli(study)
-    return [r for r in runs(study) if _same_stimuli(r["stimuli"], now)]
+    return [r for r in runs(study) if same_stimuli(r["stimuli"], now)]
 
 
 # --- analysis ------------------------------------------------------------------------

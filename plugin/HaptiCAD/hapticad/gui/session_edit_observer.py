@@ -56,6 +56,14 @@ class SessionEditObserver:
         return self._ours(obj) and (is_haptic_surface(obj) or is_haptic_vibration(obj) or is_stiffness_study(obj)
                                     or is_similarity_study(obj))
 
+    @staticmethod
+    def _felt(obj, prop):
+        """False for a similarity study's bookkeeping (its runs, its protocol): what the
+        face renders does not change with them."""
+        from ..similarity_study import FELT_PROPERTIES, is_similarity_study
+
+        return not is_similarity_study(obj) or prop in FELT_PROPERTIES
+
     def _reshapes(self, obj, prop):
         """A change of shape or placement of a part in the scene, or of a container
         that places one (a Body, an App::Part)."""
@@ -107,7 +115,7 @@ class SessionEditObserver:
     def slotChangedObject(self, obj, prop):
         if self._reshapes(obj, prop):
             self._changed(geometry=True)
-        elif prop not in IGNORED and self._haptic(obj):
+        elif prop not in IGNORED and self._haptic(obj) and self._felt(obj, prop):
             self._changed()
 
     def slotCreatedObject(self, obj):

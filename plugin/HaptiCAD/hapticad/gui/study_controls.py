@@ -30,7 +30,7 @@ def set_study_property(study, name, value):
     return True
 
 
-class _StudyObserver:
+class StudyObserver:
     """Calls back, once per event-loop turn, when the study changes by any way (an undo,
     the property editor), so the controls never show a design that is not the study's."""
 
@@ -131,7 +131,7 @@ class StudyControls(QtWidgets.QWidget):
         self.message.setObjectName("studyMessage")
         self.message.setWordWrap(True)
         layout.addWidget(self.message)
-        self.observer = _StudyObserver(study, self.external_change)
+        self.observer = StudyObserver(study, self.external_change)
         self.destroyed.connect(lambda *_: self.observer.remove())
         self.load()
 

@@ -14,11 +14,13 @@ import FreeCADGui as Gui
 from PySide2 import QtCore, QtGui, QtWidgets
 
 from .. import _core, feel_session, icon, preferences
+from ..similarity_study import similarity_studies_of
 from ..stiffness_study import studies_of
 from .document_closing import DocumentClosingObserver
 from .feel_view import FeelView, MouseSteering
 from .strip_chart import StripChart
 from .session_edit_observer import SessionEditObserver
+from .similarity_controls import SimilarityControls
 from .study_controls import StudyControls
 
 DISPLAY_HZ = 60
@@ -48,7 +50,13 @@ class FeelTaskPanel:
         self.main = self._build()
         # a stiffness study's slider and participant form, next to the session (seed 000 Fig. 10)
         self.study_controls = [StudyControls(study, self.device_stiffness) for study in studies_of(doc)]
-        self.form = [self.main, *(self._study_box(c) for c in self.study_controls)]
+        # a similarity study's runs: the participant picks the texture on the face and answers (seed 001 §IV)
+        self.similarity_controls = [SimilarityControls(study) for study in similarity_studies_of(doc)]
+        for controls in self.similarity_controls:
+            controls.presented.connect(self.presented)
+        self.form = [self.main, *(self._study_box(c) for c in self.study_controls),
+                     *(self._study_box(c, "Similarity study", "HaptiCAD_SimilarityStudy")
+                       for c in self.similarity_controls)]
         self.timer = QtCore.QTimer()
         self.timer.setInterval(int(1000 / DISPLAY_HZ))
         self.timer.timeout.connect(self.update_display)
@@ -111,10 +119,10 @@ class FeelTaskPanel:
         """The running session's stable stiffness (N/m, in the world), or None."""
         return self.session.render_limits.max_stiffness_n_per_m if self.session is not None else None
 
-    def _study_box(self, controls):
+    def _study_box(self, controls, kind="Stiffness study", icon_name="HaptiCAD_Study"):
         box = QtWidgets.QWidget()
-        box.setWindowTitle(f"Stiffness study: {controls.study.Label}")
-        box.setWindowIcon(QtGui.QIcon(icon("HaptiCAD_Study")))
+        box.setWindowTitle(f"{kind}: {controls.study.Label}")
+        box.setWindowIcon(QtGui.QIcon(icon(icon_name)))
         layout = QtWidgets.QVBoxLayout(box)
         layout.addWidget(controls)
         return box
@@ -217,6 +225,20 @@ class FeelTaskPanel:
             self.show_message("Surface edited on a part the session did not hold: the scene was "
                               "built again and you feel it now." + _note(self.session.reach_note))
 
+    def presented(self):
+        """A similarity study put another texture on its face: the loop gets the surfaces
+        again (no document edit, so the edit observer does not see it)."""
+        if self.session is None:
+            return
+        try:
+            self.session.apply_edit(self.doc, False)
+        except Exception as exc:  # noqa: BLE001 (named, and the loop keeps what it had)
+            self.show_message(f"{exc} (still feeling the surfaces as they were)", error=True)
+            return
+        self.doc_scene = self.session.doc_scene
+        if self.steering is not None:
+            self.steering.doc_scene = self.doc_scene
+
     def document_closing(self):
         """The document is being closed: the session stops, and the panel closes with it.
         Its 3D view is already being destroyed (asking it for its scene graph now
@@ -288,7 +310,10 @@ class FeelTaskPanel:
         return int(QtWidgets.QDialogButtonBox.Close)
 
     def _leave(self):
-        """The panel is done: its document observer goes, and it is no longer active."""
+        """The panel is done: its document observer goes, no study holds a texture out,
+        and it is no longer active."""
+        for controls in self.similarity_controls:
+            controls.release()
         if self.closing is not None:
             self.closing.remove()
             self.closing = None

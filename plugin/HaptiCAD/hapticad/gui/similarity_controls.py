@@ -1,0 +1,245 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The controls a participant uses in a similarity study's run (seed 001 §IV), shown in
+the Feel panel beside the session: who they are, which texture is on the face now, and
+their answer.
+
+The participant presses *Texture 1* or *Texture 2* (as often as they like) to have that
+texture on the study's face at the next servo tick, strokes it, and rates how alike the
+two feel; in the classing part, *Texture*, *Reference A* and *Reference B*, then *Closer
+to A* or *Closer to B*. They never see which stimulus is which. *Back* takes the last
+answer back. When the last trial is answered the run is kept in the document as one
+undo step; a run stopped before is not kept (a half run would skew the cohort).
+"""
+import FreeCAD as App
+from PySide2 import QtCore, QtWidgets
+
+from .. import similarity_study as ss
+from ..proxy_state import is_alive
+
+KIND_TITLES = {"warm-up": "Warm-up (not kept)", "pair": "Pair", "class": "Closer to A or to B?"}
+
+
+class SimilarityControls(QtWidgets.QWidget):
+    """One study's run controls. ``presented`` is emitted when the texture on the face
+    changes (the Feel panel hands the surfaces to the running loop again)."""
+
+    presented = QtCore.Signal()
+    changed = QtCore.Signal()
+
+    def __init__(self, study, parent=None):
+        super().__init__(parent)
+        self.study = study
+        self.run = None
+        self.slot = None  # what is on the face now: 1, 2, "A", "B" or None
+        self._felt = set()  # the slots felt in this trial: an answer waits for them
+        layout = QtWidgets.QVBoxLayout(self)
+        layout.setContentsMargins(0, 0, 0, 0)
+        row = QtWidgets.QHBoxLayout()
+        self.name = QtWidgets.QLineEdit()
+        self.name.setObjectName("similarityParticipant")
+        self.name.setPlaceholderText("participant's name or alias")
+        row.addWidget(self.name, 1)
+        self.start_button = QtWidgets.QPushButton("Start run")
+        self.start_button.setObjectName("similarityStart")
+        self.start_button.clicked.connect(self.start)
+        row.addWidget(self.start_button)
+        self.stop_button = QtWidgets.QPushButton("Stop run")
+        self.stop_button.setObjectName("similarityStop")
+        self.stop_button.setToolTip("End this run without keeping it")
+        self.stop_button.clicked.connect(self.stop)
+        row.addWidget(self.stop_button)
+        layout.addLayout(row)
+
+        self.trial_label = QtWidgets.QLabel()
+        self.trial_label.setObjectName("similarityTrial")
+        self.trial_label.setWordWrap(True)
+        layout.addWidget(self.trial_label)
+        feel = QtWidgets.QHBoxLayout()
+        self.feel_buttons = {}
+        for slot, text in ((1, "Texture 1"), (2, "Texture 2"), ("A", "Reference A"), ("B", "Reference B")):
+            button = QtWidgets.QPushButton(text)
+            button.setObjectName(f"similarityFeel{slot}")
+            button.setCheckable(True)
+            button.clicked.connect(lambda _checked=False, s=slot: self.show_texture(s))
+            feel.addWidget(button)
+            self.feel_buttons[slot] = button
+        layout.addLayout(feel)
+
+        self.scale_row = QtWidgets.QHBoxLayout()
+        self.scale_row.addWidget(QtWidgets.QLabel("nothing alike"))
+        self.rating_buttons = []
+        self.scale_box = QtWidgets.QHBoxLayout()
+        self.scale_row.addLayout(self.scale_box)
+        self.scale_row.addWidget(QtWidgets.QLabel("the same"))
+        layout.addLayout(self.scale_row)
+        classes = QtWidgets.QHBoxLayout()
+        self.class_buttons = {}
+        for key in "AB":
+            button = QtWidgets.QPushButton(f"Closer to {key}")
+            button.setObjectName(f"similarityClass{key}")
+            button.clicked.connect(lambda _checked=False, k=key: self.answer(k))
+            classes.addWidget(button)
+            self.class_buttons[key] = button
+        self.back_button = QtWidgets.QPushButton("Back")
+        self.back_button.setObjectName("similarityBack")
+        self.back_button.clicked.connect(self.back)
+        classes.addWidget(self.back_button)
+        layout.addLayout(classes)
+        self.message = QtWidgets.QLabel()
+        self.message.setObjectName("similarityMessage")
+        self.message.setWordWrap(True)
+        layout.addWidget(self.message)
+        self.destroyed.connect(lambda *_: self.release())
+        self.load()
+
+    # --- state ---------------------------------------------------------------------------
+
+    def release(self):
+        """Nothing held out on the face any more (the panel closes)."""
+        if is_alive(self.study):
+            ss.stop_presenting(self.study)
+
+    def _set_scale(self, steps):
+        if len(self.rating_buttons) == steps:
+            return
+        for button in self.rating_buttons:
+            self.scale_box.removeWidget(button)
+            button.deleteLater()
+        self.rating_buttons = []
+        for value in range(1, steps + 1):
+            button = QtWidgets.QPushButton(str(value))
+            button.setObjectName(f"similarityRate{value}")
+            button.setMaximumWidth(34)
+            button.clicked.connect(lambda _checked=False, v=value: self.answer(v))
+            self.scale_box.addWidget(button)
+            self.rating_buttons.append(button)
+
+    def load(self):
+        """Shows the run as it is: the trial, what can be felt and answered now."""
+        if not is_alive(self.study):
+            self.setEnabled(False)
+            self.show_message("The study was deleted.", error=True)
+            return
+        running = self.run is not None
+        trial = self.run.current if running else None
+        self.name.setEnabled(not running)
+        self.start_button.setEnabled(not running)
+        self.stop_button.setEnabled(running)
+        self._set_scale(self.run.steps if running else int(self.study.RatingSteps))
+        kind = trial.kind if trial else None
+        shown = {1, "A", "B"} if kind == "class" else {1, 2}
+        for slot, button in self.feel_buttons.items():
+            button.setVisible(slot in shown)
+            button.setEnabled(trial is not None)
+            button.setChecked(self.slot == slot)
+        self.feel_buttons[1].setText("Texture" if kind == "class" else "Texture 1")
+        # an answer once both textures of a pair (or the texture of a class trial) were felt
+        ready = trial is not None and ({1, 2} <= self._felt if kind != "class" else 1 in self._felt)
+        for button in self.rating_buttons:
+            button.setVisible(kind != "class")
+            button.setEnabled(ready and kind != "class")
+        for button in self.class_buttons.values():
+            button.setVisible(kind == "class")
+            button.setEnabled(ready and kind == "class")
+        self.back_button.setEnabled(running and bool(self.run.answers))
+        if not running:
+            found = ss.validate(self.study)
+            self.trial_label.setText(
+                f"<span style='color:#b00000'>Cannot run: {'; '.join(found)}.</span>" if found else
+                f"Enter the participant, then Start run: {self._protocol()}.")
+            self.start_button.setEnabled(not found)
+        else:
+            title, number, count = self.run.progress()
+            self.trial_label.setText(
+                f"<b>{KIND_TITLES[title]} {number} of {count}</b>" + (
+                    " (feel the texture and both references, then class it)" if title == "class" else
+                    " (feel both textures, then rate how alike they are)"))
+
+    def _protocol(self):
+        n = len(ss.stimuli(self.study))
+        parts = [f"{self.study.WarmUps} warm-ups", f"{n * (n - 1) // 2} pairs"]
+        if len(ss.references(self.study)) == 2:
+            parts.append(f"{n * self.study.Repeats} classings")
+        return ", ".join(parts)
+
+    def show_message(self, text, error=False):
+        colour = "#b00000" if error else "#006000"
+        self.message.setText(f"<span style='color:{colour}'>{text}</span>" if text else "")
+
+    # --- actions -------------------------------------------------------------------------
+
+    def start(self):
+        try:
+            self.run = ss.Run(self.study, self.name.text())
+        except ValueError as exc:
+            self.show_message(f"Not started: {exc}", error=True)
+            return False
+        self._felt = set()
+        self.slot = None
+        self.show_message("")
+        self.load()
+        return True
+
+    def stop(self):
+        self.run = None
+        self.slot = None
+        self._felt = set()
+        ss.stop_presenting(self.study)
+        self.presented.emit()
+        self.show_message("Run stopped; nothing kept.")
+        self.load()
+
+    def show_texture(self, slot):
+        """Puts the current trial's texture ``slot`` on the face."""
+        if self.run is None or self.run.current is None:
+            return
+        try:
+            self.run.present(slot)
+        except ValueError as exc:
+            self.show_message(str(exc), error=True)
+            return
+        self.slot = slot
+        self._felt.add(slot)
+        self.presented.emit()
+        self.load()
+
+    def answer(self, value):
+        try:
+            self.run.answer(value)
+        except ValueError as exc:
+            self.show_message(str(exc), error=True)
+            return
+        self.slot = None
+        self._felt = set()
+        self.presented.emit()  # the face is back to the surface's own texture
+        if self.run.done:
+            self.keep()
+        self.load()
+
+    def back(self):
+        if self.run is not None:
+            self.run.back()
+            self.slot = None
+            self._felt = set()
+            self.presented.emit()
+            self.load()
+
+    def keep(self):
+        """Keeps the finished run in the document, one undo step."""
+        doc = self.study.Document
+        doc.openTransaction("Keep a similarity run")
+        try:
+            record = ss.record_run(self.study, self.run)
+        except ValueError as exc:
+            doc.abortTransaction()
+            self.show_message(f"Not kept: {exc}", error=True)
+            return None
+        doc.commitTransaction()
+        self.run = None
+        self.name.clear()
+        self.show_message(f"Kept {record['name']}'s run: {len(record['ratings'])} pairs"
+                          + (f", {len(record['choices'])} classings" if record["choices"] else "")
+                          + f" ({self.study.Participants} participant{'s' if self.study.Participants != 1 else ''}).")
+        App.Console.PrintLog(f"HaptiCAD: {self.study.Label}: kept {record['name']}'s run\n")
+        self.changed.emit()
+        return record

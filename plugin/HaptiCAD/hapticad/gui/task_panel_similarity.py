@@ -1,0 +1,260 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Task panel of a similarity study (seed 001 §IV, Fig. 7): what it can run, its stimuli,
+its participants' runs, and the perceptual space they make with each parameter's vector.
+
+The surface and the references are links, set in the property editor (or with the
+study's Python API). Edits go to the study at once, each its own undo step, and the
+panel has only Close: runs kept during a session are never lost to a Cancel. The runs
+themselves are made in the Feel panel, where the participant feels the textures.
+"""
+import io
+
+import FreeCADGui as Gui
+from PySide2 import QtCore, QtGui, QtWidgets
+
+from .. import icon, similarity_study as ss
+from ..surface_object import is_haptic_surface
+from .document_closing import DocumentClosingObserver
+from .study_controls import StudyObserver
+
+STIMULUS_COLUMNS = ("Stimulus", *(ss.SYMBOLS[k] for k in ss.TEXTURE_VALUES))
+RUN_COLUMNS = ("Participant", "Recorded", "Pairs", "Classings", "Stimuli")
+
+
+def space_png(result, width_px=420):
+    """The perceptual space drawn as PNG bytes (matplotlib, off screen)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..similarity_plot import draw_space
+
+    fig, ax = plt.subplots(figsize=(width_px / 80, width_px / 80), dpi=80, constrained_layout=True)
+    draw_space(ax, result)
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png")
+    plt.close(fig)
+    return buffer.getvalue()
+
+
+class SimilarityTaskPanel:
+    def __init__(self, study):
+        self.obj = study
+        self.doc = study.Document
+        self.form = [self._status_box(), self._stimuli_box(), self._runs_box()]
+        self.observer = StudyObserver(study, self.load)
+        self.closing = DocumentClosingObserver(self.doc, self.document_closing)
+        self.load()
+
+    # --- building -------------------------------------------------------------------
+
+    def _box(self, title):
+        box = QtWidgets.QWidget()
+        box.setWindowTitle(title)
+        box.setWindowIcon(QtGui.QIcon(icon("HaptiCAD_SimilarityStudy")))
+        return box
+
+    def _status_box(self):
+        box = self._box("Similarity study")
+        layout = QtWidgets.QVBoxLayout(box)
+        self.status = QtWidgets.QLabel()
+        self.status.setObjectName("similarityStatus")
+        self.status.setWordWrap(True)
+        layout.addWidget(self.status)
+        return box
+
+    def _table(self, name, columns):
+        table = QtWidgets.QTableWidget(0, len(columns))
+        table.setObjectName(name)
+        table.setHorizontalHeaderLabels(columns)
+        table.setEditTriggers(QtWidgets.QAbstractItemView.NoEditTriggers)
+        table.setSelectionBehavior(QtWidgets.QAbstractItemView.SelectRows)
+        table.horizontalHeader().setStretchLastSection(True)
+        table.verticalHeader().setVisible(False)
+        table.setMinimumHeight(120)
+        return table
+
+    def _button(self, text, name, slot, tip=""):
+        button = QtWidgets.QPushButton(text)
+        button.setObjectName(name)
+        button.setToolTip(tip)
+        button.clicked.connect(slot)
+        return button
+
+    def _stimuli_box(self):
+        box = self._box("Stimuli")
+        layout = QtWidgets.QVBoxLayout(box)
+        self.stimuli_table = self._table("stimuliTable", STIMULUS_COLUMNS)
+        layout.addWidget(self.stimuli_table)
+        row = QtWidgets.QHBoxLayout()
+        self.source = QtWidgets.QComboBox()
+        self.source.setObjectName("stimulusSource")
+        self.source.setToolTip("A haptic surface whose texture to add as a stimulus (one fitted to a recording, say)")
+        row.addWidget(self.source, 1)
+        row.addWidget(self._button("Add", "addStimulus", self.add_from_source))
+        layout.addLayout(row)
+        row = QtWidgets.QHBoxLayout()
+        row.addWidget(self._button("Remove", "removeStimulus", self.remove_stimuli))
+        row.addWidget(self._button("The paper's nine", "paperStimuli", self.paper_stimuli,
+                                   "Three DC friction levels by three viscosities (seed 001 §IV)"))
+        layout.addLayout(row)
+        self.stimuli_message = QtWidgets.QLabel()
+        self.stimuli_message.setObjectName("stimuliMessage")
+        self.stimuli_message.setWordWrap(True)
+        layout.addWidget(self.stimuli_message)
+        return box
+
+    def _runs_box(self):
+        box = self._box("Participants and perceptual space")
+        layout = QtWidgets.QVBoxLayout(box)
+        self.runs_table = self._table("runsTable", RUN_COLUMNS)
+        layout.addWidget(self.runs_table)
+        layout.addWidget(self._button("Remove", "removeRun", self.remove_runs))
+        self.space_text = QtWidgets.QLabel()
+        self.space_text.setObjectName("spaceText")
+        self.space_text.setWordWrap(True)
+        self.space_text.setTextInteractionFlags(QtCore.Qt.TextSelectableByMouse)
+        layout.addWidget(self.space_text)
+        self.space_plot = QtWidgets.QLabel()
+        self.space_plot.setObjectName("spacePlot")
+        self.space_plot.setAlignment(QtCore.Qt.AlignCenter)
+        layout.addWidget(self.space_plot)
+        return box
+
+    # --- object -> widgets -------------------------------------------------------------
+
+    def load(self):
+        from ..proxy_state import is_alive
+
+        if not is_alive(self.obj):
+            for box in self.form:
+                box.setEnabled(False)
+            self.status.setText("<span style='color:#b00000'>The study was deleted.</span>")
+            return
+        found = ss.validate(self.obj)
+        refs = ss.references(self.obj)
+        surface = self.obj.Surface.Label if self.obj.Surface is not None else "no surface"
+        if found:
+            self.status.setText(f"<span style='color:#b00000'>Cannot run: {'; '.join(found)}.</span>")
+        else:
+            classing = (f"classed against {refs['A'].Label} (A) and {refs['B'].Label} (B)" if len(refs) == 2 else
+                        "no references: link ReferenceA and ReferenceB to class the stimuli against them")
+            self.status.setText(f"Felt on {surface}; {classing}. Runs are made in the Feel panel: "
+                                "start a session there, enter the participant and Start run.")
+        self._load_stimuli()
+        self._load_runs()
+
+    def _load_stimuli(self):
+        try:
+            items = ss.stimuli(self.obj)
+        except ValueError as exc:
+            items = []
+            self.stimuli_message.setText(f"<span style='color:#b00000'>{exc}</span>")
+        self.stimuli_table.setRowCount(len(items))
+        for row, item in enumerate(items):
+            cells = [item.get("name", "")] + [f"{item['values'].get(k, float('nan')):.3g}" for k in ss.TEXTURE_VALUES]
+            for col, text in enumerate(cells):
+                self.stimuli_table.setItem(row, col, QtWidgets.QTableWidgetItem(text))
+        self.stimuli_table.resizeColumnsToContents()
+        current = self.source.currentText()
+        self.source.clear()
+        for obj in self.doc.Objects:
+            if is_haptic_surface(obj) and obj.Texture != "None":
+                self.source.addItem(obj.Label, obj.Name)
+        self.source.setCurrentIndex(max(self.source.findText(current), 0))
+
+    def _load_runs(self):
+        try:
+            kept = ss.runs(self.obj)
+            now = ss.stimuli(self.obj)
+        except ValueError as exc:
+            self.space_text.setText(f"<span style='color:#b00000'>{exc}</span>")
+            return
+        self.runs_table.setRowCount(len(kept))
+        for row, record in enumerate(kept):
+            same = ss.record_problems(record) == [] and ss.same_stimuli(record["stimuli"], now)
+            cells = (record.get("name", "?"), record.get("recorded", ""), str(len(record.get("ratings", []))),
+                     str(len(record.get("choices", []))), "these" if same else "other (not pooled)")
+            for col, text in enumerate(cells):
+                self.runs_table.setItem(row, col, QtWidgets.QTableWidgetItem(text))
+        self.runs_table.resizeColumnsToContents()
+        try:
+            result = ss.analyse(self.obj)
+        except ValueError as exc:
+            self.space_text.setText(str(exc) + ".")
+            self.space_plot.clear()
+            return
+        self.space_text.setText("<pre>" + ss.describe(self.obj, result) + "</pre>")
+        pixmap = QtGui.QPixmap()
+        pixmap.loadFromData(space_png(result))
+        self.space_plot.setPixmap(pixmap)
+
+    # --- widgets -> object -------------------------------------------------------------
+
+    def _edit(self, title, change):
+        """Runs ``change`` as one undo step; a refusal is said and nothing changes."""
+        self.doc.openTransaction(title)
+        try:
+            change()
+        except ValueError as exc:
+            self.doc.abortTransaction()
+            self.load()
+            self.stimuli_message.setText(f"<span style='color:#b00000'>{exc}</span>")
+            return False
+        self.doc.commitTransaction()
+        self.stimuli_message.setText("")
+        self.load()
+        return True
+
+    def add_from_source(self):
+        name = self.source.currentData()
+        surface = self.doc.getObject(name) if name else None
+        if surface is None:
+            self.stimuli_message.setText("<span style='color:#b00000'>No textured haptic surface to add.</span>")
+            return False
+        return self._edit("Add a stimulus", lambda: ss.add_stimulus_from(self.obj, surface))
+
+    def remove_stimuli(self):
+        rows = {i.row() for i in self.stimuli_table.selectedIndexes()}
+        if not rows:
+            return False
+        items = [s for i, s in enumerate(ss.stimuli(self.obj)) if i not in rows]
+        return self._edit("Remove stimuli", lambda: ss.set_stimuli(self.obj, items))
+
+    def paper_stimuli(self):
+        return self._edit("The paper's nine stimuli", lambda: ss.set_stimuli(self.obj, ss.paper_stimuli()))
+
+    def remove_runs(self):
+        rows = sorted({i.row() for i in self.runs_table.selectedIndexes()}, reverse=True)
+        if not rows:
+            return False
+
+        def remove():
+            for row in rows:
+                ss.remove_run(self.obj, row)
+        return self._edit("Remove participants' runs", remove)
+
+    # --- FreeCAD's task dialog -----------------------------------------------------------
+
+    def document_closing(self):
+        self.document_gone = True
+        Gui.Control.closeDialog()
+
+    def getStandardButtons(self):
+        return int(QtWidgets.QDialogButtonBox.Close)
+
+    def _leave(self):
+        self.observer.remove()
+        self.closing.remove()
+        if not getattr(self, "document_gone", False):
+            gui_doc = Gui.getDocument(self.doc.Name)
+            if gui_doc is not None and gui_doc.getInEdit() is not None:
+                gui_doc.resetEdit()
+        return True
+
+    def reject(self):
+        return self._leave()
+
+    def accept(self):
+        return self._leave()

@@ -1,0 +1,208 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Similarity studies in FreeCAD's real GUI (Xvfb): the command makes a study of the
+selected surface and its panel edits the stimuli (each an undo step, the panel following
+undo); during a Feel session a participant's run puts each texture on the face at once,
+takes their answers only once they felt both textures, and is kept when done; the panel
+then shows the cohort's perceptual space. Run by gui_test_runner.py."""
+import os
+import random
+import sys
+import time
+import unittest
+
+import numpy as np
+
+import FreeCAD as App
+import FreeCADGui as Gui
+from PySide2 import QtWidgets
+
+import HaptiCAD
+from hapticad import preferences, similarity_study as ss
+from hapticad.gui import task_panel_feel
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import gui_helpers as h  # noqa: E402
+
+
+def wait(seconds):
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        h.process_events(1)
+        time.sleep(0.005)
+
+
+def simulated_run(study, name, seed):
+    """A participant (answered in code) who tells the textures apart by f_DC and f_vis."""
+    rng = random.Random(seed)
+    run = ss.Run(study, name, seed=seed)
+    while not run.done:
+        t = run.current
+        if t.kind == "class":
+            v = run.stimuli[t.first]["values"]
+            run.answer("A" if v["TextureDC"] + v["TextureViscosity"] < 0.5 else "B")
+            continue
+        a, b = (run.stimuli[i]["values"] for i in (t.first, t.second))
+        d = np.hypot((a["TextureDC"] - b["TextureDC"]) / 0.35, 0.5 * (a["TextureViscosity"] - b["TextureViscosity"]) / 0.4)
+        run.answer(int(min(7, max(1, round(1 + (1 - d / 1.12 + rng.gauss(0, 0.05)) * 6)))))
+    return run
+
+
+class SimilarityGuiTest(unittest.TestCase):
+    def setUp(self):
+        preferences.update(device="simulated", servo_rate_hz=1000)
+        self.doc = App.newDocument("SimilarityGui")
+        self.doc.UndoMode = 1
+        self.box = self.doc.addObject("Part::Box", "Plate")
+        self.box.Length, self.box.Width, self.box.Height = 60, 40, 10
+        self.doc.recompute()
+        self.plate = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS", FeelRoughness=False,
+                                           TextureScale="Device force", TextureFullRange=1.5)
+        samples = self.doc.addObject("Part::Box", "Samples")
+        samples.Placement.Base = App.Vector(0, 80, 0)
+        self.doc.recompute()
+        self.ref_a = HaptiCAD.make_surface(self.doc, [(samples, "Face6")], material="ABS", FeelRoughness=False,
+                                           Texture="Custom", TextureDC=0.2, TextureViscosity=-0.3)
+        self.ref_a.Label = "Stiff grating"
+        self.ref_b = HaptiCAD.make_surface(self.doc, [(samples, "Face5")], material="ABS", FeelRoughness=False,
+                                           Texture="Custom", TextureDC=0.8, TextureViscosity=0.3)
+        self.ref_b.Label = "Soft grating"
+        self.doc.recompute()
+        Gui.Selection.clearSelection()
+        h.show_workbench()
+
+    def tearDown(self):
+        if Gui.Control.activeDialog():
+            h.press_task_button("Close")
+        Gui.Selection.clearSelection()
+        App.closeDocument(self.doc.Name)
+
+    def test_the_panel_edits_the_stimuli_and_follows_undo(self):
+        Gui.Selection.addSelection(self.plate)
+        Gui.runCommand("HaptiCAD_SimilarityStudy")
+        h.process_events()
+        self.assertTrue(Gui.Control.activeDialog())
+        (study,) = HaptiCAD.similarity_studies_of(self.doc)
+        self.assertIn("Similarity study", self.doc.UndoNames)  # making it is an undo step
+        table = h.widget(QtWidgets.QTableWidget, "stimuliTable")
+        self.assertEqual(table.rowCount(), 9)
+        self.assertIn("no references", h.widget(QtWidgets.QLabel, "similarityStatus").text())
+        self.assertIn("no participant has rated these stimuli yet", h.widget(QtWidgets.QLabel, "spaceText").text())
+        source = h.widget(QtWidgets.QComboBox, "stimulusSource")
+        self.assertEqual([source.itemText(i) for i in range(source.count())], ["Stiff grating", "Soft grating"])
+        source.setCurrentText("Soft grating")
+        h.widget(QtWidgets.QPushButton, "addStimulus").click()
+        self.assertEqual(table.rowCount(), 10)
+        self.assertEqual(ss.stimuli(study)[-1]["name"], "Soft grating")
+        # adding it again is refused, said, and changes nothing
+        h.widget(QtWidgets.QPushButton, "addStimulus").click()
+        self.assertIn("same texture as", h.widget(QtWidgets.QLabel, "stimuliMessage").text())
+        self.assertEqual(len(ss.stimuli(study)), 10)
+        table.selectRow(0)
+        h.widget(QtWidgets.QPushButton, "removeStimulus").click()
+        self.assertEqual(len(ss.stimuli(study)), 9)
+        self.assertEqual(ss.stimuli(study)[0]["name"], "f_DC 0.325 f_vis +0.0")
+        self.doc.undo()  # the removal undone: the panel shows it
+        h.process_events()
+        self.assertEqual(table.rowCount(), 10)
+        self.assertEqual(table.item(0, 0).text(), "f_DC 0.325 f_vis -0.2")
+        h.widget(QtWidgets.QPushButton, "paperStimuli").click()
+        self.assertEqual(len(ss.stimuli(study)), 9)
+        # references set in the property editor: the panel follows
+        study.ReferenceA, study.ReferenceB = self.ref_a, self.ref_b
+        h.process_events()
+        self.assertIn("classed against Stiff grating (A) and Soft grating (B)",
+                      h.widget(QtWidgets.QLabel, "similarityStatus").text())
+        h.press_task_button("Close")
+        self.assertFalse(Gui.Control.activeDialog())
+
+    def test_a_participants_run_in_the_feel_panel(self):
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, ReferenceA=self.ref_a, ReferenceB=self.ref_b,
+                                               WarmUps=2)
+        for p in range(5):  # earlier participants, for the space
+            ss.record_run(study, simulated_run(study, f"P{p}", p))
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        panel = task_panel_feel.active_panel()
+        self.assertTrue(h.widget(QtWidgets.QPushButton, "feelStop").isEnabled(),
+                        h.widget(QtWidgets.QLabel, "feelMessage").text())
+        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Ada")
+        h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        trial_label = h.widget(QtWidgets.QLabel, "similarityTrial")
+        self.assertIn("Warm-up (not kept) 1 of 2", trial_label.text())
+        rate4 = h.widget(QtWidgets.QPushButton, "similarityRate4")
+        self.assertFalse(rate4.isEnabled())  # not before both textures were felt
+        face = panel.doc_scene.face_id("Plate.Face6")
+        self.assertIsNone(panel.session.doc_scene.surface_properties(face).texture)  # the plate's own: none
+
+        # the hand strokes the plate while the participant switches textures: each is felt at once
+        controls = panel.similarity_controls[0]
+        h.mouse("move", h.screen_pos(np.array([20.0, 20.0, 10.0])))
+        wait(0.3)
+        h.wheel(h.screen_pos(np.array([20.0, 20.0, 10.0])), 2)
+        for slot in (1, 2):
+            h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
+            trial = controls.run.current
+            expected = controls.run.stimuli[trial.first if slot == 1 else trial.second]["values"]["TextureDC"]
+            texture = panel.session.doc_scene.surface_properties(face).texture
+            self.assertAlmostEqual(texture.params.f_dc, expected)
+            for k in range(12):  # a stroke across the grating
+                h.mouse("move", h.screen_pos(np.array([20.0 + 1.5 * k, 20.0, 10.0])))
+                wait(0.04)
+        self.assertGreater(float(np.abs(panel.chart.values["texture_force_n"][-300:]).max()), 0.1)
+        self.assertTrue(rate4.isEnabled())
+        h.widen_panel(480)
+        h.grab_screen("feel_similarity.png")
+        rate4.click()
+        self.assertIn("Warm-up (not kept) 2 of 2", trial_label.text())
+        self.assertIsNone(panel.session.doc_scene.surface_properties(face).texture)  # an answer clears the face
+        h.widget(QtWidgets.QPushButton, "similarityBack").click()
+        self.assertIn("Warm-up (not kept) 1 of 2", trial_label.text())
+
+        # the rest answered through the buttons: feel, then rate or class
+        while controls.run is not None:
+            kind = controls.run.current.kind
+            if kind == "class":
+                for slot in (1, "A", "B"):
+                    h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
+                self.assertFalse(h.widget(QtWidgets.QPushButton, "similarityFeel2").isVisible())
+                h.widget(QtWidgets.QPushButton, "similarityClassA").click()
+            else:
+                for slot in (1, 2):
+                    h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
+                h.widget(QtWidgets.QPushButton, "similarityRate5").click()
+        self.assertEqual(study.Participants, 6)
+        self.assertIn("Kept Ada's run: 36 pairs, 27 classings (6 participants)",
+                      h.widget(QtWidgets.QLabel, "similarityMessage").text())
+        self.assertIn("Keep a similarity run", self.doc.UndoNames)
+        self.assertIsNone(ss.presented_texture(self.plate))
+        self.assertTrue(panel.session.running)
+        # keeping the run is bookkeeping: the session is not told the surfaces changed
+        self.assertNotIn("Surface edited", h.widget(QtWidgets.QLabel, "feelMessage").text())
+
+        # a run stopped half way keeps nothing
+        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Bea")
+        h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        h.widget(QtWidgets.QPushButton, "similarityFeel1").click()
+        self.assertIsNotNone(ss.presented_texture(self.plate))
+        h.widget(QtWidgets.QPushButton, "similarityStop").click()
+        self.assertIsNone(ss.presented_texture(self.plate))
+        self.assertEqual(study.Participants, 6)
+        h.widget(QtWidgets.QPushButton, "feelStop").click()
+        h.press_task_button("Close")
+
+        # the study's panel: the runs and the space they make
+        Gui.ActiveDocument.setEdit(study.Name, 0)
+        h.process_events()
+        self.assertEqual(h.widget(QtWidgets.QTableWidget, "runsTable").rowCount(), 6)
+        text = h.widget(QtWidgets.QLabel, "spaceText").text()
+        self.assertIn("9 stimuli, 6 participants", text)
+        self.assertIn("f_DC", text)
+        self.assertFalse(h.widget(QtWidgets.QLabel, "spacePlot").pixmap().isNull())
+        h.widen_panel(520)
+        h.grab_screen("similarity_panel.png")
+        space = h.widget(QtWidgets.QLabel, "spacePlot").parentWidget()
+        space.grab().save(os.path.join(h.SHOTS, "similarity_space.png"))
+
+
+if __name__ == "__main__":
+    unittest.main()
