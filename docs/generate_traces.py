@@ -87,6 +87,7 @@ class Figures:
         self.texture_scale()
         self.texture_fit()
         self.stiffness_study()
+        self.similarity_study()
         self.stick_slip()
         self.vibration()
 
@@ -327,6 +328,59 @@ class Figures:
             ax.legend(fontsize=8)
         fig.suptitle("Stiffness studies through the servo loop (simulated probe, 1 kHz, pressing at 2 mm/s)")
         self.save(fig, "stiffness_study.png")
+
+    def similarity_study(self):
+        """Seed 001 §IV: the paper's nine gratings, each held out on one plate by a
+        similarity study and stroked through the servo loop at three speeds; and the
+        perceptual space of ten simulated participants with eq. 3's vectors."""
+        import random
+
+        np, plt = self.np, self.plt
+        from hapticad import similarity_study as ss
+        from hapticad.similarity_plot import draw_space
+
+        doc = self.App.newDocument("Similarity")
+        box = doc.addObject("Part::Box", "Plate")
+        box.Length, box.Width, box.Height = 40, 100, 10
+        doc.recompute()
+        plate = self.HaptiCAD.make_surface(doc, [(box, "Face6")], material="ABS", FeelRoughness=False,
+                                           TextureScale="Device force", TextureFullRange=2.0)
+        study = self.HaptiCAD.make_similarity_study(doc, plate)
+        speeds = (50.0, 120.0, 270.0)
+        fig, (forces, space) = plt.subplots(1, 2, figsize=(12, 5.2), constrained_layout=True)
+        colours = {0.325: "#2f855a", 0.5: "#2b6cb0", 0.675: "#c53030"}
+        styles = {-0.2: ":", 0.0: "-", 0.2: "--"}
+        for item in ss.stimuli(study):
+            ss.present(study, item["values"])
+            scene = self.build(doc)
+            means = []
+            for speed in speeds:
+                result, trace, sliding, _ = self.stroke(scene, (20, 10, 10), (20, 90, 10), speed, 1.0)
+                means.append(float(np.mean(trace["tangential_force_n"][sliding])))
+            v = item["values"]
+            forces.plot(speeds, means, "o", color=colours[round(v["TextureDC"], 3)],
+                        ls=styles[round(v["TextureViscosity"], 1)], label=item["name"])
+        ss.stop_presenting(study)
+        forces.set_xlabel("stroke speed (mm/s)")
+        forces.set_ylabel("mean resisting force (N), 2 N full range")
+        forces.set_title("the nine stimuli held out on one plate, through the servo loop:\n"
+                         "f_DC sets the level, f_vis (per 400 mm/s) the slope", fontsize=9)
+        forces.legend(fontsize=7, ncol=3, loc="upper left")
+        forces.grid(alpha=0.3)
+        rng = random.Random(7)
+        for p in range(10):
+            run = ss.Run(study, f"P{p}", seed=p)
+            while not run.done:
+                t = run.current
+                a, b = (run.stimuli[i]["values"] for i in (t.first, t.second))
+                d = np.hypot((a["TextureDC"] - b["TextureDC"]) / 0.35,
+                             0.5 * (a["TextureViscosity"] - b["TextureViscosity"]) / 0.4)
+                run.answer(int(min(7, max(1, round(1 + (1 - d / 1.12 + rng.gauss(0, 0.1)) * 6)))))
+            ss.record_run(study, run)
+        draw_space(space, ss.analyse(study), "perceptual space of ten simulated participants who weigh\n"
+                   "friction twice as much as viscosity (seeded noise): Fig. 7 without references")
+        self.App.closeDocument(doc.Name)
+        self.save(fig, "similarity_study.png")
 
     def stick_slip(self):
         np, plt = self.np, self.plt
