@@ -77,6 +77,16 @@ class SimilarityCommandTest(unittest.TestCase):
         self.assertIn("Gratings: 9 stimuli, 4 participants", proc.stdout)
         self.assertRegex(proc.stdout, r"f_DC +\|p\| \d\.\d{3}  r (0\.9[5-9]|1\.00)")
 
+    def test_every_study_of_a_document_one_without_runs_told_not_fatal(self):
+        proc = run_cli("similarity", self.path, "--json")
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        gratings, empty = json.loads(proc.stdout)
+        self.assertEqual(gratings["participants"], 4)
+        self.assertIn("no participant has rated these stimuli yet", empty["error"])
+        proc = run_cli("similarity", self.path)
+        self.assertIn("Gratings: 9 stimuli, 4 participants", proc.stdout)
+        self.assertIn("\nEmpty: no participant has rated these stimuli yet", proc.stdout)
+
     def test_bad_input_gets_a_clear_error(self):
         for args, message in ((["--study", "Nope"], "no similarity study named 'Nope' (it has: Gratings, Empty)"),
                               (["--study", "Empty"], "Empty: no participant has rated these stimuli yet"),

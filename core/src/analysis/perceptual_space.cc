@@ -12,8 +12,9 @@ namespace {
 void CheckDissimilarity(const Eigen::MatrixXd& d, int dimensions) {
   const Eigen::Index n = d.rows();
   if (d.cols() != n) {
-    throw std::invalid_argument("perceptual space: the dissimilarity matrix is " + std::to_string(n) + " x " +
-                                std::to_string(d.cols()) + ", not square");
+    throw std::invalid_argument("perceptual space: the dissimilarity matrix is " +
+                                std::to_string(n) + " x " + std::to_string(d.cols()) +
+                                ", not square");
   }
   if (n < 3) {
     throw std::invalid_argument("perceptual space: " + std::to_string(n) +
@@ -24,9 +25,11 @@ void CheckDissimilarity(const Eigen::MatrixXd& d, int dimensions) {
                                 " dimensions; give 1 to " + std::to_string(n - 1) + " for " +
                                 std::to_string(n) + " stimuli");
   }
-  if (!d.allFinite()) throw std::invalid_argument("perceptual space: a dissimilarity is not finite");
-  if (d.minCoeff() < 0) throw std::invalid_argument("perceptual space: a dissimilarity is negative");
-  const double tolerance = 1e-9 * std::max(1.0, d.maxCoeff());
+  if (!d.allFinite())
+    throw std::invalid_argument("perceptual space: a dissimilarity is not finite");
+  if (d.minCoeff() < 0)
+    throw std::invalid_argument("perceptual space: a dissimilarity is negative");
+  const double tolerance = 1e-9 * d.maxCoeff();  // of the largest: the same test at every scale
   for (Eigen::Index i = 0; i < n; ++i) {
     if (std::abs(d(i, i)) > tolerance) {
       throw std::invalid_argument("perceptual space: stimulus " + std::to_string(i) +
@@ -34,8 +37,9 @@ void CheckDissimilarity(const Eigen::MatrixXd& d, int dimensions) {
     }
     for (Eigen::Index j = i + 1; j < n; ++j) {
       if (std::abs(d(i, j) - d(j, i)) > tolerance) {
-        throw std::invalid_argument("perceptual space: the dissimilarity of stimuli " + std::to_string(i) +
-                                    " and " + std::to_string(j) + " differs by the order they are taken in");
+        throw std::invalid_argument("perceptual space: the dissimilarity of stimuli " +
+                                    std::to_string(i) + " and " + std::to_string(j) +
+                                    " differs by the order they are taken in");
       }
     }
   }
@@ -63,8 +67,8 @@ PerceptualSpace ComputePerceptualSpace(const Eigen::MatrixXd& dissimilarity, int
   const double unit = dissimilarity.maxCoeff() > 0 ? dissimilarity.maxCoeff() : 1.0;
   const Eigen::MatrixXd d = 0.5 * (dissimilarity + dissimilarity.transpose()) / unit;
   const Eigen::MatrixXd squared = d.cwiseProduct(d);
-  const Eigen::MatrixXd centring =
-      Eigen::MatrixXd::Identity(n, n) - Eigen::MatrixXd::Constant(n, n, 1.0 / static_cast<double>(n));
+  const Eigen::MatrixXd centring = Eigen::MatrixXd::Identity(n, n) -
+                                   Eigen::MatrixXd::Constant(n, n, 1.0 / static_cast<double>(n));
   const Eigen::MatrixXd b = -0.5 * centring * squared * centring;
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(b);
   if (solver.info() != Eigen::Success) {
@@ -82,7 +86,8 @@ PerceptualSpace ComputePerceptualSpace(const Eigen::MatrixXd& dissimilarity, int
   }
   for (int k = 0; k < dimensions; ++k) {
     const double value = space.eigenvalues[static_cast<std::size_t>(k)];
-    if (value <= 0) continue;  // a non-Euclidean or flat direction: no spread along it
+    // a non-Euclidean or flat direction, or one of rounding only: no spread along it
+    if (value <= 1e-12 * space.eigenvalues.front()) continue;
     Eigen::VectorXd axis = solver.eigenvectors().col(n - 1 - k);
     // the first stimulus off the axis's middle on its positive side: a rule that
     // rounding cannot flip, even when the points are symmetric about the origin
@@ -109,14 +114,16 @@ PropertyVector FitPropertyVector(const Eigen::MatrixXd& points, const std::vecto
   const auto n = static_cast<Eigen::Index>(q.size());
   if (n != points.rows() || n < 2) {
     throw std::invalid_argument("property vector: " + std::to_string(q.size()) + " values for " +
-                                std::to_string(points.rows()) + " points; give one per point, at least 2");
+                                std::to_string(points.rows()) +
+                                " points; give one per point, at least 2");
   }
   const Eigen::Map<const Eigen::VectorXd> values(q.data(), n);
   if (!values.allFinite() || !points.allFinite()) {
     throw std::invalid_argument("property vector: a value or a point is not finite");
   }
   const double norm = values.squaredNorm();
-  if (norm == 0) throw std::invalid_argument("property vector: every value is 0, so it points nowhere");
+  if (norm == 0)
+    throw std::invalid_argument("property vector: every value is 0, so it points nowhere");
   PropertyVector vector;
   vector.direction = points.transpose() * values / norm;  // eq. 3
   vector.length = vector.direction.norm();
@@ -133,12 +140,14 @@ PropertyVector FitPropertyVector(const Eigen::MatrixXd& points, const std::vecto
 std::vector<double> ScaleToUnitRange(const std::vector<double>& values) {
   if (values.empty()) throw std::invalid_argument("scale to unit range: no values");
   for (double v : values) {
-    if (!std::isfinite(v)) throw std::invalid_argument("scale to unit range: a value is not finite");
+    if (!std::isfinite(v))
+      throw std::invalid_argument("scale to unit range: a value is not finite");
   }
   const auto [low, high] = std::minmax_element(values.begin(), values.end());
   const double range = *high - *low;
   // a spread within rounding of the values is no variation: scaling it would draw noise
-  if (!(range > 1e-12 * std::max(std::abs(*low), std::abs(*high)))) throw std::invalid_argument("scale to unit range: the values do not vary");
+  if (!(range > 1e-12 * std::max(std::abs(*low), std::abs(*high))))
+    throw std::invalid_argument("scale to unit range: the values do not vary");
   std::vector<double> scaled;
   scaled.reserve(values.size());
   for (double v : values) scaled.push_back((v - *low) / range - 0.5);

@@ -260,7 +260,15 @@ def cmd_similarity(args):
             raise ValueError("--plot draws one study's space: name it with --study")
         result = []
         for study in studies:
-            analysis = similarity_study.analyse(study)
+            try:
+                analysis = similarity_study.analyse(study)
+            except ValueError as exc:
+                if args.study:  # the one asked for
+                    raise
+                result.append({"study": study.Label, "error": str(exc)})  # the others are still told
+                if not args.json:
+                    print(exc)  # it names the study
+                continue
             result.append({"study": study.Label, **analysis})
             if args.plot:
                 from .similarity_plot import plot_space
@@ -268,6 +276,8 @@ def cmd_similarity(args):
                 plot_space(args.plot, analysis, f"{study.Label}: perceptual space")
             if not args.json:
                 print(similarity_study.describe(study, analysis))
+        if all("error" in r for r in result):
+            raise ValueError("; ".join(r["error"] for r in result))
     finally:
         App.closeDocument(doc.Name)
     return result if args.json else None

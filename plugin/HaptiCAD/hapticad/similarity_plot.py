@@ -1,14 +1,17 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """PNG of a similarity study's perceptual space (seed 001 Fig. 7): the stimuli as points
 in the first two axes, and each parameter's eq. 3 vector drawn through the origin from
-its low end (q = -0.5) to its high end (q = +0.5); the references' vector is the long one."""
-import matplotlib
+its low end (q = -0.5) to its high end (q = +0.5); the references' vector is the long one.
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+Drawn on a bare matplotlib Figure with the Agg canvas, without pyplot: inside FreeCAD's
+GUI it must not switch the backend other workbenches (Plot) use."""
+import io
 
-from .similarity_study import LIKENESS  # noqa: E402
+import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
+
+from .similarity_study import LIKENESS
 
 # the points are blue; the parameters' vectors green, purple, ochre, teal, grey, olive;
 # the references' a thick red
@@ -49,9 +52,17 @@ def draw_space(ax, result, title=""):
     ax.grid(alpha=0.3)
 
 
+def space_png(result, title="", size_in=(7, 6.5), dpi=110):
+    """The space drawn as PNG bytes."""
+    fig = Figure(figsize=size_in, dpi=dpi, constrained_layout=True)
+    FigureCanvasAgg(fig)
+    draw_space(fig.add_subplot(), result, title)
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format="png")
+    return buffer.getvalue()
+
+
 def plot_space(path, result, title=""):
-    fig, ax = plt.subplots(figsize=(7, 6.5), constrained_layout=True)
-    draw_space(ax, result, title)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    with open(path, "wb") as handle:
+        handle.write(space_png(result, title))
     return path

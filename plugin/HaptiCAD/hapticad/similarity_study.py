@@ -40,16 +40,17 @@ import FreeCAD as App
 import numpy as np
 
 from . import _core, textures
-from .proxy_state import SchemaState, add_hidden_state, add_type_tag, is_alive, is_restoring
+from .proxy_state import SchemaState, add_hidden_state, add_type_tag, is_alive
+from .surface_object import TEXTURE_VALUES
 
 TYPE = "HaptiCAD::SimilarityStudy"
 SCHEMA_VERSION = 1
-# eq. 2's parameters a stimulus sets, as the surface's properties and as the paper writes them
-TEXTURE_VALUES = ("TextureDC", "TextureViscosity", "TextureBeta", "TextureAlpha", "TextureBetaViscosity",
-                  "TextureAlphaViscosity")
+# eq. 2's parameters a stimulus sets (TEXTURE_VALUES, the surface's properties) as the paper writes them
 SYMBOLS = dict(zip(TEXTURE_VALUES, ("f_DC", "f_vis", "beta_h", "alpha_h", "beta_vis", "alpha_vis")))
 # what a reference brings along with those: it is presented as it is on its own surface
 REFERENCE_VALUES = (*TEXTURE_VALUES, "TexturePeriod", "TextureScale", "TextureFullRange")
+# what the stimuli take from the study's surface: runs felt with other values are not pooled
+CONTEXT_VALUES = ("TexturePeriod", "TextureScale", "TextureFullRange", "StaticFriction")
 LIKENESS = "closer to A"
 PROPERTIES = [
     ("Surface", "App::PropertyLink", "Study", "The haptic surface whose faces the participants stroke", None, None),
@@ -104,8 +105,10 @@ class SimilarityStudy(SchemaState):
             obj.Responses = "[]"
 
     def onChanged(self, obj, prop):
-        if prop in ("Surface", "Stimuli") and not is_restoring(obj):
-            stop_presenting(obj)  # what was held out may no longer be
+        # an undo too: what was held out may no longer be the study's (not while loading,
+        # when nothing is held out yet)
+        if prop in FELT_PROPERTIES and not (obj.Document.Restoring or "Restore" in obj.State):
+            stop_presenting(obj)
 
     def onDocumentRestored(self, obj):
         self.setup(obj)
@@ -141,6 +144,9 @@ def stimuli(study):
 
 def stimulus_problems(items):
     """What is wrong with a list of stimuli, as sentences."""
+    if not isinstance(items, list) or not all(isinstance(s, dict) and isinstance(s.get("values"), dict)
+                                              for s in items):
+        return ["each stimulus is {name, values} (a list of them)"]
     found = []
     if len(items) < 3:
         found.append(f"{len(items)} stimuli: a perceptual space needs at least 3")
@@ -172,8 +178,6 @@ def stimulus_problems(items):
 
 def set_stimuli(study, items):
     """Replaces the stimuli. Raises ValueError, changing nothing, if they are not valid."""
-    if not all(isinstance(s, dict) and isinstance(s.get("values"), dict) for s in items):
-        raise ValueError(f"{study.Label}: each stimulus is {{name, values}}")
     found = stimulus_problems(items)
     if found:
         raise ValueError(f"{study.Label}: {'; '.join(found)}")
@@ -195,6 +199,21 @@ def add_stimulus_from(study, surface, name=None):
 
 
 # --- validity ------------------------------------------------------------------------
+
+def felt_context(study):
+    """What the stimuli were felt with besides their own values: the surface's period,
+    scale, full range and friction, and the references' textures. Runs are pooled only
+    with runs of the same context."""
+    from .surface_object import is_haptic_surface
+
+    if study.Surface is None or not is_haptic_surface(study.Surface):
+        return {}  # nothing can be felt: no run matches
+    context = {k: getattr(study.Surface, k) for k in CONTEXT_VALUES}
+    for key, surface in references(study).items():
+        if is_haptic_surface(surface) and surface.Texture != "None":
+            context[f"Reference{key}"] = {**reference_texture(surface), "StaticFriction": surface.StaticFriction}
+    return context
+
 
 def references(study):
     """{"A": surface, "B": surface} of the references set (both or neither count)."""
@@ -233,6 +252,13 @@ def validate(study):
             found.append(f"reference {key}, {surface.Label}, is not a haptic surface")
         elif surface.Texture == "None":
             found.append(f"reference {key}, {surface.Label}, has no texture")
+        elif (surface.TextureScale == "Friction level" and study.Surface is not None
+              and is_haptic_surface(study.Surface) and surface.StaticFriction != study.Surface.StaticFriction):
+            # its level 1 is its own face's friction, which the study's face does not have
+            found.append(f"reference {key}, {surface.Label}, scales its texture by its friction "
+                         f"(mu_s {surface.StaticFriction:g}), and {study.Surface.Label}'s is "
+                         f"{study.Surface.StaticFriction:g}: it would not feel as it does; make its level 1 a "
+                         "device force, or give the two faces the same friction")
     if len(refs) == 2 and refs["A"] == refs["B"]:
         found.append("references A and B are the same surface")
     return found
@@ -240,7 +266,7 @@ def validate(study):
 
 # --- presenting ----------------------------------------------------------------------
 
-_presented = {}  # (document name, study name) -> {surface property: value}
+_presented = {}  # (document name, study name) -> (the document, {surface property: value})
 
 
 def _key(study):
@@ -254,7 +280,7 @@ def present(study, values):
     if values is None:
         _presented.pop(_key(study), None)
     else:
-        _presented[_key(study)] = dict(values)
+        _presented[_key(study)] = (study.Document, dict(values))
     return values
 
 
@@ -267,10 +293,11 @@ def presented_texture(surface):
     value}, over the surface's own), or None."""
     if not _presented:
         return None
-    for (doc, name), values in list(_presented.items()):
-        study = App.getDocument(doc).getObject(name) if doc in App.listDocuments() else None
+    for (doc_name, name), (doc, values) in list(_presented.items()):
+        # the very document (a closed one's name may come back on another) and study
+        study = doc.getObject(name) if App.listDocuments().get(doc_name) is doc else None
         if study is None or not is_alive(study):
-            del _presented[(doc, name)]  # the study is gone: nothing stays held out
+            del _presented[(doc_name, name)]  # the study is gone: nothing stays held out
         elif study.Surface == surface:
             return values
     return None
@@ -319,6 +346,7 @@ class Run:
         self.stimuli = stimuli(study)
         self.steps = int(study.RatingSteps)
         self.has_references = len(references(study)) == 2
+        self.context = felt_context(study)
         rng = random.Random(self.seed)
         n = len(self.stimuli)
         pairs = list(itertools.combinations(range(n), 2))
@@ -357,15 +385,23 @@ class Run:
         if trial is None:
             raise ValueError("the run is done: nothing to present")
         if slot in ("A", "B"):
-            if not self.has_references:
-                raise ValueError("this study has no references")
-            return reference_texture(getattr(self.study, f"Reference{slot}"))
+            reference = getattr(self.study, f"Reference{slot}") if self.has_references else None
+            if reference is None:
+                raise ValueError(f"reference {slot} is not set (any more)")
+            return reference_texture(reference)
         if slot == 2 and trial.kind == "class":
             raise ValueError("a class trial presents one texture, and references A and B")
         index = trial.first if slot == 1 else trial.second
         return self.stimuli[index]["values"]
 
     def present(self, slot):
+        """Holds the current trial's ``slot`` out on the face. Raises ValueError when the
+        study can no longer run (its surface or a reference gone)."""
+        if not is_alive(self.study):
+            raise ValueError("the study was deleted")
+        found = validate(self.study)
+        if found:
+            raise ValueError("; ".join(found))
         return present(self.study, self.values(slot))
 
     def answer(self, value):
@@ -375,7 +411,7 @@ class Run:
         if trial.kind == "class":
             if value not in ("A", "B"):
                 raise ValueError(f"class the texture as A or B, not {value!r}")
-        elif not (isinstance(value, int) and 1 <= value <= self.steps):
+        elif not (type(value) is int and 1 <= value <= self.steps):
             raise ValueError(f"rate the pair 1..{self.steps}, not {value!r}")
         self.answers.append(value)
         stop_presenting(self.study)  # the next trial starts with nothing held out
@@ -395,23 +431,28 @@ class Run:
         choices = [[t.first, a] for t, a in zip(self.trials, self.answers) if t.kind == "class"]
         return {"name": self.participant, "recorded": datetime.now().isoformat(timespec="seconds"),
                 "seed": self.seed, "steps": self.steps, "stimuli": self.stimuli, "ratings": ratings,
-                "choices": choices}
+                "choices": choices, "context": self.context}
 
 
-def record_problems(record, n=None):
+def record_problems(record):
     """What is wrong with a kept run, as sentences."""
     found = []
     try:
-        steps, items = int(record["steps"]), record["stimuli"]
+        steps, items = record["steps"], record["stimuli"]
+        if type(steps) is not int or steps < 2:
+            return [f"{record.get('name')}: a scale of {steps!r} steps"]
+        if any(type(x) is not int for rating in record["ratings"] for x in rating) or any(
+                type(i) is not int for i, _ in record["choices"]):
+            return [f"{record.get('name')}: a stimulus index or rating is not a whole number"]
         count = len(items)
-        pairs = {(int(i), int(j)) for i, j, _ in record["ratings"]}
+        pairs = {(i, j) for i, j, _ in record["ratings"]}
         if not str(record["name"]).strip():
             found.append("a run needs a participant's name")
         if pairs != set(itertools.combinations(range(count), 2)) or len(record["ratings"]) != len(pairs):
             found.append(f"{record['name']}: the ratings are not every pair of {count} stimuli once")
-        if any(not (isinstance(s, int) and 1 <= s <= steps) for _, _, s in record["ratings"]):
+        if any(not 1 <= s <= steps for _, _, s in record["ratings"]):
             found.append(f"{record['name']}: a rating is outside 1..{steps}")
-        if any(c not in ("A", "B") or not 0 <= int(i) < count for i, c in record["choices"]):
+        if any(c not in ("A", "B") or not 0 <= i < count for i, c in record["choices"]):
             found.append(f"{record['name']}: a class is not A or B of a stimulus")
         found.extend(stimulus_problems(items))
     except (KeyError, TypeError, ValueError) as exc:
@@ -454,11 +495,16 @@ def same_stimuli(a, b):
         for x, y in zip(a, b))
 
 
+def comparable(record, study):
+    """True when a kept run was made on the stimuli, surface and references the study
+    holds now, and is whole (runs on others are kept but not pooled)."""
+    return (not record_problems(record) and same_stimuli(record["stimuli"], stimuli(study))
+            and record.get("context") == felt_context(study))
+
+
 def comparable_runs(study):
-    """The runs made on the stimuli the study holds now (runs on another set are kept but
-    not pooled with these)."""
-    now = stimuli(study)
-    return [r for r in runs(study) if same_stimuli(r["stimuli"], now)]
+    """The runs analyse pools: those comparable with the study as it is."""
+    return [r for r in runs(study) if comparable(r, study)]
 
 
 # --- analysis ------------------------------------------------------------------------
@@ -489,7 +535,8 @@ def analyse(study):
     kept = comparable_runs(study)
     held = len(runs(study)) - len(kept)
     if not kept:
-        other = f" ({held} runs on other stimuli are kept but not pooled with these)" if held else ""
+        other = (f" ({held} runs on other stimuli, surface or references are kept but not pooled with these)"
+                 if held else "")
         raise ValueError(f"{study.Label}: no participant has rated these stimuli yet{other}")
     n = len(items)
     dims = int(study.Dimensions)
@@ -521,8 +568,8 @@ def analyse(study):
             else:
                 notes.append("every stimulus was classed A and B equally often: no vector for likeness")
     if space.stress > 0.2:
-        notes.append(f"stress {space.stress:.2f}: the space holds the ratings poorly (above 0.2); "
-                     "more dimensions or more participants may help")
+        notes.append(f"stress {space.stress:.2f}: the space's distances stray from the dissimilarities by a "
+                     "fifth or more; more dimensions or more participants may help")
     if len(kept) < 3:
         notes.append(f"{len(kept)} participant{'s' if len(kept) != 1 else ''}: the space shows one or two people's "
                      "impressions, not a cohort's")
@@ -534,7 +581,8 @@ def analyse(study):
 def describe(study, result):
     """A few lines of text of ``result`` (analyse) for the console and the panel."""
     lines = [f"{study.Label}: {len(result['stimuli'])} stimuli, {result['participants']} participants"
-             + (f" ({result['held']} runs on other stimuli not pooled)" if result["held"] else ""),
+             + (f" ({result['held']} runs on other stimuli, surface or references not pooled)"
+                if result["held"] else ""),
              f"  stress {result['stress']:.3f}, the axes hold {100 * result['explained']:.0f} % of the spread"]
     for label, v in sorted(result["vectors"].items(), key=lambda kv: -kv[1]["length"]):
         lines.append(f"  {label:<12} |p| {v['length']:.3f}  r {v['correlation']:.2f}")

@@ -205,7 +205,8 @@ TEST(ScaleToUnitRange, MapsLowestToMinusHalfAndHighestToPlusHalf) {
   EXPECT_DOUBLE_EQ(uneven[2], 0.5);
   EXPECT_THROW(ScaleToUnitRange({}), std::invalid_argument);
   EXPECT_THROW(ScaleToUnitRange({0.2, 0.2, 0.2}), std::invalid_argument);
-  EXPECT_THROW(ScaleToUnitRange({1.0, 1.0 + 1e-15}), std::invalid_argument);  // rounding, not variation
+  EXPECT_THROW(ScaleToUnitRange({1.0, 1.0 + 1e-15}),
+               std::invalid_argument);  // rounding, not variation
   EXPECT_THROW(ScaleToUnitRange({0.0, std::nan("")}), std::invalid_argument);
 }
 

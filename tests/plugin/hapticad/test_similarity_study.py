@@ -238,7 +238,7 @@ class StudyTest(unittest.TestCase):
         ss.record_run(study, finish(ss.Run(study, "P1", seed=1)))
         items = ss.stimuli(study)[:4]
         ss.set_stimuli(study, items)
-        with self.assertRaisesRegex(ValueError, "no participant has rated these stimuli yet \\(1 runs"):
+        with self.assertRaisesRegex(ValueError, "no participant has rated these stimuli yet \\(1 runs on other"):
             ss.analyse(study)
         ss.record_run(study, finish(ss.Run(study, "P2", seed=2)))
         result = ss.analyse(study)
@@ -257,7 +257,8 @@ class StudyTest(unittest.TestCase):
                 ([*items[:8], {"name": "x", "values": dict(items[8]["values"], TextureDC=float("nan"))}],
                  "not a finite number"),
                 ([*items[:8], {"name": "x", "values": {"TextureDC": 0.3}}], "no f_vis"),
-                ([*items[:8], "a string"], "each stimulus")):
+                ([*items[:8], "a string"], "each stimulus"),
+                ("not a list", "each stimulus")):
             with self.assertRaisesRegex(ValueError, message):
                 ss.set_stimuli(study, bad)
             self.assertEqual(study.Stimuli, before)
@@ -276,9 +277,11 @@ class StudyTest(unittest.TestCase):
             HaptiCAD.make_similarity_study(self.doc, self.box)
         with self.assertRaisesRegex(ValueError, "unknown properties Colour"):
             HaptiCAD.make_similarity_study(self.doc, self.plate, Colour=1)
+        with self.assertRaisesRegex(ValueError, "each stimulus is"):
+            HaptiCAD.make_similarity_study(self.doc, self.plate, items=["one", "two", "three"])
         self.assertEqual(len(ss.similarity_studies_of(self.doc)), 1)
         # a stored run that is not a run
-        self.assertTrue(ss.record_problems({"name": "x"}))
+        self.assertIn("not a similarity run", ss.record_problems({"name": "x"})[0])
         study.Responses = "{not json"
         with self.assertRaisesRegex(ValueError, "not readable JSON"):
             ss.runs(study)
@@ -288,6 +291,58 @@ class StudyTest(unittest.TestCase):
         ss.record_run(study, finish(ss.Run(study, "P", seed=1)))
         with self.assertRaisesRegex(ValueError, "3 dimensions for 3 stimuli"):
             ss.analyse(study)
+
+    def test_what_was_held_out_goes_with_an_undo_and_a_closed_document(self):
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate)
+        self.doc.UndoMode = 1
+        self.doc.openTransaction("Fewer stimuli")
+        ss.set_stimuli(study, ss.stimuli(study)[:5])
+        self.doc.commitTransaction()
+        ss.present(study, ss.stimuli(study)[0]["values"])
+        self.assertIsNotNone(ss.presented_texture(self.plate))
+        self.doc.undo()  # the stimulus held out may no longer be the study's
+        self.assertEqual(len(ss.stimuli(study)), 9)
+        self.assertIsNone(ss.presented_texture(self.plate))
+        # a document closed while a texture is held out: one opened under its name does not inherit it
+        path = os.path.join(self.tmp.name, "SimilarityTest.FCStd")
+        self.doc.saveAs(path)
+        name = self.doc.Name
+        ss.present(study, ss.stimuli(study)[0]["values"])
+        App.closeDocument(name)
+        self.doc = App.openDocument(path)
+        self.assertEqual(self.doc.Name, name)
+        plate = ss.similarity_studies_of(self.doc)[0].Surface
+        self.assertIsNone(ss.presented_texture(plate))
+        self.assertIsNone(compile_surface(plate, self.doc.getObject("Plate").Shape.Face6).texture)
+
+    def test_runs_felt_against_other_references_or_on_another_surface_are_not_pooled(self):
+        a, b = self.references()
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, ReferenceA=a, ReferenceB=b, WarmUps=0)
+        ss.record_run(study, finish(ss.Run(study, "P1", seed=1)))
+        self.assertEqual(len(ss.comparable_runs(study)), 1)
+        study.ReferenceA, study.ReferenceB = b, a  # swapped: "closer to A" meant the other sample
+        self.assertEqual(len(ss.comparable_runs(study)), 0)
+        study.ReferenceA, study.ReferenceB = a, b
+        self.plate.TexturePeriod = 4.0  # the stimuli felt on another grating period
+        self.assertEqual(len(ss.comparable_runs(study)), 0)
+        self.plate.TexturePeriod = 2.5
+        self.assertEqual(len(ss.comparable_runs(study)), 1)
+        # a stored run that is not whole is shown but never pooled
+        broken = dict(ss.runs(study)[0], ratings=ss.runs(study)[0]["ratings"][1:])
+        study.Responses = json.dumps([*ss.runs(study), broken])
+        self.assertEqual(len(ss.comparable_runs(study)), 1)
+        self.assertIn("not every pair", ss.record_problems(broken)[0])
+        for bad in (dict(broken, steps=1), dict(broken, steps=True), dict(broken, choices=[[0.5, "A"]])):
+            self.assertTrue(ss.record_problems(bad))
+        self.assertEqual(ss.analyse(study)["participants"], 1)
+
+    def test_answers_are_whole_numbers_on_the_scale(self):
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=0)
+        run = ss.Run(study, "P1", seed=1)
+        for bad in (True, 4.0, 0, 8, "4"):
+            with self.assertRaises(ValueError):
+                run.answer(bad)
+        self.assertEqual(run.answers, [])
 
     def test_a_stimulus_can_come_from_a_surfaces_texture(self):
         a, _ = self.references()

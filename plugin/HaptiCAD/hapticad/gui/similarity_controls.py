@@ -15,20 +15,24 @@ from PySide2 import QtCore, QtWidgets
 
 from .. import similarity_study as ss
 from ..proxy_state import is_alive
+from .study_controls import StudyObserver
 
 KIND_TITLES = {"warm-up": "Warm-up (not kept)", "pair": "Pair", "class": "Closer to A or to B?"}
 
 
 class SimilarityControls(QtWidgets.QWidget):
     """One study's run controls. ``presented`` is emitted when the texture on the face
-    changes (the Feel panel hands the surfaces to the running loop again)."""
+    changes (the Feel panel hands the surfaces to the running loop again).
+    ``session_running``: a callable, True while a Feel session renders the face (a
+    texture is only felt then, so only then does a press count as felt)."""
 
     presented = QtCore.Signal()
     changed = QtCore.Signal()
 
-    def __init__(self, study, parent=None):
+    def __init__(self, study, session_running=None, parent=None):
         super().__init__(parent)
         self.study = study
+        self.session_running = session_running or (lambda: True)
         self.run = None
         self.slot = None  # what is on the face now: 1, 2, "A", "B" or None
         self._felt = set()  # the slots felt in this trial: an answer waits for them
@@ -89,7 +93,29 @@ class SimilarityControls(QtWidgets.QWidget):
         self.message.setObjectName("similarityMessage")
         self.message.setWordWrap(True)
         layout.addWidget(self.message)
-        self.destroyed.connect(lambda *_: self.release())
+        self.observer = StudyObserver(study, self.external_change, watch_references=True)
+        self.destroyed.connect(lambda *_: (self.observer.remove(), self.release()))
+        self.load()
+
+    def external_change(self):
+        """The study, its surface or a reference changed by any way (an undo, the
+        property editor): a run whose textures are no longer the study's stops."""
+        if self.run is not None and (not is_alive(self.study) or ss.validate(self.study)
+                                     or self.run.stimuli != ss.stimuli(self.study)
+                                     or self.run.context != ss.felt_context(self.study)):
+            self.run = None
+            self.slot = None
+            self._felt = set()
+            self.release()
+            self.presented.emit()
+            self.show_message("The study changed during the run: the run was stopped, nothing kept.", error=True)
+        self.load()
+
+    def session_stopped(self):
+        """The Feel session stopped: nothing is felt, so the trial starts over."""
+        self.release()
+        self.slot = None
+        self._felt = set()
         self.load()
 
     # --- state ---------------------------------------------------------------------------
@@ -191,7 +217,11 @@ class SimilarityControls(QtWidgets.QWidget):
 
     def show_texture(self, slot):
         """Puts the current trial's texture ``slot`` on the face."""
-        if self.run is None or self.run.current is None:
+        if self.run is None or self.run.current is None or not is_alive(self.study):
+            return
+        if not self.session_running():
+            self.feel_buttons[slot].setChecked(False)
+            self.show_message("Start the Feel session first: a texture is felt only while it runs.", error=True)
             return
         try:
             self.run.present(slot)
@@ -200,24 +230,28 @@ class SimilarityControls(QtWidgets.QWidget):
             return
         self.slot = slot
         self._felt.add(slot)
+        self.show_message("")
         self.presented.emit()
         self.load()
 
     def answer(self, value):
+        if self.run is None or not is_alive(self.study):
+            return
         try:
             self.run.answer(value)
         except ValueError as exc:
             self.show_message(str(exc), error=True)
             return
-        self.slot = None
+        held, self.slot = self.slot, None
         self._felt = set()
-        self.presented.emit()  # the face is back to the surface's own texture
+        if held is not None:
+            self.presented.emit()  # the face is back to the surface's own texture
         if self.run.done:
             self.keep()
         self.load()
 
     def back(self):
-        if self.run is not None:
+        if self.run is not None and is_alive(self.study):
             self.run.back()
             self.slot = None
             self._felt = set()

@@ -34,8 +34,9 @@ class StudyObserver:
     """Calls back, once per event-loop turn, when the study changes by any way (an undo,
     the property editor), so the controls never show a design that is not the study's."""
 
-    def __init__(self, study, callback):
+    def __init__(self, study, callback, watch_references=False):
         self.study, self.callback, self.pending = study, callback, False
+        self.watch_references = watch_references  # a similarity study's ReferenceA and B too
         App.addDocumentObserver(self)
 
     def remove(self):
@@ -43,7 +44,8 @@ class StudyObserver:
 
     def slotChangedObject(self, obj, prop):
         try:
-            ours = obj is self.study or obj == self.study.Surface
+            ours = obj is self.study or obj == self.study.Surface or (
+                self.watch_references and obj in (self.study.ReferenceA, self.study.ReferenceB))
         except Exception:  # noqa: BLE001 (an object being deleted)
             ours = False
         if ours and not self.pending:

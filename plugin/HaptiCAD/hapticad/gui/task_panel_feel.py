@@ -51,7 +51,8 @@ class FeelTaskPanel:
         # a stiffness study's slider and participant form, next to the session (seed 000 Fig. 10)
         self.study_controls = [StudyControls(study, self.device_stiffness) for study in studies_of(doc)]
         # a similarity study's runs: the participant picks the texture on the face and answers (seed 001 §IV)
-        self.similarity_controls = [SimilarityControls(study) for study in similarity_studies_of(doc)]
+        self.similarity_controls = [SimilarityControls(study, self.session_running)
+                                    for study in similarity_studies_of(doc)]
         for controls in self.similarity_controls:
             controls.presented.connect(self.presented)
         self.form = [self.main, *(self._study_box(c) for c in self.study_controls),
@@ -277,12 +278,17 @@ class FeelTaskPanel:
             self.show_message(self.session.end_message or "The session ended.", error=True)
             self.stop()
 
+    def session_running(self):
+        return self.session is not None and self.session.running
+
     def stop(self):
         if self.session is not None:
             self.session.stop()
             self.update_display_final()
         self._tear_down()
         self.set_running(False)
+        for controls in self.similarity_controls:  # nothing is felt now: no trial counts as felt
+            controls.session_stopped()
 
     def update_display_final(self):
         trace = self.session.drain()

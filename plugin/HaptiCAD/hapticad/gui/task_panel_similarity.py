@@ -7,12 +7,11 @@ study's Python API). Edits go to the study at once, each its own undo step, and 
 panel has only Close: runs kept during a session are never lost to a Cancel. The runs
 themselves are made in the Feel panel, where the participant feels the textures.
 """
-import io
-
 import FreeCADGui as Gui
 from PySide2 import QtCore, QtGui, QtWidgets
 
 from .. import icon, similarity_study as ss
+from ..similarity_plot import space_png
 from ..surface_object import is_haptic_surface
 from .document_closing import DocumentClosingObserver
 from .study_controls import StudyObserver
@@ -21,29 +20,12 @@ STIMULUS_COLUMNS = ("Stimulus", *(ss.SYMBOLS[k] for k in ss.TEXTURE_VALUES))
 RUN_COLUMNS = ("Participant", "Recorded", "Pairs", "Classings", "Stimuli")
 
 
-def space_png(result, width_px=420):
-    """The perceptual space drawn as PNG bytes (matplotlib, off screen)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from ..similarity_plot import draw_space
-
-    fig, ax = plt.subplots(figsize=(width_px / 80, width_px / 80), dpi=80, constrained_layout=True)
-    draw_space(ax, result)
-    buffer = io.BytesIO()
-    fig.savefig(buffer, format="png")
-    plt.close(fig)
-    return buffer.getvalue()
-
-
 class SimilarityTaskPanel:
     def __init__(self, study):
         self.obj = study
         self.doc = study.Document
         self.form = [self._status_box(), self._stimuli_box(), self._runs_box()]
-        self.observer = StudyObserver(study, self.load)
+        self.observer = StudyObserver(study, self.load, watch_references=True)
         self.closing = DocumentClosingObserver(self.doc, self.document_closing)
         self.load()
 
@@ -167,15 +149,14 @@ class SimilarityTaskPanel:
     def _load_runs(self):
         try:
             kept = ss.runs(self.obj)
-            now = ss.stimuli(self.obj)
         except ValueError as exc:
             self.space_text.setText(f"<span style='color:#b00000'>{exc}</span>")
             return
         self.runs_table.setRowCount(len(kept))
         for row, record in enumerate(kept):
-            same = ss.record_problems(record) == [] and ss.same_stimuli(record["stimuli"], now)
+            same = ss.comparable(record, self.obj)
             cells = (record.get("name", "?"), record.get("recorded", ""), str(len(record.get("ratings", []))),
-                     str(len(record.get("choices", []))), "these" if same else "other (not pooled)")
+                     str(len(record.get("choices", []))), "these" if same else "other: not pooled")
             for col, text in enumerate(cells):
                 self.runs_table.setItem(row, col, QtWidgets.QTableWidgetItem(text))
         self.runs_table.resizeColumnsToContents()
@@ -187,7 +168,7 @@ class SimilarityTaskPanel:
             return
         self.space_text.setText("<pre>" + ss.describe(self.obj, result) + "</pre>")
         pixmap = QtGui.QPixmap()
-        pixmap.loadFromData(space_png(result))
+        pixmap.loadFromData(space_png(result, size_in=(5.2, 5.2), dpi=80))
         self.space_plot.setPixmap(pixmap)
 
     # --- widgets -> object -------------------------------------------------------------

@@ -187,8 +187,32 @@ class SimilarityGuiTest(unittest.TestCase):
         h.widget(QtWidgets.QPushButton, "similarityStop").click()
         self.assertIsNone(ss.presented_texture(self.plate))
         self.assertEqual(study.Participants, 6)
+        # the study edited during a run (the property editor, an undo): the run stops, nothing kept
+        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Cy")
+        h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        h.widget(QtWidgets.QPushButton, "similarityFeel1").click()
+        self.assertIsNotNone(ss.presented_texture(self.plate))
+        self.doc.openTransaction("Fewer stimuli")
+        ss.set_stimuli(study, ss.stimuli(study)[:5])
+        self.doc.commitTransaction()
+        h.process_events()
+        self.assertIsNone(controls.run)
+        self.assertIsNone(ss.presented_texture(self.plate))
+        self.assertIn("The study changed during the run", h.widget(QtWidgets.QLabel, "similarityMessage").text())
+        self.doc.undo()
+        h.process_events()
+        self.assertEqual(len(ss.stimuli(study)), 9)
+        # a run without a running session: a press is not felt, so it does not count
+        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Di")
+        h.widget(QtWidgets.QPushButton, "similarityStart").click()
         h.widget(QtWidgets.QPushButton, "feelStop").click()
+        for slot in (1, 2):
+            h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
+        self.assertIn("Start the Feel session first", h.widget(QtWidgets.QLabel, "similarityMessage").text())
+        self.assertFalse(h.widget(QtWidgets.QPushButton, "similarityRate4").isEnabled())
+        self.assertIsNone(ss.presented_texture(self.plate))
         h.press_task_button("Close")
+        self.assertEqual(study.Participants, 6)
 
         # the study's panel: the runs and the space they make
         Gui.ActiveDocument.setEdit(study.Name, 0)

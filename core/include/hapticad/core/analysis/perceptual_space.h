@@ -10,7 +10,10 @@
 // the vector p minimising sum_i |x_i - q_i p|^2, i.e. p = sum q_i x_i / sum q_i^2,
 // where q_i is stimulus i's parameter scaled to -0.5..0.5 (ScaleToUnitRange). Its
 // direction is the parameter's trend through the space, its length how strongly the
-// parameter shapes what was felt.
+// parameter shapes what was felt. As in the paper, q is not re-centred: the points are
+// centred, so a q whose mean is not 0 leaves p's direction as it is but shortens it
+// (sum q_i^2 grows with the mean's square); `correlation`, which is centred, does not
+// depend on it.
 //
 // Units: dissimilarities in any unit (the points come out in the same unit). The
 // space's axes mean nothing on their own: the points are centred on the origin and
@@ -28,15 +31,16 @@
 namespace hapticad {
 
 struct PerceptualSpace {
-  Eigen::MatrixXd points;            // n x dimensions, row i is stimulus i; centred
-  std::vector<double> eigenvalues;   // of the double-centred squared dissimilarities, all n, largest
-                                     // first, over the largest (1 first; all 0 when every
-                                     // dissimilarity is 0): a scree of how many axes the data need
-  double explained = 0;              // the axes' kept eigenvalues over the sum of all eigenvalues'
-                                     // magnitudes, 0..1 (Mardia): below 1 for axes left out and for
-                                     // dissimilarities no space of any dimension holds
-  double stress = 0;                 // Kruskal's stress-1 of the points' distances against the
-                                     // dissimilarities (0: exact; 0 when all are 0)
+  Eigen::MatrixXd points;           // n x dimensions, row i is stimulus i; centred
+  std::vector<double> eigenvalues;  // of the double-centred squared dissimilarities, all n, largest
+                                    // first, over the largest (1 first; all 0 when every
+                                    // dissimilarity is 0): a scree of how many axes the data need
+  double explained = 0;             // the axes' kept eigenvalues over the sum of all eigenvalues'
+                                    // magnitudes, 0..1 (Mardia): below 1 for axes left out and for
+                                    // dissimilarities no space of any dimension holds
+  double stress = 0;                // sqrt(sum (distance - dissimilarity)^2 / sum dissimilarity^2)
+                                    // over the pairs: how far the points' distances stray from
+                                    // the dissimilarities, relatively (0: exact; 0 when all are 0)
 };
 
 // Preconditions: `dissimilarity` is square, n >= 3, finite, >= 0, symmetric (within
