@@ -838,7 +838,8 @@ void DefinePerceptualSpace(py::module_& m) {
       .def_readonly("direction", &PropertyVector::direction)
       .def_readonly("length", &PropertyVector::length)
       .def_readonly("correlation", &PropertyVector::correlation);
-  m.def("compute_perceptual_space", &ComputePerceptualSpace, py::arg("dissimilarity"), py::arg("dimensions"));
+  m.def("compute_perceptual_space", &ComputePerceptualSpace, py::arg("dissimilarity"),
+        py::arg("dimensions"));
   m.def("fit_property_vector", &FitPropertyVector, py::arg("points"), py::arg("q"));
   m.def("scale_to_unit_range", &ScaleToUnitRange, py::arg("values"));
 }

@@ -208,17 +208,23 @@ def cmd_fit_texture(args):
     return None
 
 
+def _chosen_studies(args, found, kind):
+    """The studies --study names (name or label), or all; ValueError naming those there are."""
+    studies = [s for s in found if not args.study or args.study in (s.Name, s.Label)]
+    if not studies:
+        names = ", ".join(s.Label for s in found) or "none"
+        raise ValueError(f"{args.file}: no {kind}{' named ' + repr(args.study) if args.study else ''} "
+                         f"(it has: {names})")
+    return studies
+
+
 def cmd_cohort(args):
     App = ensure_freecad()
     from . import cohort, stiffness_study
 
     doc = _open_document(App, args.file)
     try:
-        studies = [s for s in stiffness_study.studies_of(doc) if not args.study or args.study in (s.Name, s.Label)]
-        if not studies:
-            names = ", ".join(s.Label for s in stiffness_study.studies_of(doc)) or "none"
-            raise ValueError(f"{args.file}: no stiffness study{' named ' + repr(args.study) if args.study else ''} "
-                             f"(it has: {names})")
+        studies = _chosen_studies(args, stiffness_study.studies_of(doc), "stiffness study")
         if args.csv and len(studies) > 1:
             raise ValueError("--csv writes one study's cohort: name it with --study")
         result = []
@@ -250,12 +256,7 @@ def cmd_similarity(args):
 
     doc = _open_document(App, args.file)
     try:
-        found = similarity_study.similarity_studies_of(doc)
-        studies = [s for s in found if not args.study or args.study in (s.Name, s.Label)]
-        if not studies:
-            names = ", ".join(s.Label for s in found) or "none"
-            raise ValueError(f"{args.file}: no similarity study{' named ' + repr(args.study) if args.study else ''} "
-                             f"(it has: {names})")
+        studies = _chosen_studies(args, similarity_study.similarity_studies_of(doc), "similarity study")
         if args.plot and len(studies) > 1:
             raise ValueError("--plot draws one study's space: name it with --study")
         result = []

@@ -51,6 +51,19 @@ def add_type_tag(obj, type_tag):
     obj.HaptiCADType = type_tag
 
 
+def add_properties(obj, properties):
+    """Adds the properties an object lacks, each (name, kind, group, tooltip, default,
+    constraint): a constraint (min, max, step) makes a constrained value of the default."""
+    for name, kind, group, tip, default, constraint in properties:
+        if name in obj.PropertiesList:
+            continue
+        obj.addProperty(kind, name, group, tip)
+        if constraint is not None:
+            setattr(obj, name, (default, *constraint))
+        elif default is not None:
+            setattr(obj, name, default)
+
+
 def add_hidden_state(obj, entries, group="Base"):
     """Hidden string properties, (name, tooltip) each, for an object's own bookkeeping."""
     for name, tip in entries:

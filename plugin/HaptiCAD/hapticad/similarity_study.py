@@ -40,7 +40,7 @@ import FreeCAD as App
 import numpy as np
 
 from . import _core, textures
-from .proxy_state import SchemaState, add_hidden_state, add_type_tag, is_alive
+from .proxy_state import SchemaState, add_hidden_state, add_properties, add_type_tag, is_alive
 from .surface_object import TEXTURE_VALUES
 
 TYPE = "HaptiCAD::SimilarityStudy"
@@ -90,14 +90,7 @@ class SimilarityStudy(SchemaState):
 
     def setup(self, obj, new=False):
         add_type_tag(obj, TYPE)
-        for name, kind, group, tip, default, constraint in PROPERTIES:
-            if name in obj.PropertiesList:
-                continue
-            obj.addProperty(kind, name, group, tip)
-            if constraint is not None:
-                setattr(obj, name, (default, *constraint))
-            elif default is not None:
-                setattr(obj, name, default)
+        add_properties(obj, PROPERTIES)
         add_hidden_state(obj, HIDDEN_STATE, "Cohort")
         obj.setEditorMode("Participants", 1)
         if new:
@@ -222,23 +215,15 @@ def references(study):
 
 def validate(study):
     """Problems that keep a run from starting, as sentences (empty when fine)."""
-    from .surface_object import active_reference_pairs, is_haptic_surface
+    from .surface_object import is_haptic_surface, linked_surface_problems
 
-    found = []
-    if study.Surface is None:
-        found.append("no surface: link the haptic surface whose faces the participants stroke")
-    elif not is_haptic_surface(study.Surface):
-        found.append(f"{study.Surface.Label} is not a haptic surface")
-    else:
-        others = [s.Label for s in similarity_studies_of(study.Document) if s is not study and s.Surface == study.Surface]
-        if others:
-            found.append(f"{study.Surface.Label} is also studied by {', '.join(others)}: "
-                         "a face presents one texture at a time; link another surface")
-        if not active_reference_pairs(study.Surface):
-            found.append(f"{study.Surface.Label} tags no face (its faces are gone or broken): nothing to stroke")
-        if study.Surface.TextureScale == "Friction level" and study.Surface.StaticFriction == 0:
-            found.append(f"{study.Surface.Label}'s texture level 1 is its friction, and its static friction is 0: "
-                         "the stimuli would render nothing; raise the friction, or make level 1 a device force")
+    found = linked_surface_problems(study, similarity_studies_of(study.Document), "stroke",
+                                    "a face presents one texture at a time")
+    surface = study.Surface
+    if (surface is not None and is_haptic_surface(surface) and surface.TextureScale == "Friction level"
+            and surface.StaticFriction == 0):
+        found.append(f"{surface.Label}'s texture level 1 is its friction, and its static friction is 0: "
+                     "the stimuli would render nothing; raise the friction, or make level 1 a device force")
     try:
         found.extend(stimulus_problems(stimuli(study)))
     except ValueError as exc:

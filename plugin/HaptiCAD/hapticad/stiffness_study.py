@@ -25,7 +25,7 @@ from datetime import datetime
 import FreeCAD as App
 
 from . import _core, cohort, materials
-from .proxy_state import SchemaState, add_hidden_state, add_type_tag, is_restoring
+from .proxy_state import SchemaState, add_hidden_state, add_properties, add_type_tag, is_restoring
 
 TYPE = "HaptiCAD::StiffnessStudy"
 SCHEMA_VERSION = 1
@@ -86,14 +86,7 @@ class StiffnessStudy(SchemaState):
 
     def setup(self, obj, new=False):
         add_type_tag(obj, TYPE)
-        for name, kind, group, tip, default, constraint in PROPERTIES:
-            if name in obj.PropertiesList:
-                continue
-            obj.addProperty(kind, name, group, tip)
-            if constraint is not None:
-                setattr(obj, name, (default, *constraint))
-            elif default is not None:
-                setattr(obj, name, default)
+        add_properties(obj, PROPERTIES)
         add_hidden_state(obj, HIDDEN_STATE, "Cohort")
         obj.setEditorMode("BendingStiffness", 1)
         obj.setEditorMode("Participants", 1)
@@ -225,20 +218,9 @@ def design(study):
 
 def law_problems(study):
     """Problems that keep the study's law off its surface's faces, as sentences."""
-    from .surface_object import active_reference_pairs, is_haptic_surface
+    from .surface_object import is_haptic_surface, linked_surface_problems
 
-    found = []
-    if study.Surface is None:
-        found.append("no surface: link the haptic surface whose faces the participants press")
-    elif not is_haptic_surface(study.Surface):
-        found.append(f"{study.Surface.Label} is not a haptic surface")
-    else:
-        others = [s.Label for s in studies_of(study.Document) if s is not study and s.Surface == study.Surface]
-        if others:
-            found.append(f"{study.Surface.Label} is also studied by {', '.join(others)}: a face gives one way; "
-                         "link another surface")
-        if not active_reference_pairs(study.Surface):
-            found.append(f"{study.Surface.Label} tags no face (its faces are gone or broken): nothing to press")
+    found = linked_surface_problems(study, studies_of(study.Document), "press", "a face gives one way")
     try:
         if study.Surface is None or is_haptic_surface(study.Surface):
             force_travel(study)

@@ -627,6 +627,25 @@ def make_surface(doc, references, material="ABS", roughness_category=3, pattern=
     return obj
 
 
+def linked_surface_problems(study, rivals, action, why_one):
+    """Problems with the haptic surface a study links (``study.Surface``), as sentences:
+    none linked, not a haptic surface, linked by ``rivals`` (other studies of the same
+    kind) too, or its faces gone. ``action`` is what participants do ("press"),
+    ``why_one`` why a surface takes one such study."""
+    surface = study.Surface
+    if surface is None:
+        return [f"no surface: link the haptic surface whose faces the participants {action}"]
+    if not is_haptic_surface(surface):
+        return [f"{surface.Label} is not a haptic surface"]
+    found = []
+    others = [s.Label for s in rivals if s is not study and s.Surface == surface]
+    if others:
+        found.append(f"{surface.Label} is also studied by {', '.join(others)}: {why_one}; link another surface")
+    if not active_reference_pairs(surface):
+        found.append(f"{surface.Label} tags no face (its faces are gone or broken): nothing to {action}")
+    return found
+
+
 def attach_view_provider(obj):
     """Gives a HaptiCAD object its view provider when the GUI is up and it has none yet."""
     if not App.GuiUp or obj.ViewObject is None or obj.ViewObject.Proxy:

@@ -2,6 +2,7 @@
 """Helpers for GUI tests: synthetic mouse events in the 3D view, the task panel's
 widgets and buttons, screenshots and pixel measures. Used inside FreeCAD's GUI."""
 import os
+import time
 
 import FreeCAD as App
 import FreeCADGui as Gui
@@ -14,6 +15,14 @@ def process_events(rounds=3):
     for _ in range(rounds):
         QtWidgets.QApplication.processEvents()
         Gui.updateGui()
+
+
+def wait(seconds):
+    """Runs Qt's events for ``seconds`` (a live session's display timer, the loop)."""
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        process_events(1)
+        time.sleep(0.005)
 
 
 def show_workbench():

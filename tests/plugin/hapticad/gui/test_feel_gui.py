@@ -23,13 +23,6 @@ import gui_helpers as h  # noqa: E402
 MM = 1e-3
 
 
-def wait(seconds):
-    end = time.monotonic() + seconds
-    while time.monotonic() < end:
-        h.process_events(1)
-        time.sleep(0.005)
-
-
 class FeelGuiTest(unittest.TestCase):
     def setUp(self):
         preferences.update(device="simulated", servo_rate_hz=1000)
@@ -56,7 +49,7 @@ class FeelGuiTest(unittest.TestCase):
         panel = task_panel_feel.active_panel()
         self.assertTrue(panel.session is not None, h.widget(QtWidgets.QLabel, "feelMessage").text())
         h.mouse("move", h.screen_pos(np.array([20.0, 15.0, 20.0])))
-        wait(0.4)
+        h.wait(0.4)
         self.assertIn("Box.Face6", h.widget(QtWidgets.QLabel, "feelFace").text())
         return panel
 
@@ -67,7 +60,7 @@ class FeelGuiTest(unittest.TestCase):
         session = panel.session
         App.closeDocument(self.doc.Name)  # asked the 3D view for its scene graph: a crash
         self.doc = None
-        wait(0.3)
+        h.wait(0.3)
         self.assertFalse(session.running)
         self.assertIsNone(panel.session)
         self.assertFalse(panel.timer.isActive())
@@ -83,7 +76,7 @@ class FeelGuiTest(unittest.TestCase):
         panel = self.start_feeling()
         session = panel.session
         Gui.Control.closeDialog()  # the display timer then drew on deleted widgets forever
-        wait(0.3)
+        h.wait(0.3)
         self.assertFalse(session.running)
         self.assertFalse(panel.timer.isActive())
         self.assertIsNone(panel.session)
@@ -99,18 +92,18 @@ class FeelGuiTest(unittest.TestCase):
         # slide the mouse across the top face, left to right, for about a second
         path = [np.array([6.0 + 28.0 * i / 40, 15.0, 20.0]) for i in range(41)]
         h.mouse("move", h.screen_pos(path[0]))
-        wait(0.4)
+        h.wait(0.4)
         start_depth = depth.value()
         h.wheel(h.screen_pos(path[0]), 2)  # press harder
         self.assertEqual(depth.value(), start_depth + 2)
         devices = []
         for point in path:
             h.mouse("move", h.screen_pos(point))
-            wait(0.025)
+            h.wait(0.025)
             devices.append(probe_mm())
-        wait(0.3)
+        h.wait(0.3)
         h.widen_panel()
-        wait(0.1)
+        h.wait(0.1)
         h.grab_screen("feel_session.png")
         h.save_view("feel_session_view.png", "Current")
         self.assertGreater(chart.sample_count, 800)  # about 1.5 s at 1 kHz
@@ -141,9 +134,9 @@ class FeelGuiTest(unittest.TestCase):
         stop = h.widget(QtWidgets.QPushButton, "feelStop")
         self.assertTrue(stop.isEnabled(), h.widget(QtWidgets.QLabel, "feelMessage").text())
         h.mouse("move", h.screen_pos(np.array([20.0, 15.0, 20.0])))
-        wait(0.3)
+        h.wait(0.3)
         h.wheel(h.screen_pos(np.array([20.0, 15.0, 20.0])), 4)
-        wait(0.8)
+        h.wait(0.8)
         return stop, h.widget(QtWidgets.QWidget, "stripChart")
 
     def test_editing_the_surface_during_a_session_is_felt_at_once(self):
@@ -153,7 +146,7 @@ class FeelGuiTest(unittest.TestCase):
         surface = self.doc.getObject("HapticSurface")
         surface.Stiffness = 0.03  # N/mm
         self.doc.recompute()
-        wait(0.8)
+        h.wait(0.8)
         soft_normal = float(chart.values["normal_force_n"][-200:].mean())
         message = h.widget(QtWidgets.QLabel, "feelMessage").text()
         h.grab_screen("feel_surface_edit.png")
@@ -164,7 +157,7 @@ class FeelGuiTest(unittest.TestCase):
         # an edit that cannot be compiled: named, and the soft face stays
         surface.Pattern = "Curve"
         self.doc.recompute()
-        wait(0.3)
+        h.wait(0.3)
         self.assertIn("PatternCurve", h.widget(QtWidgets.QLabel, "feelMessage").text())
         self.assertTrue(stop.isEnabled())
         # an error of another kind (OCC's, the core's) is shown too, not lost to Qt
@@ -178,7 +171,7 @@ class FeelGuiTest(unittest.TestCase):
         session.apply_edit = fails
         surface.Stiffness = 0.04
         self.doc.recompute()
-        wait(0.3)
+        h.wait(0.3)
         self.assertIn("the kernel said no", h.widget(QtWidgets.QLabel, "feelMessage").text())
         self.assertTrue(stop.isEnabled())
         stop.click()
@@ -199,7 +192,7 @@ class FeelGuiTest(unittest.TestCase):
         # now inside the part, and the new top pushes it out
         self.box.Height = 23
         self.doc.recompute()
-        wait(0.8)
+        h.wait(0.8)
         message = h.widget(QtWidgets.QLabel, "feelMessage").text()
         h.grab_screen("feel_geometry_edit.png")
         self.assertTrue(stop.isEnabled())  # the session went on
@@ -224,13 +217,13 @@ class FeelGuiTest(unittest.TestCase):
                                                           apply_edit(doc, geometry))[1]
         self.box.Placement.Base = App.Vector(0, 0, 2)
         self.doc.recompute()
-        wait(0.8)
+        h.wait(0.8)
         self.assertEqual(calls, [True])
         self.assertIn("building it again", shown[0])
         self.assertAlmostEqual(probe_mm("proxy_m")[2], 25.0, delta=0.05)
         self.box.Height = 24
         self.doc.recompute()
-        wait(0.8)
+        h.wait(0.8)
         self.assertEqual(calls, [True, True])
         self.assertAlmostEqual(probe_mm("proxy_m")[2], 26.0, delta=0.05)
         # a second part, tagged while feeling: the scene is built again to hold it
@@ -239,7 +232,7 @@ class FeelGuiTest(unittest.TestCase):
         self.doc.recompute()
         HaptiCAD.make_surface(self.doc, [(other, "Face6")], material="Steel")
         self.doc.recompute()
-        wait(0.3)
+        h.wait(0.3)
         self.assertIn("built again", h.widget(QtWidgets.QLabel, "feelMessage").text())
         self.assertIn("Other", task_panel_feel_scene().shapes)
         self.assertTrue(stop.isEnabled())
@@ -264,7 +257,7 @@ class FeelGuiTest(unittest.TestCase):
 
         panel = task_panel_feel.active_panel()
         self.assertTrue(panel.session is not None, h.widget(QtWidgets.QLabel, "feelMessage").text())
-        wait(0.2)
+        h.wait(0.2)
         calls = []
         handler = panel.edits.callback
 
@@ -279,7 +272,7 @@ class FeelGuiTest(unittest.TestCase):
             part.Height = 15.0
             part.touch()
         self.doc.recompute()
-        wait(0.5)
+        h.wait(0.5)
         self.assertEqual(len(calls), 2, calls)
         self.assertTrue(calls[0])
         tops = [task_panel_feel_scene().shapes[p.Name].BoundBox.ZMax for p in parts]

@@ -7,7 +7,6 @@ then shows the cohort's perceptual space. Run by gui_test_runner.py."""
 import os
 import random
 import sys
-import time
 import unittest
 
 import numpy as np
@@ -22,13 +21,6 @@ from hapticad.gui import task_panel_feel
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gui_helpers as h  # noqa: E402
-
-
-def wait(seconds):
-    end = time.monotonic() + seconds
-    while time.monotonic() < end:
-        h.process_events(1)
-        time.sleep(0.005)
 
 
 def simulated_run(study, name, seed):
@@ -137,7 +129,7 @@ class SimilarityGuiTest(unittest.TestCase):
         # the hand strokes the plate while the participant switches textures: each is felt at once
         controls = panel.similarity_controls[0]
         h.mouse("move", h.screen_pos(np.array([20.0, 20.0, 10.0])))
-        wait(0.3)
+        h.wait(0.3)
         h.wheel(h.screen_pos(np.array([20.0, 20.0, 10.0])), 2)
         for slot in (1, 2):
             h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
@@ -147,7 +139,7 @@ class SimilarityGuiTest(unittest.TestCase):
             self.assertAlmostEqual(texture.params.f_dc, expected)
             for k in range(12):  # a stroke across the grating
                 h.mouse("move", h.screen_pos(np.array([20.0 + 1.5 * k, 20.0, 10.0])))
-                wait(0.04)
+                h.wait(0.04)
         self.assertGreater(float(np.abs(panel.chart.values["texture_force_n"][-300:]).max()), 0.1)
         self.assertTrue(rate4.isEnabled())
         h.widen_panel(480)

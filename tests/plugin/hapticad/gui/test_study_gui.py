@@ -7,7 +7,6 @@ panel. Run by gui_test_runner.py."""
 import os
 import sys
 import tempfile
-import time
 import unittest
 
 import numpy as np
@@ -22,13 +21,6 @@ from hapticad.gui import task_panel_feel
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gui_helpers as h  # noqa: E402
-
-
-def wait(seconds):
-    end = time.monotonic() + seconds
-    while time.monotonic() < end:
-        h.process_events(1)
-        time.sleep(0.005)
 
 
 def fill_participant(name, gender="M", age="26-40", weight=70.0, height=1700.0):
@@ -150,12 +142,12 @@ class StudyGuiTest(unittest.TestCase):
         slider = h.widget(QtWidgets.QSlider, "studySlider")
         top = np.array([20.0, 15.0, 20.0])
         h.mouse("move", h.screen_pos(top))
-        wait(0.3)
+        h.wait(0.3)
         h.wheel(h.screen_pos(top), 2)  # the hand presses harder
         felt = {}
         for position, thickness in ((0, 2.0), (100, 5.0)):  # 0.07 and 1.09 N/mm
             slider.setValue(position)
-            wait(0.8)
+            h.wait(0.8)
             self.assertAlmostEqual(study.BeamThickness, thickness)
             # the live session felt the new neck: force over the depth pressed is its k
             sample = task_panel_feel.active_panel().last_sample
@@ -173,7 +165,7 @@ class StudyGuiTest(unittest.TestCase):
         self.assertIn("Recorded Steven", h.widget(QtWidgets.QLabel, "studyMessage").text())
         # h = 8 mm: 4.44 N/mm, beyond the simulated hand's 3 N/mm: said beside the slider, and kept with the record
         slider.setValue(200)
-        wait(0.3)
+        h.wait(0.3)
         self.assertIn("is more than the device renders stably", h.widget(QtWidgets.QLabel, "studyValue").text())
         fill_participant("Yang", age="41-60", weight=60)
         h.widget(QtWidgets.QPushButton, "recordPreference").click()
