@@ -7,44 +7,29 @@ study's Python API). Edits go to the study at once, each its own undo step, and 
 panel has only Close: runs kept during a session are never lost to a Cancel. The runs
 themselves are made in the Feel panel, where the participant feels the textures.
 """
-import FreeCADGui as Gui
 from PySide2 import QtCore, QtGui, QtWidgets
 
-from .. import icon, similarity_study as ss
+from .. import similarity_study as ss
 from ..similarity_plot import space_png
 from ..surface_object import is_haptic_surface
-from .document_closing import DocumentClosingObserver
 from .study_controls import StudyObserver
+from .task_panel_base import CloseOnlyPanel
 
 STIMULUS_COLUMNS = ("Stimulus", *(ss.SYMBOLS[k] for k in ss.TEXTURE_VALUES))
 RUN_COLUMNS = ("Participant", "Recorded", "Pairs", "Classings", "Stimuli")
 
 
-class SimilarityTaskPanel:
+class SimilarityTaskPanel(CloseOnlyPanel):
+    ICON = "HaptiCAD_SimilarityStudy"
+
     def __init__(self, study):
         self.obj = study
         self.doc = study.Document
-        self.form = [self._status_box(), self._stimuli_box(), self._runs_box()]
-        self.observer = StudyObserver(study, self.load, watch_references=True)
-        self.closing = DocumentClosingObserver(self.doc, self.document_closing)
+        self.form = [self._status_box("Similarity study", "similarityStatus"), self._stimuli_box(), self._runs_box()]
+        self.watch_closing(self.doc, StudyObserver(study, self.load, watch_references=True))
         self.load()
 
     # --- building -------------------------------------------------------------------
-
-    def _box(self, title):
-        box = QtWidgets.QWidget()
-        box.setWindowTitle(title)
-        box.setWindowIcon(QtGui.QIcon(icon("HaptiCAD_SimilarityStudy")))
-        return box
-
-    def _status_box(self):
-        box = self._box("Similarity study")
-        layout = QtWidgets.QVBoxLayout(box)
-        self.status = QtWidgets.QLabel()
-        self.status.setObjectName("similarityStatus")
-        self.status.setWordWrap(True)
-        layout.addWidget(self.status)
-        return box
 
     def _table(self, name, columns):
         table = QtWidgets.QTableWidget(0, len(columns))
@@ -216,26 +201,3 @@ class SimilarityTaskPanel:
                 ss.remove_run(self.obj, row)
         return self._edit("Remove participants' runs", remove)
 
-    # --- FreeCAD's task dialog -----------------------------------------------------------
-
-    def document_closing(self):
-        self.document_gone = True
-        Gui.Control.closeDialog()
-
-    def getStandardButtons(self):
-        return int(QtWidgets.QDialogButtonBox.Close)
-
-    def _leave(self):
-        self.observer.remove()
-        self.closing.remove()
-        if not getattr(self, "document_gone", False):
-            gui_doc = Gui.getDocument(self.doc.Name)
-            if gui_doc is not None and gui_doc.getInEdit() is not None:
-                gui_doc.resetEdit()
-        return True
-
-    def reject(self):
-        return self._leave()
-
-    def accept(self):
-        return self._leave()

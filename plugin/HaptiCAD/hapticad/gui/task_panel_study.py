@@ -8,12 +8,11 @@ Edits go to the study at once, each its own undo step, and the panel has only Cl
 participants recorded during a session are never lost to a Cancel. To feel the design,
 close the panel and press Feel: the Feel panel shows the same slider and form.
 """
-import FreeCADGui as Gui
-from PySide2 import QtCore, QtGui, QtWidgets
+from PySide2 import QtCore, QtWidgets
 
-from .. import cohort, icon, preferences, stiffness_study
-from .document_closing import DocumentClosingObserver
+from .. import cohort, preferences, stiffness_study
 from .study_controls import StudyControls, set_study_property
+from .task_panel_base import CloseOnlyPanel
 
 UNITS = {"YoungsModulus": " GPa", "BeamWidth": " mm", "BeamThickness": " mm", "BeamLength": " mm",
          "OperatingForce": " N", "Pretravel": " mm", "SnapTravel": " mm", "TotalTravel": " mm"}
@@ -39,7 +38,9 @@ def _device_stiffness_n_per_m():
     return _core.simulated_probe_limits().max_stiffness_n_per_m
 
 
-class StudyTaskPanel:
+class StudyTaskPanel(CloseOnlyPanel):
+    ICON = "HaptiCAD_Study"
+
     def __init__(self, study):
         self.obj = study
         self.doc = study.Document
@@ -48,26 +49,11 @@ class StudyTaskPanel:
         self.device_k = _device_stiffness_n_per_m()  # asked once: it probes HID devices
         self.controls = None
         self.controls_model = None
-        self.form = [self._status_box(), self._model_box(), self._customise_box(), self._cohort_box()]
-        self.closing = DocumentClosingObserver(self.doc, self.document_closing)
+        self.form = [self._status_box("Stiffness study", "studyStatus"), self._model_box(), self._customise_box(), self._cohort_box()]
+        self.watch_closing(self.doc)
         self.load()
 
     # --- building -------------------------------------------------------------------
-
-    def _box(self, title):
-        box = QtWidgets.QWidget()
-        box.setWindowTitle(title)
-        box.setWindowIcon(QtGui.QIcon(icon("HaptiCAD_Study")))
-        return box
-
-    def _status_box(self):
-        box = self._box("Stiffness study")
-        layout = QtWidgets.QVBoxLayout(box)
-        self.status = QtWidgets.QLabel()
-        self.status.setObjectName("studyStatus")
-        self.status.setWordWrap(True)
-        layout.addWidget(self.status)
-        return box
 
     def _spin(self, name, constraint):
         box = QtWidgets.QDoubleSpinBox()
@@ -310,25 +296,3 @@ class StudyTaskPanel:
                            + (f"; {held} already held were left out" if held else "") + ".<br>" + self.stats.text())
         return added
 
-    # --- FreeCAD's task dialog -----------------------------------------------------------
-
-    def document_closing(self):
-        self.document_gone = True
-        Gui.Control.closeDialog()
-
-    def getStandardButtons(self):
-        return int(QtWidgets.QDialogButtonBox.Close)
-
-    def _leave(self):
-        self.closing.remove()
-        if not getattr(self, "document_gone", False):
-            gui_doc = Gui.getDocument(self.doc.Name)
-            if gui_doc is not None and gui_doc.getInEdit() is not None:
-                gui_doc.resetEdit()
-        return True
-
-    def reject(self):
-        return self._leave()
-
-    def accept(self):
-        return self._leave()
