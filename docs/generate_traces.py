@@ -6,7 +6,8 @@ simulated probe -> trace -> plot.
     /usr/bin/python3 docs/generate_traces.py --mod build/Mod/HaptiCAD
 
 Each figure is one topic: the seven roughness categories, the three patterns, the
-viscous textures, the friction cone's stick-slip, and vibration.
+viscous textures, the friction cone's stick-slip, vibration, and a stiffness edit felt
+under the hand.
 """
 import argparse
 import math
@@ -90,6 +91,7 @@ class Figures:
         self.similarity_study()
         self.stick_slip()
         self.vibration()
+        self.live_edit()
 
     # --- figures -------------------------------------------------------------------
     def roughness(self):
@@ -422,6 +424,59 @@ class Figures:
         ax.grid(alpha=0.3)
         self.save(fig, "vibration.png")
 
+
+    def live_edit(self):
+        """A stiffness edit under a pressing hand, through the live session: the steel
+        top made soft (0.05 N/mm) and steel again while the simulated hand presses
+        2 mm into it. The face's push blends over ContactOptions::edit_ramp_s."""
+        import time
+
+        np, plt = self.np, self.plt
+        from hapticad import _core, feel_session, preferences
+
+        doc = self.App.newDocument("LiveEdit")
+        box = doc.addObject("Part::Box", "Box")
+        box.Length, box.Width, box.Height = 40, 30, 20
+        doc.recompute()
+        surface = self.HaptiCAD.make_surface(doc, [(box, "Face6")], material="Steel")
+        session = feel_session.LiveSession(self.build(doc),
+                                           prefs=preferences.Preferences(servo_rate_hz=1000, force_limit_n=3.0))
+        session.start(np.array([20, 15, 30]) * 1e-3)
+        traces = []
+        try:
+            time.sleep(0.3)
+            session.set_target(np.array([20, 15, 18]) * 1e-3)
+            time.sleep(0.6)
+            session.drain()
+            steel = surface.Stiffness
+            for stiffness in (0.05, steel):
+                time.sleep(0.1)
+                surface.Stiffness = stiffness
+                doc.recompute()
+                session.update_surfaces(doc)
+                time.sleep(0.4)
+            traces.append(session.drain())
+        finally:
+            session.stop()
+            self.App.closeDocument(doc.Name)
+        trace = np.concatenate(traces)
+        t = (trace["time_s"] - trace["time_s"][0]) * 1e3
+        fz = trace["force_n"][:, 2]
+        blending = (trace["flags"] & _core.FLAG_EDIT_BLENDING) != 0
+        fig, (force, step) = plt.subplots(2, 1, figsize=(10, 6), sharex=True, constrained_layout=True,
+                                          gridspec_kw={"height_ratios": [2, 1]})
+        force.plot(t, fz, lw=1.0, label="force on the hand, z")
+        force.fill_between(t, 0, fz.max() * 1.1, where=blending, color="tab:orange", alpha=0.2,
+                           label="blending after the edit (0.2 s)")
+        force.set_ylabel("F (N)")
+        force.set_title("Steel top made soft (0.05 N/mm), then steel again, under a hand pressing 2 mm")
+        force.legend(loc="upper right")
+        force.grid(alpha=0.3)
+        step.plot(t[1:], np.abs(np.diff(fz)) * 1e3, lw=0.8)
+        step.set_ylabel("|dF| per tick (mN)")
+        step.set_xlabel("t (ms)")
+        step.grid(alpha=0.3)
+        self.save(fig, "live_edit.png")
 
 if __name__ == "__main__":
     main()

@@ -40,6 +40,7 @@ ForceSafety::ForceSafety(const DeviceLimits& limits, const SafetyConfig& config)
     : limits_(limits), config_(config) {
   ValidateDeviceLimits(limits);
   ValidateSafetyConfig(config);
+  thermal_cap_n_ = limits.max_force_n;
   const Vec3 margin = config.workspace_margin * (limits.workspace_max_d - limits.workspace_min_d);
   allowed_min_d_ = limits.workspace_min_d - margin;
   allowed_max_d_ = limits.workspace_max_d + margin;
@@ -54,6 +55,7 @@ void ForceSafety::BeginSession(double t_s) {
   fault_timed_out_ = false;
   have_time_ = false;
   heat_n2_ = 0.0;
+  thermal_cap_n_ = limits_.max_force_n;
 }
 
 std::uint32_t ForceSafety::CheckReading(ReadStatus status, const DeviceState& s,
@@ -120,23 +122,33 @@ Vec3 ForceSafety::Shape(double t_s, std::uint32_t faults, const Vec3& force_d,
       f *= max_force / norm;
       *flags |= kSafetyClamped;
     }
+    // warm motors: the cap comes down to the continuous force over a ramp, not in one
+    // tick (a hand pressing at 2.5 N would feel the part give way), and goes back up
+    // the same way once they have cooled
     const double continuous = limits_.continuous_force_n;
     const bool warm = continuous > 0.0 && heat_n2_ > continuous * continuous;
-    if (warm && f.norm() > continuous) {
-      f *= continuous / f.norm();
-      *flags |= kThermalLimited;
+    const double target = warm ? continuous : max_force;
+    if (config_.ramp_s > 0.0) {
+      const double slew = std::max(max_force - continuous, 0.0) * dt / config_.ramp_s;
+      thermal_cap_n_ += std::clamp(target - thermal_cap_n_, -slew, slew);
+    } else {
+      thermal_cap_n_ = target;
     }
+    const auto hold_to_cap = [&] {
+      if (thermal_cap_n_ < max_force && f.norm() > thermal_cap_n_) {
+        f *= thermal_cap_n_ / f.norm();
+        *flags |= kThermalLimited;
+      }
+    };
+    hold_to_cap();
     if (config_.ramp_s > 0.0) {
       const double ramp = (t_s - ramp_start_s_) / config_.ramp_s;
       if (ramp < 1.0) {
         // from the force last sent (zero at the start and after a fault) to this one
         f = ramp_from_ + std::max(0.0, ramp) * (f - ramp_from_);
         *flags |= kRamping;
-        // both ends are within the maximum, so is the mix; the continuous force holds
-        if (warm && f.norm() > continuous) {
-          f *= continuous / f.norm();
-          *flags |= kThermalLimited;
-        }
+        // both ends are within the maximum, so is the mix; the thermal cap holds
+        hold_to_cap();
       }
     }
   }

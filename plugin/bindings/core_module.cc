@@ -551,6 +551,7 @@ void DefineDeviceTypes(py::module_& m) {
   m.attr("FLAG_INPUT_FAULT") = static_cast<std::uint32_t>(kInputFault);
   m.attr("FLAG_STICKING") = static_cast<std::uint32_t>(kSticking);
   m.attr("FLAG_DAMPING_CLAMPED") = static_cast<std::uint32_t>(kDampingClamped);
+  m.attr("FLAG_EDIT_BLENDING") = static_cast<std::uint32_t>(kEditBlending);
   m.attr("FLAG_DEVICE_FAULT") = kDeviceFault;
   m.attr("FLAG_FAULT_NO_DATA") = kFaultNoData;
   m.attr("FLAG_FAULT_STALE") = kFaultStale;
@@ -644,7 +645,8 @@ void DefineDevices(py::module_& m) {
   py::class_<ContactOptions>(m, "ContactOptions")
       .def(py::init<>())
       .def_readwrite("proxy_radius_m", &ContactOptions::proxy_radius_m)
-      .def_readwrite("force_shading", &ContactOptions::force_shading);
+      .def_readwrite("force_shading", &ContactOptions::force_shading)
+      .def_readwrite("edit_ramp_s", &ContactOptions::edit_ramp_s);
   py::class_<ForceRenderer, std::shared_ptr<ForceRenderer>>(m, "ForceRenderer")
       .def(py::init([](std::shared_ptr<HapticScene> scene, std::shared_ptr<SurfaceTable> surfaces,
                        RenderLimits limits, ContactOptions options) {

@@ -143,19 +143,28 @@ TEST(ForceSafety, HoldsTheContinuousForceOnceTheMotorsAreWarm) {
   config.thermal_time_constant_s = 1.0;
   ForceSafety safety(Limits(), config);  // 3 N peak, 1 N continuous
   safety.BeginSession(0.0);
+  double warm_at = -1.0;
   double first_limited = -1.0;
+  double previous = 0.0;
   for (int i = 0; i < 5000; ++i) {
     const double t = i * 1e-3;
+    if (warm_at < 0 && safety.thermal_force_n() > 1.0) warm_at = t;
     std::uint32_t flags = 0;
-    const Vec3 f = safety.Shape(t, 0, Vec3(0, 0, 2.5), &flags);
+    const double f = safety.Shape(t, 0, Vec3(0, 0, 2.5), &flags).norm();
     if ((flags & kThermalLimited) && first_limited < 0) first_limited = t;
-    if (first_limited >= 0) {
-      EXPECT_LE(f.norm(), 1.0 + 1e-12);
+    if (warm_at >= 0) {
+      // the cap comes down from 3 N at (3 - 1) N / 0.2 s: no step, never back up while
+      // warm, and the continuous force from 0.2 s on
+      EXPECT_NEAR(f, std::clamp(3.0 - 10.0 * (t + 1e-3 - warm_at), 1.0, 2.5), 1e-9) << t;
+      EXPECT_LE(f, previous + 1e-12) << t;
     }
+    previous = f;
   }
-  // 2.5 N heats to (1 N)^2 after tau ln(6.25 / 5.25) = 0.17 s (plus the ramp)
-  EXPECT_GT(first_limited, 0.2);
-  EXPECT_LT(first_limited, 0.35);
+  // 2.5 N heats to (1 N)^2 after tau ln(6.25 / 5.25) = 0.17 s (plus the ramp); the cap
+  // meets 2.5 N 0.05 s later
+  EXPECT_GT(warm_at, 0.2);
+  EXPECT_LT(warm_at, 0.35);
+  EXPECT_NEAR(first_limited, warm_at + 0.05, 1.5e-3);
   EXPECT_NEAR(safety.thermal_force_n(), 1.0, 0.01);
   // a device that states no continuous force is never held back
   DeviceLimits none = Limits();
@@ -165,6 +174,34 @@ TEST(ForceSafety, HoldsTheContinuousForceOnceTheMotorsAreWarm) {
   std::uint32_t flags = 0;
   for (int i = 0; i < 5000; ++i) free.Shape(i * 1e-3, 0, Vec3(0, 0, 2.5), &flags);
   EXPECT_FALSE(flags & kThermalLimited);
+}
+
+TEST(ForceSafety, CooledMotorsLetTheForceBackUpOverTheRampNotInOneTick) {
+  SafetyConfig config;
+  config.thermal_time_constant_s = 0.5;
+  ForceSafety safety(Limits(), config);  // 3 N peak, 1 N continuous
+  safety.BeginSession(0.0);
+  std::uint32_t flags = 0;
+  int i = 0;
+  for (; i < 2000; ++i) safety.Shape(i * 1e-3, 0, Vec3(0, 0, 2.5), &flags);  // warm, held
+  // the hand eases off to 0.5 N for 100 ms: the motors cool below the continuous
+  // force and the cap climbs back from 1 N, at 10 N/s: under 2 N
+  for (; i < 2100; ++i) safety.Shape(i * 1e-3, 0, Vec3(0, 0, 0.5), &flags);
+  EXPECT_LT(safety.thermal_force_n(), 1.0);
+  // then asks for 2.5 N again: it gets the cap, which climbs no faster until the motors
+  // are warm again and it comes back down
+  double previous = 0.5;
+  double top = 0.0;
+  for (; i < 2500; ++i) {
+    flags = 0;
+    const double f = safety.Shape(i * 1e-3, 0, Vec3(0, 0, 2.5), &flags).norm();
+    EXPECT_TRUE(flags & kThermalLimited) << i;
+    EXPECT_LE(f, i == 2100 ? 2.0 + 0.01 + 1e-9 : previous + 0.01 + 1e-9) << i;
+    previous = f;
+    top = std::max(top, f);
+  }
+  EXPECT_GT(top, 1.5);
+  EXPECT_NEAR(previous, 1.0, 1e-9);
 }
 
 TEST(ForceSafety, FaultsWithoutABreakTimeOut) {

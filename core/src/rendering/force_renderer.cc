@@ -63,6 +63,9 @@ ForceRenderer::ForceRenderer(std::shared_ptr<const HapticScene> scene,
       !std::isfinite(limits_.max_damping_n_s_per_m)) {
     throw std::invalid_argument("force renderer: device limits must be finite, > 0 (damping >= 0)");
   }
+  if (!(options_.edit_ramp_s >= 0.0) || !std::isfinite(options_.edit_ramp_s)) {
+    throw std::invalid_argument("force renderer: the edit ramp must be finite and >= 0 s");
+  }
   SetSurfaces(std::move(surfaces));
   surfaces_ = surfaces_handoff_.Take();
 }
@@ -76,6 +79,18 @@ void ForceRenderer::Reset(const Vec3& device_w) {
   proxy_.ResetOutside(scene_->ToLocal(device_w));
   anchored_ = false;
   started_ = true;
+  pushed_face_ = -1;
+  blend_from_ = 1.0;
+}
+
+double ForceRenderer::EditBlendScale(double time_s) {
+  if (blend_from_ == 1.0) return 1.0;
+  const double a = (time_s - blend_start_s_) / options_.edit_ramp_s;
+  if (a >= 1.0) {
+    blend_from_ = 1.0;
+    return 1.0;
+  }
+  return blend_from_ + std::max(a, 0.0) * (1.0 - blend_from_);
 }
 
 Vec3 ForceRenderer::ApplyFrictionCone(const SurfaceProperties& surface, double friction_scale,
@@ -158,7 +173,9 @@ void ForceRenderer::Render(const RenderInput& input, RenderOutput* out) {
 
 void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
   *out = RenderOutput{};
-  surfaces_ = surfaces_handoff_.Take();
+  const SurfaceTable* taken = surfaces_handoff_.Take();
+  const bool edited = taken != surfaces_;
+  surfaces_ = taken;
   if (!started_) Reset(input.position_w);
 
   const Vec3 goal_l = scene_->ToLocal(input.position_w);
@@ -166,6 +183,8 @@ void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
   out->proxy_w = scene_->ToWorld(proxy_.position());
   if (!proxy_.in_contact()) {
     anchored_ = false;
+    pushed_face_ = -1;
+    blend_from_ = 1.0;  // a new touch starts from nothing: no step to blend
     return;
   }
 
@@ -194,14 +213,35 @@ void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
       spring_only_n > 0.0 ? Vec3(spring / spring_only_n) : proxy_.constraints().plane(0).normal;
   const double depth = spring_only_n / k;
   // the force the face pushes back with at a depth: its law's, or stiffness x depth
-  const auto press = [&](double d) {
+  const auto law_press = [&](double d) {
     if (!law) return k * d;
     bool clamped = false;
     const double f = surface.force_travel->ForceClamped(d, limits_.max_stiffness_n_per_m, &clamped);
     if (clamped) out->flags |= kStiffnessClamped;
     return f;
   };
-  if (law) spring_only_n = press(depth);
+  // a property edit under the hand: the push goes on from what was rendered, at the
+  // depth it was rendered at, and blends into the edited face's
+  if (edited && out->cad_face == pushed_face_ && options_.edit_ramp_s > 0.0) {
+    const double edited_push = law_press(pushed_depth_m_);
+    blend_from_ = edited_push > 0.0 ? pushed_n_ / edited_push : 1.0;
+    if (std::abs(blend_from_ - 1.0) < 1e-9) blend_from_ = 1.0;  // the edit left this push
+    blend_start_s_ = input.time_s;
+  }
+  const double blend = EditBlendScale(input.time_s);
+  const auto press = [&](double d) {
+    const double f = law_press(d);
+    if (blend == 1.0) return f;
+    // blending down from a stiffer face: never stiffer than the device renders stably,
+    // and nothing at zero depth
+    return blend < 1.0 ? blend * f
+                       : std::min(blend * f, std::max(f, limits_.max_stiffness_n_per_m * d));
+  };
+  if (law || blend != 1.0) spring_only_n = press(depth);
+  if (blend != 1.0) out->flags |= kEditBlending;
+  pushed_face_ = out->cad_face;
+  pushed_depth_m_ = depth;
+  pushed_n_ = spring_only_n;
   // the face's damping on the normal motion: resists, never pulls
   double b = surface.damping_n_s_per_m;
   if (b > limits_.max_damping_n_s_per_m) {

@@ -548,3 +548,159 @@ TEST_F(RendererOnBox, APartWoundInsideOutPushesOutADeviceThatStartsInIt) {
 
 }  // namespace
 }  // namespace hapticad
+
+namespace hapticad {
+namespace {
+
+// A property edit under the hand: the top's push blends from what was felt to the
+// edited face's over ContactOptions::edit_ramp_s, and never steps.
+class EditUnderTheHand : public RendererOnBox {
+ protected:
+  std::shared_ptr<SurfaceTable> Top(double stiffness_n_per_m) {
+    std::vector<SurfaceProperties> faces(6, kUntaggedSurface);
+    faces[5].stiffness_n_per_m = stiffness_n_per_m;
+    return std::make_shared<SurfaceTable>(faces);
+  }
+  // Holds the device `depth_m` into the top from tick `first` to `last` (1 kHz),
+  // returning the normal forces.
+  std::vector<double> Hold(ForceRenderer& r, int first, int last, double depth_m,
+                           std::uint32_t* flags = nullptr) {
+    std::vector<double> forces;
+    RenderOutput out;
+    for (int i = first; i <= last; ++i) {
+      r.Render({Vec3(0, 0, 0.05 - depth_m), Vec3::Zero(), i * 1e-3}, &out);
+      EXPECT_TRUE(out.flags & kContact) << i;
+      forces.push_back(out.normal_force_n);
+      if (flags != nullptr) *flags |= out.flags;
+    }
+    return forces;
+  }
+};
+
+TEST_F(EditUnderTheHand, AStiffnessEditBlendsOverTheRampInsteadOfSteppingInOneTick) {
+  for (const auto& [before, after] : {std::pair{300.0, 3000.0}, {3000.0, 300.0}}) {
+    ForceRenderer r(scene_, Top(before), limits_);
+    RenderOutput out;
+    r.Render({Vec3(0, 0, 0.06), Vec3::Zero(), 0.0}, &out);
+    const double felt = Hold(r, 1, 50, 0.002).back();
+    EXPECT_NEAR(felt, before * 0.002, 1e-6);
+    r.SetSurfaces(Top(after));
+    const std::vector<double> forces = Hold(r, 51, 400, 0.002);
+    // the tick that takes the edit feels what was felt; each tick after moves a
+    // 200th of the way (0.2 s at 1 kHz), always the same way
+    EXPECT_NEAR(forces.front(), felt, 1e-9);
+    const double step = std::abs(after - before) * 0.002 / 200.0;
+    double previous = felt;
+    for (std::size_t i = 0; i < forces.size(); ++i) {
+      EXPECT_LE(std::abs(forces[i] - previous), step + 1e-6) << i;  // (the proxy's offset)
+      EXPECT_GE((forces[i] - previous) * (after - before), 0.0) << i;
+      previous = forces[i];
+    }
+    // halfway through, halfway there; at the ramp's end, the edited face's
+    EXPECT_NEAR(forces[100], 0.5 * (before + after) * 0.002, 1e-6);
+    EXPECT_NEAR(forces[200], after * 0.002, 1e-6);
+    EXPECT_NEAR(forces.back(), after * 0.002, 1e-6);
+  }
+}
+
+TEST_F(EditUnderTheHand, TheBlendSaysSoAndEndsAfterTheRamp) {
+  ForceRenderer r(scene_, Top(300.0), limits_);
+  Hold(r, 0, 10, 0.002);
+  r.SetSurfaces(Top(600.0));
+  RenderOutput out;
+  std::uint32_t during = 0;
+  {
+    testing::AllocationCounter counter;
+    for (int i = 11; i <= 100; ++i) {
+      r.Render({Vec3(0, 0, 0.048), Vec3::Zero(), i * 1e-3}, &out);
+      during |= out.flags;
+    }
+    EXPECT_EQ(counter.count(), 0u);  // taking the edit and blending allocate nothing
+  }
+  EXPECT_TRUE(during & kEditBlending);
+  std::uint32_t after = 0;
+  Hold(r, 212, 300, 0.002, &after);
+  EXPECT_FALSE(after & kEditBlending);
+}
+
+TEST_F(EditUnderTheHand, AnEditThatLeavesTheTouchedFaceAloneChangesNothingFelt) {
+  ForceRenderer r(scene_, Top(300.0), limits_);
+  const double felt = Hold(r, 0, 10, 0.002).back();
+  std::vector<SurfaceProperties> faces(6, kUntaggedSurface);
+  faces[5].stiffness_n_per_m = 300.0;
+  faces[0].stiffness_n_per_m = 50.0;  // the bottom, away from the hand
+  r.SetSurfaces(std::make_shared<SurfaceTable>(faces));
+  std::uint32_t flags = 0;
+  for (const double f : Hold(r, 11, 30, 0.002, &flags)) EXPECT_EQ(f, felt);
+  EXPECT_FALSE(flags & kEditBlending);
+}
+
+TEST_F(EditUnderTheHand, AnEditMidRampBlendsOnFromWhatWasFelt) {
+  ForceRenderer r(scene_, Top(300.0), limits_);
+  Hold(r, 0, 10, 0.002);
+  r.SetSurfaces(Top(3000.0));
+  const double felt = Hold(r, 11, 60, 0.002).back();  // a quarter of the way up
+  EXPECT_GT(felt, 0.6 + 1.0);
+  r.SetSurfaces(Top(100.0));  // the designer drags the slider back down
+  const std::vector<double> forces = Hold(r, 61, 300, 0.002);
+  EXPECT_NEAR(forces.front(), felt, 1e-9);
+  EXPECT_NEAR(forces.back(), 100.0 * 0.002, 1e-6);
+}
+
+TEST_F(EditUnderTheHand, AnEditMadeAwayFromThePartIsFeltAtOnceOnTheNextTouch) {
+  ForceRenderer r(scene_, Top(300.0), limits_);
+  Hold(r, 0, 10, 0.002);
+  RenderOutput out;
+  r.Render({Vec3(0, 0, 0.06), Vec3::Zero(), 0.011}, &out);  // lifted off
+  r.SetSurfaces(Top(1000.0));
+  std::uint32_t flags = 0;
+  EXPECT_NEAR(Hold(r, 12, 12, 0.002, &flags).front(), 2.0, 1e-6);
+  EXPECT_FALSE(flags & kEditBlending);
+}
+
+TEST_F(EditUnderTheHand, APushButtonLawBlendsIntoASpringFromWhereTheLawWas) {
+  std::vector<SurfaceProperties> faces(6, kUntaggedSurface);
+  faces[5].force_travel = MakePushButton({});  // 0.735 N past the snap, at 0.35 mm
+  limits_.max_stiffness_n_per_m = 10000.0;
+  ForceRenderer r(scene_, std::make_shared<SurfaceTable>(faces), limits_);
+  const double felt = Hold(r, 0, 10, 0.35e-3).back();
+  EXPECT_NEAR(felt, 0.735, 1e-3);
+  r.SetSurfaces(Top(5000.0));  // 1.75 N there
+  const std::vector<double> forces = Hold(r, 11, 300, 0.35e-3);
+  EXPECT_NEAR(forces.front(), felt, 1e-9);
+  EXPECT_NEAR(forces.back(), 5000.0 * 0.35e-3, 1e-6);
+}
+
+TEST_F(EditUnderTheHand, BlendingDownFromAStiffFaceIsNeverStifferThanTheDeviceRenders) {
+  // from the device's stiffest spring to a soft one, then the hand presses deeper and
+  // lifts while the blend runs: the push never exceeds the device's maximum k times
+  // the depth, and is gone at the surface
+  ForceRenderer r(scene_, Top(3000.0), limits_);
+  Hold(r, 0, 10, 0.002);
+  r.SetSurfaces(Top(30.0));
+  RenderOutput out;
+  for (int i = 11; i <= 150; ++i) {
+    const double depth = 0.002 * (1.0 - std::abs(i - 50) / 100.0) + 0.0005;
+    r.Render({Vec3(0, 0, 0.05 - depth), Vec3::Zero(), i * 1e-3}, &out);
+    EXPECT_LE(out.normal_force_n, 3000.0 * depth * (1.0 + 1e-6)) << i;
+  }
+  r.Render({Vec3(0, 0, 0.05), Vec3::Zero(), 0.151}, &out);
+  EXPECT_LT(out.normal_force_n, 3000.0 * 1e-6);
+}
+
+TEST_F(EditUnderTheHand, ANoughtRampStepsAtOnceAndABadOneIsRefused) {
+  ContactOptions options;
+  options.edit_ramp_s = 0.0;
+  ForceRenderer r(scene_, Top(300.0), limits_, options);
+  Hold(r, 0, 10, 0.002);
+  r.SetSurfaces(Top(1000.0));
+  EXPECT_NEAR(Hold(r, 11, 11, 0.002).front(), 2.0, 1e-6);
+  for (const double bad :
+       {-0.1, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()}) {
+    options.edit_ramp_s = bad;
+    EXPECT_THROW(ForceRenderer(scene_, Top(300.0), limits_, options), std::invalid_argument);
+  }
+}
+
+}  // namespace
+}  // namespace hapticad

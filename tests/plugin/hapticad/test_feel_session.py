@@ -121,7 +121,8 @@ class FeelSessionTest(unittest.TestCase):
             self.doc.recompute()
             session.update_surfaces(self.doc)
             time.sleep(0.6)
-            soft = drain(session)[-50:]
+            softening = drain(session)
+            soft = softening[-50:]
             # an edit that cannot be compiled is refused with its name; the loop keeps the soft face
             surface.Pattern = "Curve"  # with no curve to follow
             with self.assertRaises(ValueError) as raised:
@@ -141,6 +142,14 @@ class FeelSessionTest(unittest.TestCase):
         self.assertGreater(f_steel, 0.3)
         self.assertLess(f_soft, 0.5 * f_steel)
         self.assertAlmostEqual(float(np.median(still_soft["force_n"][:, 2])), f_soft, delta=0.02)
+        # under the pressing hand the face gave way over the edit's 0.2 s ramp, not in
+        # one tick: the largest change from one tick to the next is the encoder's
+        # 0.055 mm step on the still stiff face (0.04 N), not the drop
+        blending = (softening["flags"] & _core.FLAG_EDIT_BLENDING) != 0
+        self.assertGreater(int(blending.sum()), 150)
+        self.assertLess(int(blending.sum()), 250)
+        steps = np.abs(np.diff(softening["force_n"][:, 2]))
+        self.assertLess(float(steps.max()), 0.25 * (f_steel - f_soft), steps.max())
         self.assertAlmostEqual(session.doc_scene.surfaces.surface(self.scene.face_id("Box.Face6")).stiffness_n_per_m,
                                50.0)
 

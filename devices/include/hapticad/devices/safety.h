@@ -10,7 +10,8 @@
 //   force shaping  non-finite force => zero and kFaultNonFinite; clamp to the device's
 //                  max_force_n; hold to continuous_force_n once the force's thermal
 //                  average (I^2 t: mean of |F|^2 over `thermal_time_constant_s`) exceeds
-//                  it; ramp linearly over `ramp_s` at session start, after any fault
+//                  it, the cap moving between the two over `ramp_s` (no step either
+//                  way); ramp linearly over `ramp_s` at session start, after any fault
 //                  and whenever the loop asks: from the force last sent at a scene
 //                  swap (the hand still touches: no step), from zero after a new
 //                  mapping or a clutch release, after a fault and at the start (a
@@ -95,7 +96,8 @@ class ForceSafety {
   bool fault_timed_out_ = false;
   bool have_time_ = false;
   double last_t_s_ = 0.0;
-  double heat_n2_ = 0.0;  // thermal average of |F|^2, N^2
+  double heat_n2_ = 0.0;        // thermal average of |F|^2, N^2
+  double thermal_cap_n_ = 0.0;  // the force allowed by the motors' heat, N (slews)
 };
 
 }  // namespace hapticad

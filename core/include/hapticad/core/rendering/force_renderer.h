@@ -64,6 +64,13 @@ struct ContactOptions {
   // (convex_pieces.h): the same contacts, at a cost that does not grow with the model.
   // Off: every sweep walks the grid or the tree (to compare).
   bool convex_pieces = true;
+  // A property edit under the hand (a new surface table taken while the proxy presses
+  // the same face) does not step the face's push in one tick: the push starts at what was
+  // rendered and blends into the edited face's over this long, by the session clock
+  // (RenderInput::time_s, which must advance). Its force rate is bounded; the energy the
+  // spring holds still changes by 1/2 (k_new - k_old) d^2 at a depth d, whatever the
+  // ramp, once per edit. >= 0, finite; 0: the edit's push at once.
+  double edit_ramp_s = 0.2;
 };
 
 struct RenderInput {
@@ -79,6 +86,7 @@ enum RenderFlags : std::uint32_t {
   kInputFault = 1u << 3,
   kSticking = 1u << 4,  // friction cone: the proxy is stuck to its anchor
   kDampingClamped = 1u << 5,
+  kEditBlending = 1u << 6,  // the push blends from before a property edit (edit_ramp_s)
 };
 
 struct RenderOutput {
@@ -96,15 +104,17 @@ struct RenderOutput {
 
 class ForceRenderer {
  public:
-  // Throws std::invalid_argument for null inputs, non-positive limits or a negative or
-  // non-finite proxy radius.
+  // Throws std::invalid_argument for null inputs, non-positive limits, a negative or
+  // non-finite proxy radius or edit ramp.
   ForceRenderer(std::shared_ptr<const HapticScene> scene,
                 std::shared_ptr<const SurfaceTable> surfaces, RenderLimits limits,
                 ContactOptions options = {});
 
   // Control thread: the surface properties to render from the next Render() on (not
   // null; ids beyond it are untagged). Lock-free for the servo thread; tables it no
-  // longer uses are freed here, never on the servo thread.
+  // longer uses are freed here, never on the servo thread. Under the hand the face's
+  // push blends in (ContactOptions::edit_ramp_s); friction, texture and vibration, which
+  // store no energy, change at once.
   void SetSurfaces(std::shared_ptr<const SurfaceTable> surfaces);
 
   // Puts the proxy at `device_w` (or wherever the caller wants it to restart); the next
@@ -134,6 +144,9 @@ class ForceRenderer {
   Vec3 SmoothShadingNormal() const;
 
   // Friction cone: returns the point the spring pulls toward (the anchor while sticking).
+  // The push's scale at `time_s` after a property edit under the hand (1: none).
+  double EditBlendScale(double time_s);
+
   Vec3 ApplyFrictionCone(const SurfaceProperties& surface, double friction_scale,
                          const Vec3& normal, double depth_m, const StripeFrame& stripe,
                          RenderOutput* out);
@@ -150,6 +163,12 @@ class ForceRenderer {
   bool sticking_ = false;
   std::int32_t anchor_face_ = -1;
   Vec3 anchor_l_ = Vec3::Zero();
+  // the push as last rendered, to blend from when a property edit comes in under it
+  std::int32_t pushed_face_ = -1;  // -1: no contact last tick
+  double pushed_depth_m_ = 0.0;
+  double pushed_n_ = 0.0;
+  double blend_from_ = 1.0;  // the push's scale when the edit came in; 1: no blend
+  double blend_start_s_ = 0.0;
 };
 
 }  // namespace hapticad
