@@ -23,6 +23,16 @@ class StripChart(QtWidgets.QWidget):
         self.times = np.zeros(0)
         self.values = {field: np.zeros(0) for field, _, _ in SERIES}
         self.sample_count = 0  # every sample ever received
+        self.hidden = frozenset()  # fields recorded but not drawn (a blind study's run)
+
+    def set_hidden(self, fields):
+        """Draws the series of ``fields`` no more (their values are still kept), or
+        all of them again with an empty set. A participant in a similarity study's run
+        must not read the texture off the screen."""
+        fields = frozenset(fields)
+        if fields != self.hidden:
+            self.hidden = fields
+            self.update()
 
     def append(self, trace):
         """Adds drained trace samples (a structured array with time_s and SERIES fields)."""
@@ -50,13 +60,15 @@ class StripChart(QtWidgets.QWidget):
         painter.drawRect(rect)
         top = 1.0
         for field in self.values:
-            if len(self.values[field]):
+            if len(self.values[field]) and field not in self.hidden:
                 top = max(top, float(np.nanmax(np.abs(self.values[field]))) * 1.1)
         painter.setPen(QtGui.QColor(90, 90, 90))
         painter.drawText(QtCore.QRectF(0, rect.top() - 4, 34, 14), QtCore.Qt.AlignRight, f"{top:.1f}")
         painter.drawText(QtCore.QRectF(0, rect.bottom() - 10, 34, 14), QtCore.Qt.AlignRight, "0 N")
         x = rect.left() + 4
-        for _, label, colour in SERIES:
+        for field, label, colour in SERIES:
+            if field in self.hidden:
+                label, colour = f"{label}: hidden", QtGui.QColor(150, 150, 150)
             painter.setPen(colour)
             painter.drawText(QtCore.QPointF(x, self.height() - 5), label)
             x += painter.fontMetrics().horizontalAdvance(label) + 14
@@ -71,6 +83,8 @@ class StripChart(QtWidgets.QWidget):
         columns = max(int(rect.width()), 2)
         index = np.clip(((self.times - t0) / self.seconds * (columns - 1)).astype(int), 0, columns - 1)
         for field, _, colour in SERIES:
+            if field in self.hidden:
+                continue
             values = self.values[field]
             path = QtGui.QPainterPath()
             first = True

@@ -3,7 +3,8 @@
 
 The servo loop runs in C++ (hapticad.feel_session); this panel only displays, from a
 Qt timer at most 60 times a second: the probe, proxy and force arrow in the 3D view, a
-strip chart of normal, friction and texture force, the face under the probe with its
+strip chart of normal, friction and texture force (not the last two during a similarity
+study's run, which is blind), the face under the probe with its
 properties, and the loop rate. With the simulated probe the mouse steers it over the
 part and the wheel or the slider sets how hard it presses.
 """
@@ -24,6 +25,8 @@ from .similarity_controls import SimilarityControls
 from .study_controls import StudyControls
 
 DISPLAY_HZ = 60
+# what the strip chart does not draw during a similarity run (the texture held out on the face)
+BLIND_SERIES = ("texture_force_n", "friction_force_n")
 _ACTIVE = []  # the open panel, for tests and for the Stop of a closing document
 
 
@@ -262,6 +265,8 @@ class FeelTaskPanel:
         """Drains the trace and shows it (the display timer, at most DISPLAY_HZ)."""
         if self.session is None:
             return
+        # a similarity run is blind: the texture on the face must not be read off the chart
+        self.chart.set_hidden(BLIND_SERIES if any(c.run is not None for c in self.similarity_controls) else ())
         trace = self.session.drain()
         if len(trace):
             self.frames += 1

@@ -140,7 +140,9 @@ class SimilarityGuiTest(unittest.TestCase):
             for k in range(12):  # a stroke across the grating
                 h.mouse("move", h.screen_pos(np.array([20.0 + 1.5 * k, 20.0, 10.0])))
                 h.wait(0.04)
+        # felt, and kept in the trace, but not drawn: the participant cannot read the texture off the chart
         self.assertGreater(float(np.abs(panel.chart.values["texture_force_n"][-300:]).max()), 0.1)
+        self.assertEqual(panel.chart.hidden, {"texture_force_n", "friction_force_n"})
         self.assertTrue(rate4.isEnabled())
         h.widen_panel(480)
         h.grab_screen("feel_similarity.png")
@@ -163,6 +165,8 @@ class SimilarityGuiTest(unittest.TestCase):
                     h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
                 h.widget(QtWidgets.QPushButton, "similarityRate5").click()
         self.assertEqual(study.Participants, 6)
+        h.wait(0.1)
+        self.assertEqual(panel.chart.hidden, set())  # the run is over: the chart draws every force again
         self.assertIn("Kept Ada's run: 36 pairs, 27 classings (6 participants)",
                       h.widget(QtWidgets.QLabel, "similarityMessage").text())
         self.assertIn("Keep a similarity run", self.doc.UndoNames)
