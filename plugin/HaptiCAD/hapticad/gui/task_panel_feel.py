@@ -10,13 +10,13 @@ part and the wheel or the slider sets how hard it presses.
 """
 import numpy as np
 
-import FreeCAD as App
 import FreeCADGui as Gui
 from PySide2 import QtCore, QtGui, QtWidgets
 
 from .. import _core, feel_session, icon, preferences
 from ..similarity_study import similarity_studies_of
 from ..stiffness_study import studies_of
+from .busy_cursor import busy_cursor
 from .document_closing import DocumentClosingObserver
 from .feel_view import FeelView, MouseSteering
 from .strip_chart import StripChart
@@ -167,9 +167,10 @@ class FeelTaskPanel:
 
         self.show_message("")
         try:
-            self.doc_scene = build_document_scene(self.doc, accuracy.preset(preferences.load().accuracy))
-            self.session = feel_session.LiveSession(self.doc_scene, self.device.currentData() or
-                                                    feel_session.SIMULATED)
+            with busy_cursor():  # tessellating and building a large part's scene takes seconds
+                self.doc_scene = build_document_scene(self.doc, accuracy.preset(preferences.load().accuracy))
+                self.session = feel_session.LiveSession(self.doc_scene, self.device.currentData() or
+                                                        feel_session.SIMULATED)
         except (ValueError, RuntimeError) as exc:
             self.session = None
             self.show_message(str(exc), error=True)
@@ -213,7 +214,8 @@ class FeelTaskPanel:
             self.show_message("The part changed: building it again...")
             self.message.repaint()
         try:
-            applied = self.session.apply_edit(self.doc, geometry)
+            with busy_cursor():
+                applied = self.session.apply_edit(self.doc, geometry)
         except Exception as exc:  # noqa: BLE001 (OCC and core errors too: named, and the loop keeps what it had)
             kept = "the part as it was" if geometry else "the surfaces as they were"
             self.show_message(f"{exc} (still feeling {kept})", error=True)

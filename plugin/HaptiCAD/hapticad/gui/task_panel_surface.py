@@ -23,6 +23,7 @@ from PySide2 import QtCore, QtGui, QtWidgets
 
 from .. import _core, face_references, icon, materials, surface_object, texture_fit, vibration_object
 from ..proxy_state import is_alive
+from .busy_cursor import busy_cursor
 from .document_closing import DocumentClosingObserver
 from .selection import selected_curve
 
@@ -495,8 +496,9 @@ class SurfaceTaskPanel:
                                   "50, 80, 120</span>")
             return False
         try:
-            report = texture_fit.fit_files(paths, float(self.obj.TexturePeriod), speeds)
-            notes = texture_fit.apply_to_surface(self.obj, report)
+            with busy_cursor():  # reading long recordings takes seconds
+                report = texture_fit.fit_files(paths, float(self.obj.TexturePeriod), speeds)
+                notes = texture_fit.apply_to_surface(self.obj, report)
         except (ValueError, OSError) as exc:
             self.fit_info.setText(f"<span style='color:#b00000'>Not fitted, nothing changed: {exc}</span>")
             return False

@@ -97,7 +97,7 @@ class TaskPanelTest(unittest.TestCase):
         sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "support"))
         from texture_recordings import write_rig_csv
 
-        from hapticad import _core
+        from hapticad import _core, texture_fit
 
         surface = self.open_new_surface()
         folder = tempfile.mkdtemp()
@@ -106,6 +106,13 @@ class TaskPanelTest(unittest.TestCase):
         with open(bad, "w") as handle:
             handle.write("t,x,f\n0,0,0\n")
         chosen = []
+        cursors = []
+        fit_files = texture_fit.fit_files
+
+        def watched(*args, **kwargs):
+            cursors.append(QtWidgets.QApplication.overrideCursor().shape())
+            return fit_files(*args, **kwargs)
+
         original = QtWidgets.QFileDialog.getOpenFileNames
         QtWidgets.QFileDialog.getOpenFileNames = staticmethod(lambda *a, **k: (chosen, "CSV recordings (*.csv)"))
         try:
@@ -116,10 +123,16 @@ class TaskPanelTest(unittest.TestCase):
             self.assertIn("Not fitted, nothing changed", info.text())
             self.assertIn("needs the columns time_s, position_mm, lateral_force_n", info.text())
             self.assertEqual(surface.Texture, "None")
+            self.assertIsNone(QtWidgets.QApplication.overrideCursor())  # an error left no wait cursor behind
+            # the fit holds the GUI thread: the wait cursor shows while it runs, and goes after
+            texture_fit.fit_files = watched
             chosen[:] = [rig]
             h.widget(QtWidgets.QPushButton, "fitTexture").click()
         finally:
             QtWidgets.QFileDialog.getOpenFileNames = original
+            texture_fit.fit_files = fit_files
+        self.assertEqual(cursors, [QtCore.Qt.WaitCursor])
+        self.assertIsNone(QtWidgets.QApplication.overrideCursor())
         self.assertIn("Fitted to 4 sections at 50, 120 mm/s", info.text())
         self.assertEqual(surface.Texture, "Custom")
         self.assertEqual(h.widget(QtWidgets.QComboBox, "Texture").currentText(), "Custom")
