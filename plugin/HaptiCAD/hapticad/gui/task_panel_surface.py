@@ -301,9 +301,14 @@ class SurfaceTaskPanel:
         self.vibrates.setToolTip("While the probe touches any face of this part and it is powered, the part "
                                  "vibrates (e.g. a shaver)")
         self.vibrates.toggled.connect(self.set_vibrates)
-        form.addRow(self.vibrates)
-        self.vibration_part = QtWidgets.QLabel()
+        # a surface may span faces of several parts: each part vibrates (or not) on its own
+        self.vibration_part = QtWidgets.QComboBox()
+        self.vibration_part.setObjectName("vibrationPart")
+        self.vibration_part.setToolTip("The part whose vibration is shown below: one of the parts this "
+                                       "surface's faces belong to")
+        self.vibration_part.currentIndexChanged.connect(lambda _i: None if self._loading else self.load())
         form.addRow("Part", self.vibration_part)
+        form.addRow(self.vibrates)
         self.vibration_widgets = {}
         low, high = vibration_object.FREQUENCY_RANGE_HZ
         self.vibration_widgets["Frequency"] = _dspin(low, high, 10.0, " Hz", 1)
@@ -429,15 +434,36 @@ class SurfaceTaskPanel:
         part = self.part()
         return vibration_object.vibration_of(part) if part is not None else None
 
+    def parts(self):
+        """The parts this surface's faces belong to, each once, in the order tagged."""
+        parts = []
+        for obj, _ in surface_object.reference_pairs(self.obj):
+            if is_alive(obj) and obj not in parts:
+                parts.append(obj)
+        return parts
+
     def part(self):
-        pairs = surface_object.reference_pairs(self.obj)
-        return pairs[0][0] if pairs else None
+        """The part chosen in the Vibration box (the first, until another is chosen)."""
+        parts = self.parts()
+        chosen = self.vibration_part.currentData()
+        return next((p for p in parts if p.Name == chosen), parts[0] if parts else None)
 
     def _load_vibration(self):
-        part, vib = self.part(), self.vibration()
+        part = self.part()
+        combo = self.vibration_part
+        combo.blockSignals(True)
+        combo.clear()
+        for p in self.parts():
+            vibrates = vibration_object.vibration_of(p) is not None
+            combo.addItem(f"{p.Label} (vibrates)" if vibrates else p.Label, p.Name)
+        if part is None:
+            combo.addItem("tag a face first", "")
+        combo.setCurrentIndex(max(combo.findData(part.Name if part is not None else ""), 0))
+        combo.setEnabled(combo.count() > 1)
+        combo.blockSignals(False)
+        vib = self.vibration()
         self.vibrates.setEnabled(part is not None)
         _set_widget(self.vibrates, vib is not None)
-        self.vibration_part.setText(part.Label if part is not None else "tag a face first")
         for name, widget in self.vibration_widgets.items():
             widget.setEnabled(vib is not None)
             if vib is None:

@@ -93,6 +93,40 @@ class TaskPanelTest(unittest.TestCase):
         self.assertEqual(HaptiCAD.surfaces_of(self.doc), [])
         self.assertEqual(HaptiCAD.vibrations_of(self.doc), [])
 
+    def test_a_surface_on_two_parts_sets_each_parts_vibration(self):
+        lid = self.doc.addObject("Part::Box", "Lid")
+        lid.Placement.Base = App.Vector(0, 0, 30)
+        self.doc.recompute()
+        surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6"), (lid, "Face6"), (self.box, "Face5")])
+        self.doc.recompute()
+        Gui.ActiveDocument.setEdit(surface.Name, 0)
+        h.process_events()
+        part = h.widget(QtWidgets.QComboBox, "vibrationPart")
+        vibrates = h.widget(QtWidgets.QCheckBox, "vibrates")
+        self.assertEqual([part.itemText(i) for i in range(part.count())], ["Box", "Lid"])
+        self.assertTrue(part.isEnabled())
+        # the lid vibrates, the box does not
+        part.setCurrentIndex(1)
+        self.assertFalse(vibrates.isChecked())
+        vibrates.setChecked(True)
+        h.widget(QtWidgets.QDoubleSpinBox, "VibrationFrequency").setValue(240.0)
+        (vibration,) = HaptiCAD.vibrations_of(self.doc)
+        self.assertEqual((vibration.Part, vibration.Frequency), (lid, 240.0))
+        self.assertEqual(part.currentText(), "Lid (vibrates)")
+        part.setCurrentIndex(0)
+        self.assertFalse(vibrates.isChecked())
+        self.assertFalse(h.widget(QtWidgets.QDoubleSpinBox, "VibrationFrequency").isEnabled())
+        vibrates.setChecked(True)
+        self.assertEqual({v.Part.Name: v.Frequency for v in HaptiCAD.vibrations_of(self.doc)},
+                         {"Box": 100.0, "Lid": 240.0})
+        h.widen_panel()
+        for area in Gui.getMainWindow().findChildren(QtWidgets.QScrollArea):
+            if area.isVisible() and area.widget() is not None and area.widget().isAncestorOf(part):
+                area.ensureWidgetVisible(part, 0, 0)
+        h.grab_screen("task_panel_vibration_parts.png")
+        h.press_task_button("OK")
+        self.assertEqual(len(HaptiCAD.vibrations_of(self.doc)), 2)
+
     def test_the_texture_is_fitted_to_recordings_and_cancel_reverts_it(self):
         sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "support"))
         from texture_recordings import write_rig_csv
