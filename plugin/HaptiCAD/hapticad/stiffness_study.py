@@ -317,6 +317,17 @@ def adjust_info(study):
     return label, unit
 
 
+def expression_of(obj, prop):
+    """The expression bound to ``obj``'s property ``prop`` (``"Spreadsheet.h"``), or None.
+    Nothing but the expression can set a bound property: the next recompute sets it back."""
+    return next((expression for path, expression in obj.ExpressionEngine if path.lstrip(".") == prop), None)
+
+
+def adjust_expression(study):
+    """The expression bound to the parameter the slider moves, or None."""
+    return expression_of(study, study.Adjust)
+
+
 def make_study(doc, surface, model=BEAM, name="StiffnessStudy", **properties):
     """A study of how ``surface``'s faces give. Properties may be given by name. Raises
     ValueError on bad input, adding nothing."""

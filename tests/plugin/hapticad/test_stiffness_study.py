@@ -117,6 +117,17 @@ class StudyTest(unittest.TestCase):
         with self.assertRaises(ValueError):
             HaptiCAD.make_study(self.doc, self.box)
 
+    def test_the_expression_bound_to_the_sliders_parameter_is_told(self):
+        study = HaptiCAD.make_study(self.doc, self.head)
+        self.assertIsNone(stiffness_study.adjust_expression(study))
+        study.setExpression("BeamThickness", "BeamWidth - 1")
+        self.doc.recompute()
+        self.assertEqual(stiffness_study.adjust_expression(study), "BeamWidth - 1")
+        self.assertAlmostEqual(study.BeamThickness, study.BeamWidth - 1)
+        study.Adjust = "BeamLength"  # another parameter, not bound
+        self.assertIsNone(stiffness_study.adjust_expression(study))
+        self.assertEqual(stiffness_study.expression_of(study, "BeamThickness"), "BeamWidth - 1")
+
     def test_a_slider_problem_does_not_take_the_law_off_the_face(self):
         study = HaptiCAD.make_study(self.doc, self.head, YoungsModulus=1.5, BeamThickness=4)
         study.AdjustMin, study.AdjustMax = 8.0, 2.0

@@ -155,7 +155,8 @@ class StudyControls(QtWidgets.QWidget):
             label, unit = stiffness_study.adjust_info(self.study)
             low, high = self._range()
             current = float(getattr(self.study, self.study.Adjust))
-            self.slider.setEnabled(high > low)
+            bound = stiffness_study.adjust_expression(self.study)
+            self.slider.setEnabled(high > low and bound is None)
             if high > low:
                 self.slider.setValue(round((current - low) / (high - low) * SLIDER_STEPS))
             self.slider_label.setText(f"Slide to change the {label}: {low:g}-{high:g} {unit}".rstrip())
@@ -168,6 +169,8 @@ class StudyControls(QtWidgets.QWidget):
             self.value_label.setText(
                 f"{label} {current:.3g} {unit} → <b>{value:.3g} {value_unit}</b>. {placed[0].upper() + placed[1:]}."
                 + (f"<br><span style='color:#a06000'>Note: {note}.</span>" if note else "")
+                + (f"<br><span style='color:#a06000'>The {label} is set by the expression {bound}: clear "
+                   "it to move the slider.</span>" if bound else "")
                 + (f"<br><span style='color:#b00000'>Not felt: {'; '.join(problems)}.</span>" if problems else ""))
         finally:
             self._loading = False

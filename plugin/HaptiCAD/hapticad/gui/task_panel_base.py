@@ -44,6 +44,7 @@ class CloseOnlyPanel:
         return int(QtWidgets.QDialogButtonBox.Close)
 
     def _leave(self):
+        self._left = True  # closed: what it shows is no longer the document's
         for observer in self.observers:
             observer.remove()
         self.closing.remove()

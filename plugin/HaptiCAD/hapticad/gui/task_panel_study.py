@@ -78,6 +78,7 @@ class StudyTaskPanel(CloseOnlyPanel):
         self.widgets["Model"] = model
         form.addRow("Model", model)
         self.rows = {}
+        self.tips = {}  # each field's tooltip: its property's own
         for name, kind, group, tip, _, constraint in stiffness_study.PROPERTIES:
             if group not in ("Beam", "Button") or name == "BendingStiffness":
                 continue
@@ -88,7 +89,7 @@ class StudyTaskPanel(CloseOnlyPanel):
                 field.currentTextChanged.connect(lambda text: self.set_property("BeamMaterial", text))
             else:
                 field = self._spin(name, constraint)
-            field.setToolTip(tip)
+            self.tips[name] = tip
             label = QtWidgets.QLabel(LABELS.get(name, name))
             form.addRow(label, field)
             self.widgets[name] = field
@@ -165,6 +166,12 @@ class StudyTaskPanel(CloseOnlyPanel):
             if name == "Adjust":
                 continue
             value = getattr(obj, name)
+            # a property bound by an expression is the expression's to set, not the panel's
+            bound = stiffness_study.expression_of(obj, name)
+            widget.setEnabled(bound is None)
+            tip = self.tips.get(name, "")
+            widget.setToolTip(f"{tip}\nSet by the expression {bound}: edit that to change it".lstrip()
+                              if bound else tip)
             widget.blockSignals(True)
             if isinstance(widget, QtWidgets.QComboBox):
                 widget.setCurrentText(str(value))

@@ -132,6 +132,29 @@ class StudyGuiTest(unittest.TestCase):
         self.assertFalse(Gui.Control.activeDialog())
         self.assertEqual(study.Participants, 3)  # Close keeps everything
 
+    def test_a_parameter_bound_by_an_expression_is_the_expressions_not_the_sliders(self):
+        study = self.open_study()
+        self.assertEqual(study.Adjust, "BeamThickness")
+        slider = h.widget(QtWidgets.QSlider, "studySlider")
+        thickness = h.widget(QtWidgets.QDoubleSpinBox, "BeamThickness")
+        self.assertTrue(slider.isEnabled())
+        study.setExpression("BeamThickness", "BeamWidth - 1")
+        self.doc.recompute()
+        h.process_events()
+        # the next recompute would undo whatever the slider or the box set: neither moves it
+        self.assertFalse(slider.isEnabled())
+        self.assertFalse(thickness.isEnabled())
+        self.assertIn("Set by the expression BeamWidth - 1", thickness.toolTip())
+        self.assertIn("set by the expression BeamWidth - 1", h.widget(QtWidgets.QLabel, "studyValue").text())
+        self.assertTrue(h.widget(QtWidgets.QDoubleSpinBox, "BeamLength").isEnabled())
+        study.setExpression("BeamThickness", None)
+        self.doc.recompute()
+        h.process_events()
+        self.assertTrue(slider.isEnabled())
+        self.assertTrue(thickness.isEnabled())
+        self.assertNotIn("expression", thickness.toolTip())
+        self.assertNotIn("expression", h.widget(QtWidgets.QLabel, "studyValue").text())
+
     def test_while_feeling_the_slider_is_felt_at_once_and_a_preference_is_recorded(self):
         study = HaptiCAD.make_study(self.doc, self.surface, YoungsModulus=1.5, BeamWidth=5, BeamLength=60)
         Gui.runCommand("HaptiCAD_Feel")
