@@ -209,6 +209,18 @@ def design_value(study):
     return study.OperatingForce, "N"
 
 
+def material_override(study):
+    """A beam's Young's modulus edited away from its material's, as a sentence ("E 1.8 GPa,
+    not PP's 1.5 GPa"), or "" (the material's, or a push button)."""
+    database = materials.default_database()
+    if study.Model != BEAM or study.BeamMaterial not in database:
+        return ""
+    listed = database.get(study.BeamMaterial).youngs_modulus_gpa
+    if abs(listed - study.YoungsModulus) <= 1e-9 * listed:
+        return ""
+    return f"E {study.YoungsModulus:g} GPa, not {study.BeamMaterial}'s {listed:g} GPa"
+
+
 def design(study):
     """The study's model parameters now, by property name."""
     names = (["YoungsModulus", "BeamWidth", "BeamThickness", "BeamLength", "BendingStiffness"] if study.Model == BEAM

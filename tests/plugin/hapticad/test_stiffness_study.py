@@ -73,6 +73,12 @@ class StudyTest(unittest.TestCase):
         study.BeamMaterial = "ABS"
         self.assertAlmostEqual(study.YoungsModulus, 2.3)
         self.assertAlmostEqual(study.BendingStiffness, 0.5556 * 2.3 / 1.5, places=3)
+        self.assertEqual(stiffness_study.material_override(study), "")
+        # a modulus typed in by hand: the material's name stays, and the study says it no longer holds
+        study.YoungsModulus = 1.8
+        self.assertEqual(stiffness_study.material_override(study), "E 1.8 GPa, not ABS's 2.3 GPa")
+        study.BeamMaterial = "PP"  # choosing a material again sets its modulus
+        self.assertEqual(stiffness_study.material_override(study), "")
 
     def test_a_push_button_snaps_and_bottoms_out_on_the_faces_stiffness(self):
         # slopes the simulated probe renders (2 N/mm, under its 3): 0.8 N at 0.4 mm, halved by 0.6 mm

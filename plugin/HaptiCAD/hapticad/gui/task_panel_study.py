@@ -195,7 +195,9 @@ class StudyTaskPanel(CloseOnlyPanel):
                f"{obj.Pretravel:g} mm, returning at {obj.OperatingForce * (1 - obj.SnapRatio):.3g} N; bottoms "
                f"out at {obj.TotalTravel:g} mm on the surface's stiffness")
         note = stiffness_study.device_note(obj, self.device_k)
-        self.law_label.setText(law + (f"<br><span style='color:#a06000'>Note: {note}.</span>" if note else ""))
+        override = stiffness_study.material_override(obj)  # the combo still names the material
+        self.law_label.setText(law + (f"<br>Modulus edited: {override}." if override else "")
+                               + (f"<br><span style='color:#a06000'>Note: {note}.</span>" if note else ""))
         if self.controls is None or self.controls_model != obj.Model:  # "softer" or "lighter"
             if self.controls is not None:
                 self.controls.setParent(None)

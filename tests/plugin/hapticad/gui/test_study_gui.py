@@ -70,6 +70,11 @@ class StudyGuiTest(unittest.TestCase):
         self.assertIn("1.09 N/mm", h.widget(QtWidgets.QLabel, "studyLaw").text())
         h.widget(QtWidgets.QComboBox, "BeamMaterial").setCurrentText("ABS")
         self.assertAlmostEqual(study.YoungsModulus, 2.3)
+        self.assertNotIn("Modulus edited", h.widget(QtWidgets.QLabel, "studyLaw").text())
+        h.widget(QtWidgets.QDoubleSpinBox, "YoungsModulus").setValue(2.0)
+        self.assertIn("Modulus edited: E 2 GPa, not ABS's 2.3 GPa", h.widget(QtWidgets.QLabel, "studyLaw").text())
+        self.doc.undo()
+        self.assertAlmostEqual(study.YoungsModulus, 2.3)
         # each edit is its own undo step, and the panel shows what the undo restored
         self.doc.undo()
         self.assertAlmostEqual(study.YoungsModulus, 1.5)
