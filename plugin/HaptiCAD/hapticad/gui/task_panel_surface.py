@@ -373,7 +373,11 @@ class SurfaceTaskPanel:
             field.setVisible(shown)
         self._load_material_info()
         row = _core.roughness_category(int(obj.RoughnessCategory))
-        self.roughness_info.setText(f"Grid of {row.grid_size_mm:g} mm balls; {_ra_text(row)}")
+        # the balls are rendered far taller than the category's Ra: say both, so neither is mistaken for the other
+        felt = (f"felt {float(obj.RoughnessHeight) * row.grid_size_mm * 1e3:.3g} µm high" if obj.FeelRoughness
+                else "not felt")
+        self.roughness_info.setText(f"Grid of {row.grid_size_mm:g} mm balls, {felt} "
+                                    f"(the category's real surfaces: {_ra_text(row)})")
         curve = obj.PatternCurve
         self.curve_label.setText("none: select a sketch or edges" if curve is None else
                                  f"{curve[0].Label}" + (f": {', '.join(curve[1])}" if curve[1] and any(curve[1])

@@ -57,8 +57,9 @@ class TaskPanelTest(unittest.TestCase):
         h.widget(QtWidgets.QComboBox, "RoughnessCategory").setCurrentIndex(5)
         self.assertEqual(surface.RoughnessCategory, 6)
         info = h.widget(QtWidgets.QLabel, "roughnessInfo").text()
-        self.assertIn("Ra", info)
-        self.assertIn("N", info)
+        # category 6: 1.5 mm balls, rendered 5 % of that high; Table 2's Ra band for real surfaces beside it
+        self.assertIn("Grid of 1.5 mm balls, felt 75 µm high", info)
+        self.assertIn("real surfaces: Ra 12.5–50 µm (N11, N12)", info)
         # pattern-specific widgets appear with their pattern
         self.assertFalse(h.widget(QtWidgets.QDoubleSpinBox, "AcrossFriction").isVisible())
         h.widget(QtWidgets.QComboBox, "Pattern").setCurrentText("Linear")
