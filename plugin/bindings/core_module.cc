@@ -835,13 +835,22 @@ void DefinePerceptualSpace(py::module_& m) {
       .def_readonly("points", &PerceptualSpace::points)
       .def_readonly("eigenvalues", &PerceptualSpace::eigenvalues)
       .def_readonly("explained", &PerceptualSpace::explained)
-      .def_readonly("stress", &PerceptualSpace::stress);
+      .def_readonly("stress", &PerceptualSpace::stress)
+      .def_readonly("iterations", &PerceptualSpace::iterations)
+      .def_readonly("converged", &PerceptualSpace::converged);
+  py::class_<OrdinalScalingOptions>(m, "OrdinalScalingOptions")
+      .def(py::init<>())
+      .def_readwrite("max_iterations", &OrdinalScalingOptions::max_iterations)
+      .def_readwrite("tolerance", &OrdinalScalingOptions::tolerance);
   py::class_<PropertyVector>(m, "PropertyVector")
       .def_readonly("direction", &PropertyVector::direction)
       .def_readonly("length", &PropertyVector::length)
       .def_readonly("correlation", &PropertyVector::correlation);
   m.def("compute_perceptual_space", &ComputePerceptualSpace, py::arg("dissimilarity"),
         py::arg("dimensions"));
+  m.def("compute_ordinal_perceptual_space", &ComputeOrdinalPerceptualSpace,
+        py::arg("dissimilarity"), py::arg("dimensions"),
+        py::arg("options") = OrdinalScalingOptions{});
   m.def("fit_property_vector", &FitPropertyVector, py::arg("points"), py::arg("q"));
   m.def("scale_to_unit_range", &ScaleToUnitRange, py::arg("values"));
 }

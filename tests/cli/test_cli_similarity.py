@@ -77,6 +77,22 @@ class SimilarityCommandTest(unittest.TestCase):
         self.assertIn("Gratings: 9 stimuli, 4 participants", proc.stdout)
         self.assertRegex(proc.stdout, r"f_DC +\|p\| \d\.\d{3}  r (0\.9[5-9]|1\.00)")
 
+    def test_ordinal_scaling_asked_for_on_the_command_line(self):
+        proc = run_cli("similarity", self.path, "--study", "Gratings", "--scaling", "ordinal", "--json")
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        (study,) = json.loads(proc.stdout)
+        self.assertEqual(study["scaling"], "ordinal")
+        self.assertGreater(study["iterations"], 0)
+        self.assertGreater(study["vectors"]["f_DC"]["correlation"], 0.95)
+        proc = run_cli("similarity", self.path, "--study", "Gratings", "--scaling", "ordinal")
+        self.assertIn("ordinal scaling, Kruskal's stress-1", proc.stdout)
+        # the document keeps its own choice
+        proc = run_cli("similarity", self.path, "--study", "Gratings", "--json")
+        self.assertEqual(json.loads(proc.stdout)[0]["scaling"], "metric")
+        proc = run_cli("similarity", self.path, "--scaling", "kruskal")
+        self.assertEqual(proc.returncode, 2)
+        self.assertIn("invalid choice: 'kruskal'", proc.stderr)
+
     def test_every_study_of_a_document_one_without_runs_told_not_fatal(self):
         proc = run_cli("similarity", self.path, "--json")
         self.assertEqual(proc.returncode, 0, proc.stderr)

@@ -261,6 +261,8 @@ def cmd_similarity(args):
             raise ValueError("--plot draws one study's space: name it with --study")
         result = []
         for study in studies:
+            if args.scaling:  # for this analysis only: the document is not saved
+                study.Scaling = args.scaling.capitalize()
             try:
                 analysis = similarity_study.analyse(study)
             except ValueError as exc:
@@ -363,6 +365,9 @@ def build_parser():
     sim.add_argument("file", help="FreeCAD document (.FCStd) with SimilarityStudy objects")
     sim.add_argument("--study", metavar="NAME", help="only this study (name or label)")
     sim.add_argument("--plot", metavar="PNG", help="draw the space and its vectors (seed 001 Fig. 7)")
+    sim.add_argument("--scaling", choices=("metric", "ordinal"),
+                     help="classical MDS, or Kruskal's ordinal MDS (only the order of the dissimilarities counts); "
+                          "default: each study's Scaling")
     sim.add_argument("--json", action="store_true", help="print JSON")
     sim.set_defaults(run=cmd_similarity)
 

@@ -45,8 +45,9 @@ def draw_space(ax, result, title=""):
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("axis 1")
     ax.set_ylabel("axis 2")
-    ax.set_title(title or f"perceptual space: {result['participants']} participants, "
-                 f"stress {result['stress']:.2f}", fontsize=9)
+    ordinal = result.get("scaling") == "ordinal"
+    ax.set_title(title or f"{'ordinal ' if ordinal else ''}perceptual space: {result['participants']} participants, "
+                 f"stress{'-1' if ordinal else ''} {result['stress']:.2f}", fontsize=9)
     if result["vectors"]:
         ax.legend(fontsize=7, loc="best")
     ax.grid(alpha=0.3)

@@ -24,8 +24,9 @@ participant feels it at the next servo tick and never sees which it is. A finish
 is kept in the document (:func:`record_run`).
 
 :func:`analyse` inverts the cohort's mean similarities into a dissimilarity matrix,
-places the stimuli in a perceptual space (classical MDS, _core.compute_perceptual_space)
-and draws through it, by eq. 3, a vector for each parameter that varies among the
+places the stimuli in a perceptual space (classical MDS, _core.compute_perceptual_space,
+or with ``Scaling`` Ordinal Kruskal's nonmetric MDS, which keeps only the order of the
+dissimilarities) and draws through it, by eq. 3, a vector for each parameter that varies among the
 stimuli (scaled to -0.5..0.5) and one for likeness to the references (always B: -0.5,
 always A: +0.5). App-only.
 """
@@ -64,6 +65,10 @@ PROPERTIES = [
     ("Repeats", "App::PropertyIntegerConstraint", "Protocol",
      "Times each stimulus is classed as closer to A or to B", 3, (1, 20, 1)),
     ("Dimensions", "App::PropertyIntegerConstraint", "Analysis", "Dimensions of the perceptual space", 2, (1, 3, 1)),
+    ("Scaling", "App::PropertyEnumeration", "Analysis",
+     "How the space follows the ratings: Metric (classical MDS: the dissimilarities taken as distances) or "
+     "Ordinal (Kruskal's nonmetric MDS: only their order counts, for a scale used unevenly)",
+     ["Metric", "Ordinal"], None),
     ("Participants", "App::PropertyInteger", "Cohort", "Participants whose runs are kept", 0, None),
 ]
 HIDDEN_STATE = [("Stimuli", "The stimuli: name and eq. 2's values of each (JSON)"),
@@ -514,8 +519,9 @@ def analyse(study):
     ``stimuli`` (names), ``points`` (n x dims), ``stress``, ``explained``,
     ``eigenvalues``, ``vectors`` ({label: {direction, length, correlation, low, high}}),
     ``likeness`` (per stimulus, the share classed closer to A, or None), ``participants``,
-    ``held`` (runs on other stimuli), ``notes``. Raises ValueError when there is nothing
-    to analyse."""
+    ``held`` (runs on other stimuli), ``notes``, ``scaling`` ("metric" or "ordinal", the
+    study's Scaling) and ``iterations`` (ordinal scaling's rounds). Raises ValueError
+    when there is nothing to analyse."""
     items = stimuli(study)
     kept = comparable_runs(study)
     held = len(runs(study)) - len(kept)
@@ -527,8 +533,15 @@ def analyse(study):
     dims = int(study.Dimensions)
     if dims >= n:
         raise ValueError(f"{study.Label}: {dims} dimensions for {n} stimuli; give fewer than {n}")
-    space = _core.compute_perceptual_space(dissimilarity(kept, n), dims)
+    ordinal = study.Scaling == "Ordinal"
+    d = dissimilarity(kept, n)
+    space = _core.compute_ordinal_perceptual_space(d, dims) if ordinal else _core.compute_perceptual_space(d, dims)
     notes = []
+    if ordinal and not space.converged:
+        notes.append(f"ordinal scaling stopped after {space.iterations} rounds before it settled")
+    if ordinal and n < 4 * dims + 1:
+        notes.append(f"{n} stimuli in {dims} dimensions: too few pairs for only their order to hold the space "
+                     "(it can collapse into clusters); compare with the metric scaling")
     vectors = {}
     for key in TEXTURE_VALUES:
         values = [s["values"][key] for s in items]
@@ -559,6 +572,7 @@ def analyse(study):
         notes.append(f"{len(kept)} participant{'s' if len(kept) != 1 else ''}: the space shows one or two people's "
                      "impressions, not a cohort's")
     return {"stimuli": [s["name"] for s in items], "points": space.points.tolist(), "stress": space.stress,
+            "scaling": "ordinal" if ordinal else "metric", "iterations": space.iterations,
             "explained": space.explained, "eigenvalues": list(space.eigenvalues), "vectors": vectors,
             "likeness": likeness, "participants": len(kept), "held": held, "notes": notes}
 
@@ -568,7 +582,9 @@ def describe(study, result):
     lines = [f"{study.Label}: {len(result['stimuli'])} stimuli, {result['participants']} participants"
              + (f" ({result['held']} runs on other stimuli, surface or references not pooled)"
                 if result["held"] else ""),
-             f"  stress {result['stress']:.3f}, the axes hold {100 * result['explained']:.0f} % of the spread"]
+             (f"  ordinal scaling, Kruskal's stress-1 {result['stress']:.3f} ({result['iterations']} rounds)"
+              if result.get("scaling") == "ordinal" else
+              f"  stress {result['stress']:.3f}, the axes hold {100 * result['explained']:.0f} % of the spread")]
     for label, v in sorted(result["vectors"].items(), key=lambda kv: -kv[1]["length"]):
         lines.append(f"  {label:<12} |p| {v['length']:.3f}  r {v['correlation']:.2f}")
     lines.extend(f"  note: {n}" for n in result["notes"])

@@ -212,3 +212,149 @@ TEST(ScaleToUnitRange, MapsLowestToMinusHalfAndHighestToPlusHalf) {
 
 }  // namespace
 }  // namespace hapticad
+
+namespace hapticad {
+namespace {
+
+// Nine points in a plane, seeded, away from any symmetry.
+Eigen::MatrixXd ScatteredPlane(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> uniform(-3, 3);
+  Eigen::MatrixXd points(9, 2);
+  for (Eigen::Index i = 0; i < points.size(); ++i) points.data()[i] = uniform(rng);
+  return points;
+}
+
+// How far `a` lies from `b` after the best turn, mirror and scale of `a` onto `b`
+// (Procrustes), relative to b's spread.
+double ShapeMismatch(Eigen::MatrixXd a, Eigen::MatrixXd b) {
+  a.rowwise() -= a.colwise().mean();
+  b.rowwise() -= b.colwise().mean();
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a.transpose() * b,
+                                              Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::MatrixXd turn = svd.matrixU() * svd.matrixV().transpose();
+  const double scale = svd.singularValues().sum() / a.squaredNorm();
+  return (scale * a * turn - b).norm() / b.norm();
+}
+
+Eigen::MatrixXd Warped(const Eigen::MatrixXd& d, double (*warp)(double)) {
+  return d.unaryExpr([warp](double v) { return v == 0 ? 0.0 : warp(v); });
+}
+
+TEST(OrdinalPerceptualSpace, OnlyTheOrderCountsAScaleUsedUnevenlyBendsNothing) {
+  const Eigen::MatrixXd truth = ScatteredPlane(5);
+  const Eigen::MatrixXd d = Distances(truth);
+  // participants who call everything past middling distance "nothing alike": the
+  // dissimilarities are a steep monotone function of the distances
+  for (const auto warp :
+       {+[](double v) { return v * v * v; }, +[](double v) { return std::log1p(v); },
+        +[](double v) { return std::min(v, 3.0) + 0.01 * v; }}) {
+    const Eigen::MatrixXd warped = Warped(d, warp);
+    const PerceptualSpace ordinal = ComputeOrdinalPerceptualSpace(warped, 2);
+    EXPECT_TRUE(ordinal.converged);
+    EXPECT_LT(ordinal.stress, 1e-3);
+    // the order of 36 pairs pins nine points' shape to a few percent (every such shape
+    // fits exactly: stress 1e-14); the metric space reads the warp as shape
+    EXPECT_LT(ShapeMismatch(ordinal.points, truth), 0.06);
+    const PerceptualSpace metric = ComputePerceptualSpace(warped, 2);
+    EXPECT_GT(ShapeMismatch(metric.points, truth), 3 * ShapeMismatch(ordinal.points, truth));
+  }
+  // more stimuli, more pairs to order: the shape comes out closer
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> uniform(-3, 3);
+  Eigen::MatrixXd many(25, 2);
+  for (Eigen::Index i = 0; i < many.size(); ++i) many.data()[i] = uniform(rng);
+  const PerceptualSpace ordinal =
+      ComputeOrdinalPerceptualSpace(Warped(
+                                        Distances(many), +[](double v) { return v * v * v; }),
+                                    2);
+  EXPECT_LT(ShapeMismatch(ordinal.points, many), 0.01);
+}
+
+TEST(OrdinalPerceptualSpace, ASpaceThatHoldsTheDataExactlyIsKept) {
+  const Eigen::MatrixXd truth = ScatteredPlane(7);
+  const PerceptualSpace ordinal = ComputeOrdinalPerceptualSpace(Distances(truth), 2);
+  EXPECT_LT(ordinal.stress, 1e-6);
+  EXPECT_LT(ShapeMismatch(ordinal.points, truth), 1e-4);
+  // scaled back to the data: distances' root mean square is the dissimilarities'
+  EXPECT_NEAR(Distances(ordinal.points).norm(), Distances(truth).norm(),
+              1e-9 * Distances(truth).norm());
+  EXPECT_NEAR(ordinal.points.colwise().sum().norm(), 0.0, 1e-9);  // centred
+  // on principal axes: the first spreads most, and they are uncorrelated
+  EXPECT_GE(ordinal.points.col(0).squaredNorm(), ordinal.points.col(1).squaredNorm());
+  EXPECT_NEAR(ordinal.points.col(0).dot(ordinal.points.col(1)), 0.0,
+              1e-9 * ordinal.points.squaredNorm());
+}
+
+TEST(OrdinalPerceptualSpace, NoisyRatingsStillComeOutCloseAndTheSameEveryRun) {
+  const Eigen::MatrixXd truth = ScatteredPlane(13);
+  Eigen::MatrixXd d = Distances(truth);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.05);
+  for (Eigen::Index i = 0; i < 9; ++i) {
+    for (Eigen::Index j = i + 1; j < 9; ++j)
+      d(i, j) = d(j, i) = std::exp(d(i, j) * (1 + noise(rng)));
+  }
+  const PerceptualSpace a = ComputeOrdinalPerceptualSpace(d, 2);
+  const PerceptualSpace b = ComputeOrdinalPerceptualSpace(d, 2);
+  EXPECT_EQ(a.points, b.points);
+  EXPECT_GT(a.stress, 1e-4);  // noise no plane holds
+  EXPECT_LT(a.stress, 0.1);
+  EXPECT_LT(ShapeMismatch(a.points, truth), 0.1);
+  EXPECT_LT(ShapeMismatch(a.points, truth),
+            ShapeMismatch(ComputePerceptualSpace(d, 2).points, truth));
+}
+
+TEST(OrdinalPerceptualSpace, TiedRatingsAndExtremeScalesGiveNoNan) {
+  // a 7-point scale averaged over few participants: many ties
+  const Eigen::MatrixXd truth = ScatteredPlane(21);
+  const Eigen::MatrixXd rounded =
+      Distances(truth).unaryExpr([](double v) { return std::round(v); });
+  const PerceptualSpace tied = ComputeOrdinalPerceptualSpace(rounded, 2);
+  EXPECT_TRUE(tied.points.allFinite());
+  EXPECT_LT(tied.stress, 0.05);
+  // the same shape at every scale
+  for (const double scale : {1e-150, 1e300}) {
+    const PerceptualSpace scaled = ComputeOrdinalPerceptualSpace(rounded * scale, 2);
+    ASSERT_TRUE(scaled.points.allFinite()) << scale;
+    EXPECT_LT((scaled.points / scale - tied.points).cwiseAbs().maxCoeff(),
+              1e-9 * tied.points.cwiseAbs().maxCoeff())
+        << scale;
+    EXPECT_NEAR(scaled.stress, tied.stress, 1e-9) << scale;
+  }
+  // all alike: every point at the origin, as the classical space
+  const PerceptualSpace alike = ComputeOrdinalPerceptualSpace(Eigen::MatrixXd::Zero(5, 5), 2);
+  EXPECT_EQ(alike.points, Eigen::MatrixXd::Zero(5, 2));
+  // every pair equally unlike: no plane holds it, but nothing breaks
+  Eigen::MatrixXd equal = Eigen::MatrixXd::Constant(6, 6, 1.0);
+  equal.diagonal().setZero();
+  const PerceptualSpace flat = ComputeOrdinalPerceptualSpace(equal, 2);
+  EXPECT_TRUE(flat.points.allFinite());
+  EXPECT_TRUE(std::isfinite(flat.stress));
+}
+
+TEST(OrdinalPerceptualSpace, RejectsWhatCannotBeScaledAndBadOptions) {
+  Eigen::MatrixXd d = Distances(ScatteredPlane(1));
+  d(0, 1) = -1;
+  EXPECT_THROW(ComputeOrdinalPerceptualSpace(d, 2), std::invalid_argument);
+  d = Distances(ScatteredPlane(1));
+  EXPECT_THROW(ComputeOrdinalPerceptualSpace(d, 9), std::invalid_argument);
+  OrdinalScalingOptions options;
+  options.max_iterations = 0;
+  EXPECT_THROW(ComputeOrdinalPerceptualSpace(d, 2, options), std::invalid_argument);
+  options.max_iterations = 10;
+  options.tolerance = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(ComputeOrdinalPerceptualSpace(d, 2, options), std::invalid_argument);
+  // a round limit is a limit, and says so
+  options.tolerance = 0;
+  options.max_iterations = 2;
+  const PerceptualSpace cut =
+      ComputeOrdinalPerceptualSpace(Warped(
+                                        d, +[](double v) { return v * v * v; }),
+                                    2, options);
+  EXPECT_EQ(cut.iterations, 2);
+  EXPECT_FALSE(cut.converged);
+}
+
+}  // namespace
+}  // namespace hapticad

@@ -27,24 +27,25 @@ from host_stalls import run_without_host_stall  # noqa: E402
 FULL_RANGE_N = 2.0
 
 
-def simulated_answer(run, trial, weights, rng, noise, likes_a=None):
+def simulated_answer(run, trial, weights, rng, noise, likes_a=None, warp=None):
     """A participant whose sense of difference is a weighted distance in (f_DC, f_vis)
-    with seeded noise; who classes a texture as A when ``likes_a(values)``."""
+    with seeded noise, read through ``warp`` (how they use the scale: the identity when
+    evenly); who classes a texture as A when ``likes_a(values)``."""
     values = [run.stimuli[i]["values"] for i in (trial.first, trial.second) if i >= 0]
     if trial.kind == "class":
         return "A" if likes_a(values[0]) else "B"
     a, b = values
     distance = math.hypot(weights[0] * (a["TextureDC"] - b["TextureDC"]) / 0.35,
                           weights[1] * (a["TextureViscosity"] - b["TextureViscosity"]) / 0.4)
-    similarity = 1.0 - distance / math.hypot(*weights) + rng.gauss(0, noise)
+    similarity = 1.0 - (warp or (lambda x: x))(distance / math.hypot(*weights)) + rng.gauss(0, noise)
     return int(min(run.steps, max(1, round(1 + similarity * (run.steps - 1)))))
 
 
-def finish(run, weights=(1.0, 0.5), seed=0, noise=0.05, likes_a=None):
+def finish(run, weights=(1.0, 0.5), seed=0, noise=0.05, likes_a=None, warp=None):
     rng = random.Random(seed)
     likes_a = likes_a or (lambda v: v["TextureDC"] + v["TextureViscosity"] < 0.5)
     while not run.done:
-        run.answer(simulated_answer(run, run.current, weights, rng, noise, likes_a))
+        run.answer(simulated_answer(run, run.current, weights, rng, noise, likes_a, warp))
     return run
 
 
@@ -232,6 +233,35 @@ class StudyTest(unittest.TestCase):
         names = result["stimuli"]
         self.assertEqual(result["likeness"][names.index("f_DC 0.325 f_vis -0.2")], 1.0)
         self.assertEqual(result["likeness"][names.index("f_DC 0.675 f_vis +0.2")], 0.0)
+
+    def test_ordinal_scaling_keeps_what_a_scale_used_unevenly_hides_from_the_metric_one(self):
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate)
+        self.assertEqual(study.Scaling, "Metric")  # the default, as before this choice
+        # ten participants who call anything past half the largest difference "nothing
+        # alike": the metric space reads those ties as distance and loses viscosity
+        saturating = lambda x: min(1.0, 2.0 * x)  # noqa: E731
+        for p in range(10):
+            ss.record_run(study, finish(ss.Run(study, f"P{p}", seed=p), weights=(1.0, 0.5), seed=100 + p,
+                                        warp=saturating))
+        metric = ss.analyse(study)
+        self.assertEqual(metric["scaling"], "metric")
+        self.assertLess(metric["vectors"]["f_vis"]["correlation"], 0.3)
+        self.assertGreater(metric["stress"], 0.3)
+        study.Scaling = "Ordinal"
+        ordinal = ss.analyse(study)
+        self.assertEqual((ordinal["scaling"], ordinal["participants"]), ("ordinal", 10))
+        self.assertGreater(ordinal["iterations"], 1)
+        dc, vis = ordinal["vectors"]["f_DC"], ordinal["vectors"]["f_vis"]
+        self.assertGreater(dc["correlation"], 0.9)
+        self.assertGreater(vis["correlation"], 0.6)
+        self.assertGreater(dc["length"] / vis["length"], 1.0)  # friction still weighs more (2x, blurred by the ties)
+        self.assertLess(dc["length"] / vis["length"], 3.0)
+        self.assertLess(ordinal["stress"], 0.2)
+        text = ss.describe(study, ordinal)
+        self.assertIn("ordinal scaling, Kruskal's stress-1", text)
+        # too few stimuli for their order alone to hold three dimensions: said
+        study.Dimensions = 3
+        self.assertTrue(any("too few pairs" in n for n in ss.analyse(study)["notes"]))
 
     def test_runs_on_other_stimuli_are_kept_but_not_pooled(self):
         study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=0)

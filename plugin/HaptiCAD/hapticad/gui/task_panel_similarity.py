@@ -7,6 +7,8 @@ study's Python API). Edits go to the study at once, each its own undo step, and 
 panel has only Close: runs kept during a session are never lost to a Cancel. The runs
 themselves are made in the Feel panel, where the participant feels the textures.
 """
+import html
+
 from PySide2 import QtCore, QtGui, QtWidgets
 
 from .. import similarity_study as ss
@@ -78,6 +80,25 @@ class SimilarityTaskPanel(CloseOnlyPanel):
         self.runs_table = self._table("runsTable", RUN_COLUMNS)
         layout.addWidget(self.runs_table)
         layout.addWidget(self._button("Remove", "removeRun", self.remove_runs))
+        # how the space is made: classical MDS or Kruskal's ordinal MDS, in how many dimensions
+        row = QtWidgets.QHBoxLayout()
+        row.addWidget(QtWidgets.QLabel("Scaling"))
+        self.scaling = QtWidgets.QComboBox()
+        self.scaling.setObjectName("Scaling")
+        for value, text in (("Metric", "Metric (classical MDS)"), ("Ordinal", "Ordinal (Kruskal)")):
+            self.scaling.addItem(text, value)
+        self.scaling.setToolTip("Metric takes the dissimilarities as distances; Ordinal keeps only their order, "
+                                "for participants who used the rating scale unevenly")
+        self.scaling.currentIndexChanged.connect(
+            lambda _i: self.set_analysis("Scaling", self.scaling.currentData()))
+        row.addWidget(self.scaling, 1)
+        row.addWidget(QtWidgets.QLabel("Dimensions"))
+        self.dimensions = QtWidgets.QSpinBox()
+        self.dimensions.setObjectName("Dimensions")
+        self.dimensions.setRange(1, 3)
+        self.dimensions.valueChanged.connect(lambda v: self.set_analysis("Dimensions", int(v)))
+        row.addWidget(self.dimensions)
+        layout.addLayout(row)
         self.space_text = QtWidgets.QLabel()
         self.space_text.setObjectName("spaceText")
         self.space_text.setWordWrap(True)
@@ -109,6 +130,13 @@ class SimilarityTaskPanel(CloseOnlyPanel):
                         "no references: link ReferenceA and ReferenceB to class the stimuli against them")
             self.status.setText(f"Felt on {surface}; {classing}. Runs are made in the Feel panel: "
                                 "start a session there, enter the participant and Start run.")
+        for widget, value in ((self.scaling, self.obj.Scaling), (self.dimensions, self.obj.Dimensions)):
+            widget.blockSignals(True)
+            if widget is self.scaling:
+                widget.setCurrentIndex(max(widget.findData(value), 0))
+            else:
+                widget.setValue(int(value))
+            widget.blockSignals(False)
         self._load_stimuli()
         self._load_runs()
 
@@ -151,7 +179,9 @@ class SimilarityTaskPanel(CloseOnlyPanel):
             self.space_text.setText(str(exc) + ".")
             self.space_plot.clear()
             return
-        self.space_text.setText("<pre>" + ss.describe(self.obj, result) + "</pre>")
+        # aligned like the console's, but wrapped to the panel (a <pre> line would widen it)
+        self.space_text.setText("<div style='white-space:pre-wrap; font-family:monospace'>"
+                                + html.escape(ss.describe(self.obj, result), quote=False) + "</div>")
         pixmap = QtGui.QPixmap()
         pixmap.loadFromData(space_png(result, size_in=(5.2, 5.2), dpi=80))
         self.space_plot.setPixmap(pixmap)
@@ -172,6 +202,14 @@ class SimilarityTaskPanel(CloseOnlyPanel):
         self.stimuli_message.setText("")
         self.load()
         return True
+
+    def set_analysis(self, name, value):
+        """How the space is made (Scaling, Dimensions): one undo step; the space follows."""
+        if getattr(self.obj, name) != value:
+            self.doc.openTransaction(f"Similarity study: {name}")
+            setattr(self.obj, name, value)
+            self.doc.commitTransaction()
+        self.load()
 
     def add_from_source(self):
         name = self.source.currentData()

@@ -218,10 +218,19 @@ class SimilarityGuiTest(unittest.TestCase):
         self.assertIn("9 stimuli, 6 participants", text)
         self.assertIn("f_DC", text)
         self.assertFalse(h.widget(QtWidgets.QLabel, "spacePlot").pixmap().isNull())
+        # the space made by ordinal scaling instead, one undo step
+        steps = self.doc.UndoCount
+        h.widget(QtWidgets.QComboBox, "Scaling").setCurrentIndex(1)
+        self.assertEqual((study.Scaling, self.doc.UndoCount), ("Ordinal", steps + 1))
+        self.assertIn("ordinal scaling, Kruskal's stress-1", h.widget(QtWidgets.QLabel, "spaceText").text())
         h.widen_panel(520)
         h.grab_screen("similarity_panel.png")
         space = h.widget(QtWidgets.QLabel, "spacePlot").parentWidget()
         space.grab().save(os.path.join(h.SHOTS, "similarity_space.png"))
+        self.doc.undo()
+        h.process_events()
+        self.assertEqual(h.widget(QtWidgets.QComboBox, "Scaling").currentData(), "Metric")
+        self.assertNotIn("ordinal", h.widget(QtWidgets.QLabel, "spaceText").text())
 
 
 if __name__ == "__main__":

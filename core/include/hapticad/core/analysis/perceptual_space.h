@@ -21,6 +21,16 @@
 // first stimulus off its middle lies on its positive side (the same input gives the
 // same picture; two axes of equal spread have no preferred directions within their
 // plane).
+//
+// Ratings on a scale say which pairs feel more alike, not by how much: ordinal (Kruskal's
+// nonmetric) scaling, ComputeOrdinalPerceptualSpace, keeps only that order. It starts from
+// the classical space and moves the points (SMACOF: Guttman transforms, de Leeuw) while
+// their distances follow a monotone function of the dissimilarities fitted each round
+// (isotonic regression; tied dissimilarities may part, Kruskal's primary approach), so a
+// scale the participants used unevenly bends nothing. With few stimuli per dimension
+// (fewer than about four per axis) such a fit can collapse towards clusters whatever the
+// data say: compare it with the classical space.
+//
 // Throws std::invalid_argument, saying what is wrong, on input that cannot be scaled.
 // Allocates; not for the servo thread.
 #pragma once
@@ -40,7 +50,11 @@ struct PerceptualSpace {
                                     // dissimilarities no space of any dimension holds
   double stress = 0;                // sqrt(sum (distance - dissimilarity)^2 / sum dissimilarity^2)
                                     // over the pairs: how far the points' distances stray from
-                                    // the dissimilarities, relatively (0: exact; 0 when all are 0)
+                                    // the dissimilarities, relatively (0: exact; 0 when all are 0).
+                                    // Ordinal: Kruskal's stress-1, against the monotone fit
+                                    // instead of the dissimilarities, over sum distance^2
+  int iterations = 0;               // ordinal: the rounds it took (0: classical)
+  bool converged = true;            // ordinal: false when it stopped at the round limit
 };
 
 // Preconditions: `dissimilarity` is square, n >= 3, finite, >= 0, symmetric (within
@@ -49,6 +63,20 @@ struct PerceptualSpace {
 // (a negative one among them gives a zero axis), and `explained` and `stress` say how
 // well the space holds the data.
 PerceptualSpace ComputePerceptualSpace(const Eigen::MatrixXd& dissimilarity, int dimensions);
+
+struct OrdinalScalingOptions {
+  int max_iterations = 2000;  // >= 1
+  double tolerance = 1e-12;   // >= 0: stops once a round lowers the stress by less than this
+                              // share of it
+};
+
+// Ordinal (nonmetric) scaling of the same input, with the same preconditions, axes and
+// signs (the points turned to their principal directions, scaled so their distances'
+// root mean square is the dissimilarities'). `eigenvalues` and `explained` are the
+// classical start's: a scree of the data. Also throws std::invalid_argument for options
+// out of range.
+PerceptualSpace ComputeOrdinalPerceptualSpace(const Eigen::MatrixXd& dissimilarity, int dimensions,
+                                              const OrdinalScalingOptions& options = {});
 
 struct PropertyVector {
   Eigen::VectorXd direction;  // eq. 3's p, in the space's units per unit of q
