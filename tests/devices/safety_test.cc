@@ -166,6 +166,16 @@ TEST(ForceSafety, HoldsTheContinuousForceOnceTheMotorsAreWarm) {
   EXPECT_LT(warm_at, 0.35);
   EXPECT_NEAR(first_limited, warm_at + 0.05, 1.5e-3);
   EXPECT_NEAR(safety.thermal_force_n(), 1.0, 0.01);
+  // no ramp: held to the continuous force in the tick the motors are warm, as asked
+  config.ramp_s = 0.0;
+  ForceSafety at_once(Limits(), config);
+  at_once.BeginSession(0.0);
+  for (int i = 0; i < 5000; ++i) {
+    const bool warm = at_once.thermal_force_n() > 1.0;
+    std::uint32_t flags = 0;
+    const double f = at_once.Shape(i * 1e-3, 0, Vec3(0, 0, 2.5), &flags).norm();
+    EXPECT_NEAR(f, warm ? 1.0 : 2.5, 1e-12) << i;
+  }
   // a device that states no continuous force is never held back
   DeviceLimits none = Limits();
   none.continuous_force_n = 0.0;

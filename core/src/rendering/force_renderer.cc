@@ -85,6 +85,7 @@ void ForceRenderer::Reset(const Vec3& device_w) {
 
 double ForceRenderer::EditBlendScale(double time_s) {
   if (blend_from_ == 1.0) return 1.0;
+  if (time_s < blend_start_s_) blend_start_s_ = time_s;  // a clock that went back: from now
   const double a = (time_s - blend_start_s_) / options_.edit_ramp_s;
   if (a >= 1.0) {
     blend_from_ = 1.0;
@@ -221,22 +222,24 @@ void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
     return f;
   };
   // a property edit under the hand: the push goes on from what was rendered, at the
-  // depth it was rendered at, and blends into the edited face's
+  // depth it was rendered at, and blends into the edited face's. The scale is held to
+  // the device's stable stiffness over the edited face's steepest slope (a law nearly
+  // flat where the hand is and steep beyond would be felt stiffer than the device
+  // renders): then, or where the edited face pushes nothing, the push steps down, which
+  // adds no energy.
   if (edited && out->cad_face == pushed_face_ && options_.edit_ramp_s > 0.0) {
     const double edited_push = law_press(pushed_depth_m_);
-    blend_from_ = edited_push > 0.0 ? pushed_n_ / edited_push : 1.0;
+    const double steepest =
+        law ? std::min(surface.force_travel->MaxSlope(), limits_.max_stiffness_n_per_m) : k;
+    const double most = limits_.max_stiffness_n_per_m / steepest;  // >= 1
+    blend_from_ = edited_push > 0.0 ? std::min(pushed_n_ / edited_push, most) : 1.0;
     if (std::abs(blend_from_ - 1.0) < 1e-9) blend_from_ = 1.0;  // the edit left this push
     blend_start_s_ = input.time_s;
+  } else if (out->cad_face != pushed_face_) {
+    blend_from_ = 1.0;  // on to another face: its own push, not the edited one's blend
   }
   const double blend = EditBlendScale(input.time_s);
-  const auto press = [&](double d) {
-    const double f = law_press(d);
-    if (blend == 1.0) return f;
-    // blending down from a stiffer face: never stiffer than the device renders stably,
-    // and nothing at zero depth
-    return blend < 1.0 ? blend * f
-                       : std::min(blend * f, std::max(f, limits_.max_stiffness_n_per_m * d));
-  };
+  const auto press = [&](double d) { return blend * law_press(d); };
   if (law || blend != 1.0) spring_only_n = press(depth);
   if (blend != 1.0) out->flags |= kEditBlending;
   pushed_face_ = out->cad_face;

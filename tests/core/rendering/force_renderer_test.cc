@@ -671,21 +671,105 @@ TEST_F(EditUnderTheHand, APushButtonLawBlendsIntoASpringFromWhereTheLawWas) {
   EXPECT_NEAR(forces.back(), 5000.0 * 0.35e-3, 1e-6);
 }
 
-TEST_F(EditUnderTheHand, BlendingDownFromAStiffFaceIsNeverStifferThanTheDeviceRenders) {
-  // from the device's stiffest spring to a soft one, then the hand presses deeper and
-  // lifts while the blend runs: the push never exceeds the device's maximum k times
-  // the depth, and is gone at the surface
+// A law nearly flat where the hand is and steep beyond: (1 mm, 3 mN), (2 mm, 3 N).
+std::shared_ptr<SurfaceTable> FlatThenSteep() {
+  std::vector<SurfaceProperties> faces(6, kUntaggedSurface);
+  ForceTravel law;
+  law.points = 2;
+  law.travel_m = {1e-3, 2e-3};
+  law.force_n = {0.003, 3.0};
+  faces[5].force_travel = law;
+  return std::make_shared<SurfaceTable>(faces);
+}
+
+TEST_F(EditUnderTheHand, BlendingDownIsNeverSteeperThanTheDeviceRendersStably) {
+  // from the device's stiffest spring (3 N at 1 mm) to a law that pushes 3 mN there:
+  // scaling that law up to 3 N would make its steep part 1000 times too stiff. The
+  // scale is held to k_max over the law's steepest slope, so the push steps down
+  // (no energy added) and the hand pressing on feels no more than k_max
   ForceRenderer r(scene_, Top(3000.0), limits_);
-  Hold(r, 0, 10, 0.002);
-  r.SetSurfaces(Top(30.0));
+  EXPECT_NEAR(Hold(r, 0, 10, 0.001).back(), 3.0, 1e-6);
+  r.SetSurfaces(FlatThenSteep());
   RenderOutput out;
-  for (int i = 11; i <= 150; ++i) {
-    const double depth = 0.002 * (1.0 - std::abs(i - 50) / 100.0) + 0.0005;
+  for (int i = 11; i <= 250; ++i) {
+    // presses on to 1.8 mm and back; at each tick the push's slope there, probed 10 um
+    // deeper at the same moment
+    const double depth = 0.001 + 0.0008 * std::pow(std::sin(0.05 * (i - 11)), 2);
     r.Render({Vec3(0, 0, 0.05 - depth), Vec3::Zero(), i * 1e-3}, &out);
-    EXPECT_LE(out.normal_force_n, 3000.0 * depth * (1.0 + 1e-6)) << i;
+    const double push = out.normal_force_n;
+    EXPECT_LE(push, 3000.0 * depth * (1.0 + 1e-6)) << i;
+    r.Render({Vec3(0, 0, 0.05 - depth - 1e-5), Vec3::Zero(), i * 1e-3}, &out);
+    EXPECT_LE((out.normal_force_n - push) / 1e-5, 3000.0 * (1.0 + 1e-6)) << i;
+    if (i == 11) {
+      EXPECT_LT(push, 0.01);  // stepped down from 3 N, not held there
+      EXPECT_TRUE(out.flags & kEditBlending);
+    }
   }
-  r.Render({Vec3(0, 0, 0.05), Vec3::Zero(), 0.151}, &out);
-  EXPECT_LT(out.normal_force_n, 3000.0 * 1e-6);
+}
+
+TEST_F(EditUnderTheHand, WhereTheEditedFacePushesNothingItsPushIsFeltAtOnce) {
+  std::vector<SurfaceProperties> faces(6, kUntaggedSurface);
+  ForceTravel law;  // a free stretch to 1 mm, then 400 N/m
+  law.points = 2;
+  law.travel_m = {1e-3, 2e-3};
+  law.force_n = {0.0, 0.4};
+  faces[5].force_travel = law;
+  ForceRenderer r(scene_, Top(400.0), limits_);
+  EXPECT_NEAR(Hold(r, 0, 10, 0.0009).back(), 0.36, 1e-6);
+  r.SetSurfaces(std::make_shared<SurfaceTable>(faces));
+  std::uint32_t flags = 0;
+  EXPECT_NEAR(Hold(r, 11, 11, 0.0009, &flags).front(), 0.0, 1e-9);  // a step down: no energy added
+  EXPECT_FALSE(flags & kEditBlending);
+  EXPECT_NEAR(Hold(r, 12, 12, 0.0015).front(), 0.2, 1e-6);  // the law, unscaled
+}
+
+TEST_F(EditUnderTheHand, SlidingOntoAnotherFaceEndsTheBlend) {
+  // the box's top made of two CAD faces, one triangle each (5 and a new 6), both
+  // 3000 N/m; face 5 is made soft while pressed, and the hand slides onto face 6,
+  // which was not edited: it pushes its own 3000 N/m, not face 5's blend
+  TriangleSoup soup = testing::MakeBoxSoup(Vec3(-50, -50, -50), Vec3(50, 50, 50));
+  std::vector<Vec3> centres;
+  for (std::size_t t = 0; t < soup.triangles.size(); ++t) {
+    if (soup.cad_faces[t] != 5) continue;
+    if (!centres.empty()) soup.cad_faces[t] = 6;
+    const auto& tri = soup.triangles[t];
+    centres.push_back((soup.vertices[tri[0]] + soup.vertices[tri[1]] + soup.vertices[tri[2]]) *
+                      (1e-3 / 3));
+  }
+  ASSERT_EQ(centres.size(), 2u);
+  const auto scene = HapticScene::Build(soup, 1e-3);
+  const auto table = [](double top) {
+    std::vector<SurfaceProperties> faces(7, kUntaggedSurface);
+    faces[5].stiffness_n_per_m = top;
+    faces[6].stiffness_n_per_m = 3000.0;
+    return std::make_shared<SurfaceTable>(faces);
+  };
+  ForceRenderer r(scene, table(3000.0), limits_);
+  const Vec3 down(0, 0, -0.001);  // 1 mm into the top
+  RenderOutput out;
+  r.Render({centres[0] + Vec3(0, 0, 0.01), Vec3::Zero(), 0.0}, &out);
+  r.Render({centres[0] + down, Vec3::Zero(), 0.001}, &out);
+  ASSERT_EQ(out.cad_face, 5);
+  r.SetSurfaces(table(30.0));
+  r.Render({centres[0] + down, Vec3::Zero(), 0.002}, &out);
+  EXPECT_TRUE(out.flags & kEditBlending);
+  for (int i = 3; i <= 40; ++i) {
+    const double t = (i - 3) / 37.0;
+    r.Render({centres[0] + t * (centres[1] - centres[0]) + down, Vec3::Zero(), i * 1e-3}, &out);
+  }
+  ASSERT_EQ(out.cad_face, 6);
+  EXPECT_FALSE(out.flags & kEditBlending);
+  EXPECT_NEAR(out.normal_force_n, 3.0, 1e-5);
+}
+
+TEST_F(EditUnderTheHand, AClockThatGoesBackRestartsTheBlendFromThere) {
+  ForceRenderer r(scene_, Top(300.0), limits_);
+  Hold(r, 100, 110, 0.002);
+  r.SetSurfaces(Top(600.0));
+  Hold(r, 111, 150, 0.002);
+  // the clock restarts at 0 (a caller's new run): the blend goes on from there, and ends
+  const std::vector<double> forces = Hold(r, 0, 300, 0.002);
+  EXPECT_NEAR(forces.back(), 1.2, 1e-6);
 }
 
 TEST_F(EditUnderTheHand, ANoughtRampStepsAtOnceAndABadOneIsRefused) {

@@ -32,8 +32,9 @@
 // replaced by zero with the same flag.
 //
 // Threads: Render() runs on the servo thread; SetSurfaces() on one control thread
-// (a property edit: the new table is in effect at the next Render(), the scene and its
-// tree are not rebuilt, the proxy carries on). A new scene means a new renderer
+// (a property edit: the new table is taken at the next Render(), under a pressing hand
+// its push blended in over ContactOptions::edit_ramp_s; the scene and its tree are not
+// rebuilt, the proxy carries on). A new scene means a new renderer
 // (ServoLoop::SetRenderer).
 #pragma once
 
@@ -65,18 +66,24 @@ struct ContactOptions {
   // Off: every sweep walks the grid or the tree (to compare).
   bool convex_pieces = true;
   // A property edit under the hand (a new surface table taken while the proxy presses
-  // the same face) does not step the face's push in one tick: the push starts at what was
-  // rendered and blends into the edited face's over this long, by the session clock
-  // (RenderInput::time_s, which must advance). Its force rate is bounded; the energy the
-  // spring holds still changes by 1/2 (k_new - k_old) d^2 at a depth d, whatever the
-  // ramp, once per edit. >= 0, finite; 0: the edit's push at once.
+  // the same face) does not step the face's push in one tick: the push is the edited
+  // face's (its spring or law) times a scale that starts at what was rendered over what
+  // the edited face pushes at that depth and goes linearly to 1 over this long, by the
+  // session clock (RenderInput::time_s). The scale never makes the push steeper than
+  // the device's stable stiffness (where it would, the push steps down, which adds no
+  // energy); where the edited face pushes nothing at that depth, its push comes at once,
+  // a step down too. Leaving the face
+  // or the contact ends the blend. The ramp bounds the force's rate, not the energy an
+  // edit stores: a stiffer face held at a depth still holds more (1/2 (k_new - k_old)
+  // d^2 for springs), whatever the ramp, once per edit. >= 0, finite; 0: at once.
   double edit_ramp_s = 0.2;
 };
 
 struct RenderInput {
   Vec3 position_w = Vec3::Zero();  // device tip, m
   Vec3 velocity_w = Vec3::Zero();  // device tip, m/s (filtered by the device layer)
-  double time_s = 0.0;             // session clock, for vibrations
+  double time_s = 0.0;             // session clock, s: vibrations and edit blends run on it
+                                   // (a blend waits for it to advance)
 };
 
 enum RenderFlags : std::uint32_t {
@@ -113,8 +120,9 @@ class ForceRenderer {
   // Control thread: the surface properties to render from the next Render() on (not
   // null; ids beyond it are untagged). Lock-free for the servo thread; tables it no
   // longer uses are freed here, never on the servo thread. Under the hand the face's
-  // push blends in (ContactOptions::edit_ramp_s); friction, texture and vibration, which
-  // store no energy, change at once.
+  // push blends in (ContactOptions::edit_ramp_s); its damping, friction, texture and
+  // vibration, which store no energy, take their new values at once (friction and a
+  // friction-level texture still scale with the blended push).
   void SetSurfaces(std::shared_ptr<const SurfaceTable> surfaces);
 
   // Puts the proxy at `device_w` (or wherever the caller wants it to restart); the next
@@ -143,10 +151,10 @@ class ForceRenderer {
   // a crease of the CAD model.
   Vec3 SmoothShadingNormal() const;
 
-  // Friction cone: returns the point the spring pulls toward (the anchor while sticking).
   // The push's scale at `time_s` after a property edit under the hand (1: none).
   double EditBlendScale(double time_s);
 
+  // Friction cone: returns the point the spring pulls toward (the anchor while sticking).
   Vec3 ApplyFrictionCone(const SurfaceProperties& surface, double friction_scale,
                          const Vec3& normal, double depth_m, const StripeFrame& stripe,
                          RenderOutput* out);
