@@ -275,8 +275,14 @@ def _write_records(study, kept):
 def comparable_records(study):
     """The records in the unit the study records in now (a study switched from a beam
     to a button keeps its beam records, but they are not compared with button ones)."""
+    kept = records(study)
+    return [kept[i] for i in comparable_indices(study)]
+
+
+def comparable_indices(study):
+    """Where comparable_records lie among all the records (for remove_record)."""
     _, unit = design_value(study)
-    return [r for r in records(study) if r.unit == unit]
+    return [i for i, r in enumerate(records(study)) if r.unit == unit]
 
 
 def record_preference(study, name, gender, age_band, weight_kg, height_mm, device_max_stiffness_n_per_m=None):

@@ -259,12 +259,15 @@ class StudyTaskPanel(CloseOnlyPanel):
         self.load()
 
     def remove_selected(self):
-        rows = sorted({i.row() for i in self.table.selectedIndexes()}, reverse=True)
-        if not rows:
+        # the table lists the comparable records only: its rows are not the records' indices
+        shown = stiffness_study.comparable_indices(self.obj)
+        indices = sorted({shown[i.row()] for i in self.table.selectedIndexes() if i.row() < len(shown)},
+                         reverse=True)
+        if not indices:
             return
         self.doc.openTransaction("Remove participants")
-        for row in rows:
-            stiffness_study.remove_record(self.obj, row)
+        for index in indices:
+            stiffness_study.remove_record(self.obj, index)
         self.doc.commitTransaction()
         self.load()
 

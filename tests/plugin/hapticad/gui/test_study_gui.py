@@ -137,6 +137,20 @@ class StudyGuiTest(unittest.TestCase):
         self.assertFalse(Gui.Control.activeDialog())
         self.assertEqual(study.Participants, 3)  # Close keeps everything
 
+    def test_removing_a_shown_participant_removes_that_one_not_one_kept_from_the_other_model(self):
+        study = self.open_study()
+        fill_participant("Ann")
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        h.widget(QtWidgets.QComboBox, "Model").setCurrentText("Push button")
+        fill_participant("Bob")
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        table = h.widget(QtWidgets.QTableWidget, "cohortTable")
+        self.assertEqual([table.item(r, 0).text() for r in range(table.rowCount())], ["Bob"])  # Ann: a beam's
+        table.selectRow(0)
+        h.widget(QtWidgets.QPushButton, "removeParticipant").click()
+        self.assertEqual([r.name for r in stiffness_study.records(study)], ["Ann"])
+        self.assertEqual(table.rowCount(), 0)
+
     def test_a_parameter_bound_by_an_expression_is_the_expressions_not_the_sliders(self):
         study = self.open_study()
         self.assertEqual(study.Adjust, "BeamThickness")
