@@ -53,9 +53,19 @@ def add_type_tag(obj, type_tag):
 
 def add_properties(obj, properties):
     """Adds the properties an object lacks, each (name, kind, group, tooltip, default,
-    constraint): a constraint (min, max, step) makes a constrained value of the default."""
+    constraint): a constraint (min, max, step) makes a constrained value of the default.
+    A document does not save constraint ranges: call this on every restore too, so the
+    ranges hold again (a value saved outside one is brought within it, and said so)."""
     for name, kind, group, tip, default, constraint in properties:
         if name in obj.PropertiesList:
+            if constraint is not None:
+                saved = getattr(obj, name)
+                setattr(obj, name, (saved, *constraint))
+                if getattr(obj, name) != saved:
+                    import FreeCAD as App
+
+                    App.Console.PrintWarning(f"{obj.Label}: {name} {saved:g} was outside {constraint[0]:g}.."
+                                             f"{constraint[1]:g}; it is {getattr(obj, name):g} now\n")
             continue
         obj.addProperty(kind, name, group, tip)
         if constraint is not None:

@@ -195,6 +195,12 @@ class StudyTest(unittest.TestCase):
         study = ss.similarity_studies_of(self.doc)[0]
         self.assertEqual(study.Participants, 1)
         self.assertEqual(ss.runs(study)[0]["ratings"], record["ratings"])
+        # the document does not save the ranges: restored, they hold again (a scale of
+        # one step would have let a whole run start, to be refused at its end)
+        for name, bad, kept in (("RatingSteps", 1, 3), ("Dimensions", 9, 3), ("Repeats", 0, 1)):
+            setattr(study, name, bad)
+            self.assertEqual(getattr(study, name), kept, name)
+        study.RatingSteps, study.Dimensions, study.Repeats = 7, 2, 3
         self.assertIsNone(ss.presented_texture(study.Surface))  # what was held out is not saved
         # undo takes a kept run back
         run = finish(ss.Run(study, "Bea", seed=2))

@@ -167,6 +167,12 @@ class StudyTest(unittest.TestCase):
             (study,) = HaptiCAD.studies_of(self.doc)
             kept = stiffness_study.records(study)
             self.assertEqual([r.name for r in kept], ["Steven", "Zhang"])
+            # the document does not save the ranges: restored, they hold again
+            study.BeamThickness = -3
+            study.BeamLength = 0
+            self.assertGreater(study.BeamThickness, 0)
+            self.assertGreater(study.BeamLength, 0)
+            study.BeamThickness = 6
             self.assertAlmostEqual(kept[1].value, 0.5556 * 27 / 8, places=3)
             self.assertEqual(study.Participants, 2)
             # exported and imported into another study of the same kind
