@@ -259,7 +259,7 @@ def cmd_similarity(args):
         studies = _chosen_studies(args, similarity_study.similarity_studies_of(doc), "similarity study")
         if args.plot and len(studies) > 1:
             raise ValueError("--plot draws one study's space: name it with --study")
-        result = []
+        result, lines = [], []
         for study in studies:
             if args.scaling:  # for this analysis only: the document is not saved
                 study.Scaling = args.scaling.capitalize()
@@ -269,18 +269,18 @@ def cmd_similarity(args):
                 if args.study:  # the one asked for
                     raise
                 result.append({"study": study.Label, "error": str(exc)})  # the others are still told
-                if not args.json:
-                    print(exc)  # it names the study
+                lines.append(str(exc))  # it names the study
                 continue
             result.append({"study": study.Label, **analysis})
             if args.plot:
                 from .similarity_plot import plot_space
 
                 plot_space(args.plot, analysis, f"{study.Label}: perceptual space")
-            if not args.json:
-                print(similarity_study.describe(study, analysis))
-        if all("error" in r for r in result):
+            lines.append(similarity_study.describe(study, analysis))
+        if all("error" in r for r in result):  # said once, as the command's error
             raise ValueError("; ".join(r["error"] for r in result))
+        if not args.json:
+            print("\n".join(lines))
     finally:
         App.closeDocument(doc.Name)
     return result if args.json else None

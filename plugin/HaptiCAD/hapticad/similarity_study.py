@@ -213,6 +213,31 @@ def felt_context(study):
     return context
 
 
+def pooled_runs(doc):
+    """{study name: how many of its runs are pooled now} of a document's similarity
+    studies (runs stored unreadably count as none)."""
+    counts = {}
+    for study in similarity_studies_of(doc):
+        try:
+            counts[study.Name] = len(comparable_runs(study))
+        except ValueError:
+            counts[study.Name] = 0
+    return counts
+
+
+def unpooling_notes(doc, before):
+    """Sentences for the studies of ``doc`` that pool fewer runs than ``before``
+    (pooled_runs) said: an edit changed what their participants felt."""
+    notes = []
+    for study in similarity_studies_of(doc):
+        lost = before.get(study.Name, 0) - pooled_runs(doc).get(study.Name, 0)
+        if lost > 0:
+            notes.append(f"{study.Label}: {lost} run{'s' if lost != 1 else ''} felt on the surface as it was "
+                         f"{'are' if lost != 1 else 'is'} no longer pooled with runs made now (undo to pool "
+                         f"{'them' if lost != 1 else 'it'} again)")
+    return notes
+
+
 def references(study):
     """{"A": surface, "B": surface} of the references set (both or neither count)."""
     return {key: getattr(study, f"Reference{key}") for key in "AB" if getattr(study, f"Reference{key}") is not None}

@@ -274,9 +274,13 @@ def apply_to_surface(surface, report):
                          "its harmonics do not fall off); check the period. Nothing was changed")
     if values["TexturePeriod"] < 1e-3:
         raise ValueError("the grating period is below 0.001 mm; nothing was changed")
+    from .similarity_study import pooled_runs, unpooling_notes
+
+    pooled = pooled_runs(surface.Document)
     surface.Texture = "Custom"
     for name, value in values.items():
         setattr(surface, name, value)
+    notes += unpooling_notes(surface.Document, pooled)
     peak = peak_force_n(report.fit) / full
     if peak > 1:
         notes.append(f"the fitted force reaches {peak:.2f} x level 1: above level 1 it is clipped")

@@ -100,6 +100,28 @@ class RoundTripTest(unittest.TestCase):
         finally:
             App.closeDocument(doc.Name)
 
+    def test_a_fit_on_a_similarity_studys_surface_says_which_runs_it_stops_pooling(self):
+        from hapticad import similarity_study as ss
+
+        doc = App.newDocument("TextureFitStudy")
+        try:
+            box = doc.addObject("Part::Box", "Box")
+            doc.recompute()
+            target = HaptiCAD.make_surface(doc, [(box, "Face6")], material="PP", FeelRoughness=False)
+            study = HaptiCAD.make_similarity_study(doc, target, WarmUps=0)
+            for p in range(2):
+                run = ss.Run(study, f"P{p}", seed=p)
+                while not run.done:
+                    run.answer(4)
+                ss.record_run(study, run)
+            self.assertEqual(ss.pooled_runs(doc), {study.Name: 2})
+            notes = texture_fit.apply_to_surface(target, self.report)  # sets the surface's full range
+            self.assertEqual(ss.pooled_runs(doc), {study.Name: 0})
+            self.assertIn(f"{study.Label}: 2 runs felt on the surface as it was are no longer pooled with runs "
+                          "made now (undo to pool them again)", notes)
+        finally:
+            App.closeDocument(doc.Name)
+
     def test_a_friction_level_texture_renders_the_recorded_newtons_at_the_recorded_press(self):
         doc = App.newDocument("TextureFitFriction")
         try:

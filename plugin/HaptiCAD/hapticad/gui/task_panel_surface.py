@@ -21,7 +21,8 @@ import FreeCAD as App
 import FreeCADGui as Gui
 from PySide2 import QtCore, QtGui, QtWidgets
 
-from .. import _core, face_references, icon, materials, surface_object, texture_fit, vibration_object
+from .. import (_core, face_references, icon, materials, similarity_study, surface_object, texture_fit,
+               vibration_object)
 from ..proxy_state import is_alive
 from .busy_cursor import busy_cursor
 from .document_closing import DocumentClosingObserver
@@ -100,6 +101,8 @@ class SurfaceTaskPanel:
         # a circular centre whose part moved in its App::Part (no recompute since) is
         # shown, and edited, where the part took it
         surface_object.follow_pattern_anchor(surface)
+        # similarity runs felt on this surface as it was: an edit that stops pooling them is said
+        self.pooled_at_open = similarity_study.pooled_runs(self.doc)
         self.widgets = {}  # property (or "Prop.x") -> widget
         self.rows = {}  # property -> (label, field) to show or hide
         self.mode = "faces" if not surface.References else None
@@ -674,8 +677,10 @@ class SurfaceTaskPanel:
             self.status.setText("<span style='color:#b00000'>⚠ " + "<br>⚠ ".join(problems) + "</span>")
         else:
             n = len(surface_object.reference_pairs(self.obj))
+            notes = similarity_study.unpooling_notes(self.doc, self.pooled_at_open)
             self.status.setText(f"<span style='color:#006000'>✓ {n} face{'s' if n != 1 else ''} tagged"
-                                f"{': click more to add them' if self.mode == 'faces' else ''}</span>")
+                                f"{': click more to add them' if self.mode == 'faces' else ''}</span>"
+                                + "".join(f"<br><span style='color:#a06000'>Note: {note}.</span>" for note in notes))
 
     # --- FreeCAD's task dialog -----------------------------------------------------------
 

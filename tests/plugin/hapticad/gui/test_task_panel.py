@@ -128,6 +128,26 @@ class TaskPanelTest(unittest.TestCase):
         h.press_task_button("OK")
         self.assertEqual(len(HaptiCAD.vibrations_of(self.doc)), 2)
 
+    def test_an_edit_that_stops_pooling_a_similarity_studys_runs_is_said(self):
+        from hapticad import similarity_study as ss
+
+        surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS")
+        study = HaptiCAD.make_similarity_study(self.doc, surface, WarmUps=0)
+        run = ss.Run(study, "Ada", seed=1)
+        while not run.done:
+            run.answer(4)
+        ss.record_run(study, run)
+        self.doc.recompute()
+        Gui.ActiveDocument.setEdit(surface.Name, 0)
+        h.process_events()
+        status = h.widget(QtWidgets.QLabel, "status")
+        self.assertNotIn("no longer pooled", status.text())
+        h.widget(QtWidgets.QDoubleSpinBox, "StaticFriction").setValue(0.9)  # what Ada felt changed
+        self.assertIn("SimilarityStudy: 1 run felt on the surface as it was is no longer pooled", status.text())
+        h.widget(QtWidgets.QDoubleSpinBox, "StaticFriction").setValue(0.6)  # ABS's, as Ada felt it
+        self.assertAlmostEqual(surface.StaticFriction, 0.6)
+        self.assertNotIn("no longer pooled", status.text())  # back as it was: pooled again
+
     def test_the_texture_is_fitted_to_recordings_and_cancel_reverts_it(self):
         sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "support"))
         from texture_recordings import write_rig_csv
