@@ -48,6 +48,24 @@ def _remove_legends(graph):
             graph.removeChild(i)
 
 
+def shown_labels(doc):
+    """The labels the legend shows now in ``doc``'s first 3D view ([] with none)."""
+    from pivy import coin
+
+    for view in _views(doc)[:1]:
+        graph = view.getSceneGraph()
+        for i in range(graph.getNumChildren()):
+            if graph.getChild(i).getName().getString() != NODE_NAME:
+                continue
+            search = coin.SoSearchAction()
+            search.setType(coin.SoText2.getClassTypeId())
+            search.setInterest(coin.SoSearchAction.ALL)
+            search.apply(graph.getChild(i))
+            paths = search.getPaths()
+            return [paths[k].getTail().string.getValues()[0] for k in range(paths.getLength())]
+    return []
+
+
 def visible_surfaces(doc, exclude=None):
     from ..surface_object import surfaces_of
 

@@ -35,6 +35,22 @@ class _Observer:
                     proxy.refresh()
 
 
+    def slotDeletedObject(self, obj):
+        # a surface gone by an undo or a cancelled creation (no view provider onDelete
+        # then): the legend must not go on explaining it
+        from ..surface_object import is_haptic_surface
+
+        try:
+            doc = obj.Document
+            ours = is_haptic_surface(obj)
+        except Exception:
+            return
+        if ours and not doc.Restoring:
+            from . import overlay_legend
+
+            overlay_legend.refresh(doc, exclude=obj)
+
+
 def install():
     if not _OBSERVER:
         _OBSERVER.append(_Observer())

@@ -11,6 +11,7 @@ import numpy as np
 
 import FreeCAD as App
 import FreeCADGui as Gui
+from PySide2 import QtWidgets
 
 import HaptiCAD
 from hapticad import overlay, preferences
@@ -88,6 +89,33 @@ class OverlayTest(unittest.TestCase):
         got = np.array(h.pixel(image, *h.image_pos((40, 15, 10), image)), dtype=float)
         # shading scales the colour: compare chromaticity
         self.assertLess(np.abs(got / got.sum() - expected / expected.sum()).max(), 0.06, (got, expected))
+
+    def test_the_legend_forgets_a_surface_undone_or_cancelled(self):
+        from hapticad.gui import overlay_legend
+
+        h.process_events()
+        before = overlay_legend.shown_labels(self.doc)
+        self.assertEqual(len(before), 3, before)  # Steel, Rubber, the stripes
+        self.doc.UndoMode = 1
+        self.doc.openTransaction("Glass lid")
+        HaptiCAD.make_surface(self.doc, [(self.box, "Face1")], material="Glass")
+        self.doc.commitTransaction()
+        self.doc.recompute()
+        h.process_events()
+        self.assertTrue(any("Glass" in label for label in overlay_legend.shown_labels(self.doc)))
+        self.doc.undo()
+        h.process_events()
+        self.assertEqual(overlay_legend.shown_labels(self.doc), before)
+        # a new surface's panel cancelled: gone from the legend with it
+        Gui.Selection.addSelection(self.box, "Face3")
+        Gui.runCommand("HaptiCAD_Surface")
+        h.process_events()
+        h.widget(QtWidgets.QComboBox, "Material").setCurrentText("Glass")
+        h.process_events()
+        self.assertTrue(any("Glass" in label for label in overlay_legend.shown_labels(self.doc)))
+        h.press_task_button("Cancel")
+        h.process_events()
+        self.assertEqual(overlay_legend.shown_labels(self.doc), before)
 
     def test_one_command_hides_and_shows_overlay_and_legend(self):
         _, shown = h.save_view("overlay_shown.png")
