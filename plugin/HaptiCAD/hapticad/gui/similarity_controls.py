@@ -69,13 +69,18 @@ class SimilarityControls(QtWidgets.QWidget):
             self.feel_buttons[slot] = button
         layout.addLayout(feel)
 
-        self.scale_row = QtWidgets.QHBoxLayout()
-        self.scale_row.addWidget(QtWidgets.QLabel("nothing alike"))
+        # the scale's buttons, and under them what its ends mean (side by side, the row
+        # would be wider than FreeCAD's Combo View)
         self.rating_buttons = []
         self.scale_box = QtWidgets.QHBoxLayout()
-        self.scale_row.addLayout(self.scale_box)
-        self.scale_row.addWidget(QtWidgets.QLabel("the same"))
-        layout.addLayout(self.scale_row)
+        self.scale_box.setSpacing(2)
+        layout.addLayout(self.scale_box)
+        ends = QtWidgets.QHBoxLayout()
+        ends.addWidget(QtWidgets.QLabel("1: nothing alike"))
+        ends.addStretch(1)
+        self.top_label = QtWidgets.QLabel()
+        ends.addWidget(self.top_label)
+        layout.addLayout(ends)
         classes = QtWidgets.QHBoxLayout()
         self.class_buttons = {}
         for key in "AB":
@@ -132,10 +137,12 @@ class SimilarityControls(QtWidgets.QWidget):
             self.scale_box.removeWidget(button)
             button.deleteLater()
         self.rating_buttons = []
+        self.top_label.setText(f"the same: {steps}")
         for value in range(1, steps + 1):
             button = QtWidgets.QPushButton(str(value))
             button.setObjectName(f"similarityRate{value}")
-            button.setMaximumWidth(34)
+            button.setMinimumWidth(24)
+            button.setMaximumWidth(40)
             button.clicked.connect(lambda _checked=False, v=value: self.answer(v))
             self.scale_box.addWidget(button)
             self.rating_buttons.append(button)

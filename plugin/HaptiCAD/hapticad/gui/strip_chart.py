@@ -73,8 +73,10 @@ class StripChart(QtWidgets.QWidget):
             painter.drawText(QtCore.QPointF(x, self.height() - 5), label)
             x += painter.fontMetrics().horizontalAdvance(label) + 14
         painter.setPen(QtGui.QColor(90, 90, 90))
-        painter.drawText(QtCore.QRectF(rect.right() - 80, self.height() - 17, 80, 14), QtCore.Qt.AlignRight,
-                         f"last {self.seconds:g} s")
+        span = f"last {self.seconds:g} s"
+        if x + painter.fontMetrics().horizontalAdvance(span) <= rect.right():  # a narrow panel: the legend first
+            painter.drawText(QtCore.QRectF(rect.right() - 80, self.height() - 17, 80, 14), QtCore.Qt.AlignRight,
+                             span)
         if len(self.times) < 2:
             return
         t1 = self.times[-1]

@@ -80,6 +80,7 @@ class StudyControls(QtWidgets.QWidget):
         layout.setContentsMargins(0, 0, 0, 0)
         self.slider_label = QtWidgets.QLabel()
         self.slider_label.setObjectName("studySliderLabel")
+        self.slider_label.setWordWrap(True)
         layout.addWidget(self.slider_label)
         row = QtWidgets.QHBoxLayout()
         row.addWidget(QtWidgets.QLabel("softer" if study.Model == stiffness_study.BEAM else "lighter"))

@@ -19,6 +19,7 @@ from ..stiffness_study import studies_of
 from .busy_cursor import busy_cursor
 from .document_closing import DocumentClosingObserver
 from .feel_view import FeelView, MouseSteering
+from .narrow import let_narrow
 from .strip_chart import StripChart
 from .session_edit_observer import SessionEditObserver
 from .similarity_controls import SimilarityControls
@@ -70,6 +71,8 @@ class FeelTaskPanel:
         # closed without Close (Gui.Control.closeDialog()): the session must not outlive it
         self.main.destroyed.connect(self._form_destroyed)
         _ACTIVE.append(self)
+        for box in self.form:
+            let_narrow(box)
 
     # --- widgets -----------------------------------------------------------------------
 
@@ -111,6 +114,7 @@ class FeelTaskPanel:
         self.face_label.setWordWrap(True)
         self.rate_label = QtWidgets.QLabel("Loop: stopped")
         self.rate_label.setObjectName("feelRate")
+        self.rate_label.setWordWrap(True)
         self.message = QtWidgets.QLabel()
         self.message.setObjectName("feelMessage")
         self.message.setWordWrap(True)
@@ -125,7 +129,8 @@ class FeelTaskPanel:
 
     def _study_box(self, controls, kind="Stiffness study", icon_name="HaptiCAD_Study"):
         box = QtWidgets.QWidget()
-        box.setWindowTitle(f"{kind}: {controls.study.Label}")
+        box.setWindowTitle(controls.study.Label)  # the icon tells the kind; both would not fit
+        box.setToolTip(f"{kind}: {controls.study.Label}")
         box.setWindowIcon(QtGui.QIcon(icon(icon_name)))
         layout = QtWidgets.QVBoxLayout(box)
         layout.addWidget(controls)

@@ -15,6 +15,7 @@ from .. import similarity_study as ss
 from ..similarity_plot import space_png
 from ..surface_object import is_haptic_surface
 from .study_controls import StudyObserver
+from .narrow import let_narrow
 from .task_panel_base import CloseOnlyPanel
 
 STIMULUS_COLUMNS = ("Stimulus", *(ss.SYMBOLS[k] for k in ss.TEXTURE_VALUES))
@@ -30,6 +31,8 @@ class SimilarityTaskPanel(CloseOnlyPanel):
         self.form = [self._status_box("Similarity study", "similarityStatus"), self._stimuli_box(), self._runs_box()]
         self.watch_closing(self.doc, StudyObserver(study, self.load, watch_references=True))
         self.load()
+        for box in self.form:
+            let_narrow(box)
 
     # --- building -------------------------------------------------------------------
 
@@ -75,14 +78,13 @@ class SimilarityTaskPanel(CloseOnlyPanel):
         return box
 
     def _runs_box(self):
-        box = self._box("Participants and perceptual space")
+        box = self._box("Perceptual space")
         layout = QtWidgets.QVBoxLayout(box)
         self.runs_table = self._table("runsTable", RUN_COLUMNS)
         layout.addWidget(self.runs_table)
         layout.addWidget(self._button("Remove", "removeRun", self.remove_runs))
         # how the space is made: classical MDS or Kruskal's ordinal MDS, in how many dimensions
-        row = QtWidgets.QHBoxLayout()
-        row.addWidget(QtWidgets.QLabel("Scaling"))
+        analysis = QtWidgets.QFormLayout()
         self.scaling = QtWidgets.QComboBox()
         self.scaling.setObjectName("Scaling")
         for value, text in (("Metric", "Metric (classical MDS)"), ("Ordinal", "Ordinal (Kruskal)")):
@@ -91,14 +93,13 @@ class SimilarityTaskPanel(CloseOnlyPanel):
                                 "for participants who used the rating scale unevenly")
         self.scaling.currentIndexChanged.connect(
             lambda _i: self.set_analysis("Scaling", self.scaling.currentData()))
-        row.addWidget(self.scaling, 1)
-        row.addWidget(QtWidgets.QLabel("Dimensions"))
+        analysis.addRow("Scaling", self.scaling)
         self.dimensions = QtWidgets.QSpinBox()
         self.dimensions.setObjectName("Dimensions")
         self.dimensions.setRange(1, 3)
         self.dimensions.valueChanged.connect(lambda v: self.set_analysis("Dimensions", int(v)))
-        row.addWidget(self.dimensions)
-        layout.addLayout(row)
+        analysis.addRow("Dimensions", self.dimensions)
+        layout.addLayout(analysis)
         self.space_text = QtWidgets.QLabel()
         self.space_text.setObjectName("spaceText")
         self.space_text.setWordWrap(True)

@@ -11,6 +11,7 @@ close the panel and press Feel: the Feel panel shows the same slider and form.
 from PySide2 import QtCore, QtWidgets
 
 from .. import cohort, preferences, stiffness_study
+from .narrow import let_narrow
 from .study_controls import StudyControls, set_study_property
 from .task_panel_base import CloseOnlyPanel
 
@@ -52,6 +53,8 @@ class StudyTaskPanel(CloseOnlyPanel):
         self.form = [self._status_box("Stiffness study", "studyStatus"), self._model_box(), self._customise_box(), self._cohort_box()]
         self.watch_closing(self.doc)
         self.load()
+        for box in self.form:
+            let_narrow(box)
 
     # --- building -------------------------------------------------------------------
 
@@ -101,7 +104,7 @@ class StudyTaskPanel(CloseOnlyPanel):
         return box
 
     def _customise_box(self):
-        box = self._box("Customise (what the participant moves)")
+        box = self._box("The participant's slider")
         layout = QtWidgets.QVBoxLayout(box)
         form = QtWidgets.QFormLayout()
         adjust = QtWidgets.QComboBox()
@@ -134,14 +137,14 @@ class StudyTaskPanel(CloseOnlyPanel):
         self.table.horizontalHeader().setStretchLastSection(True)
         self.table.setMinimumHeight(140)
         layout.addWidget(self.table)
-        buttons = QtWidgets.QHBoxLayout()
-        for text, name, slot in (("Remove", "removeParticipant", self.remove_selected),
-                                 ("Export CSV…", "exportCohort", self.choose_export),
-                                 ("Import CSV…", "importCohort", self.choose_import)):
+        buttons = QtWidgets.QGridLayout()  # two rows: three side by side are wider than the Combo View
+        for place, (text, name, slot) in enumerate((("Remove", "removeParticipant", self.remove_selected),
+                                                    ("Export CSV…", "exportCohort", self.choose_export),
+                                                    ("Import CSV…", "importCohort", self.choose_import))):
             button = QtWidgets.QPushButton(text)
             button.setObjectName(name)
             button.clicked.connect(slot)
-            buttons.addWidget(button)
+            buttons.addWidget(button, *((0, 0, 1, 2) if place == 0 else (1, place - 1)))
         layout.addLayout(buttons)
         self.stats = QtWidgets.QLabel()
         self.stats.setObjectName("cohortStats")
@@ -205,6 +208,7 @@ class StudyTaskPanel(CloseOnlyPanel):
             self.controls = StudyControls(obj, lambda: self.device_k)
             self.controls.changed.connect(self.load)
             self.controls_holder.addWidget(self.controls)
+            let_narrow(self.controls)
             self.controls_model = obj.Model
         else:
             self.controls.load()

@@ -26,6 +26,7 @@ from .. import (_core, face_references, icon, materials, similarity_study, surfa
 from ..proxy_state import is_alive
 from .busy_cursor import busy_cursor
 from .document_closing import DocumentClosingObserver
+from .narrow import let_narrow
 from .selection import selected_curve
 
 # units shown after values, by property
@@ -119,6 +120,8 @@ class SurfaceTaskPanel:
         self.closing = DocumentClosingObserver(self.doc, self.document_closing)
         self.set_mode(self.mode)  # the hint and the Add button say whether clicks add faces
         self.load()
+        for box in self.form:
+            let_narrow(box)
 
     # --- building -------------------------------------------------------------------
 
@@ -269,8 +272,10 @@ class SurfaceTaskPanel:
             return spin
         if kind in ("App::PropertyVector", "App::PropertyVectorDistance"):
             field = QtWidgets.QWidget()
-            row = QtWidgets.QHBoxLayout(field)
-            row.setContentsMargins(0, 0, 0, 0)
+            column = QtWidgets.QVBoxLayout(field)
+            column.setContentsMargins(0, 0, 0, 0)
+            row = QtWidgets.QHBoxLayout()
+            column.addLayout(row)
             for axis in "xyz":
                 spin = _dspin(-1e6, 1e6, 1.0, "", 3)
                 spin.setObjectName(f"{name}.{axis}")
@@ -283,7 +288,7 @@ class SurfaceTaskPanel:
                 pick.setObjectName("pickCenter")
                 pick.setToolTip("Then click the centre of the circles on the part in the 3D view")
                 pick.clicked.connect(lambda: self.set_mode("centre"))
-                row.addWidget(pick)
+                column.addWidget(pick)  # under x, y, z: beside them the row is wider than the Combo View
             return field
         if kind == "App::PropertyAngle":
             spin = _dspin(-360.0, 360.0, 5.0, UNITS.get(name, ""), 2)

@@ -87,6 +87,39 @@ class WorkbenchGuiTest(unittest.TestCase):
         self.doc.undo()
         self.assertEqual(HaptiCAD.surfaces_of(self.doc), [])
 
+    def test_every_panel_fits_freecads_combo_view_as_it_opens(self):
+        # FreeCAD's Combo View opens about 250 px wide and its task panels do not scroll
+        # sideways: a wider panel hides its right side (OK, Stop, messages). Every panel,
+        # with its widest rows showing (a circular pattern, a texture, a vibration, both
+        # kinds of study in the Feel panel), fits 250 px
+        from hapticad import preferences
+
+        preferences.update(device="simulated")
+        surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], pattern="Circular",
+                                        Texture="Paper f_DC 0.500 f_vis +0.0")
+        HaptiCAD.make_vibration(self.doc, self.box)
+        study = HaptiCAD.make_study(self.doc, surface)
+        similarity = HaptiCAD.make_similarity_study(self.doc, surface)
+        self.doc.recompute()
+
+        def widest():
+            for area in Gui.getMainWindow().findChildren(QtWidgets.QScrollArea):
+                content = area.widget()
+                if area.isVisible() and content is not None and content.findChildren(QtWidgets.QDialogButtonBox):
+                    return content.minimumSizeHint().width()
+            self.fail("no task panel showing")
+
+        for name, open_panel, button in (
+                ("surface", lambda: Gui.ActiveDocument.setEdit(surface.Name, 0), "Cancel"),
+                ("stiffness study", lambda: Gui.ActiveDocument.setEdit(study.Name, 0), "Close"),
+                ("similarity study", lambda: Gui.ActiveDocument.setEdit(similarity.Name, 0), "Close"),
+                ("feel", lambda: Gui.runCommand("HaptiCAD_Feel"), "Close")):
+            open_panel()
+            h.process_events()
+            self.assertLessEqual(widest(), 250, name)
+            h.press_task_button(button)
+            h.process_events()
+
     def test_the_3d_view_shows_the_part(self):
         Gui.Selection.addSelection(self.box, "Face6")
         Gui.runCommand("HaptiCAD_Surface")
