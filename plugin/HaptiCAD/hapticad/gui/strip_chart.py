@@ -14,6 +14,20 @@ SERIES = (  # trace field, label, colour
 )
 
 
+def felt_lateral_parts(trace):
+    """{"friction_force_n", "texture_force_n"} of ``trace`` as felt: where the renderer
+    clamped the force, the two scaled so that they add up to the lateral force sent."""
+    from .. import _core
+
+    friction = np.asarray(trace["friction_force_n"], float)
+    texture = np.asarray(trace["texture_force_n"], float)
+    lateral = friction + texture
+    sent = np.asarray(trace["tangential_force_n"], float)
+    clamped = ((np.asarray(trace["flags"]) & _core.FLAG_FORCE_CLAMPED) != 0) & (lateral > sent)
+    factor = np.where(clamped, sent / np.where(lateral > 0, lateral, 1.0), 1.0)
+    return {"friction_force_n": friction * factor, "texture_force_n": texture * factor}
+
+
 class StripChart(QtWidgets.QWidget):
     def __init__(self, seconds=5.0, parent=None):
         super().__init__(parent)
@@ -35,15 +49,19 @@ class StripChart(QtWidgets.QWidget):
             self.update()
 
     def append(self, trace):
-        """Adds drained trace samples (a structured array with time_s and SERIES fields)."""
+        """Adds drained trace samples (a structured array with time_s, flags,
+        tangential_force_n and SERIES fields). Friction and texture are drawn as felt:
+        where the force was clamped to the device's limit, scaled down with it (the trace
+        holds them as rendered before the clamp)."""
         if trace is None or len(trace) == 0:
             return
         self.sample_count += len(trace)
         self.times = np.concatenate([self.times, np.asarray(trace["time_s"], float)])
         keep = self.times >= self.times[-1] - self.seconds
         self.times = self.times[keep]
+        felt = felt_lateral_parts(trace)
         for field in self.values:
-            self.values[field] = np.concatenate([self.values[field], np.asarray(trace[field], float)])[keep]
+            self.values[field] = np.concatenate([self.values[field], felt.get(field, np.asarray(trace[field], float))])[keep]
         self.update()
 
     def clear(self):

@@ -139,6 +139,26 @@ class FeelGuiTest(unittest.TestCase):
         h.wait(0.8)
         return stop, h.widget(QtWidgets.QWidget, "stripChart")
 
+    def test_the_chart_draws_friction_and_texture_as_felt_when_the_force_was_clamped(self):
+        from hapticad import _core
+        from hapticad.gui.strip_chart import StripChart
+
+        trace = np.zeros(3, dtype=[("time_s", float), ("flags", np.uint32), ("normal_force_n", float),
+                                   ("tangential_force_n", float), ("friction_force_n", float),
+                                   ("texture_force_n", float)])
+        trace["time_s"] = [0.0, 0.001, 0.002]
+        trace["normal_force_n"] = [1.0, 2.0, 2.0]
+        # rendered 0.6 N of friction (sent as is), then 7 N and 5 N of texture, sent at the 2.2 N limit
+        trace["friction_force_n"] = [0.6, 0.0, 0.0]
+        trace["texture_force_n"] = [0.0, 7.0, 5.0]
+        trace["tangential_force_n"] = [0.6, 0.9, 0.9]
+        trace["flags"] = [0, _core.FLAG_FORCE_CLAMPED, _core.FLAG_FORCE_CLAMPED]
+        chart = StripChart()
+        chart.append(trace)
+        np.testing.assert_allclose(chart.values["friction_force_n"], [0.6, 0.0, 0.0])
+        np.testing.assert_allclose(chart.values["texture_force_n"], [0.0, 0.9, 0.9])
+        np.testing.assert_allclose(chart.values["normal_force_n"], [1.0, 2.0, 2.0])
+
     def test_editing_the_surface_during_a_session_is_felt_at_once(self):
         stop, chart = self.press_on_the_top()
         abs_normal = float(chart.values["normal_force_n"][-200:].mean())
