@@ -205,6 +205,10 @@ class LiveSession:
         if self.simulated:
             self.device.set_target(np.asarray(target_w, float))
 
+    def tool_w(self):
+        """Where the device's tool was at the loop's last tick, world metres."""
+        return np.asarray(self.loop.latest()["device_m"], float)
+
     def drain(self):
         """Trace samples since the last drain (a NumPy structured array). Also frees a
         scene the loop has swapped out (the GUI polls this)."""

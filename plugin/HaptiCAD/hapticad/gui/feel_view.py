@@ -15,6 +15,11 @@ import FreeCAD as App
 MM = 1e-3
 ARROW_MM_PER_N = 8.0  # force arrow length per newton
 LIFT_MM = 5.0  # where the hand goes when the cursor leaves the part: lifted off along the normal
+HOVER_MM = 5.0  # coming to a face it is not on: this far off it, along its normal, first
+CLEAR_MM = 10.0  # above the parts' top, where a hand crosses to a face that looks up
+ARRIVED_MM = 1.0  # near enough the hover point to come down
+APPROACH_TIMEOUT_S = 1.0  # comes down then anyway (a hand held back by something)
+STEP_MM = 2.0  # a face under the cursor this much (beyond the press) above the hand: a step up, lifted over
 
 
 class FeelView:
@@ -94,9 +99,17 @@ class FeelView:
 
 
 class MouseSteering:
-    """Turns mouse moves and the wheel in the 3D view into the simulated hand's target."""
+    """Turns mouse moves and the wheel in the 3D view into the simulated hand's target.
 
-    def __init__(self, view, doc_scene, set_target, depth_changed):
+    On the part, the hand presses ``depth_mm`` into the face under the cursor; off it,
+    it lifts LIFT_MM off the face it was on. Coming to the part (the session's first
+    touch, the cursor back on it, or a face that stands above the hand: a step up), the
+    hand does not go straight for the face, which would drag it through whatever stands
+    between (a grip's side wall caught it and held it there): it goes to a point
+    HOVER_MM off the face along its normal (for a face that looks up, at least CLEAR_MM
+    above the parts' top), and comes down once ``tool_w()`` says it is there."""
+
+    def __init__(self, view, doc_scene, set_target, depth_changed, tool_w=None, top_mm=None):
         from pivy import coin
         from PySide2 import QtCore
 
@@ -104,8 +117,16 @@ class MouseSteering:
         self.doc_scene = doc_scene
         self.set_target = set_target  # callable(target_w in m)
         self.depth_changed = depth_changed  # callable(step), from the wheel
+        self.tool_w = tool_w  # callable() -> the tool's position in m, or None: no approach
+        self.top_mm = top_mm  # the parts' highest z, mm
         self.depth_mm = 1.0
         self.last_surface = None  # (point_mm, normal) under the cursor last
+        self.landed = False  # the hand is on the part (not lifted, not coming down)
+        self.approach = None  # (hover_w, press_w) while coming down
+        self._approach_time = 0.0
+        self._approach_timer = QtCore.QTimer()
+        self._approach_timer.setInterval(20)
+        self._approach_timer.timeout.connect(self._check_approach)
         self.moves = 0
         self._move_type = coin.SoLocation2Event.getClassTypeId()
         self._move_callback = view.addEventCallbackPivy(self._move_type, self._on_move)
@@ -142,10 +163,47 @@ class MouseSteering:
         if self.last_surface is None:
             return
         point_mm, normal = self.last_surface
-        depth = self.depth_mm if on_part else -LIFT_MM
-        self.set_target((point_mm - depth * normal) * MM)
+        if not on_part:
+            self.landed = False
+            self.approach = None
+            self.set_target((point_mm + LIFT_MM * normal) * MM)
+            return
+        press_w = (point_mm - self.depth_mm * normal) * MM
+        if self.landed and self.tool_w is not None and self._below(point_mm, normal):
+            self.landed = False  # a step up under the cursor: over it, as a hand would, not into its wall
+        if self.landed or self.tool_w is None:
+            self.set_target(press_w)
+            return
+        hover_mm = point_mm + HOVER_MM * normal
+        if self.top_mm is not None and normal[2] > 0.5:
+            hover_mm[2] = max(hover_mm[2], self.top_mm + CLEAR_MM)
+        if self.approach is None:
+            self._approach_time = 0.0
+            self._approach_timer.start()
+        self.approach = (hover_mm * MM, press_w)
+        self.set_target(hover_mm * MM)
+
+    def _below(self, point_mm, normal):
+        """True when the hand is under the face at ``point_mm`` by more than it presses."""
+        return float(np.dot(self.tool_w() / MM - point_mm, normal)) < -(self.depth_mm + STEP_MM)
+
+    def _check_approach(self):
+        """While coming to the part: down onto the face once the hand hovers over it."""
+        if self.approach is None:
+            self._approach_timer.stop()
+            return
+        hover_w, press_w = self.approach
+        self._approach_time += self._approach_timer.interval() / 1000.0
+        there = np.linalg.norm(self.tool_w() - hover_w) < ARRIVED_MM * MM
+        if there or self._approach_time >= APPROACH_TIMEOUT_S:
+            self._approach_timer.stop()
+            self.approach = None
+            self.landed = True
+            self.set_target(press_w)
 
     def remove(self):
+        self._approach_timer.stop()
+        self.approach = None
         try:
             self.view.removeEventCallbackPivy(self._move_type, self._move_callback)
         except Exception:  # the view is already gone

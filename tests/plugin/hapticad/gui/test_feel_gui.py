@@ -139,6 +139,41 @@ class FeelGuiTest(unittest.TestCase):
         h.wait(0.8)
         return stop, h.widget(QtWidgets.QWidget, "stripChart")
 
+    def test_the_probe_comes_down_onto_the_face_under_the_cursor_and_over_a_step_not_into_its_wall(self):
+        from hapticad.gui import task_panel_feel
+
+        # a 60 x 30 x 10 mm base with a 5 mm block standing on it at x 30..50
+        App.closeDocument(self.doc.Name)
+        self.doc = App.newDocument("FeelStep")
+        base = self.doc.addObject("Part::Box", "Base")
+        base.Length, base.Width, base.Height = 60, 30, 10
+        block = self.doc.addObject("Part::Box", "Block")
+        block.Length, block.Width, block.Height = 20, 30, 5
+        block.Placement.Base = App.Vector(30, 0, 10)
+        self.doc.recompute()
+        HaptiCAD.make_surface(self.doc, [(base, "Face6"), (block, "Face6")], material="ABS")
+        self.doc.recompute()
+        Gui.SendMsgToActiveView("ViewFit")
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        panel = task_panel_feel.active_panel()
+        self.assertTrue(panel.session is not None, h.widget(QtWidgets.QLabel, "feelMessage").text())
+        # first touch right of the block: the hand starts above the middle (over the
+        # block); straight for the face it would land on the block's top and stay there
+        h.mouse("move", h.screen_pos(np.array([56.0, 15.0, 10.0])))
+        h.wait(0.8)
+        self.assertIn("Base.Face6", h.widget(QtWidgets.QLabel, "feelFace").text())
+        self.assertAlmostEqual(float(panel.last_sample["proxy_m"][2]) * 1e3, 10.0, delta=0.1)
+        # slide left onto the block: over its 5 mm step, onto its top, not pressed into its wall
+        for x in np.linspace(56.0, 40.0, 17):
+            h.mouse("move", h.screen_pos(np.array([x, 15.0, 10.0 if x > 50 else 15.0])))
+            h.wait(0.03)
+        h.wait(0.8)
+        self.assertIn("Block.Face6", h.widget(QtWidgets.QLabel, "feelFace").text())
+        proxy_mm = np.asarray(panel.last_sample["proxy_m"]) * 1e3
+        self.assertAlmostEqual(float(proxy_mm[2]), 15.0, delta=0.1)
+        self.assertLess(abs(float(proxy_mm[0]) - 40.0), 2.0)
+
     def test_the_chart_draws_friction_and_texture_as_felt_when_the_force_was_clamped(self):
         from hapticad import _core
         from hapticad.gui.strip_chart import StripChart
