@@ -201,9 +201,13 @@ class MouseSteering:
             self.landed = True
             self.set_target(press_w)
 
-    def remove(self):
+    def halt(self):
+        """No more aiming: a hand coming down stops where it is."""
         self._approach_timer.stop()
         self.approach = None
+
+    def remove(self):
+        self.halt()
         try:
             self.view.removeEventCallbackPivy(self._move_type, self._move_callback)
         except Exception:  # the view is already gone

@@ -257,6 +257,8 @@ class FeelTaskPanel:
         crashes FreeCAD): the probe's nodes and the mouse callbacks go with it untouched."""
         self.closing = None
         self.view_nodes = None
+        if self.steering is not None:
+            self.steering.halt()  # its timer only: the view it listens to is going
         self.steering = None
         self.stop()
         self._leave()
@@ -340,9 +342,27 @@ class FeelTaskPanel:
             _ACTIVE.remove(self)
 
     def reject(self):
+        if self not in _ACTIVE:
+            return True  # left already (the document closed under it)
+        if not self.confirm_ending_runs():
+            return False  # the panel stays, the run goes on
         self.stop()
         self._leave()
         return True
+
+    def confirm_ending_runs(self):
+        """True to close: no similarity run is half answered, or the designer agrees to
+        end it (a run is kept only when finished, so its answers go)."""
+        going = [c.run for c in self.similarity_controls if c.run is not None and c.run.answers]
+        if not going:
+            return True
+        runs = "; ".join(f"{r.participant}'s ({len(r.answers)} of {len(r.trials)} answered)" for r in going)
+        answer = QtWidgets.QMessageBox.question(
+            Gui.getMainWindow(), "Similarity run in progress",
+            f"Closing ends the run in progress, {runs}, and keeps none of its answers: a run is kept "
+            "only when finished. Close anyway?",
+            QtWidgets.QMessageBox.Close | QtWidgets.QMessageBox.Cancel, QtWidgets.QMessageBox.Cancel)
+        return answer == QtWidgets.QMessageBox.Close
 
     def accept(self):
         return self.reject()

@@ -107,6 +107,37 @@ class SimilarityGuiTest(unittest.TestCase):
         h.press_task_button("Close")
         self.assertFalse(Gui.Control.activeDialog())
 
+    def test_closing_the_feel_panel_in_the_middle_of_a_run_asks_first(self):
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=2)
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        panel = task_panel_feel.active_panel()
+        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Eve")
+        h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        controls = panel.similarity_controls[0]
+        for slot in (1, 2):
+            h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
+        h.widget(QtWidgets.QPushButton, "similarityRate4").click()
+        self.assertEqual(len(controls.run.answers), 1)
+        asked = []
+        original = QtWidgets.QMessageBox.question
+        try:
+            QtWidgets.QMessageBox.question = staticmethod(
+                lambda *args, **kwargs: asked.append(args[2]) or QtWidgets.QMessageBox.Cancel)
+            h.press_task_button("Close")
+            h.process_events()
+            self.assertTrue(Gui.Control.activeDialog())  # kept open: the run goes on
+            self.assertIsNotNone(controls.run)
+            self.assertIn("Eve's (1 of 38 answered)", asked[0])
+            QtWidgets.QMessageBox.question = staticmethod(lambda *args, **kwargs: QtWidgets.QMessageBox.Close)
+            h.press_task_button("Close")
+            h.process_events()
+        finally:
+            QtWidgets.QMessageBox.question = original
+        self.assertFalse(Gui.Control.activeDialog())
+        self.assertEqual(study.Participants, 0)  # a run is kept only when finished
+        self.assertIsNone(ss.presented_texture(self.plate))
+
     def test_a_participants_run_in_the_feel_panel(self):
         study = HaptiCAD.make_similarity_study(self.doc, self.plate, ReferenceA=self.ref_a, ReferenceB=self.ref_b,
                                                WarmUps=2)
