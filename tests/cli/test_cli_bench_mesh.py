@@ -61,6 +61,14 @@ class BenchMeshCommandTest(unittest.TestCase):
         done = bench("--icosphere", "9680", "--warm-ahead", "-1")
         self.assertEqual(done.returncode, 2)
         self.assertIn("--warm-ahead", done.stderr)
+        # what is wrong, said as it is
+        for args, message in ((("--ticks", "2000"), "give a mesh file or --icosphere TRIANGLES"),
+                              (("--icosphere", "-5"), "--icosphere needs a positive number of triangles"),
+                              (("mesh.off", "--icosphere", "20"), "not both")):
+            done = bench(*args)
+            self.assertEqual(done.returncode, 2, args)
+            self.assertIn(message, done.stderr)
+        self.assertNotIn("not both", bench("--ticks", "2000").stderr)
 
     def test_ticks_are_grouped_by_how_far_the_contact_moved(self):
         # every tick after the first touches, so each is in one group; a finer mesh of

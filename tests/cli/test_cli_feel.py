@@ -93,6 +93,9 @@ class FeelCommandTest(unittest.TestCase):
             (("feel", self.doc_path, "--stroke", "10,20,50:70,20,50", "--out", out), "from the nearest surface"),
             (("feel", self.doc_path, "--stroke", "10,20:70,20,20", "--out", out), "is not X,Y,Z"),
             (("feel", self.doc_path, "--stroke", "10,20,20:70,20,20", "--speed", "-3", "--out", out), "speed"),
+            # real time: 60 mm at 1 um/s would run for 17 hours (and its trace fill the memory)
+            (("feel", self.doc_path, "--stroke", "10,20,20:70,20,20", "--speed", "0.001", "--out", out),
+             "takes 6e+04 s; strokes run in real time: give one under 600 s"),
         ]
         for args, message in cases:
             with self.subTest(message=message):

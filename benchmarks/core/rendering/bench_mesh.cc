@@ -116,7 +116,9 @@ Options Parse(int argc, char** argv) {
     else
       o.file = a;
   }
-  if (o.file.empty() == (o.icosphere == 0)) Usage("give a mesh file or --icosphere, not both");
+  if (o.file.empty() && o.icosphere == 0) Usage("give a mesh file or --icosphere TRIANGLES");
+  if (!o.file.empty() && o.icosphere != 0) Usage("give a mesh file or --icosphere, not both");
+  if (o.icosphere < 0) Usage("--icosphere needs a positive number of triangles");
   if (o.ticks < 100) Usage("--ticks must be at least 100");
   if (o.warm_ahead < 0) Usage("--warm-ahead must be 0 (off) or a number of ticks");
   if (!(o.radius_mm > 0) || o.sphere_radius_mm < 0) Usage("radii must be positive");

@@ -19,6 +19,7 @@ MM = 1e-3
 APPROACH_SPEED_MM_S = 25.0  # descent and retreat: slow enough to meet the surface gently
 DWELL_S = 0.1  # at depth before sliding, so the slide starts from rest
 MAX_START_DISTANCE_MM = 1.0  # P0 must lie on (or this close to) the surface
+MAX_STROKE_S = 600.0  # a slide longer than ten minutes is a typo (and a trace of millions of samples)
 
 
 @dataclass
@@ -40,6 +41,10 @@ class Stroke:
             raise ValueError(f"stroke: speed {self.speed_mm_s} mm/s is outside 0..2000")
         if not (0 < self.depth_mm <= 20):
             raise ValueError(f"stroke: depth {self.depth_mm} mm is outside 0..20")
+        seconds = float(np.linalg.norm(p1 - p0)) / self.speed_mm_s
+        if seconds > MAX_STROKE_S:  # run in real time, its trace kept whole
+            raise ValueError(f"stroke: {np.linalg.norm(p1 - p0):g} mm at {self.speed_mm_s:g} mm/s takes "
+                             f"{seconds:.3g} s; strokes run in real time: give one under {MAX_STROKE_S:g} s")
         slowest = _core.min_servo_rate_hz()  # what the loop's watchdog allows
         if not (slowest <= self.rate_hz <= 10000):
             raise ValueError(f"stroke: rate {self.rate_hz} Hz is outside {slowest:g}..10000 "
