@@ -566,6 +566,8 @@ def _check_range(label, value, low, high):
         number = float(value)
     except (TypeError, ValueError):
         raise ValueError(f"make_surface: {label} = {value!r} is not a number") from None
+    if not math.isfinite(number):
+        raise ValueError(f"make_surface: {label} = {value} is not a finite number")
     if not (low <= number <= high):
         raise ValueError(f"make_surface: {label} = {value} is outside {low}..{high}")
 
@@ -601,6 +603,8 @@ def make_surface(doc, references, material="ABS", roughness_category=3, pattern=
             raise ValueError(f"make_surface: {key} must be one of {ENUMERATIONS[key]}, got {value!r}")
         if known[key][5] is not None:
             _check_range(key, value, known[key][5][0], known[key][5][1])
+        elif known[key][1] == "App::PropertyFloat":
+            _check_range(key, value, -math.inf, math.inf)  # any finite number
 
     obj = doc.addObject("App::FeaturePython", name)
     HapticSurface(obj)

@@ -76,6 +76,11 @@ def validate(obj):
         problems.append("no part to vibrate")
     elif not hasattr(obj.Part, "Shape") or obj.Part.Shape.isNull():
         problems.append(f"{obj.Part.Label} has no shape to vibrate")
+    axis = [obj.Axis.x, obj.Axis.y, obj.Axis.z]
+    if not all(math.isfinite(a) for a in axis):
+        problems.append(f"the axis {tuple(axis)} is not three finite numbers")
+    if obj.Part is not None and any(v is not obj and v.Part == obj.Part for v in vibrations_of(obj.Document)):
+        problems.append(f"{obj.Part.Label} has another vibration: a part vibrates one way (delete one)")
     return problems
 
 
@@ -112,6 +117,9 @@ def make_vibration(doc, part, frequency_hz=100.0, amplitude_n=0.3, axis=(0.0, 0.
     length = math.sqrt(sum(float(a) ** 2 for a in axis))
     if not (length > 0 and math.isfinite(length)):
         raise ValueError(f"make_vibration: axis {axis!r} must be a non-zero vector")
+    if vibration_of(part) is not None:
+        raise ValueError(f"make_vibration: {part.Label} vibrates already ({vibration_of(part).Label}); "
+                         "edit that one")
     obj = doc.addObject("App::FeaturePython", name)
     HapticVibration(obj)
     obj.Part = part

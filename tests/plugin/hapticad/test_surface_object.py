@@ -107,6 +107,9 @@ class MakeSurfaceTest(unittest.TestCase):
             ([(self.box, "Face1")], {"pattern": "Spiral"}, "pattern"),
             ([(self.box, "Face1")], {"static_friction": -0.1}, "static_friction"),
             ([(self.box, "Face1")], {"stiffness_n_per_mm": 0}, "stiffness_n_per_mm"),
+            ([(self.box, "Face1")], {"TextureDC": float("nan")}, "TextureDC = nan is not a finite number"),
+            ([(self.box, "Face1")], {"TextureAlpha": float("inf")}, "TextureAlpha = inf is not a finite number"),
+            ([(self.box, "Face1")], {"static_friction": float("nan")}, "static_friction = nan is not a finite"),
         ]
         for refs, kwargs, message in cases:
             with self.subTest(message=message):

@@ -7,6 +7,7 @@ import unittest
 import FreeCAD as App
 
 import HaptiCAD
+from hapticad import vibration_object
 from hapticad.document_scene import build_document_scene
 
 
@@ -35,6 +36,22 @@ class VibrationTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "no object"):
             HaptiCAD.make_vibration(self.doc, "Shaver")
         self.assertEqual(len(self.doc.Objects), 1)
+
+    def test_a_part_vibrates_one_way_and_an_axis_must_be_finite(self):
+        v = HaptiCAD.make_vibration(self.doc, self.razor)
+        with self.assertRaisesRegex(ValueError, "Razor vibrates already"):
+            HaptiCAD.make_vibration(self.doc, self.razor, frequency_hz=200.0)
+        self.assertEqual(HaptiCAD.vibrations_of(self.doc), [v])
+        self.assertEqual(vibration_object.validate(v), [])
+        # a second one made anyway (the property editor, a script): said, by name
+        other = self.doc.addObject("App::FeaturePython", "Other")
+        vibration_object.HapticVibration(other)
+        other.Part = self.razor
+        self.assertIn("Razor has another vibration", vibration_object.validate(v)[0])
+        self.doc.removeObject("Other")
+        v.Axis = App.Vector(float("nan"), 0, 1)
+        self.assertEqual(len(vibration_object.validate(v)), 1)
+        self.assertIn("not three finite numbers", vibration_object.validate(v)[0])
 
     def test_a_zero_axis_typed_in_is_refused(self):
         v = HaptiCAD.make_vibration(self.doc, self.razor)
