@@ -15,7 +15,7 @@ import FreeCADGui as Gui
 from PySide2 import QtWidgets
 
 import HaptiCAD
-from hapticad import feel_session, preferences
+from hapticad import preferences
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gui_helpers as h  # noqa: E402
@@ -40,14 +40,19 @@ class FeelGuiTest(unittest.TestCase):
         if self.doc is not None:
             App.closeDocument(self.doc.Name)
 
-    def start_feeling(self):
-        """Opens Feel, steers the probe onto the top face; returns the panel."""
+    def open_feel(self):
+        """Opens Feel on the document; returns the panel, its session running."""
         from hapticad.gui import task_panel_feel
 
         Gui.runCommand("HaptiCAD_Feel")
         h.process_events()
         panel = task_panel_feel.active_panel()
         self.assertTrue(panel.session is not None, h.widget(QtWidgets.QLabel, "feelMessage").text())
+        return panel
+
+    def start_feeling(self):
+        """Opens Feel, steers the probe onto the top face; returns the panel."""
+        panel = self.open_feel()
         h.mouse("move", h.screen_pos(np.array([20.0, 15.0, 20.0])))
         h.wait(0.4)
         self.assertIn("Box.Face6", h.widget(QtWidgets.QLabel, "feelFace").text())
@@ -140,8 +145,6 @@ class FeelGuiTest(unittest.TestCase):
         return stop, h.widget(QtWidgets.QWidget, "stripChart")
 
     def test_the_probe_comes_down_onto_the_face_under_the_cursor_and_over_a_step_not_into_its_wall(self):
-        from hapticad.gui import task_panel_feel
-
         # a 60 x 30 x 10 mm base with a 5 mm block standing on it at x 30..50
         App.closeDocument(self.doc.Name)
         self.doc = App.newDocument("FeelStep")
@@ -154,10 +157,7 @@ class FeelGuiTest(unittest.TestCase):
         HaptiCAD.make_surface(self.doc, [(base, "Face6"), (block, "Face6")], material="ABS")
         self.doc.recompute()
         Gui.SendMsgToActiveView("ViewFit")
-        Gui.runCommand("HaptiCAD_Feel")
-        h.process_events()
-        panel = task_panel_feel.active_panel()
-        self.assertTrue(panel.session is not None, h.widget(QtWidgets.QLabel, "feelMessage").text())
+        panel = self.open_feel()
         # first touch right of the block: the hand starts above the middle (over the
         # block); straight for the face it would land on the block's top and stay there
         h.mouse("move", h.screen_pos(np.array([56.0, 15.0, 10.0])))
