@@ -10,8 +10,6 @@ import math
 
 import numpy as np
 
-import FreeCAD as App
-
 from . import _core, curve_references
 from .similarity_study import rendered_texture
 from .stiffness_study import force_travel_of
@@ -124,6 +122,52 @@ def curve_pattern(surface, frame):
         raise ValueError(f"{surface.Label}: {exc}") from None
 
 
+def viscous_params(texture):
+    """Eq. 2's parameters of a texture given as {surface property: value} (the core's
+    ViscousTextureParams, SI)."""
+    params = _core.ViscousTextureParams()
+    params.f_dc = texture["TextureDC"]
+    params.f_vis = texture["TextureViscosity"]
+    params.beta_h = texture["TextureBeta"]
+    params.alpha_h = texture["TextureAlpha"]
+    params.beta_vis = texture["TextureBetaViscosity"]
+    params.alpha_vis = texture["TextureAlphaViscosity"]
+    params.period_m = texture["TexturePeriod"] * MM
+    return params
+
+
+TYPICAL_SPEEDS_MPS = (0.05, 0.12, 0.27)  # the paper's slowest, middle and fastest strokes
+LEVEL_SAMPLES = 64  # over a period
+
+
+def texture_notes(surface):
+    """What a designer should know about a surface's texture that is not an error, as
+    sentences: eq. 2 gives levels the renderer clips (it renders 0..1 of the full range)
+    at the paper's stroking speeds, or harmonics that grow with their order."""
+    if surface.Texture == "None":
+        return []
+    texture = {k: getattr(surface, k) for k in ("TextureDC", "TextureViscosity", "TextureBeta", "TextureAlpha",
+                                                "TextureBetaViscosity", "TextureAlphaViscosity", "TexturePeriod")}
+    if not all(math.isfinite(v) for v in texture.values()):
+        return []  # validate() says so
+    params = viscous_params(texture)
+    xs = np.arange(LEVEL_SAMPLES) * params.period_m / LEVEL_SAMPLES
+    levels = np.array([_core.viscous_texture_level(params, x, v) for v in TYPICAL_SPEEDS_MPS for x in xs])
+    notes = []
+    if (levels >= 1).all():
+        notes.append("the texture is at level 1 or more all over at 50-270 mm/s: felt as a flat drag at the full "
+                     "range, its ridges clipped")
+    elif (levels <= 0).all():
+        notes.append("the texture is at level 0 or less all over at 50-270 mm/s: nothing of it is felt")
+    elif (levels > 1).mean() > 0.25 or (levels < 0).mean() > 0.25:
+        notes.append(f"the texture is outside levels 0..1 for {100 * ((levels > 1) | (levels < 0)).mean():.0f} % "
+                     "of a period at 50-270 mm/s: clipped there")
+    if texture["TextureAlpha"] < 0:
+        notes.append(f"alpha_h {texture['TextureAlpha']:g} makes each harmonic stronger than the one before "
+                     "(the paper's decay is 2.5)")
+    return notes
+
+
 def compile_surface(surface, face):
     """_core.SurfaceProperties of HapticSurface ``surface`` on B-rep ``face`` (global)."""
     props = _core.SurfaceProperties()
@@ -167,15 +211,7 @@ def compile_surface(surface, face):
                                                     surface.RoughnessHeight, surface.RoughnessFrictionModulation)
     texture = rendered_texture(surface)  # a similarity study's stimulus while one is held out
     if texture is not None:
-        params = _core.ViscousTextureParams()
-        params.f_dc = texture["TextureDC"]
-        params.f_vis = texture["TextureViscosity"]
-        params.beta_h = texture["TextureBeta"]
-        params.alpha_h = texture["TextureAlpha"]
-        params.beta_vis = texture["TextureBetaViscosity"]
-        params.alpha_vis = texture["TextureAlphaViscosity"]
-        params.period_m = texture["TexturePeriod"] * MM
-        grating = _core.ViscousGrating(params, surface_frame)
+        grating = _core.ViscousGrating(viscous_params(texture), surface_frame)
         grating.full_range_n = texture["TextureFullRange"]
         grating.scale = (_core.TextureScale.FRICTION_LEVEL if texture["TextureScale"] == "Friction level"
                          else _core.TextureScale.DEVICE_FORCE)

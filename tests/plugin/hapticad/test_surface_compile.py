@@ -12,7 +12,7 @@ import Part
 
 import HaptiCAD
 from hapticad import _core
-from hapticad.surface_compile import _as_bspline, compile_surface, face_frame
+from hapticad.surface_compile import _as_bspline, compile_surface, face_frame, texture_notes
 
 V = App.Vector
 
@@ -179,6 +179,20 @@ class CompileTest(unittest.TestCase):
         s.PatternCurve = (hook, [])
         with self.assertRaisesRegex(ValueError, "turns back or touches itself"):
             compile_surface(s, self.top)
+
+    def test_a_texture_the_renderer_would_clip_or_that_grows_with_each_harmonic_is_told(self):
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], Texture="Paper f_DC 0.325 f_vis -0.2")
+        self.assertEqual(texture_notes(s), [])  # the paper's, at its speeds: within 0..1
+        s.Texture = "None"
+        self.assertEqual(texture_notes(s), [])
+        s.Texture, s.TextureDC = "Custom", 1e9
+        self.assertIn("level 1 or more all over", texture_notes(s)[0])
+        s.TextureDC = -1.0
+        self.assertIn("level 0 or less all over", texture_notes(s)[0])
+        s.TextureDC, s.TextureBeta = 0.5, 2.0  # ridges far past both ends
+        self.assertRegex(texture_notes(s)[0], r"outside levels 0..1 for \d+ % of a period")
+        s.TextureBeta, s.TextureAlpha = 0.125, -50.0
+        self.assertTrue(any("alpha_h -50 makes each harmonic stronger" in n for n in texture_notes(s)))
 
     def test_roughness_and_texture(self):
         p = compile_surface(self.surface(RoughnessCategory=6, RoughnessHeight=0.1,
