@@ -152,6 +152,13 @@ class MouseSteering:
         self.moves += 1
         self.aim_at_pixel(int(x), int(y))
 
+    def aim_again(self):
+        """Aims at the face it was on with the current depth (the wheel or the slider
+        changed it): felt at once, not at the next mouse move."""
+        if self.landed and self.last_surface is not None:
+            point_mm, normal = self.last_surface
+            self.set_target((point_mm - self.depth_mm * normal) * MM)
+
     def aim_at_pixel(self, x, y):
         """Aims the hand at the part under view pixel (x, y) (Coin's: y up)."""
         info = self.view.getObjectInfo((x, y))

@@ -150,6 +150,7 @@ class FeelTaskPanel:
         self.depth_label.setText(f"{self.depth_mm():.2f} mm")
         if self.steering is not None:
             self.steering.depth_mm = self.depth_mm()
+            self.steering.aim_again()
 
     def wheel(self, step):
         self.depth.setValue(self.depth.value() + step)

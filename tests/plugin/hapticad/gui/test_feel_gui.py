@@ -173,6 +173,14 @@ class FeelGuiTest(unittest.TestCase):
         proxy_mm = np.asarray(panel.last_sample["proxy_m"]) * 1e3
         self.assertAlmostEqual(float(proxy_mm[2]), 15.0, delta=0.1)
         self.assertLess(abs(float(proxy_mm[0]) - 40.0), 2.0)
+        # the wheel presses harder at once, the mouse held still: 1 -> 2.5 mm aimed, the
+        # hand's grip (0.4 N/mm) in series with the face (0.8 N/mm): 0.27 -> 0.67 N
+        chart = h.widget(QtWidgets.QWidget, "stripChart")
+        pressed = float(chart.values["normal_force_n"][-200:].mean())
+        h.wheel(h.screen_pos(np.array([40.0, 15.0, 15.0])), 6)
+        h.wait(0.8)
+        self.assertEqual(panel.depth_mm(), 2.5)
+        self.assertGreater(float(chart.values["normal_force_n"][-200:].mean()), 1.8 * pressed)
 
     def test_the_chart_draws_friction_and_texture_as_felt_when_the_force_was_clamped(self):
         from hapticad import _core
