@@ -68,6 +68,26 @@ class CohortCommandTest(unittest.TestCase):
         self.assertEqual(text.returncode, 0, text.stderr)
         self.assertIn("Neck (Bending beam): design 0.556 N/mm, 3 participants", text.stdout)
 
+    def test_a_study_switched_to_the_other_model_keeps_and_exports_every_record(self):
+        doc = App.openDocument(self.path)
+        try:
+            (study,) = HaptiCAD.studies_of(doc)
+            study.Model = "Push button"
+            switched = os.path.join(self.tmp.name, "switched.FCStd")
+            doc.saveAs(switched)
+        finally:
+            App.closeDocument(doc.Name)
+        out_csv = os.path.join(self.tmp.name, "all.csv")
+        proc = run_cli("cohort", switched, "--json", "--csv", out_csv)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        (study,) = json.loads(proc.stdout)
+        self.assertEqual((study["participants"], study["other_unit"], study["unit"]), (0, 3, "N"))
+        with open(out_csv) as handle:  # all three, each with its unit: nothing lost
+            self.assertEqual([(r["name"], r["unit"]) for r in csv.DictReader(handle)],
+                             [("Steven", "N/mm"), ("Yang", "N/mm"), ("Zhang", "N/mm")])
+        text = run_cli("cohort", switched).stdout
+        self.assertIn("0 participants (3 more recorded with the other model, kept but not compared)", text)
+
     def test_bad_input_is_refused(self):
         for args, message in ((("cohort", os.path.join(self.tmp.name, "none.FCStd")), "no such file"),
                               (("cohort", self.path, "--study", "Handle"), "no stiffness study named 'Handle' "

@@ -230,19 +230,23 @@ def cmd_cohort(args):
         result = []
         for study in studies:
             records = stiffness_study.comparable_records(study)
+            held = stiffness_study.records(study)
             value, unit = stiffness_study.design_value(study)
             result.append({"study": study.Label, "model": study.Model, "design_value": value, "unit": unit,
-                           "participants": len(records), "statistics": cohort.statistics(records),
+                           "participants": len(records), "other_unit": len(held) - len(records),
+                           "statistics": cohort.statistics(records),
                            "design_among_preferences": cohort.place_design(value, records)[1]})
-            if args.csv:
-                cohort.write_csv(args.csv, records)
+            if args.csv:  # every record, as the panel exports: each row says its unit
+                cohort.write_csv(args.csv, held)
     finally:
         App.closeDocument(doc.Name)
     if args.json:
         return result
     for study in result:
         print(f"{study['study']} ({study['model']}): design {study['design_value']:.3g} {study['unit']}, "
-              f"{study['participants']} participants")
+              f"{study['participants']} participants"
+              + (f" ({study['other_unit']} more recorded with the other model, kept but not compared)"
+                 if study["other_unit"] else ""))
         for row in study["statistics"]:
             print(f"  {row['group']:<20} n {row['n']:<3} mean {row['mean']:.3g} sd {row['sd']:.2g} "
                   f"median {row['median']:.3g} range {row['min']:.3g}-{row['max']:.3g}")
