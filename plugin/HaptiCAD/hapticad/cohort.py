@@ -100,9 +100,12 @@ def place_design(value, records):
         else:
             where = f"{'above' if value > q3 else 'below'} the middle half of the preferences ({q1:.3g}-{q3:.3g})"
     elif len(values) == 1:
-        where = f"{'at' if value == values[0] else 'beside'} the one preference so far ({values[0]:.3g})"
+        where = (f"{'at' if value == values[0] else 'above' if value > values[0] else 'below'} the one preference "
+                 f"so far ({values[0]:.3g})")
     else:
-        where = f"among {len(values)} preferences ({values[0]:.3g}-{values[-1]:.3g})"
+        span = f"{len(values)} preferences ({values[0]:.3g}-{values[-1]:.3g})"
+        where = (f"above all {span}" if value > values[-1] else f"below all {span}" if value < values[0]
+                 else f"within the {span}")
     people = "the one participant" if len(values) == 1 else f"the {len(values)} participants"
     return below, f"{value:.3g} is {where}; {below:.0%} of {people} preferred less"
 

@@ -38,6 +38,12 @@ class CohortTest(unittest.TestCase):
         self.assertAlmostEqual(below, 3 / 6)
         self.assertIn("within the middle half", text)
         self.assertEqual(cohort.place_design(1.0, []), (None, "no participant has recorded a preference yet"))
+        # few preferences: where the design stands against them, said as it is
+        two = more[:2]  # 4.5 and 3.5
+        self.assertIn("1.09 is below all 2 preferences (3.5-4.5)", cohort.place_design(1.09, two)[1])
+        self.assertIn("5 is above all 2 preferences", cohort.place_design(5.0, two)[1])
+        self.assertIn("4 is within the 2 preferences", cohort.place_design(4.0, two)[1])
+        self.assertIn("above the one preference so far (4.5)", cohort.place_design(5.0, more[:1])[1])
 
     def test_a_record_that_cannot_be_kept_says_why(self):
         bad = cohort.Record(" ", "X", "young", 5, 90000, float("nan"), "N/mm", "Bending beam")

@@ -234,7 +234,8 @@ class StudyTaskPanel(CloseOnlyPanel):
         if not rows:
             self.stats.setText("No participant yet: each records what feels right with the slider above." + aside)
             return
-        lines = [f"{s['group']}: n {s['n']}, mean {s['mean']:.3g} ± {s['sd']:.2g}, median {s['median']:.3g} "
+        lines = [f"{s['group']}: n 1, {s['mean']:.3g} {records[0].unit}" if s["n"] == 1 else  # no spread of one
+                 f"{s['group']}: n {s['n']}, mean {s['mean']:.3g} ± {s['sd']:.2g}, median {s['median']:.3g} "
                  f"({s['min']:.3g}-{s['max']:.3g}) {records[0].unit}" for s in rows]
         value, _ = stiffness_study.design_value(self.obj)
         lines.append("This design: " + cohort.place_design(value, records)[1])
