@@ -6,14 +6,15 @@ its longest entry it does not get.
     for box in panel.form:
         let_narrow(box)
 
-Form rows whose label and field do not fit side by side put the field under the label;
-combo boxes stop sizing to their longest item (they elide it), and spin boxes to their
-widest value (a 1e6 range asked 112 px each). Call it once the box is built.
+Form rows whose label and field do not fit side by side put the field under the label
+(so a spin box keeps the width its value and unit need); combo boxes stop sizing to
+their longest item (they elide it). Rows of several spin boxes (x, y, z) set their own
+SPIN_WIDTH_PX. Call it once the box is built.
 """
 from PySide2 import QtWidgets
 
-COMBO_CHARACTERS = 8  # what a combo box shows at its narrowest, with its arrow
-SPIN_WIDTH_PX = 56
+COMBO_CHARACTERS = 10  # what a combo box shows at its narrowest, with its arrow
+SPIN_WIDTH_PX = 56  # each of an x, y, z row's spin boxes
 
 
 def let_narrow(root):
@@ -21,6 +22,5 @@ def let_narrow(root):
         form.setRowWrapPolicy(QtWidgets.QFormLayout.WrapLongRows)
     for combo in root.findChildren(QtWidgets.QComboBox):
         combo.setSizeAdjustPolicy(QtWidgets.QComboBox.AdjustToMinimumContentsLengthWithIcon)
-        combo.setMinimumContentsLength(COMBO_CHARACTERS)
-    for spin in root.findChildren(QtWidgets.QAbstractSpinBox):
-        spin.setMinimumWidth(SPIN_WIDTH_PX)
+        if combo.minimumContentsLength() == 0:  # one that set its own keeps it
+            combo.setMinimumContentsLength(COMBO_CHARACTERS)

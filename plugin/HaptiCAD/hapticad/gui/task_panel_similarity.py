@@ -22,6 +22,36 @@ STIMULUS_COLUMNS = ("Stimulus", *(ss.SYMBOLS[k] for k in ss.TEXTURE_VALUES))
 RUN_COLUMNS = ("Participant", "Recorded", "Pairs", "Classings", "Stimuli")
 
 
+class FittedPicture(QtWidgets.QLabel):
+    """A picture shrunk to the width the panel gives it (never drawn larger): a plain
+    pixmap would hold the panel at the picture's width."""
+
+    def __init__(self):
+        super().__init__()
+        self.picture = None
+        self.setSizePolicy(QtWidgets.QSizePolicy.Ignored, QtWidgets.QSizePolicy.Preferred)
+        self.setAlignment(QtCore.Qt.AlignCenter)
+
+    def set_picture(self, pixmap):
+        self.picture = pixmap
+        self._fit()
+
+    def clear(self):
+        self.picture = None
+        super().clear()
+
+    def resizeEvent(self, event):
+        super().resizeEvent(event)
+        self._fit()
+
+    def _fit(self):
+        if self.picture is None:
+            return
+        width = max(min(self.width(), self.picture.width()), 1)
+        if self.pixmap() is None or self.pixmap().width() != width:
+            self.setPixmap(self.picture.scaledToWidth(width, QtCore.Qt.SmoothTransformation))
+
+
 class SimilarityTaskPanel(CloseOnlyPanel):
     ICON = "HaptiCAD_SimilarityStudy"
 
@@ -62,6 +92,7 @@ class SimilarityTaskPanel(CloseOnlyPanel):
         row = QtWidgets.QHBoxLayout()
         self.source = QtWidgets.QComboBox()
         self.source.setObjectName("stimulusSource")
+        self.source.setMinimumContentsLength(6)  # beside Add, in the Combo View's width
         self.source.setToolTip("A haptic surface whose texture to add as a stimulus (one fitted to a recording, say)")
         row.addWidget(self.source, 1)
         row.addWidget(self._button("Add", "addStimulus", self.add_from_source))
@@ -105,9 +136,8 @@ class SimilarityTaskPanel(CloseOnlyPanel):
         self.space_text.setWordWrap(True)
         self.space_text.setTextInteractionFlags(QtCore.Qt.TextSelectableByMouse)
         layout.addWidget(self.space_text)
-        self.space_plot = QtWidgets.QLabel()
+        self.space_plot = FittedPicture()
         self.space_plot.setObjectName("spacePlot")
-        self.space_plot.setAlignment(QtCore.Qt.AlignCenter)
         layout.addWidget(self.space_plot)
         return box
 
@@ -185,7 +215,7 @@ class SimilarityTaskPanel(CloseOnlyPanel):
                                 + html.escape(ss.describe(self.obj, result), quote=False) + "</div>")
         pixmap = QtGui.QPixmap()
         pixmap.loadFromData(space_png(result, size_in=(5.2, 5.2), dpi=80))
-        self.space_plot.setPixmap(pixmap)
+        self.space_plot.set_picture(pixmap)
 
     # --- widgets -> object -------------------------------------------------------------
 

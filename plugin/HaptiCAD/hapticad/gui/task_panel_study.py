@@ -21,7 +21,7 @@ LABELS = {"YoungsModulus": "Young's modulus E", "BeamWidth": "Width b", "BeamThi
           "BeamLength": "Length L", "OperatingForce": "Operating force", "Pretravel": "Pretravel",
           "SnapRatio": "Snap ratio", "SnapTravel": "Snap travel", "TotalTravel": "Total travel",
           "BeamMaterial": "Material"}
-TABLE_COLUMNS = ("Participant", "Gender", "Age", "Weight (kg)", "Height (mm)", "Preferred")
+TABLE_COLUMNS = ("Participant", "Preferred", "Gender", "Age", "Weight (kg)", "Height (mm)")  # what counts, first
 
 
 def _device_stiffness_n_per_m():
@@ -225,8 +225,8 @@ class StudyTaskPanel(CloseOnlyPanel):
         others = len(stiffness_study.records(self.obj)) - len(records)
         self.table.setRowCount(len(records))
         for row, r in enumerate(records):
-            for column, text in enumerate((r.name, r.gender, r.age_band, f"{r.weight_kg:g}", f"{r.height_mm:g}",
-                                           f"{r.value:.3g} {r.unit}")):
+            for column, text in enumerate((r.name, f"{r.value:.3g} {r.unit}", r.gender, r.age_band,
+                                           f"{r.weight_kg:g}", f"{r.height_mm:g}")):
                 self.table.setItem(row, column, QtWidgets.QTableWidgetItem(text))
         rows = cohort.statistics(records)
         aside = (f"<br>{others} record(s) in another unit (made with the other model) are kept but not "

@@ -26,7 +26,7 @@ from .. import (_core, face_references, icon, materials, similarity_study, surfa
 from ..proxy_state import is_alive
 from .busy_cursor import busy_cursor
 from .document_closing import DocumentClosingObserver
-from .narrow import let_narrow
+from .narrow import SPIN_WIDTH_PX, let_narrow
 from .selection import selected_curve
 
 # units shown after values, by property
@@ -281,6 +281,7 @@ class SurfaceTaskPanel:
                 spin.setObjectName(f"{name}.{axis}")
                 spin.setToolTip(f"{axis}{UNITS.get(name, '')}")
                 spin.valueChanged.connect(lambda _v, n=name: self.set_vector(n))
+                spin.setMinimumWidth(SPIN_WIDTH_PX)  # three side by side: narrower than their 1e6 range asks
                 self.widgets[f"{name}.{axis}"] = spin
                 row.addWidget(spin)
             if name == "PatternCenter":
@@ -328,6 +329,7 @@ class SurfaceTaskPanel:
         row.setContentsMargins(0, 0, 0, 0)
         for c in "xyz":
             spin = _dspin(-1.0, 1.0, 0.1, "", 3)
+            spin.setMinimumWidth(SPIN_WIDTH_PX)
             self.vibration_widgets[f"Axis.{c}"] = spin
             row.addWidget(spin)
         for name, widget in self.vibration_widgets.items():

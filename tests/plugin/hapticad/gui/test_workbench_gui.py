@@ -91,23 +91,37 @@ class WorkbenchGuiTest(unittest.TestCase):
         # FreeCAD's Combo View opens about 250 px wide and its task panels do not scroll
         # sideways: a wider panel hides its right side (OK, Stop, messages). Every panel,
         # with its widest rows showing (a circular pattern, a texture, a vibration, both
-        # kinds of study in the Feel panel), fits 250 px
-        from hapticad import preferences
+        # kinds of study in the Feel panel, a study's space), fits 250 px
+        from hapticad import preferences, similarity_study
 
         preferences.update(device="simulated")
         surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], pattern="Circular",
                                         Texture="Paper f_DC 0.500 f_vis +0.0")
         HaptiCAD.make_vibration(self.doc, self.box)
         study = HaptiCAD.make_study(self.doc, surface)
-        similarity = HaptiCAD.make_similarity_study(self.doc, surface)
+        HaptiCAD.record_preference(study, "Ada", "F", "26-40", 60, 1650)
+        similarity = HaptiCAD.make_similarity_study(self.doc, surface, WarmUps=0)
+        run = similarity_study.Run(similarity, "Ada", seed=1)
+        while not run.done:
+            run.answer(1 + (run.current.first + run.current.second) % 7)
+        similarity_study.record_run(similarity, run)  # its space is drawn in the panel
         self.doc.recompute()
+        h.widen_panel(260)  # as FreeCAD opens it
 
-        def widest():
+        def panel():
             for area in Gui.getMainWindow().findChildren(QtWidgets.QScrollArea):
                 content = area.widget()
                 if area.isVisible() and content is not None and content.findChildren(QtWidgets.QDialogButtonBox):
-                    return content.minimumSizeHint().width()
+                    return content
             self.fail("no task panel showing")
+
+        def widest():
+            content = panel()
+            # and no spin box squeezed below what its value and unit need (x, y, z rows set their own)
+            for spin in content.findChildren(QtWidgets.QAbstractSpinBox):
+                if spin.isVisible() and spin.minimumWidth() == 0:  # (a form layout may round a pixel off)
+                    self.assertGreaterEqual(spin.width(), spin.minimumSizeHint().width() - 2, spin.objectName())
+            return content.minimumSizeHint().width()
 
         for name, open_panel, button in (
                 ("surface", lambda: Gui.ActiveDocument.setEdit(surface.Name, 0), "Cancel"),
