@@ -15,6 +15,8 @@ from .. import cohort, stiffness_study
 from ..proxy_state import is_alive
 
 SLIDER_STEPS = 200
+DEFAULT_WEIGHT_KG = 70.0
+DEFAULT_HEIGHT_MM = 1700.0
 
 
 def set_study_property(study, name, value):
@@ -113,13 +115,13 @@ class StudyControls(QtWidgets.QWidget):
         self.weight = QtWidgets.QDoubleSpinBox()
         self.weight.setObjectName("participantWeight")
         self.weight.setRange(*cohort.WEIGHT_RANGE_KG)
-        self.weight.setValue(70.0)
+        self.weight.setValue(DEFAULT_WEIGHT_KG)
         self.weight.setSuffix(" kg")
         self.height = QtWidgets.QDoubleSpinBox()
         self.height.setObjectName("participantHeight")
         self.height.setRange(*cohort.HEIGHT_RANGE_MM)
         self.height.setDecimals(0)
-        self.height.setValue(1700.0)
+        self.height.setValue(DEFAULT_HEIGHT_MM)
         self.height.setSuffix(" mm")
         for label, widget in (("Participant", self.name), ("Gender", self.gender), ("Age", self.age),
                               ("Weight", self.weight), ("Height", self.height)):
@@ -134,6 +136,7 @@ class StudyControls(QtWidgets.QWidget):
         self.message.setObjectName("studyMessage")
         self.message.setWordWrap(True)
         layout.addWidget(self.message)
+        self.clear_participant()
         self.observer = StudyObserver(study, self.external_change)
         self.destroyed.connect(lambda *_: self.observer.remove())
         self.load()
@@ -200,6 +203,15 @@ class StudyControls(QtWidgets.QWidget):
         colour = "#b00000" if error else "#006000"
         self.message.setText(f"<span style='color:{colour}'>{text}</span>" if text else "")
 
+    def clear_participant(self):
+        """The form as for a new participant: no name, gender and age not given, the
+        usual weight and height."""
+        self.name.clear()
+        self.gender.setCurrentText("not given")
+        self.age.setCurrentText("not given")
+        self.weight.setValue(DEFAULT_WEIGHT_KG)
+        self.height.setValue(DEFAULT_HEIGHT_MM)
+
     def record(self):
         """Records the participant's preference for the design as it is now."""
         doc = self.study.Document
@@ -216,7 +228,7 @@ class StudyControls(QtWidgets.QWidget):
         beyond = " (beyond what the device renders: marked)" if record.design.get("BeyondDevice") else ""
         self.show_message(f"Recorded {record.name}: {record.value:.3g} {record.unit}{beyond} "
                           f"({self.study.Participants} participant{'s' if self.study.Participants != 1 else ''}).")
-        self.name.clear()
+        self.clear_participant()  # the next participant starts blank, inheriting nothing
         self.load()
         self.changed.emit()
         App.Console.PrintLog(f"HaptiCAD: {self.study.Label}: recorded {record.name}\n")

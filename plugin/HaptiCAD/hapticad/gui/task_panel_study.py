@@ -225,12 +225,17 @@ class StudyTaskPanel(CloseOnlyPanel):
         others = len(stiffness_study.records(self.obj)) - len(records)
         self.table.setRowCount(len(records))
         for row, r in enumerate(records):
-            for column, text in enumerate((r.name, f"{r.value:.3g} {r.unit}", r.gender, r.age_band,
+            beyond = " *" if r.design.get("BeyondDevice") else ""  # felt at the device's limit
+            for column, text in enumerate((r.name, f"{r.value:.3g} {r.unit}{beyond}", r.gender, r.age_band,
                                            f"{r.weight_kg:g}", f"{r.height_mm:g}")):
                 self.table.setItem(row, column, QtWidgets.QTableWidgetItem(text))
         rows = cohort.statistics(records)
         aside = (f"<br>{others} record(s) in another unit (made with the other model) are kept but not "
                  "compared." if others else "")
+        capped = sum(1 for r in records if r.design.get("BeyondDevice"))
+        if capped:
+            aside += (f"<br>* {capped} preference{'s' if capped != 1 else ''} beyond what the device renders: felt at "
+                      "its limit, counted as recorded.")
         if not rows:
             self.stats.setText("No participant yet: each records what feels right with the slider above." + aside)
             return

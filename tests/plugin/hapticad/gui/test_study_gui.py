@@ -104,9 +104,19 @@ class StudyGuiTest(unittest.TestCase):
             fill_participant(name, gender, age, weight)
             h.widget(QtWidgets.QPushButton, "recordPreference").click()
         self.assertEqual(study.Participants, 3)
-        self.assertEqual(h.widget(QtWidgets.QTableWidget, "cohortTable").rowCount(), 3)
+        table = h.widget(QtWidgets.QTableWidget, "cohortTable")
+        self.assertEqual(table.rowCount(), 3)
+        # the form is blank for the next participant: nothing of Zhang's carried over
+        self.assertEqual(h.widget(QtWidgets.QLineEdit, "participantName").text(), "")
+        self.assertEqual(h.widget(QtWidgets.QComboBox, "participantGender").currentText(), "not given")
+        self.assertEqual(h.widget(QtWidgets.QComboBox, "participantAge").currentText(), "not given")
+        self.assertEqual(h.widget(QtWidgets.QDoubleSpinBox, "participantWeight").value(), 70.0)
+        # Steven's 4.44 N/mm was felt at the simulated probe's 3 N/mm: marked in the table and said
+        self.assertEqual(table.item(0, 1).text(), "4.44 N/mm *")
+        self.assertNotIn("*", table.item(1, 1).text())
         self.assertAlmostEqual(study.BeamThickness, 6.5)  # 2 + 6 x 150/200
         stats = h.widget(QtWidgets.QLabel, "cohortStats").text()
+        self.assertIn("* 1 preference beyond what the device renders", stats)
         self.assertIn("all: n 3", stats)
         self.assertIn("gender M: n 2", stats)
         self.assertIn("This design:", stats)
