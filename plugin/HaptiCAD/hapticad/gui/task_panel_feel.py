@@ -37,7 +37,7 @@ def _note(text):
 
 def active_panel():
     return _ACTIVE[-1] if _ACTIVE else None
-DEPTH_RANGE_MM = (0.0, 5.0)
+DEPTH_RANGE_MM = (0.0, 15.0)  # a 0.4 N/mm hand aimed 15 mm in pushes 6 N: past a 4.9 N switch
 DEPTH_STEP_MM = 0.25
 
 
@@ -89,12 +89,13 @@ class FeelTaskPanel:
         self.depth.setObjectName("feelDepth")
         self.depth.setRange(0, int(DEPTH_RANGE_MM[1] / DEPTH_STEP_MM))
         self.depth.setValue(int(1.0 / DEPTH_STEP_MM))
-        self.depth.setToolTip("How far the simulated hand presses into the part (the mouse wheel sets it too)")
+        self.depth.setToolTip("How far below the face the simulated hand aims (the mouse wheel sets it too); the "
+                              "face pushes back, so the probe goes in less: the line under the chart says how far")
         self.depth_label = QtWidgets.QLabel()
         row = QtWidgets.QHBoxLayout()
         row.addWidget(self.depth, 1)
         row.addWidget(self.depth_label)
-        form.addRow("Press", row)
+        form.addRow("Aim", row)
         self.depth.valueChanged.connect(self.depth_set)
         layout.addLayout(form)
         buttons = QtWidgets.QHBoxLayout()
@@ -147,7 +148,7 @@ class FeelTaskPanel:
         return self.depth.value() * DEPTH_STEP_MM
 
     def depth_set(self, _value):
-        self.depth_label.setText(f"{self.depth_mm():.2f} mm")
+        self.depth_label.setText(f"{self.depth_mm():.2f} mm in")
         if self.steering is not None:
             self.steering.depth_mm = self.depth_mm()
             self.steering.aim_again()
@@ -287,7 +288,9 @@ class FeelTaskPanel:
             self.view_nodes.show(last["device_m"], last["proxy_m"], last["force_n"])
             contact = bool(last["flags"] & _core.FLAG_CONTACT)
             face = self.session.describe_face(int(last["cad_face"])) if contact else ""
-            self.face_label.setText(f"Face: {face}" if face else "Face: - (not touching)")
+            pressed_mm = float(np.linalg.norm(np.asarray(last["proxy_m"]) - np.asarray(last["device_m"]))) * 1e3
+            self.face_label.setText(f"Face: {face}; the probe {pressed_mm:.2f} mm in" if face
+                                    else "Face: - (not touching)")
         self.rate_label.setText(f"Loop: {self.session.achieved_rate_hz():.0f} Hz of "
                                 f"{self.session.rate_hz:.0f} Hz, display {DISPLAY_HZ} Hz")
         if not self.session.running:

@@ -181,6 +181,8 @@ class FeelGuiTest(unittest.TestCase):
         h.wait(0.8)
         self.assertEqual(panel.depth_mm(), 2.5)
         self.assertGreater(float(chart.values["normal_force_n"][-200:].mean()), 1.8 * pressed)
+        # aimed 2.5 mm in, the probe goes in less: the panel says how far, 0.67 N / 0.8 N/mm
+        self.assertRegex(h.widget(QtWidgets.QLabel, "feelFace").text(), r"the probe 0\.[6-9]\d mm in")
 
     def test_the_chart_draws_friction_and_texture_as_felt_when_the_force_was_clamped(self):
         from hapticad import _core
