@@ -182,6 +182,11 @@ def _quality_notes(fit, options):
         if s.harmonic.r_squared < 0.9:
             notes.append(f"at {s.speed_mps / MM:.0f} mm/s the harmonics do not follow a power law "
                          f"(r^2 {s.harmonic.r_squared:.2f}): is the grating's period right?")
+    strongest = dominant_period_m(fit)
+    if strongest is not None and abs(strongest - fit.period_m) > PERIOD_MISMATCH * fit.period_m:
+        notes.append(f"{PERIOD_WRONG}: the recordings ripple most strongly every {strongest / MM:.3g} mm, not every "
+                     f"{fit.period_m / MM:g} mm as given; fit again with that period")
+        return notes  # the period found near the given one means nothing then
     found = [s.period_found_m for s in fit.sections]
     if found:
         median = float(np.median(found))
@@ -189,6 +194,26 @@ def _quality_notes(fit, options):
             notes.append(f"the recordings show a grating period of {median / MM:.4g} mm, not the "
                          f"{fit.period_m / MM:g} mm given: the harmonics were read at the period found")
     return notes
+
+
+PERIOD_WRONG = "the grating period looks wrong"
+PERIOD_MISMATCH = 0.15  # of the given period: more than the fit's own search (2 bins) can correct
+
+
+def dominant_period_m(fit):
+    """The period (m) of the strongest ripple the sections show between a quarter and
+    four times the given period (the median over sections), or None without sections.
+    The fit reads the grating only near the period it is given; a period given wrong by
+    a factor (half, double) is found here."""
+    periods = []
+    for s in fit.sections:
+        amplitude = np.asarray(s.amplitude_n, float)
+        low, high = max(1, s.periods // 4), min(len(amplitude) - 1, 4 * s.periods)
+        if high <= low:
+            continue
+        k = low + int(np.argmax(amplitude[low:high + 1]))
+        periods.append(fit.period_m * s.periods / k)
+    return float(np.median(periods)) if periods else None
 
 
 def eq2_newtons(fit):
@@ -274,6 +299,9 @@ def apply_to_surface(surface, report):
                          "its harmonics do not fall off); check the period. Nothing was changed")
     if values["TexturePeriod"] < 1e-3:
         raise ValueError("the grating period is below 0.001 mm; nothing was changed")
+    wrong = [n for n in report.notes if n.startswith(PERIOD_WRONG)]
+    if wrong:
+        raise ValueError(f"{wrong[0]}. Nothing was changed")
     from .similarity_study import pooled_runs, unpooling_notes
 
     pooled = pooled_runs(surface.Document)

@@ -222,6 +222,17 @@ class RigRecordingTest(unittest.TestCase):
                 texture_fit.apply_to_surface(surface, wrong)
             self.assertIn("no grating of period 5 mm", str(caught.exception))
             self.assertEqual(surface.Texture, "None")
+            # given half the period: the fit alone sees nothing amiss there (the 2nd harmonic
+            # of 2.5 mm sits at 1.25); the strongest ripple says so, and the fit is not set
+            half = texture_fit.fit_files([self.path("grating.csv")], 1.25, (50, 120))
+            self.assertTrue(any("ripple most strongly every 2.5 mm, not every 1.25 mm" in n for n in half.notes),
+                            half.notes)
+            with self.assertRaises(ValueError) as caught:
+                texture_fit.apply_to_surface(surface, half)
+            self.assertIn("the grating period looks wrong", str(caught.exception))
+            self.assertEqual(surface.Texture, "None")
+            self.assertTrue(any("every 2.5 mm, not every 5 mm" in n for n in wrong.notes), wrong.notes)
+            self.assertFalse(any("looks wrong" in n for n in near.notes), near.notes)
         finally:
             App.closeDocument(doc.Name)
 
