@@ -15,7 +15,7 @@ ctest --test-dir "$build" -j "$(nproc)" --output-on-failure
 # the installed command, as a user runs it
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-hapticad demo --headless --out "$out" > "$out/demo.json"
+hapticad demo --headless --json --out "$out" > "$out/demo.json"
 /usr/bin/python3 - "$out/demo.json" <<'PY'
 import json, sys
 result = json.load(open(sys.argv[1]))

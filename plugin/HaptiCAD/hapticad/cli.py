@@ -55,9 +55,23 @@ def cmd_demo(args):
         return demo.launch_gui()
     ensure_freecad()
     result = demo.run_headless(args.out)
-    print(f"HaptiCAD demo: traces and plots of {len(result['strokes'])} strokes are in "
-          f"{result['out_dir']}", file=sys.stderr)
-    return result
+    if args.json:
+        print(f"HaptiCAD demo: traces and plots of {len(result['strokes'])} strokes are in "
+              f"{result['out_dir']}", file=sys.stderr)
+        return result
+    # what a designer reads: each face stroked, what it is and what it felt like
+    print(f"HaptiCAD demo: each tagged face of {os.path.basename(result['document'])} stroked by the simulated "
+          f"probe; traces and plots in {result['out_dir']}")
+    for stroke in result["strokes"]:
+        if "skipped" in stroke:
+            print(f"  {stroke['face']}: skipped, {stroke['skipped']}")
+            continue
+        felt = stroke["faces"].get(stroke["face"])
+        what = (f"{felt['material']}, pressed {felt['mean_normal_force_n']:.2f} N, friction "
+                f"Ft/Fn {felt['mean_ft_over_fn']:.2f} (mu_d {felt['mu_dynamic']:.2f})"
+                if felt and felt["mean_normal_force_n"] is not None else "not slid on")
+        print(f"  {stroke['face']}: {what}; {os.path.relpath(stroke['trace_png'])}")
+    return None
 
 
 def cmd_materials(args):
@@ -378,6 +392,7 @@ def build_parser():
     demo = sub.add_parser("demo", help="open the example toothbrush and feel it")
     demo.add_argument("--headless", action="store_true", help="stroke every tagged face, even with a display")
     demo.add_argument("--out", default="hapticad-demo", metavar="DIR", help="output folder (hapticad-demo)")
+    demo.add_argument("--json", action="store_true", help="print every stroke's summary as JSON")
     demo.set_defaults(run=cmd_demo)
     return parser
 

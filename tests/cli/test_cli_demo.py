@@ -1,0 +1,43 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""`hapticad demo --headless` end to end: each tagged face of the example toothbrush
+stroked, one readable line a face on stdout (what it is, what was felt, where its plot
+is); with --json, every stroke's summary.
+
+Environment: HAPTICAD_CLI (the launcher). Runs under /usr/bin/python3."""
+import json
+import os
+import re
+import subprocess
+import tempfile
+import unittest
+
+CLI = os.environ["HAPTICAD_CLI"]
+
+
+def run_cli(*args):
+    return subprocess.run([CLI, *args], capture_output=True, text=True, timeout=240)
+
+
+class DemoCommandTest(unittest.TestCase):
+    def test_headless_demo_says_what_each_face_felt_and_json_holds_it_all(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            proc = run_cli("demo", "--headless", "--out", os.path.join(tmp, "text"))
+            self.assertEqual(proc.returncode, 0, proc.stderr)
+            lines = proc.stdout.strip().splitlines()
+            self.assertIn("each tagged face of toothbrush.FCStd stroked by the simulated probe", lines[0])
+            felt = [line for line in lines[1:] if "Ft/Fn" in line]
+            self.assertGreaterEqual(len(felt), 4, proc.stdout)
+            self.assertLess(len(lines), 12)  # a few lines, not the JSON
+            for line in felt:
+                match = re.search(r"Ft/Fn (\d+\.\d\d) \(mu_d (\d+\.\d\d)\); (\S+\.png)", line)
+                self.assertIsNotNone(match, line)
+                self.assertTrue(os.path.exists(os.path.join(tmp, "text", match.group(3).split("/text/")[-1]))
+                                or os.path.exists(match.group(3)), line)
+            proc = run_cli("demo", "--headless", "--json", "--out", os.path.join(tmp, "json"))
+            self.assertEqual(proc.returncode, 0, proc.stderr)
+            result = json.loads(proc.stdout)
+            self.assertGreaterEqual(len([s for s in result["strokes"] if s.get("contact_ticks", 0) > 0]), 4)
+
+
+if __name__ == "__main__":
+    unittest.main()
