@@ -26,7 +26,10 @@ def launch_gui(document=EXAMPLE):
     return {"gui": True, "document": document}
 
 
-def run_headless(out_dir, document=EXAMPLE, speed_mm_s=50.0, depth_mm=1.0):
+RATE_HZ = 5000.0  # the finest roughness (0.1 mm balls) at 50 mm/s is 500 Hz: 1 kHz would alias it
+
+
+def run_headless(out_dir, document=EXAMPLE, speed_mm_s=50.0, depth_mm=1.0, rate_hz=RATE_HZ):
     import FreeCAD as App
 
     from .document_scene import build_document_scene
@@ -45,9 +48,10 @@ def run_headless(out_dir, document=EXAMPLE, speed_mm_s=50.0, depth_mm=1.0):
                 if ends is None:
                     strokes.append({"face": name, "skipped": "no straight stroke fits on this face"})
                     continue
-                stroke = Stroke(vector_tuple(ends[0]), vector_tuple(ends[1]), speed_mm_s, depth_mm)
+                stroke = Stroke(vector_tuple(ends[0]), vector_tuple(ends[1]), speed_mm_s, depth_mm, rate_hz)
                 title = (f"{surface.Label} on {name}: {surface.Material}, roughness category "
-                         f"{surface.RoughnessCategory}")
+                         f"{surface.RoughnessCategory}; stroked at {speed_mm_s:g} mm/s, {depth_mm:g} mm deep, "
+                         f"{rate_hz / 1000:g} kHz")
                 summary = feel_document(doc_scene, stroke, os.path.join(out_dir, name), title)
                 summary["face"] = name
                 strokes.append(summary)
