@@ -179,9 +179,10 @@ def _quality_notes(fit, options):
             notes.append(f"at {s.speed_mps / MM:.0f} mm/s the recording has {s.samples_per_period:.1f} samples a "
                          f"period (fewer than {wanted}): interpolating between them lowers the higher harmonics "
                          f"and bends alpha_h; record at {rate:.0f} Hz or more")
-        if s.harmonic.r_squared < 0.9:
-            notes.append(f"at {s.speed_mps / MM:.0f} mm/s the harmonics do not follow a power law "
-                         f"(r^2 {s.harmonic.r_squared:.2f}): is the grating's period right?")
+    crooked = [s for s in fit.speeds if s.harmonic.r_squared < 0.9]
+    if crooked:  # one sentence for every speed it happens at
+        at = ", ".join(f"{s.speed_mps / MM:.0f} mm/s (r^2 {s.harmonic.r_squared:.2f})" for s in crooked)
+        notes.append(f"at {at} the harmonics do not follow a power law: is the grating's period right?")
     strongest = dominant_period_m(fit)
     if strongest is not None and abs(strongest - fit.period_m) > PERIOD_MISMATCH * fit.period_m:
         notes.append(f"{PERIOD_WRONG}: the recordings ripple most strongly every {strongest / MM:.3g} mm, not every "

@@ -212,7 +212,9 @@ class RigRecordingTest(unittest.TestCase):
         self.assertTrue(any("show a grating period of 2.5 mm" in n for n in near.notes), near.notes)
         self.assertAlmostEqual(texture_fit.levels(near.fit, 2.0)["TextureAlpha"], 2.5, delta=0.05)
         wrong = texture_fit.fit_files([self.path("grating.csv")], 5.0, (50, 120))  # the designer's slip
-        self.assertTrue(any("do not follow a power law" in n for n in wrong.notes), wrong.notes)
+        crooked = [n for n in wrong.notes if "do not follow a power law" in n]
+        self.assertEqual(len(crooked), 1, wrong.notes)  # one sentence, both speeds in it
+        self.assertRegex(crooked[0], r"at 50 mm/s \(r\^2 [-\d.]+\), 120 mm/s")
         doc = App.newDocument("TextureFitWrongPeriod")
         try:
             box = doc.addObject("Part::Box", "Box")
