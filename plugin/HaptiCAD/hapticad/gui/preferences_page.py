@@ -60,7 +60,8 @@ class PreferencesPage:
         self.scale.setDecimals(3)
         self.scale.setSuffix(" model mm / device mm")
         form.addRow("Scale", self.scale)
-        self.mapping.currentTextChanged.connect(lambda text: self.scale.setEnabled(text == "Fixed scale"))
+        self.mapping.currentTextChanged.connect(lambda _text: self._enable_mapping())
+        self.device.currentIndexChanged.connect(lambda _index: self._enable_mapping())
         layout.addWidget(device_box)
 
         scene_box = QtWidgets.QGroupBox("Haptic scene")
@@ -100,10 +101,17 @@ class PreferencesPage:
         self.force_limit.setValue(prefs.force_limit_n)
         self.mapping.setCurrentText(prefs.workspace_mapping)
         self.scale.setValue(prefs.workspace_scale)
-        self.scale.setEnabled(prefs.workspace_mapping == "Fixed scale")
+        self._enable_mapping()
         self.accuracy.setCurrentText(prefs.accuracy)
         self.overlay_visible.setChecked(prefs.overlay_visible)
         self.colour_by.setCurrentText(prefs.overlay_colour_by)
+
+    def _enable_mapping(self):
+        """The mapping is a hardware device's: the simulated probe moves in the part's own
+        space, so its mapping and scale are greyed (kept for a device chosen later)."""
+        hardware = (self.device.currentData() or preferences.SIMULATED_DEVICE) != preferences.SIMULATED_DEVICE
+        self.mapping.setEnabled(hardware)
+        self.scale.setEnabled(hardware and self.mapping.currentText() == "Fixed scale")
 
     def values(self):
         return preferences.Preferences(

@@ -33,8 +33,12 @@ class PreferencesPageTest(unittest.TestCase):
                 seen["accuracy"] = dialog.findChild(QtWidgets.QComboBox, "accuracy").currentText()
                 seen["device"] = dialog.findChild(QtWidgets.QComboBox, "device").currentData()
                 rate.setValue(1500)
-                dialog.findChild(QtWidgets.QComboBox, "workspaceMapping").setCurrentText("Fixed scale")
-                dialog.findChild(QtWidgets.QDoubleSpinBox, "workspaceScale").setValue(0.5)
+                mapping = dialog.findChild(QtWidgets.QComboBox, "workspaceMapping")
+                scale = dialog.findChild(QtWidgets.QDoubleSpinBox, "workspaceScale")
+                mapping.setCurrentText("Fixed scale")
+                scale.setValue(0.5)
+                # the simulated probe moves in the part's own space: no mapping to set for it
+                seen["mapping enabled"] = (mapping.isEnabled(), scale.isEnabled())
                 h.grab_screen("preferences_page.png")
                 buttons = dialog.findChild(QtWidgets.QDialogButtonBox)
                 buttons.button(QtWidgets.QDialogButtonBox.Ok).click()
@@ -50,6 +54,7 @@ class PreferencesPageTest(unittest.TestCase):
         self.assertEqual((prefs.servo_rate_hz, prefs.workspace_mapping, prefs.workspace_scale),
                          (1500, "Fixed scale", 0.5))
         self.assertEqual(prefs.force_limit_n, 2.5)  # untouched values stay
+        self.assertEqual(seen["mapping enabled"], (False, False))
 
 
 if __name__ == "__main__":
