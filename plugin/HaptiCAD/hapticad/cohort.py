@@ -19,6 +19,7 @@ GENDERS = ("F", "M", "other", "not given")
 AGE_BANDS = ("under 18", "18-25", "26-40", "41-60", "over 60", "not given")  # Table 3's bands and more
 WEIGHT_RANGE_KG = (20.0, 300.0)
 HEIGHT_RANGE_MM = (500.0, 2500.0)
+OPTIONAL_COLUMNS = ("weight_kg", "height_mm")  # an empty cell: not given
 CSV_COLUMNS = ("name", "gender", "age_band", "weight_kg", "height_mm", "value", "unit", "model", "design",
                "recorded")
 
@@ -28,8 +29,8 @@ class Record:
     name: str
     gender: str
     age_band: str
-    weight_kg: float
-    height_mm: float
+    weight_kg: float  # None: not given
+    height_mm: float  # None: not given
     value: float  # the preferred design value, in `unit`
     unit: str  # "N/mm" (bending beam) or "N" (push button)
     model: str
@@ -51,7 +52,7 @@ def problems(record):
         found.append(f"age band {record.age_band!r} is not one of {', '.join(AGE_BANDS)}")
     for label, value, (low, high), unit in (("weight", record.weight_kg, WEIGHT_RANGE_KG, "kg"),
                                             ("height", record.height_mm, HEIGHT_RANGE_MM, "mm")):
-        if not (isinstance(value, (int, float)) and low <= value <= high):
+        if value is not None and not (isinstance(value, (int, float)) and low <= value <= high):
             found.append(f"{label} {value} {unit} is outside {low:g}..{high:g} {unit}")
     if not (isinstance(record.value, (int, float)) and math.isfinite(record.value) and record.value > 0):
         found.append(f"the preferred value {record.value} must be a number > 0")
@@ -119,7 +120,14 @@ def write_csv(path, records):
             if d["name"][:1] in ("=", "+", "-", "@"):  # a spreadsheet would run it as a formula
                 d["name"] = "'" + d["name"]
             d["design"] = ";".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in r.design.items())
+            for key in ("weight_kg", "height_mm"):  # not given: an empty cell
+                if d[key] is None:
+                    d[key] = ""
             out.writerow([d[c] for c in CSV_COLUMNS])
+
+
+def _number_or_none(text):
+    return float(text) if (text or "").strip() else None
 
 
 def read_csv(path):
@@ -141,13 +149,13 @@ def read_csv(path):
                          f"{', '.join(header) or 'empty'}")
     records = []
     for line, row in enumerate(rows, start=2):
-        missing = [c for c in CSV_COLUMNS[:7] if not row.get(c)]
+        missing = [c for c in CSV_COLUMNS[:7] if not row.get(c) and c not in OPTIONAL_COLUMNS]
         if missing:
             raise ValueError(f"{name}, line {line}: no {', '.join(missing)}")
         try:
             design = dict(item.split("=", 1) for item in (row.get("design") or "").split(";") if "=" in item)
-            record = Record(row["name"], row["gender"], row["age_band"], float(row["weight_kg"]),
-                            float(row["height_mm"]), float(row["value"]), row["unit"], row.get("model", ""),
+            record = Record(row["name"], row["gender"], row["age_band"], _number_or_none(row["weight_kg"]),
+                            _number_or_none(row["height_mm"]), float(row["value"]), row["unit"], row.get("model", ""),
                             design, row.get("recorded", ""))
         except ValueError:
             raise ValueError(f"{name}, line {line}: weight, height and value must be numbers") from None

@@ -297,7 +297,8 @@ def record_preference(study, name, gender, age_band, weight_kg, height_mm, devic
     if device_max_stiffness_n_per_m:
         kept["DeviceStiffness"] = device_max_stiffness_n_per_m * MM  # N/mm
         kept["BeyondDevice"] = float(bool(device_note(study, device_max_stiffness_n_per_m)))
-    record = cohort.Record(name.strip(), gender, age_band, float(weight_kg), float(height_mm), float(value), unit,
+    given = [None if v is None else float(v) for v in (weight_kg, height_mm)]  # None: not given
+    record = cohort.Record(name.strip(), gender, age_band, *given, float(value), unit,
                            study.Model, kept, datetime.now().isoformat(timespec="seconds"))
     wrong = cohort.problems(record)
     if wrong:

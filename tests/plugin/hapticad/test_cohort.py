@@ -63,6 +63,12 @@ class CohortTest(unittest.TestCase):
             self.assertEqual(len(back), 4)
             self.assertEqual((back[0].name, back[0].value, back[0].design["BeamThickness"]), ("Ana", 0.9, "4.5"))
             self.assertEqual(back[1].as_dict()["gender"], "M")
+            # weight and height not given: empty cells, and back as not given
+            quiet = cohort.Record("Quinn", "not given", "not given", None, None, 1.2, "N/mm", "Bending beam")
+            self.assertEqual(cohort.problems(quiet), [])
+            cohort.write_csv(os.path.join(tmp, "quiet.csv"), [quiet])
+            (again,) = cohort.read_csv(os.path.join(tmp, "quiet.csv"))
+            self.assertEqual((again.weight_kg, again.height_mm, again.value), (None, None, 1.2))
             # a spreadsheet's "CSV UTF-8" starts with a BOM; its formulas are not run
             with open(path, encoding="utf-8") as handle:
                 text = handle.read()

@@ -15,8 +15,24 @@ from .. import cohort, stiffness_study
 from ..proxy_state import is_alive
 
 SLIDER_STEPS = 200
-DEFAULT_WEIGHT_KG = 70.0
-DEFAULT_HEIGHT_MM = 1700.0
+NOT_GIVEN = "not given"
+
+
+def _optional_spin(name, value_range, suffix, decimals):
+    """A spin box over ``value_range`` whose lowest position, one step below it, reads
+    "not given" (_given then gives None)."""
+    spin = QtWidgets.QDoubleSpinBox()
+    spin.setObjectName(name)
+    spin.setDecimals(decimals)
+    spin.setRange(value_range[0] - 1.0, value_range[1])
+    spin.setSpecialValueText(NOT_GIVEN)
+    spin.setSuffix(suffix)
+    spin.setValue(spin.minimum())
+    return spin
+
+
+def _given(spin):
+    return None if spin.value() == spin.minimum() else spin.value()
 
 
 def set_study_property(study, name, value):
@@ -112,17 +128,9 @@ class StudyControls(QtWidgets.QWidget):
         self.age = QtWidgets.QComboBox()
         self.age.setObjectName("participantAge")
         self.age.addItems(cohort.AGE_BANDS)
-        self.weight = QtWidgets.QDoubleSpinBox()
-        self.weight.setObjectName("participantWeight")
-        self.weight.setRange(*cohort.WEIGHT_RANGE_KG)
-        self.weight.setValue(DEFAULT_WEIGHT_KG)
-        self.weight.setSuffix(" kg")
-        self.height = QtWidgets.QDoubleSpinBox()
-        self.height.setObjectName("participantHeight")
-        self.height.setRange(*cohort.HEIGHT_RANGE_MM)
-        self.height.setDecimals(0)
-        self.height.setValue(DEFAULT_HEIGHT_MM)
-        self.height.setSuffix(" mm")
+        # one step below the range reads "not given": a participant need not say
+        self.weight = _optional_spin("participantWeight", cohort.WEIGHT_RANGE_KG, " kg", 1)
+        self.height = _optional_spin("participantHeight", cohort.HEIGHT_RANGE_MM, " mm", 0)
         for label, widget in (("Participant", self.name), ("Gender", self.gender), ("Age", self.age),
                               ("Weight", self.weight), ("Height", self.height)):
             form.addRow(label, widget)
@@ -204,13 +212,12 @@ class StudyControls(QtWidgets.QWidget):
         self.message.setText(f"<span style='color:{colour}'>{text}</span>" if text else "")
 
     def clear_participant(self):
-        """The form as for a new participant: no name, gender and age not given, the
-        usual weight and height."""
+        """The form as for a new participant: no name, and nothing else given."""
         self.name.clear()
-        self.gender.setCurrentText("not given")
-        self.age.setCurrentText("not given")
-        self.weight.setValue(DEFAULT_WEIGHT_KG)
-        self.height.setValue(DEFAULT_HEIGHT_MM)
+        self.gender.setCurrentText(NOT_GIVEN)
+        self.age.setCurrentText(NOT_GIVEN)
+        self.weight.setValue(self.weight.minimum())  # not given
+        self.height.setValue(self.height.minimum())
 
     def record(self):
         """Records the participant's preference for the design as it is now."""
@@ -218,8 +225,8 @@ class StudyControls(QtWidgets.QWidget):
         doc.openTransaction("Record a participant's preference")
         try:
             record = stiffness_study.record_preference(self.study, self.name.text(), self.gender.currentText(),
-                                                       self.age.currentText(), self.weight.value(),
-                                                       self.height.value(), self.device_stiffness())
+                                                       self.age.currentText(), _given(self.weight),
+                                                       _given(self.height), self.device_stiffness())
         except ValueError as exc:
             doc.abortTransaction()
             self.show_message(f"Not recorded: {exc}", error=True)

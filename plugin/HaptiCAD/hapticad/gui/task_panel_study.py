@@ -227,7 +227,7 @@ class StudyTaskPanel(CloseOnlyPanel):
         for row, r in enumerate(records):
             beyond = " *" if r.design.get("BeyondDevice") else ""  # felt at the device's limit
             for column, text in enumerate((r.name, f"{r.value:.3g} {r.unit}{beyond}", r.gender, r.age_band,
-                                           f"{r.weight_kg:g}", f"{r.height_mm:g}")):
+                                           *("-" if v is None else f"{v:g}" for v in (r.weight_kg, r.height_mm)))):
                 self.table.setItem(row, column, QtWidgets.QTableWidgetItem(text))
         rows = cohort.statistics(records)
         aside = (f"<br>{others} record(s) in another unit (made with the other model) are kept but not "

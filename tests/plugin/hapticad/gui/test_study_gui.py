@@ -110,7 +110,8 @@ class StudyGuiTest(unittest.TestCase):
         self.assertEqual(h.widget(QtWidgets.QLineEdit, "participantName").text(), "")
         self.assertEqual(h.widget(QtWidgets.QComboBox, "participantGender").currentText(), "not given")
         self.assertEqual(h.widget(QtWidgets.QComboBox, "participantAge").currentText(), "not given")
-        self.assertEqual(h.widget(QtWidgets.QDoubleSpinBox, "participantWeight").value(), 70.0)
+        weight = h.widget(QtWidgets.QDoubleSpinBox, "participantWeight")
+        self.assertEqual((weight.value(), weight.text()), (weight.minimum(), "not given"))
         # Steven's 4.44 N/mm was felt at the simulated probe's 3 N/mm: marked in the table and said
         self.assertEqual(table.item(0, 1).text(), "4.44 N/mm *")
         self.assertNotIn("*", table.item(1, 1).text())
@@ -160,6 +161,16 @@ class StudyGuiTest(unittest.TestCase):
         h.widget(QtWidgets.QPushButton, "removeParticipant").click()
         self.assertEqual([r.name for r in stiffness_study.records(study)], ["Ann"])
         self.assertEqual(table.rowCount(), 0)
+
+    def test_a_participant_need_not_give_weight_height_gender_or_age(self):
+        study = self.open_study()
+        h.widget(QtWidgets.QLineEdit, "participantName").setText("Quinn")  # nothing else touched
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        (quinn,) = stiffness_study.records(study)
+        self.assertEqual((quinn.gender, quinn.age_band, quinn.weight_kg, quinn.height_mm),
+                         ("not given", "not given", None, None))
+        table = h.widget(QtWidgets.QTableWidget, "cohortTable")
+        self.assertEqual([table.item(0, c).text() for c in (4, 5)], ["-", "-"])
 
     def test_a_parameter_bound_by_an_expression_is_the_expressions_not_the_sliders(self):
         study = self.open_study()
