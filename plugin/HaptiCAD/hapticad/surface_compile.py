@@ -224,6 +224,13 @@ def compile_surface(surface, face):
 
 
 def compile_vibration(vibration):
+    """The core's Vibration of a HapticVibration. Raises ValueError naming it when its
+    values cannot be felt (the core would say only "vibration 0")."""
+    from .vibration_object import validate
+
+    problems = validate(vibration)
+    if problems:
+        raise ValueError(f"{vibration.Label}: {'; '.join(problems)}")
     axis = _vec(vibration.Axis)
     return _core.Vibration(vibration.Frequency, vibration.Amplitude, axis / np.linalg.norm(axis),
                            vibration.Powered)

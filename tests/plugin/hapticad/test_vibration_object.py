@@ -52,6 +52,11 @@ class VibrationTest(unittest.TestCase):
         v.Axis = App.Vector(float("nan"), 0, 1)
         self.assertEqual(len(vibration_object.validate(v)), 1)
         self.assertIn("not three finite numbers", vibration_object.validate(v)[0])
+        # and Feel says which vibration it is, not "vibration 0"
+        HaptiCAD.make_surface(self.doc, [(self.razor, "Face6")])
+        with self.assertRaises(ValueError) as caught:
+            build_document_scene(self.doc)
+        self.assertIn(f"{v.Label}: the axis (nan, 0.0, 1.0) is not three finite numbers", str(caught.exception))
 
     def test_a_zero_axis_typed_in_is_refused(self):
         v = HaptiCAD.make_vibration(self.doc, self.razor)
