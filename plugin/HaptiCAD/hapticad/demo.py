@@ -26,6 +26,31 @@ def launch_gui(document=EXAMPLE):
     return {"gui": True, "document": document}
 
 
+def between_ball_rows(surface, face, p0, p1):
+    """The stroke p0 -> p1 (mm) moved sideways, along the face, to run midway between
+    two rows of the roughness grid's balls when it runs along one of the grid's axes.
+    Along a row of balls the friction is m/3 above the material's (the balls' share of a
+    row); midway it is the material's, as over the whole face, so the plot's mean Ft/Fn
+    can be read against mu_d."""
+    import numpy as np
+
+    from . import _core
+    from .surface_compile import face_frame
+
+    if not surface.FeelRoughness:
+        return p0, p1
+    origin, e1, e2, _ = face_frame(face, float(surface.PatternAngle))
+    start, end = np.asarray(p0, float), np.asarray(p1, float)
+    along = (end - start) / np.linalg.norm(end - start)
+    across = e2 if abs(along @ e1) > 0.99 else e1 if abs(along @ e2) > 0.99 else None
+    if across is None:
+        return p0, p1
+    g = _core.roughness_category(int(surface.RoughnessCategory)).grid_size_mm
+    offset = float((start - np.asarray(origin) / 1e-3) @ across) % g
+    shift = (g / 4 - offset) * across  # a quarter of the spacing off a row of ball centres
+    return tuple(start + shift), tuple(end + shift)
+
+
 RATE_HZ = 5000.0  # the finest roughness (0.1 mm balls) at 50 mm/s is 500 Hz: 1 kHz would alias it
 
 
@@ -48,7 +73,9 @@ def run_headless(out_dir, document=EXAMPLE, speed_mm_s=50.0, depth_mm=1.0, rate_
                 if ends is None:
                     strokes.append({"face": name, "skipped": "no straight stroke fits on this face"})
                     continue
-                stroke = Stroke(vector_tuple(ends[0]), vector_tuple(ends[1]), speed_mm_s, depth_mm, rate_hz)
+                p0, p1 = between_ball_rows(surface, doc_scene.face_shape(name), vector_tuple(ends[0]),
+                                           vector_tuple(ends[1]))
+                stroke = Stroke(p0, p1, speed_mm_s, depth_mm, rate_hz)
                 title = (f"{surface.Label} on {name}: {surface.Material}, roughness category "
                          f"{surface.RoughnessCategory}; stroked at {speed_mm_s:g} mm/s, {depth_mm:g} mm deep, "
                          f"{rate_hz / 1000:g} kHz")
