@@ -15,8 +15,9 @@ import os
 import statistics as stats
 from dataclasses import asdict, dataclass, field
 
-GENDERS = ("F", "M", "other", "not given")
-AGE_BANDS = ("under 18", "18-25", "26-40", "41-60", "over 60", "not given")  # Table 3's bands and more
+NOT_GIVEN = "not given"  # a participant need not say
+GENDERS = ("F", "M", "other", NOT_GIVEN)
+AGE_BANDS = ("under 18", "18-25", "26-40", "41-60", "over 60", NOT_GIVEN)  # Table 3's bands and more
 WEIGHT_RANGE_KG = (20.0, 300.0)
 HEIGHT_RANGE_MM = (500.0, 2500.0)
 OPTIONAL_COLUMNS = ("weight_kg", "height_mm")  # an empty cell: not given

@@ -229,8 +229,9 @@ def unpooling_notes(doc, before):
     """Sentences for the studies of ``doc`` that pool fewer runs than ``before``
     (pooled_runs) said: an edit changed what their participants felt."""
     notes = []
+    now = pooled_runs(doc)
     for study in similarity_studies_of(doc):
-        lost = before.get(study.Name, 0) - pooled_runs(doc).get(study.Name, 0)
+        lost = before.get(study.Name, 0) - now.get(study.Name, 0)
         if lost > 0:
             notes.append(f"{study.Label}: {lost} run{'s' if lost != 1 else ''} felt on the surface as it was "
                          f"{'are' if lost != 1 else 'is'} no longer pooled with runs made now (undo to pool "

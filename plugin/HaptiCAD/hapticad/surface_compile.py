@@ -13,7 +13,7 @@ import numpy as np
 from . import _core, curve_references
 from .similarity_study import rendered_texture
 from .stiffness_study import force_travel_of
-from .surface_object import circular_centre_axis
+from .surface_object import TEXTURE_VALUES, circular_centre_axis
 
 MM = 1e-3
 
@@ -146,8 +146,7 @@ def texture_notes(surface):
     at the paper's stroking speeds, or harmonics that grow with their order."""
     if surface.Texture == "None":
         return []
-    texture = {k: getattr(surface, k) for k in ("TextureDC", "TextureViscosity", "TextureBeta", "TextureAlpha",
-                                                "TextureBetaViscosity", "TextureAlphaViscosity", "TexturePeriod")}
+    texture = {k: getattr(surface, k) for k in (*TEXTURE_VALUES, "TexturePeriod")}
     if not all(math.isfinite(v) for v in texture.values()):
         return []  # validate() says so
     params = viscous_params(texture)

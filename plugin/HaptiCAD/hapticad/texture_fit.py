@@ -183,10 +183,9 @@ def _quality_notes(fit, options):
     if crooked:  # one sentence for every speed it happens at
         at = ", ".join(f"{s.speed_mps / MM:.0f} mm/s (r^2 {s.harmonic.r_squared:.2f})" for s in crooked)
         notes.append(f"at {at} the harmonics do not follow a power law: is the grating's period right?")
-    strongest = dominant_period_m(fit)
-    if strongest is not None and abs(strongest - fit.period_m) > PERIOD_MISMATCH * fit.period_m:
-        notes.append(f"{PERIOD_WRONG}: the recordings ripple most strongly every {strongest / MM:.3g} mm, not every "
-                     f"{fit.period_m / MM:g} mm as given; fit again with that period")
+    wrong = wrong_period(fit)
+    if wrong:
+        notes.append(wrong)
         return notes  # the period found near the given one means nothing then
     found = [s.period_found_m for s in fit.sections]
     if found:
@@ -197,8 +196,17 @@ def _quality_notes(fit, options):
     return notes
 
 
-PERIOD_WRONG = "the grating period looks wrong"
 PERIOD_MISMATCH = 0.15  # of the given period: more than the fit's own search (2 bins) can correct
+
+
+def wrong_period(fit):
+    """A sentence when the recordings' strongest ripple is not at the period the fit was
+    given (a fit at the wrong period must not be set), else ""."""
+    strongest = dominant_period_m(fit)
+    if strongest is None or abs(strongest - fit.period_m) <= PERIOD_MISMATCH * fit.period_m:
+        return ""
+    return (f"the grating period looks wrong: the recordings ripple most strongly every {strongest / MM:.3g} mm, "
+            f"not every {fit.period_m / MM:g} mm as given; fit again with that period")
 
 
 def dominant_period_m(fit):
@@ -300,9 +308,9 @@ def apply_to_surface(surface, report):
                          "its harmonics do not fall off); check the period. Nothing was changed")
     if values["TexturePeriod"] < 1e-3:
         raise ValueError("the grating period is below 0.001 mm; nothing was changed")
-    wrong = [n for n in report.notes if n.startswith(PERIOD_WRONG)]
+    wrong = wrong_period(report.fit)
     if wrong:
-        raise ValueError(f"{wrong[0]}. Nothing was changed")
+        raise ValueError(f"{wrong}. Nothing was changed")
     from .similarity_study import pooled_runs, unpooling_notes
 
     pooled = pooled_runs(surface.Document)

@@ -15,7 +15,6 @@ from .. import cohort, stiffness_study
 from ..proxy_state import is_alive
 
 SLIDER_STEPS = 200
-NOT_GIVEN = "not given"
 
 
 def _optional_spin(name, value_range, suffix, decimals):
@@ -25,7 +24,7 @@ def _optional_spin(name, value_range, suffix, decimals):
     spin.setObjectName(name)
     spin.setDecimals(decimals)
     spin.setRange(value_range[0] - 1.0, value_range[1])
-    spin.setSpecialValueText(NOT_GIVEN)
+    spin.setSpecialValueText(cohort.NOT_GIVEN)
     spin.setSuffix(suffix)
     spin.setValue(spin.minimum())
     return spin
@@ -214,8 +213,8 @@ class StudyControls(QtWidgets.QWidget):
     def clear_participant(self):
         """The form as for a new participant: no name, and nothing else given."""
         self.name.clear()
-        self.gender.setCurrentText(NOT_GIVEN)
-        self.age.setCurrentText(NOT_GIVEN)
+        self.gender.setCurrentText(cohort.NOT_GIVEN)
+        self.age.setCurrentText(cohort.NOT_GIVEN)
         self.weight.setValue(self.weight.minimum())  # not given
         self.height.setValue(self.height.minimum())
 
