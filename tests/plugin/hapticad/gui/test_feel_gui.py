@@ -144,6 +144,19 @@ class FeelGuiTest(unittest.TestCase):
         h.wait(0.8)
         return stop, h.widget(QtWidgets.QWidget, "stripChart")
 
+    def test_the_first_touch_lands_without_a_knock(self):
+        # the hand comes from above the part's top and is lowered onto the face: landing
+        # in one step it knocked at 1.45 N where it then pressed 0.27 N
+        self.open_feel()
+        chart = h.widget(QtWidgets.QWidget, "stripChart")
+        h.mouse("move", h.screen_pos(np.array([20.0, 15.0, 20.0])))
+        h.wait(1.5)
+        self.assertIn("Box.Face6", h.widget(QtWidgets.QLabel, "feelFace").text())
+        normal = np.asarray(chart.values["normal_force_n"], float)
+        pressed = float(normal[-200:].mean())
+        self.assertGreater(pressed, 0.2)
+        self.assertLess(float(normal.max()), 1.3 * pressed)
+
     def test_the_probe_comes_down_onto_the_face_under_the_cursor_and_over_a_step_not_into_its_wall(self):
         # a 60 x 30 x 10 mm base with a 5 mm block standing on it at x 30..50
         App.closeDocument(self.doc.Name)
