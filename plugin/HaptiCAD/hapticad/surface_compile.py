@@ -54,13 +54,17 @@ def face_frame(face, angle_deg):
 
 
 def _curve_edges(link):
-    """The edges a PatternCurve link names: a whole sketch, or chosen edges. Raises
+    """The edges a PatternCurve link names: a whole sketch, or chosen edges, where they
+    sit in the document (App::Part parents included: the faces are read there too, and a
+    sketch read in its container's own frame ran turned with the container). Raises
     ValueError naming an edge the object does not have."""
     obj, _ = link
+    shape = obj.Shape.copy()
+    shape.Placement = obj.getGlobalPlacement()
     names = curve_references.named_edges(link)
     if not names:
-        return list(obj.Shape.Edges)
-    edges = obj.Shape.Edges
+        return list(shape.Edges)
+    edges = shape.Edges
     missing = [n for n in names if not (n.startswith("Edge") and n[4:].isdigit() and 1 <= int(n[4:]) <= len(edges))]
     if missing:
         raise ValueError(f"PatternCurve names {', '.join(f'{obj.Label}.{n}' for n in missing)}, which "

@@ -148,6 +148,24 @@ class CompileTest(unittest.TestCase):
         frame = p.pattern.evaluate([0.05, 0.01, 0.01], [0, 0, 1])
         np.testing.assert_allclose(np.abs(frame.stripe), np.array([1, 2, 0]) / math.sqrt(5), atol=1e-9)
 
+    def test_a_curve_in_a_turned_container_runs_where_it_is_drawn(self):
+        # box and sketch in an App::Part turned 90 deg about z: the line drawn along the
+        # part's y runs along the world's -x, and so must the stripes on the box's top
+        from hapticad.document_scene import global_shape
+
+        container = self.doc.addObject("App::Part", "Container")
+        sketch = self.sketch([Part.LineSegment(V(10, 0, 0), V(10, 40, 0))])
+        container.addObject(self.box)
+        container.addObject(sketch)
+        container.Placement = App.Placement(V(0, 0, 0), App.Rotation(V(0, 0, 1), 90))
+        self.doc.recompute()
+        s = self.surface(Pattern="Curve", CurveEvaluation="Exact")
+        s.PatternCurve = (sketch, [])
+        top = global_shape(self.box).Faces[5]  # world x -40..0, y 0..60
+        p = compile_surface(s, top)
+        frame = p.pattern.evaluate([-0.02, 0.03, 0.01], [0, 0, 1])
+        np.testing.assert_allclose(np.abs(frame.stripe), [1, 0, 0], atol=1e-9)
+
     def test_an_arc_or_an_elliptic_arc_makes_an_exact_pattern(self):
         # toBSpline approximated an arc by a degree-9 curve the core refused ("degree 10")
         arc = Part.ArcOfCircle(Part.Circle(V(30, 0, 0), V(0, 0, 1), 25), 0.4, 2.7)
