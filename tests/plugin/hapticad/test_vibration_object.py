@@ -70,6 +70,44 @@ class VibrationTest(unittest.TestCase):
         for face in range(6):
             self.assertEqual(scene.surfaces.surface(face).vibration, 0)
 
+    def test_a_frequency_the_servo_rate_cannot_render_is_said_as_it_would_be_felt(self):
+        import numpy as np
+        from hapticad.feel import Stroke, run_stroke
+
+        self.razor.Length, self.razor.Width, self.razor.Height = 80, 40, 20
+        self.doc.recompute()
+        HaptiCAD.make_surface(self.doc, [(self.razor, "Face6")], FeelRoughness=False, static_friction=0.0,
+                              dynamic_friction=0.0)
+        v = HaptiCAD.make_vibration(self.doc, self.razor, frequency_hz=100.0, amplitude_n=0.5, axis=(0, 0, 1))
+
+        def felt(rate_hz):
+            """(strongest frequency, its amplitude) of the normal force while sliding."""
+            scene = build_document_scene(self.doc)
+            result = run_stroke(scene, Stroke((10, 20, 20), (70, 20, 20), 50, 1.0, rate_hz=rate_hz))
+            t = result.trace
+            sliding = (t["time_s"] > result.plan.slide_start_s) & (t["time_s"] < result.plan.slide_end_s)
+            fz = np.asarray(t["force_n"])[sliding, 2]
+            spectrum = np.abs(np.fft.rfft(fz - fz.mean())) * 2 / len(fz)
+            k = int(spectrum.argmax())
+            return np.fft.rfftfreq(len(fz), 1.0 / rate_hz)[k], spectrum[k]
+
+        self.assertEqual(vibration_object.rate_note(v, 1000), "")
+        frequency, amplitude = felt(1000)
+        self.assertAlmostEqual(frequency, 100, delta=2)
+        self.assertGreater(amplitude, 0.4)
+        v.Frequency = 700
+        self.assertIn("700 Hz is felt at 300 Hz instead at the 1000 Hz servo rate", vibration_object.rate_note(v, 1000))
+        self.assertIn("under 500 Hz", vibration_object.rate_note(v, 1000))
+        frequency, amplitude = felt(1000)  # what the note says: 300 Hz
+        self.assertAlmostEqual(frequency, 300, delta=2)
+        self.assertEqual(vibration_object.rate_note(v, 2000), "")
+        v.Frequency = 1000
+        self.assertIn("not felt at all", vibration_object.rate_note(v, 1000))
+        self.assertLess(felt(1000)[1], 0.05)
+        self.assertEqual(vibration_object.rate_notes(self.doc, 1000), [vibration_object.rate_note(v, 1000)])
+        v.Powered = False
+        self.assertEqual(vibration_object.rate_notes(self.doc, 1000), [])
+
     def test_round_trip(self):
         v = HaptiCAD.make_vibration(self.doc, self.razor, frequency_hz=167.0, amplitude_n=0.25,
                                     axis=(0, 1, 0), powered=False)

@@ -21,8 +21,8 @@ import FreeCAD as App
 import FreeCADGui as Gui
 from PySide2 import QtCore, QtGui, QtWidgets
 
-from .. import (_core, face_references, icon, materials, similarity_study, surface_compile, surface_object,
-               texture_fit, vibration_object)
+from .. import (_core, face_references, icon, materials, preferences, similarity_study, surface_compile,
+               surface_object, texture_fit, vibration_object)
 from ..proxy_state import is_alive
 from .busy_cursor import busy_cursor
 from .document_closing import DocumentClosingObserver
@@ -686,6 +686,9 @@ class SurfaceTaskPanel:
             n = len(surface_object.reference_pairs(self.obj))
             notes = surface_compile.texture_notes(self.obj) + similarity_study.unpooling_notes(self.doc,
                                                                                                self.pooled_at_open)
+            vib = self.vibration()
+            if vib is not None:  # the servo rate Feel will run at, from the preferences
+                notes += [n for n in [vibration_object.rate_note(vib, preferences.load().servo_rate_hz)] if n]
             self.status.setText(f"<span style='color:#006000'>✓ {n} face{'s' if n != 1 else ''} tagged"
                                 f"{': click more to add them' if self.mode == 'faces' else ''}</span>"
                                 + "".join(f"<br><span style='color:#a06000'>Note: {note}.</span>" for note in notes))

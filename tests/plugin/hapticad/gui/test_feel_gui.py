@@ -144,6 +144,11 @@ class FeelGuiTest(unittest.TestCase):
         h.wait(0.8)
         return stop, h.widget(QtWidgets.QWidget, "stripChart")
 
+    def test_a_vibration_the_servo_rate_cannot_render_is_said_when_feeling_starts(self):
+        HaptiCAD.make_vibration(self.doc, self.box, frequency_hz=700.0, amplitude_n=0.5)
+        self.open_feel()  # at 1000 Hz (setUp's preference)
+        self.assertIn("700 Hz is felt at 300 Hz instead", h.widget(QtWidgets.QLabel, "feelMessage").text())
+
     def test_the_first_touch_lands_without_a_knock(self):
         # the hand comes from above the part's top and is lowered onto the face: landing
         # in one step it knocked at 1.45 N where it then pressed 0.27 N
