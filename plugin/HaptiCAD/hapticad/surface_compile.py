@@ -144,6 +144,18 @@ TYPICAL_SPEEDS_MPS = (0.05, 0.12, 0.27)  # the paper's slowest, middle and faste
 LEVEL_SAMPLES = 64  # over a period
 
 
+def friction_notes(surface):
+    """What is unusual in a surface's friction without being an error, as sentences: a
+    dynamic coefficient above the static one (eq. 1's mu_s is the peak a finger must
+    overcome to start sliding; mu_d above it is felt as typed, but is most often the two
+    boxes swapped)."""
+    mu_s, mu_d = float(surface.StaticFriction), float(surface.DynamicFriction)
+    if mu_d > mu_s:
+        return [f"dynamic friction μd {mu_d:g} is above static friction μs {mu_s:g}: sliding feels stickier than "
+                f"starting to slide, which few materials do (were the two swapped?)"]
+    return []
+
+
 def texture_notes(surface):
     """What a designer should know about a surface's texture that is not an error, as
     sentences: eq. 2 gives levels the renderer clips (it renders 0..1 of the full range)

@@ -12,7 +12,7 @@ import Part
 
 import HaptiCAD
 from hapticad import _core
-from hapticad.surface_compile import _as_bspline, compile_surface, face_frame, texture_notes
+from hapticad.surface_compile import _as_bspline, compile_surface, face_frame, friction_notes, texture_notes
 
 V = App.Vector
 
@@ -117,6 +117,15 @@ class CompileTest(unittest.TestCase):
         self.doc.recompute()
         np.testing.assert_allclose(compile_surface(s, moved.Faces[5]).pattern.centre_w, [0.001, 0.002, 0.003],
                                    atol=1e-12)
+
+    def test_dynamic_friction_above_static_gets_a_note(self):
+        s = self.surface(static_friction=0.6, dynamic_friction=0.5)
+        self.assertEqual(friction_notes(s), [])
+        s.StaticFriction, s.DynamicFriction = 0.3, 0.9  # the two typed in each other's box
+        (note,) = friction_notes(s)
+        self.assertIn("μd 0.9 is above static friction μs 0.3", note)
+        s.DynamicFriction = 0.3  # equal: no peak to overcome, but nothing odd
+        self.assertEqual(friction_notes(s), [])
 
     def test_curve_pattern_from_a_sketch_follows_the_curve(self):
         poles = [V(10, 5, 0), V(30, 12, 0), V(10, 25, 0), V(30, 35, 0)]
