@@ -148,6 +148,13 @@ def fit_files(paths, period_mm, speeds_mm_s=PAPER_SPEEDS_MM_S, tolerance_percent
     except ValueError as exc:  # the core counts recordings and samples; the designer knows files and lines
         raise ValueError(re.sub(r"recording (\d+): (.*?)sample (\d+)|recording (\d+):",
                                 lambda m: _where(recordings, paths, m), str(exc))) from None
+    backwards = [s for s in fit.speeds if fit.dc_n.intercept + fit.dc_n.slope * s.speed_mps < 0]
+    if fit.speeds and len(backwards) == len(fit.speeds):
+        s = fit.speeds[0]
+        raise ValueError(
+            f"the lateral force runs with the motion, not against it (the friction level comes out at "
+            f"{fit.dc_n.intercept + fit.dc_n.slope * s.speed_mps:.3g} N at {s.speed_mps / MM:.0f} mm/s): the fit "
+            f"needs the force resisting the finger, as eq. 2 gives it; change the sign of lateral_force_n")
     notes = []
     if fit.speeds_without_sections_mps:
         missing = ", ".join(f"{s / MM:g}" for s in fit.speeds_without_sections_mps)

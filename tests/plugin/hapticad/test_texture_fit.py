@@ -173,6 +173,20 @@ class RigRecordingTest(unittest.TestCase):
         self.assertEqual(data["sections"], 4)
         self.assertEqual(data["speeds_without_sections_mm_s"], [180.0])
 
+    def test_a_force_logged_along_the_motion_is_refused_not_fitted_to_nothing(self):
+        # a rig that logs the lateral force with the motion's sign: the fit came out at
+        # f_DC -0.8 N and was set, rendering nothing, with a note saying it was felt
+        write_rig_csv(self.path("along.csv"))
+        with open(self.path("along.csv")) as f:
+            rows = [line.rstrip("\n").split(",") for line in f]
+        with open(self.path("along.csv"), "w") as f:
+            f.write(",".join(rows[0]) + "\n")
+            f.writelines(f"{t},{x},{-float(force):.6f}\n" for t, x, force in rows[1:])
+        with self.assertRaises(ValueError) as caught:
+            texture_fit.fit_files([self.path("along.csv")], 2.5, (50, 120))
+        self.assertIn("runs with the motion", str(caught.exception))
+        self.assertIn("change the sign of lateral_force_n", str(caught.exception))
+
     def test_unreadable_recordings_are_refused_by_name_and_line(self):
         with open(self.path("columns.csv"), "w") as f:
             f.write("t,x,f\n0,0,0\n")
