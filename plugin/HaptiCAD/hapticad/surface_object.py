@@ -330,6 +330,19 @@ def reference_pairs(surface):
     return pairs
 
 
+def pattern_curve_object(surface):
+    """The object whose edges a Curve pattern follows, or None (another pattern, or no
+    curve): editing or moving it changes what the surface renders."""
+    link = getattr(surface, "PatternCurve", None)
+    return link[0] if surface.Pattern == "Curve" and link else None
+
+
+def moves_with(obj, objects):
+    """True when a change of ``obj``'s shape or placement moves one of ``objects``: it is
+    one, or it holds one (a Body, an App::Part)."""
+    return any(obj is o or obj in o.InListRecursive for o in objects if o is not None)
+
+
 def read_reference_state(obj):
     """The ReferenceState entries of a surface (see face_references)."""
     try:

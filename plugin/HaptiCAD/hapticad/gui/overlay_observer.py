@@ -4,7 +4,8 @@
 A surface's overlay is drawn in global coordinates. Moving a tagged part, or the
 App::Part or Body holding it, changes where its faces are without changing anything
 of the surface itself, so this document observer redraws the overlays of the surfaces
-whose parts (or their containers) changed placement or shape. Installed once, by the
+whose parts (or their containers) changed placement or shape; and of those whose
+Curve pattern follows a sketch or edge that was edited or moved. Installed once, by the
 first surface view provider.
 """
 import FreeCAD as App
@@ -23,13 +24,14 @@ class _Observer:
             return
         if doc.Restoring:
             return
-        from ..surface_object import is_haptic_surface, reference_pairs
+        from ..surface_object import is_haptic_surface, moves_with, pattern_curve_object, reference_pairs
 
         for surface in doc.Objects:
             if not is_haptic_surface(surface) or surface is obj:
                 continue
-            parts = {o for o, _ in reference_pairs(surface)}
-            if obj in parts or any(obj in part.InListRecursive for part in parts):
+            # its parts, and the curve its stripes follow (a sketch edited or moved)
+            placing = {o for o, _ in reference_pairs(surface)} | {pattern_curve_object(surface)}
+            if moves_with(obj, placing):
                 proxy = getattr(surface.ViewObject, "Proxy", None) if surface.ViewObject else None
                 if proxy is not None and hasattr(proxy, "refresh"):
                     proxy.refresh()

@@ -12,8 +12,9 @@ recompute that reshapes several objects, are gathered into one call):
 - callback(geometry=False) when only a HapticSurface, HapticVibration, StiffnessStudy or
   SimilarityStudy changed (any
   property: material, friction, roughness, pattern, texture, vibration, the faces it
-  tags), or one was created or deleted: the surfaces are compiled again and handed to
-  the loop without a new scene (LiveSession.update_surfaces).
+  tags), or one was created or deleted, or the sketch or edge a Curve pattern follows
+  was edited or moved: the surfaces are compiled again and handed to the loop without
+  a new scene (LiveSession.update_surfaces).
 
 Either way the edit is felt without stopping the session. Changes during a recompute
 wait for its end (the shapes and the face references are then all up to date), so one
@@ -112,10 +113,20 @@ class SessionEditObserver:
             if self.dirty:
                 self._later()
 
+    def _bends_a_pattern(self, obj, prop):
+        """A change of shape or placement of the curve a Curve pattern follows (or of a
+        container that places it)."""
+        from ..surface_object import is_haptic_surface, moves_with, pattern_curve_object
+
+        if prop not in ("Shape", "Placement") or not self._ours(obj):
+            return False
+        return moves_with(obj, [pattern_curve_object(s) for s in self.doc.Objects if is_haptic_surface(s)])
+
     def slotChangedObject(self, obj, prop):
         if self._reshapes(obj, prop):
             self._changed(geometry=True)
-        elif prop not in IGNORED and self._haptic(obj) and self._felt(obj, prop):
+        elif prop not in IGNORED and ((self._haptic(obj) and self._felt(obj, prop))
+                                      or self._bends_a_pattern(obj, prop)):
             self._changed()
 
     def slotCreatedObject(self, obj):

@@ -267,6 +267,34 @@ class FeelGuiTest(unittest.TestCase):
         h.press_task_button("Close")
 
 
+    def test_editing_the_sketch_a_curve_pattern_follows_is_felt_at_once(self):
+        import Part
+        from hapticad.feel import Stroke, run_stroke, summarize
+
+        sketch = self.doc.addObject("Sketcher::SketchObject", "Guide")
+        sketch.Placement.Base = App.Vector(0, 0, 20)
+        sketch.addGeometry(Part.LineSegment(App.Vector(20, 0, 0), App.Vector(20, 30, 0)))  # along y
+        self.doc.recompute()
+        surface = HaptiCAD.surfaces_of(self.doc)[0]
+        surface.Pattern, surface.PatternCurve, surface.AcrossFriction = "Curve", (sketch, []), 2.0
+        surface.FeelRoughness = False  # the friction alone
+        self.doc.recompute()
+        panel = self.open_feel()
+
+        def along_x():
+            """Ft/Fn of a stroke along x through what the session renders now."""
+            summary = summarize(run_stroke(panel.doc_scene, Stroke((5, 15, 20), (35, 15, 20), 50, 1.0)),
+                                panel.doc_scene)
+            return summary["faces"]["Box.Face6"]["mean_ft_over_fn"]
+
+        self.assertAlmostEqual(along_x(), 1.0, delta=0.05)  # across the line: ABS's 0.5 doubled
+        sketch.movePoint(0, 1, App.Vector(5, 15, 0))  # the line turned to run along x
+        sketch.movePoint(0, 2, App.Vector(35, 15, 0))
+        self.doc.recompute()
+        h.wait(0.3)
+        self.assertIn("you feel the change now", h.widget(QtWidgets.QLabel, "feelMessage").text())
+        self.assertAlmostEqual(along_x(), 0.5, delta=0.05)  # along it now
+
     def test_reshaping_the_part_during_a_session_is_felt_at_once(self):
         stop, chart = self.press_on_the_top()
         self.assertAlmostEqual(probe_mm("proxy_m")[2], 20.0, delta=0.05)

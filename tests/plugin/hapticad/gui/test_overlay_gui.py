@@ -157,6 +157,31 @@ class OverlayTest(unittest.TestCase):
             Gui.ActiveDocument.ActiveView.getPointOnScreen(App.Vector(20, 15, 20)))
         self.assertEqual((info["Object"], info["Component"]), ("Box", "Face6"))
 
+    def test_curve_stripes_follow_an_edited_sketch(self):
+        import Part
+
+        sketch = self.doc.addObject("Sketcher::SketchObject", "Guide")
+        sketch.Placement.Base = App.Vector(0, 0, 20)
+        sketch.addGeometry(Part.LineSegment(App.Vector(20, 0, 0), App.Vector(20, 30, 0)))  # along y
+        self.doc.recompute()
+        self.top.Pattern = "Curve"
+        self.top.PatternCurve = (sketch, [])
+        self.doc.recompute()
+        h.process_events()
+        x, y = np.array([1.0, 0, 0]), np.array([0, 1.0, 0])
+        _, image = h.save_view("overlay_curve.png")
+        self.assertLessEqual(h.runs(self.scan_top(image, y)), 2)  # stripes along the line
+        self.assertGreaterEqual(h.runs(self.scan_top(image, x)), 8)
+        # the designer turns the line to run along x: the stripes turn with it (they
+        # stayed as drawn until something else redrew them)
+        sketch.movePoint(0, 1, App.Vector(5, 15, 0))
+        sketch.movePoint(0, 2, App.Vector(35, 15, 0))
+        self.doc.recompute()
+        h.process_events()
+        _, image = h.save_view("overlay_curve_edited.png")
+        self.assertLessEqual(h.runs(self.scan_top(image, x)), 2)
+        self.assertGreaterEqual(h.runs(self.scan_top(image, y)), 8)
+
     def test_the_overlay_follows_a_moved_part_and_a_moved_app_part(self):
         def top_points():
             node = self.top.ViewObject.Proxy._faces.getChild(0)
