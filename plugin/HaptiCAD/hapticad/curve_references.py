@@ -26,6 +26,11 @@ OK, REMATCHED, BROKEN = "ok", "rematched", "broken"
 RELATIVE_TOLERANCE = 1e-6  # of the object's size
 
 
+# a Curve pattern without its curve: never picked, or the sketch deleted since
+NO_CURVE = ("the Curve pattern needs a sketch or edge to follow and has none (none was picked, or it was deleted): "
+            "select one and press Use selection, or choose another pattern")
+
+
 def _vec(v):
     return [float(v.x), float(v.y), float(v.z)]
 

@@ -83,7 +83,11 @@ def _as_bspline(edges):
         return curve
     import Part
 
-    wire = Part.Wire(Part.__sortEdges__(edges))
+    pieces = Part.sortEdges(edges)  # groups of connected edges
+    if len(pieces) > 1:  # a wire of them would keep the first piece and drop the rest
+        raise ValueError(f"the pattern curve is {len(pieces)} separate pieces: a Curve pattern follows one "
+                         f"connected curve; join them, or pick the edges of one")
+    wire = Part.Wire(pieces[0])
     return wire.approximate(1e-7, 1e-4, 200, 7)
 
 
@@ -91,7 +95,7 @@ def curve_pattern(surface, frame):
     """The core CurvePattern of a surface: the curve, in a plane through the face frame's
     origin, the lookup axis y along the curve's chord. Raises ValueError clearly."""
     if surface.PatternCurve is None:
-        raise ValueError(f"{surface.Label}: the Curve pattern needs a sketch or edge in PatternCurve")
+        raise ValueError(f"{surface.Label}: {curve_references.NO_CURVE}")
     problem = curve_references.problem(curve_references.loads(getattr(surface, "PatternCurveState", "")),
                                        surface.PatternCurve[0].Label)
     if problem:
@@ -102,7 +106,10 @@ def curve_pattern(surface, frame):
         raise ValueError(f"{surface.Label}: {exc}") from None
     if not edges:
         raise ValueError(f"{surface.Label}: PatternCurve {surface.PatternCurve[0].Label} has no edges")
-    curve = _as_bspline(edges)
+    try:
+        curve = _as_bspline(edges)
+    except ValueError as exc:
+        raise ValueError(f"{surface.Label}: {surface.PatternCurve[0].Label}: {exc}") from None
     if curve.isPeriodic():
         curve = curve.copy()
         curve.setNotPeriodic()

@@ -265,7 +265,7 @@ def validate(obj, compile_faces=True):
         problems.append(", ".join(f"{o.Label}.{f} is also tagged by {other.Label}" for o, f, other in shared)
                         + ": a face feels one way; remove it from one of the surfaces")
     if obj.Pattern == "Curve" and obj.PatternCurve is None:
-        problems.append("the Curve pattern needs a sketch or edge in PatternCurve")
+        problems.append(curve_references.NO_CURVE)
     elif obj.Pattern == "Curve":
         problem = curve_problem(obj)
         if problem:

@@ -206,6 +206,15 @@ class CompileTest(unittest.TestCase):
         s.PatternCurve = (hook, [])
         with self.assertRaisesRegex(ValueError, "turns back or touches itself"):
             compile_surface(s, self.top)
+        # two separate strokes: a wire of them kept the first and dropped the other
+        two = self.sketch([Part.LineSegment(V(0, 0, 0), V(0, 10, 0)), Part.LineSegment(V(20, 20, 0), V(30, 40, 0))])
+        s.PatternCurve = (two, [])
+        with self.assertRaisesRegex(ValueError, "2 separate pieces: a Curve pattern follows one connected curve"):
+            compile_surface(s, self.top)
+        # joined end to end they are one curve
+        bent = self.sketch([Part.LineSegment(V(0, 0, 0), V(10, 10, 0)), Part.LineSegment(V(10, 10, 0), V(20, 30, 0))])
+        s.PatternCurve = (bent, [])
+        compile_surface(s, self.top)
 
     def test_a_texture_the_renderer_would_clip_or_that_grows_with_each_harmonic_is_told(self):
         s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], Texture="Paper f_DC 0.325 f_vis -0.2")
