@@ -8,9 +8,14 @@
 //   eps < s < eps + w       mu_s -> mu_d, cubic smoothstep (continuous, C1 at eps + w)
 //   s >= eps + w            mu_d
 // eps is Baraff's threshold below which contact counts as static; w the width of the
-// static-to-dynamic transition. w = 0 gives the paper's piecewise model with its jump
-// of mu_s - mu_d at eps; the default w = eps keeps it continuous. With mu_s == mu_d the
-// transition is flat and the model is the one the paper draws.
+// static-to-dynamic transition. w = 0 gives Baraff's piecewise form (Fig. 3), with a
+// jump of mu_s - mu_d at eps; the paper's own model (Fig. 4) is "a continuous function
+// of velocity", which the default w = eps keeps. With mu_s == mu_d the transition is
+// flat.
+//
+// Eq. 2 as printed, f_t = mu * v_hat, calls mu an "equivalent friction coefficient" and
+// leaves out the normal force and the sign; read here as a coefficient (times f_n) of a
+// force that opposes the sliding velocity.
 //
 // Stribeck option (stribeck_speed_mps = v_s > 0): above eps the decay is exponential,
 //   mu_d + (mu_s - mu_d) exp(-(s - eps) / v_s),
