@@ -187,7 +187,22 @@ def texture_notes(surface):
     if texture["TextureAlpha"] < 0:
         notes.append(f"alpha_h {texture['TextureAlpha']:g} makes each harmonic stronger than the one before "
                      "(the paper's decay is 2.5)")
+    from .surface_object import reference_pairs
+
+    curved = sorted({f"{o.Label}.{sub}" for o, sub in reference_pairs(surface)
+                     if _is_curved(o, sub)})
+    if curved:  # the grating runs along the face frame's e2, a straight line (surfaces.h)
+        notes.append(f"on curved {', '.join(curved)} the grating is laid out on the face's tangent plane at its "
+                     f"centre: its period is felt as given near there and longer away from it (twice as long 60° "
+                     f"round a cylinder)")
     return notes
+
+
+def _is_curved(obj, sub):
+    try:
+        return obj.Shape.getElement(sub).Surface.TypeId != "Part::GeomPlane"
+    except Exception:  # noqa: BLE001 (a face gone: validate() says so)
+        return False
 
 
 def compile_surface(surface, face):

@@ -406,6 +406,21 @@ def reference_status(surface):
             for o, sub in reference_pairs(surface)]
 
 
+def hidden_part_notes(surface):
+    """A sentence for each part the surface tags that is hidden, naming what uses it: a
+    Part Fillet or Cut made after tagging hides the tagged shape, and Feel renders that
+    hidden shape, not the one on screen."""
+    notes = []
+    for obj in dict.fromkeys(o for o, _ in reference_pairs(surface)):
+        if getattr(obj, "Visibility", True):
+            continue
+        users = [o.Label for o in obj.InList if hasattr(o, "Shape") and getattr(o, "Visibility", False)]
+        by = f", used by {', '.join(users)}" if users else ""
+        notes.append(f"{obj.Label} is hidden{by}: you feel {obj.Label}'s shape, not what is shown"
+                     + (f"; tag the faces of {users[0]} instead" if users else ""))
+    return notes
+
+
 def active_reference_pairs(surface):
     """reference_pairs without the broken ones: what the scene and the overlay use."""
     status = {(o, f): s for o, f, s in reference_status(surface)}

@@ -230,6 +230,15 @@ class CompileTest(unittest.TestCase):
         s.TextureBeta, s.TextureAlpha = 0.125, -50.0
         self.assertTrue(any("alpha_h -50 makes each harmonic stronger" in n for n in texture_notes(s)))
 
+    def test_a_texture_on_a_curved_face_is_said_to_be_laid_flat(self):
+        cylinder = self.doc.addObject("Part::Cylinder", "Handle")
+        self.doc.recompute()
+        s = HaptiCAD.make_surface(self.doc, [(cylinder, "Face1")], Texture="Paper f_DC 0.325 f_vis -0.2")
+        self.assertTrue(any("on curved Handle.Face1 the grating is laid out on the face's tangent plane" in n
+                            for n in texture_notes(s)), texture_notes(s))
+        flat = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], Texture="Paper f_DC 0.325 f_vis -0.2")
+        self.assertEqual(texture_notes(flat), [])
+
     def test_roughness_and_texture(self):
         p = compile_surface(self.surface(RoughnessCategory=6, RoughnessHeight=0.1,
                                          Texture="Paper f_DC 0.675 f_vis -0.2", TexturePeriod=3.0,

@@ -157,6 +157,21 @@ class MakeSurfaceTest(unittest.TestCase):
         second.References = [(self.box, ("Face1",))]
         self.assertEqual(surface_object.validate(second), [])
 
+    def test_a_tagged_part_hidden_behind_a_later_feature_is_said(self):
+        # a Part Fillet (here a Refine) made on a tagged cut hides it: Feel renders the
+        # hidden shape, so the panels say so and name what to tag instead
+        from hapticad.surface_object import hidden_part_notes
+
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS")
+        self.assertEqual(hidden_part_notes(s), [])
+        refined = self.doc.addObject("Part::Refine", "Refined")
+        refined.Source = self.box
+        self.doc.recompute()
+        self.box.Visibility = False  # what the GUI does when the feature is made
+        self.assertEqual(hidden_part_notes(s), [f"{self.box.Label} is hidden, used by Refined: you feel "
+                                                f"{self.box.Label}'s shape, not what is shown; tag the faces of "
+                                                f"Refined instead"])
+
     def test_a_face_from_another_document_is_refused(self):
         other = App.newDocument("Other")
         try:

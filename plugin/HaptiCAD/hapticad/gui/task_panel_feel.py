@@ -15,6 +15,7 @@ from PySide2 import QtCore, QtGui, QtWidgets
 
 from .. import _core, feel_session, icon, preferences, vibration_object
 from ..similarity_study import similarity_studies_of
+from ..surface_object import hidden_part_notes, surfaces_of
 from ..stiffness_study import studies_of
 from .busy_cursor import busy_cursor
 from .document_closing import DocumentClosingObserver
@@ -207,12 +208,14 @@ class FeelTaskPanel:
         self.set_running(True)
         self.show_message(("Move the mouse over the part; the wheel or the slider sets how hard you press."
                            if self.session.simulated else
-                           "The device drives the probe." + _note(self.session.reach_note)) + self.rate_notes())
+                           "The device drives the probe." + _note(self.session.reach_note)) + self.session_notes())
         return True
 
-    def rate_notes(self):
-        """What the servo rate keeps a vibration from being felt as set, as notes."""
-        return "".join(_note(n) for n in vibration_object.rate_notes(self.doc, self.session.rate_hz))
+    def session_notes(self):
+        """As notes: what the servo rate keeps a vibration from being felt as set, and
+        tagged parts hidden behind what is shown (a fillet made after tagging)."""
+        hidden = [n for s in surfaces_of(self.doc) for n in hidden_part_notes(s)]
+        return "".join(_note(n) for n in vibration_object.rate_notes(self.doc, self.session.rate_hz) + hidden)
 
     def edited(self, geometry):
         """The designer edited the document while the session runs: a surface (felt from
@@ -236,14 +239,14 @@ class FeelTaskPanel:
         if self.steering is not None:
             self.steering.doc_scene = self.doc_scene
         if applied == "surfaces":
-            self.show_message("Surface edited: you feel the change now." + self.rate_notes())
+            self.show_message("Surface edited: you feel the change now." + self.session_notes())
         elif geometry:
             self.show_message("Geometry edited: you feel the new shape now." + _note(self.session.reach_note)
-                              + self.rate_notes())
+                              + self.session_notes())
         else:
             self.show_message("Surface edited on a part the session did not hold: the scene was "
                               "built again and you feel it now." + _note(self.session.reach_note)
-                              + self.rate_notes())
+                              + self.session_notes())
 
     def presented(self):
         """A similarity study put another texture on its face: the loop gets the surfaces
