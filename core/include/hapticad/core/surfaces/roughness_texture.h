@@ -13,6 +13,15 @@
 //   normal    the force tilts by the slope, n' = normalize(n - grad h) (bump mapping);
 //   friction  mu scales by 1 + m (b - 1/4) 4/3, in [1 - m/3, 1 + m]: more on the
 //             balls, less between, the material's mu on average over the face.
+// The category changes the grid, not the face's mean friction: the paper's Fig. 9
+// stripes "represent different surface roughness and therefore different friction",
+// but it gives no coefficient per category ("desirable to relate material and surface
+// roughness combinations directly to friction coefficient. This can be done through a
+// lot of experiments"). So mu stays the material's (measured at mu 0.4: 0.402 a quarter
+// spacing off a row for every category) and what the hand feels differs by the grid's
+// spatial period (at the default height, 5 % of the spacing, the bumps' steepest slope
+// is 0.157 at every category); a measured mu for a material and finish goes in the
+// surface's friction values.
 // A stroke at speed v therefore carries the spatial period g, i.e. v / g Hz: at 1 kHz
 // and 50 mm/s category 1 (0.1 mm) sits at the Nyquist limit; use 5-10 kHz for the
 // finest categories (field notes: textures want 5-10 kHz).
