@@ -214,6 +214,8 @@ class HapticSurface(SchemaState):
             _write_reference_shapes(obj)
         if not obj.PatternAnchor:
             record_pattern_anchor(obj)  # written before the centre moved with its part
+        else:
+            reanchor_copy(obj)
         if not obj.PatternCurveState and curve_references.named_edges(obj.PatternCurve):
             # written before curve edges were signed: sign them as they are now
             _write_curve_state(obj, curve_references.sign(obj.PatternCurve))
@@ -512,6 +514,24 @@ def circular_centre_axis(obj):
     placement = _global_placement(part)
     return (placement.multVec(App.Vector(*state["centre"])),
             placement.Rotation.multVec(App.Vector(*state["axis"])))
+
+
+def reanchor_copy(obj):
+    """A surface copied with its part (Edit > Duplicate selection) tags the copy but is
+    anchored to the original: its circles stayed on the original part and moved with
+    it. The copy's frame is the original's, so the same local centre and axis are
+    anchored to the copy (the first tagged part) and followed."""
+    pairs = reference_pairs(obj)
+    try:
+        state = json.loads(obj.PatternAnchor)
+        named = state["object"]
+    except (ValueError, KeyError, TypeError):
+        return
+    if not pairs or named in {o.Name for o, _ in pairs}:
+        return
+    state["object"] = pairs[0][0].Name
+    obj.PatternAnchor = json.dumps(state, sort_keys=True)
+    follow_pattern_anchor(obj)
 
 
 def follow_pattern_anchor(obj):

@@ -172,6 +172,31 @@ class MakeSurfaceTest(unittest.TestCase):
                                                 f"{self.box.Label}'s shape, not what is shown; tag the faces of "
                                                 f"Refined instead"])
 
+    def test_a_circular_pattern_copied_with_its_part_is_centred_on_the_copy(self):
+        # Edit > Duplicate selection with the part: the copy's circles stayed on the
+        # original part's hole and moved with the original
+        cylinder = self.doc.addObject("Part::Cylinder", "Hole")
+        cylinder.Radius, cylinder.Height = 5, 30
+        cylinder.Placement.Base = App.Vector(65, 20, -5)
+        self.box.Length, self.box.Width, self.box.Height = 80, 40, 20
+        cut = self.doc.addObject("Part::Cut", "Cut")
+        cut.Base, cut.Tool = self.box, cylinder
+        self.doc.recompute()
+        s = HaptiCAD.make_surface(self.doc, [(cut, "Face3")], material="ABS", Pattern="Circular",
+                                  PatternCenter=(65, 20, 20))
+        self.doc.recompute()
+        copy = next(o for o in self.doc.copyObject([s], True) if HaptiCAD.is_haptic_surface(o))
+        self.doc.recompute()
+        (part, _), = HaptiCAD.reference_pairs(copy)
+        self.assertIsNot(part, cut)
+        part.Placement.Base = App.Vector(0, 100, 0)
+        self.doc.recompute()
+        self.assertEqual(tuple(copy.PatternCenter), (65, 120, 20))  # on the copy's hole
+        cut.Placement.Base = App.Vector(200, 0, 0)
+        self.doc.recompute()
+        self.assertEqual(tuple(copy.PatternCenter), (65, 120, 20))  # not moved by the original
+        self.assertEqual(tuple(s.PatternCenter), (265, 20, 20))
+
     def test_a_face_from_another_document_is_refused(self):
         other = App.newDocument("Other")
         try:
