@@ -7,6 +7,7 @@ asserted (they are benchmarks).
 Environment: HAPTICAD_CLI (the launcher)."""
 import json
 import os
+import struct
 import subprocess
 import tempfile
 import unittest
@@ -125,6 +126,68 @@ class BenchMeshCommandTest(unittest.TestCase):
         done = bench("--icosphere", "1000", "--proxy", "cube")
         self.assertEqual(done.returncode, 2)
         self.assertIn("--proxy", done.stderr)
+
+    def test_numbers_out_of_range_name_the_option_and_its_bounds(self):
+        for args, message in (
+                (("--icosphere", "2147483647"), "--icosphere takes at most 10000000 triangles (about 4.7 GB "
+                                                "of memory to build); 2147483647 would need about 1.01e+03 GB"),
+                (("--icosphere", "99999999999999999999"), "--icosphere takes at most 10000000 triangles"),
+                (("--icosphere", "2.5"), "--icosphere must be a whole number of triangles, got '2.5'"),
+                (("--icosphere", "0"), "--icosphere needs a positive number of triangles, got 0"),
+                (("--icosphere", "80", "--proxy", "sphere:0"),
+                 "--proxy sphere:R_MM needs R from 0.001 mm to 1000 mm, got 0 (for a point proxy give --proxy point)"),
+                (("--icosphere", "80", "--proxy", "sphere:1e308"), "needs R from 0.001 mm to 1000 mm, got 1e308"),
+                (("--icosphere", "80", "--radius", "1e308"), "--radius must be from 0.01 mm to 10000 mm, got 1e+308 mm"),
+                (("--icosphere", "80", "--radius", "1e-300"), "--radius must be from 0.01 mm to 10000 mm"),
+                (("--icosphere", "80", "--ticks", "1e308"), "--ticks must be from 100 to 10000000"),
+                (("--icosphere", "80", "--ticks", "2.5"), "--ticks must be a whole number, got '2.5'"),
+                (("--icosphere", "80", "--seed", "99999999999999999999"), "--seed must be from 0 to 4294967295"),
+                (("--icosphere", "80", "--warm-ahead", "99999999999"), "--warm-ahead must be from 0 to 10000000"),
+                (("--icosphere", "80", "--ticks", "1000", "--warm-ahead", "2000"),
+                 "--warm-ahead must be at most --ticks (1000), got 2000")):
+            with self.subTest(args=args):
+                done = bench(*args)
+                self.assertEqual(done.returncode, 2, done.stdout[:200])
+                self.assertIn(message, done.stderr)
+                self.assertNotIn("bad_alloc", done.stderr)
+        # the bounds themselves are taken
+        done = bench("--icosphere", "80", "--ticks", "100", "--warm-ahead", "100", "--proxy", "sphere:0.001",
+                     "--radius", "0.01")
+        self.assertEqual(done.returncode, 0, done.stderr)
+
+    def test_a_mesh_file_that_cannot_be_used_says_why(self):
+        tet_faces = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"
+        with tempfile.TemporaryDirectory() as tmp:
+            files = {
+                "nan.off": "OFF\n4 4 0\nnan 0 0\n10 0 0\n0 10 0\n0 0 10\n" + tet_faces,
+                "inf.off": "OFF\n4 4 0\n0 0 0\n10 0 0\n0 inf 0\n0 0 10\n" + tet_faces,
+                "nan.obj": "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n",
+                "nan.stl": "solid x\n facet normal 0 0 1\n outer loop\n vertex nan 0 0\n vertex 1 0 0\n"
+                           " vertex 0 1 0\n endloop\n endfacet\nendsolid x\n",
+            }
+            for name, text in files.items():
+                with open(os.path.join(tmp, name), "w") as f:
+                    f.write(text)
+            # a binary STL: 80-byte header, one facet whose first vertex is NaN
+            binary = os.path.join(tmp, "nan_binary.stl")
+            with open(binary, "wb") as f:
+                f.write(b"\0" * 80 + struct.pack("<I", 1)
+                        + struct.pack("<12f", 0, 0, 1, float("nan"), 0, 0, 1, 0, 0, 0, 1, 0) + b"\0\0")
+            os.mkdir(os.path.join(tmp, "folder.stl"))
+            for name, message in (
+                    ("missing.off", "missing.off: no such file"),
+                    ("folder.stl", "folder.stl: is a folder, not a mesh file (give an OFF, OBJ, STL or PLY file)"),
+                    ("nan.off", "nan.off: line 3: 'nan' is not a finite number; every vertex needs three finite "
+                                "coordinates"),
+                    ("inf.off", "inf.off: line 5: 'inf' is not a finite number"),
+                    ("nan.obj", "nan.obj: line 2: 'nan' is not a finite number"),
+                    ("nan.stl", "nan.stl: line 4: 'nan' is not a finite number"),
+                    ("nan_binary.stl", "nan_binary.stl: face 1 has a vertex that is not finite (nan, 0, 0); "
+                                       "every vertex needs three finite coordinates")):
+                with self.subTest(name=name):
+                    done = bench(os.path.join(tmp, name), "--ticks", "200")
+                    self.assertEqual(done.returncode, 1, done.stdout[:200])
+                    self.assertIn(message, done.stderr)
 
 
 if __name__ == "__main__":

@@ -98,5 +98,15 @@ class CohortCommandTest(unittest.TestCase):
                 self.assertIn(message, proc.stderr)
 
 
+    def test_an_empty_or_folder_csv_name_is_refused(self):
+        for name, message in (("", "argument --csv: an empty name: give the CSV file to write, like cohort.csv"),
+                              (self.tmp.name, f"argument --csv: {self.tmp.name} is a folder: give the CSV file to "
+                                              f"write in it, like {os.path.join(self.tmp.name, 'cohort.csv')}")):
+            with self.subTest(name=name):
+                proc = run_cli("cohort", self.path, "--csv", name)
+                self.assertEqual(proc.returncode, 2, proc.stderr)
+                self.assertIn(message, proc.stderr)
+                self.assertEqual(proc.stdout, "")
+
 if __name__ == "__main__":
     unittest.main()

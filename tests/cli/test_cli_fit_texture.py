@@ -102,5 +102,46 @@ class FitTextureCommandTest(unittest.TestCase):
         self.assertEqual(os.path.getmtime(path), before)
 
 
+    def test_counts_beyond_their_range_name_the_option_and_the_range(self):
+        for args, message in ((("--harmonics", "99999999999999999999"),
+                               "argument --harmonics: 99999999999999999999 is out of range: give a whole number "
+                               "from 2 to 8"),
+                              (("--harmonics", "9"), "--harmonics: 9 is out of range: give a whole number from 2 to 8"),
+                              (("--harmonics", "2.5"), "--harmonics: '2.5' is not a whole number"),
+                              (("--min-periods", "2147483648"),
+                               "argument --min-periods: 2147483648 is out of range: give a whole number from 6 to "
+                               "100000"),
+                              (("--min-periods", "5"), "--min-periods: 5 is out of range")):
+            with self.subTest(args=args):
+                proc = run_cli("fit-texture", self.rig, "--period", "2.5", *args)
+                self.assertEqual(proc.returncode, 2, proc.stderr)
+                self.assertIn(message, proc.stderr)
+                self.assertNotIn("Traceback", proc.stderr)
+
+    def test_the_plot_reported_is_the_file_written(self):
+        # no extension: .png is added, and that file is what the JSON and the text name
+        base = os.path.join(self.tmp.name, "noext")
+        proc = run_cli("fit-texture", self.rig, "--period", "2.5", "--speeds", "50,120", "--json", "--plot", base)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertEqual(json.loads(proc.stdout)["plot"], base + ".png")
+        with open(base + ".png", "rb") as f:
+            self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+        text = run_cli("fit-texture", self.rig, "--period", "2.5", "--speeds", "50,120", "--plot", base)
+        self.assertIn(f"plot: {base}.png", text.stdout)
+        # a folder, another extension or no name at all: refused before anything is fitted or written
+        folder = os.path.join(self.tmp.name, "plots")
+        os.mkdir(folder)
+        for plot, message in ((folder, f"argument --plot: {folder} is a folder: give the PNG file to write in it, "
+                                       f"like {os.path.join(folder, 'plot.png')}"),
+                              (os.path.join(self.tmp.name, "fit.txt"),
+                               "the plot is a PNG image, so the name must end in .png"),
+                              ("", "argument --plot: an empty name: give the PNG file to write")):
+            with self.subTest(plot=plot):
+                proc = run_cli("fit-texture", self.rig, "--period", "2.5", "--plot", plot)
+                self.assertEqual(proc.returncode, 2, proc.stderr)
+                self.assertIn(message, proc.stderr)
+        self.assertFalse(os.path.exists(folder + ".png"))
+        self.assertFalse(os.path.exists(os.path.join(self.tmp.name, "fit.txt")))
+
 if __name__ == "__main__":
     unittest.main()

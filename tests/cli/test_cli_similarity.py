@@ -114,5 +114,27 @@ class SimilarityCommandTest(unittest.TestCase):
         self.assertFalse(os.path.exists(os.path.join(self.tmp.name, "x.png")))
 
 
+    def test_the_plot_reported_is_the_file_written_and_a_png(self):
+        base = os.path.join(self.tmp.name, "space_noext")
+        proc = run_cli("similarity", self.path, "--study", "Gratings", "--json", "--plot", base)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertEqual(json.loads(proc.stdout)[0]["plot"], base + ".png")
+        with open(base + ".png", "rb") as f:
+            self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+        self.assertFalse(os.path.exists(base))
+        proc = run_cli("similarity", self.path, "--study", "Gratings", "--plot", base)
+        self.assertIn(f"plot: {base}.png", proc.stdout)
+        txt = os.path.join(self.tmp.name, "space.txt")
+        for plot, message in ((txt, f"argument --plot: {txt}: the plot is a PNG image, so the name must end in "
+                                    f".png (like {os.path.join(self.tmp.name, 'space.png')}), not .txt"),
+                              (self.tmp.name, f"argument --plot: {self.tmp.name} is a folder"),
+                              ("", "argument --plot: an empty name: give the PNG file to write, like plot.png")):
+            with self.subTest(plot=plot):
+                proc = run_cli("similarity", self.path, "--study", "Gratings", "--plot", plot)
+                self.assertEqual(proc.returncode, 2, proc.stderr)
+                self.assertIn(message, proc.stderr)
+                self.assertNotIn("Traceback", proc.stderr)
+        self.assertFalse(os.path.exists(txt))
+
 if __name__ == "__main__":
     unittest.main()

@@ -42,8 +42,18 @@
 namespace hapticad {
 namespace {
 
+// Bounds of the options, said in their messages. The icosphere is built, repaired and
+// indexed at about 470 bytes a triangle at its peak (2 M triangles: 0.94 GB); a tick's
+// path, proxy and timing take about 150 bytes.
+constexpr long long kMaxIcosphere = 10000000;
+constexpr double kBuildBytesPerTriangle = 470.0;
+constexpr long long kMaxTicks = 10000000;
+constexpr double kMinRadiusMm = 0.01, kMaxRadiusMm = 10000.0;  // 10 um to 10 m
+constexpr double kMinProxyMm = 0.001, kMaxProxyMm = 1000.0;    // 1 um to 1 m
+
 struct Options {
   std::string file;
+  bool icosphere_given = false;
   long long icosphere = 0;
   double radius_mm = 50.0;
   long long ticks = 20000;
@@ -75,6 +85,31 @@ double Number(const std::string& text, const char* what) {
   }
 }
 
+// A whole number from lo to hi; `why_hi` says what the maximum is for.
+long long Integer(const std::string& text, const std::string& what, long long lo, long long hi,
+                  const std::string& why_hi = "") {
+  const double v = Number(text, what.c_str());
+  if (v != std::floor(v)) Usage(what + " must be a whole number, got '" + text + "'");
+  if (v < static_cast<double>(lo) || v > static_cast<double>(hi)) {
+    Usage(what + " must be from " + std::to_string(lo) + " to " + std::to_string(hi) + why_hi +
+          ", got " + text);
+  }
+  return static_cast<long long>(v);
+}
+
+std::string Gigabytes(double bytes) {
+  if (!(bytes < 1e18)) return "more than any computer holds";
+  char text[32];
+  std::snprintf(text, sizeof text, "about %.3g GB", bytes / 1e9);
+  return text;
+}
+
+std::string Millimetres(double mm) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g mm", mm);
+  return text;
+}
+
 Options Parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
@@ -83,16 +118,31 @@ Options Parse(int argc, char** argv) {
       if (i + 1 >= argc) Usage(a + " needs a value");
       return argv[++i];
     };
-    if (a == "--icosphere")
-      o.icosphere = static_cast<long long>(Number(next(), "--icosphere"));
-    else if (a == "--radius")
+    if (a == "--icosphere") {
+      const std::string text = next();
+      const double v = Number(text, "--icosphere");
+      if (v != std::floor(v))
+        Usage("--icosphere must be a whole number of triangles, got '" + text + "'");
+      if (v < 1) Usage("--icosphere needs a positive number of triangles, got " + text);
+      if (v > kMaxIcosphere) {
+        Usage("--icosphere takes at most " + std::to_string(kMaxIcosphere) + " triangles (" +
+              Gigabytes(kMaxIcosphere * kBuildBytesPerTriangle) + " of memory to build); " + text +
+              " would need " + Gigabytes(v * kBuildBytesPerTriangle));
+      }
+      o.icosphere = static_cast<long long>(v);
+      o.icosphere_given = true;
+    } else if (a == "--radius") {
       o.radius_mm = Number(next(), "--radius");
-    else if (a == "--ticks")
-      o.ticks = static_cast<long long>(Number(next(), "--ticks"));
+      if (!(o.radius_mm >= kMinRadiusMm && o.radius_mm <= kMaxRadiusMm)) {
+        Usage("--radius must be from " + Millimetres(kMinRadiusMm) + " to " +
+              Millimetres(kMaxRadiusMm) + ", got " + Millimetres(o.radius_mm));
+      }
+    } else if (a == "--ticks")
+      o.ticks = Integer(next(), "--ticks", 100, kMaxTicks, " (about 150 bytes a tick)");
     else if (a == "--seed")
-      o.seed = static_cast<unsigned>(Number(next(), "--seed"));
+      o.seed = static_cast<unsigned>(Integer(next(), "--seed", 0, 4294967295LL));
     else if (a == "--warm-ahead")
-      o.warm_ahead = static_cast<long long>(Number(next(), "--warm-ahead"));
+      o.warm_ahead = Integer(next(), "--warm-ahead", 0, kMaxTicks, " (0: off; at most --ticks)");
     else if (a == "--json")
       continue;
     else if (a == "--convex-pieces") {
@@ -107,21 +157,26 @@ Options Parse(int argc, char** argv) {
       const std::string p = next();
       if (p == "point")
         o.sphere_radius_mm = 0.0;
-      else if (p.rfind("sphere:", 0) == 0)
+      else if (p.rfind("sphere:", 0) == 0) {
         o.sphere_radius_mm = Number(p.substr(7), "sphere radius");
-      else
+        if (!(o.sphere_radius_mm >= kMinProxyMm && o.sphere_radius_mm <= kMaxProxyMm)) {
+          Usage("--proxy sphere:R_MM needs R from " + Millimetres(kMinProxyMm) + " to " +
+                Millimetres(kMaxProxyMm) + ", got " + p.substr(7) +
+                " (for a point proxy give --proxy point)");
+        }
+      } else
         Usage("--proxy must be point or sphere:R_MM");
     } else if (!a.empty() && a[0] == '-')
       Usage("unknown option " + a);
     else
       o.file = a;
   }
-  if (o.file.empty() && o.icosphere == 0) Usage("give a mesh file or --icosphere TRIANGLES");
-  if (!o.file.empty() && o.icosphere != 0) Usage("give a mesh file or --icosphere, not both");
-  if (o.icosphere < 0) Usage("--icosphere needs a positive number of triangles");
-  if (o.ticks < 100) Usage("--ticks must be at least 100");
-  if (o.warm_ahead < 0) Usage("--warm-ahead must be 0 (off) or a number of ticks");
-  if (!(o.radius_mm > 0) || o.sphere_radius_mm < 0) Usage("radii must be positive");
+  if (o.file.empty() && !o.icosphere_given) Usage("give a mesh file or --icosphere TRIANGLES");
+  if (!o.file.empty() && o.icosphere_given) Usage("give a mesh file or --icosphere, not both");
+  if (o.warm_ahead > o.ticks) {
+    Usage("--warm-ahead must be at most --ticks (" + std::to_string(o.ticks) + "), got " +
+          std::to_string(o.warm_ahead));
+  }
   return o;
 }
 

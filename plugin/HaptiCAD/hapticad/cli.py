@@ -29,6 +29,45 @@ def _stroke(text):
     return _point(parts[0]), _point(parts[1])
 
 
+def _count(lo, hi):
+    """An argparse type: a whole number from lo to hi (the option names itself in argparse's message)."""
+    def parse(text):
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not a whole number: give one from {lo} to {hi}") from None
+        if not lo <= value <= hi:
+            raise argparse.ArgumentTypeError(f"{text} is out of range: give a whole number from {lo} to {hi}")
+        return value
+    return parse
+
+
+def _output_file(kind, example):
+    """An argparse type: a file to write, not empty and not a folder. For a PNG, a name without an
+    extension gets .png (what is reported is the file written) and any other extension is refused."""
+    def parse(text):
+        if not text.strip():
+            raise argparse.ArgumentTypeError(f"an empty name: give the {kind} file to write, like {example}")
+        if os.path.isdir(text):
+            raise argparse.ArgumentTypeError(f"{text} is a folder: give the {kind} file to write in it, like "
+                                             f"{os.path.join(text, example)}")
+        if kind == "PNG":
+            extension = os.path.splitext(text)[1]
+            if not extension:
+                text += ".png"
+            elif extension.lower() != ".png":
+                raise argparse.ArgumentTypeError(f"{text}: the plot is a PNG image, so the name must end in "
+                                                 f".png (like {os.path.splitext(text)[0]}.png), not {extension}")
+            if os.path.isdir(text):
+                raise argparse.ArgumentTypeError(f"{text} is a folder: give the {kind} file to write")
+        return text
+    return parse
+
+
+_png_file = _output_file("PNG", "plot.png")
+_csv_file = _output_file("CSV", "cohort.csv")
+
+
 def cmd_feel(args):
     App = ensure_freecad()
     from . import accuracy, preferences
@@ -127,6 +166,9 @@ def cmd_accuracy_table(args):
     print(accuracy_table.markdown(rows))
     return None
 
+
+# a section of more periods than this is longer than any rig's recording (the range is stated)
+MAX_MIN_PERIODS = 100000
 
 BENCH_MESH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "hapticad-bench-mesh")
 
@@ -294,7 +336,9 @@ def cmd_similarity(args):
                 from .similarity_plot import plot_space
 
                 plot_space(args.plot, analysis, f"{study.Label}: perceptual space")
-            lines.append(similarity_study.describe(study, analysis))
+                result[-1]["plot"] = os.path.abspath(args.plot)  # where it went: the file written
+            lines.append(similarity_study.describe(study, analysis)
+                         + (f"\nplot: {os.path.abspath(args.plot)}" if args.plot else ""))
         if all("error" in r for r in result):  # said once, as the command's error
             raise ValueError("; ".join(r["error"] for r in result))
         if not args.json:
@@ -343,7 +387,7 @@ def build_parser():
     table = sub.add_parser("accuracy-table", help="speed against accuracy of each accuracy preset "
                                                   "on an analytic sphere and cylinder")
     table.add_argument("--json", action="store_true", help="print JSON (default: a Markdown table)")
-    table.add_argument("--plot", metavar="PNG", help="also draw the errors and tick cost against triangles")
+    table.add_argument("--plot", type=_png_file, metavar="PNG", help="also draw the errors and tick cost against triangles")
     table.set_defaults(run=cmd_accuracy_table)
     devices = sub.add_parser("devices", help="list the haptic devices (the simulated hand and HID devices)")
     devices.add_argument("--json", action="store_true", help="print JSON")
@@ -363,9 +407,10 @@ def build_parser():
                      help="how far a section's speed may stray from its target (2.5 %%)")
     fit.add_argument("--lowpass", type=float, default=1000.0, metavar="HZ",
                      help="first-order low-pass on the force, 0 for none (1000, as the paper's rig)")
-    fit.add_argument("--harmonics", type=int, default=3, help="harmonic peaks fitted (3, as the paper)")
-    fit.add_argument("--min-periods", type=int, default=6, metavar="N", help="shortest section, periods (6)")
-    fit.add_argument("--plot", metavar="PNG", help="draw the spectra and the fits against speed")
+    fit.add_argument("--harmonics", type=_count(2, 8), default=3, help="harmonic peaks fitted, 2 to 8 (3, as the paper)")
+    fit.add_argument("--min-periods", type=_count(6, MAX_MIN_PERIODS), default=6, metavar="N",
+                     help=f"shortest section, periods, 6 to {MAX_MIN_PERIODS} (6)")
+    fit.add_argument("--plot", type=_png_file, metavar="PNG", help="draw the spectra and the fits against speed")
     fit.add_argument("--apply", metavar="FCSTD", help="set the fitted texture on a surface of this document and save it")
     fit.add_argument("--surface", metavar="NAME", help="the haptic surface (name or label) --apply sets")
     fit.add_argument("--json", action="store_true", help="print JSON")
@@ -374,7 +419,7 @@ def build_parser():
     coh = sub.add_parser("cohort", help="a document's stiffness studies: participants' preferences by group")
     coh.add_argument("file", help="FreeCAD document (.FCStd) with StiffnessStudy objects")
     coh.add_argument("--study", metavar="NAME", help="only this study (name or label)")
-    coh.add_argument("--csv", metavar="FILE", help="also write the study's participants as CSV")
+    coh.add_argument("--csv", type=_csv_file, metavar="FILE", help="also write the study's participants as CSV")
     coh.add_argument("--json", action="store_true", help="print JSON")
     coh.set_defaults(run=cmd_cohort)
 
@@ -382,7 +427,7 @@ def build_parser():
                          "textures (MDS) and each parameter's vector through it")
     sim.add_argument("file", help="FreeCAD document (.FCStd) with SimilarityStudy objects")
     sim.add_argument("--study", metavar="NAME", help="only this study (name or label)")
-    sim.add_argument("--plot", metavar="PNG", help="draw the space and its vectors (seed 001 Fig. 7)")
+    sim.add_argument("--plot", type=_png_file, metavar="PNG", help="draw the space and its vectors (seed 001 Fig. 7)")
     sim.add_argument("--scaling", choices=("metric", "ordinal"),
                      help="classical MDS, or Kruskal's ordinal MDS (only the order of the dissimilarities counts); "
                           "default: each study's Scaling")

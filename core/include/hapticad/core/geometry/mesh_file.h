@@ -11,7 +11,9 @@
 
 namespace hapticad {
 
-// Throws std::runtime_error naming the file when it cannot be read or holds no faces.
+// Throws std::runtime_error naming the file when it is missing, a folder, cannot be read,
+// holds no faces, or a face has a vertex that is not finite (naming the line in a text
+// file, the face in a binary one).
 TriangleSoup ReadMeshFile(const std::string& path);
 
 }  // namespace hapticad
