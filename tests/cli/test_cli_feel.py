@@ -82,6 +82,17 @@ class FeelCommandTest(unittest.TestCase):
         with open(os.path.join(out, "trace.png"), "rb") as handle:
             self.assertEqual(handle.read(8), b"\x89PNG\r\n\x1a\n")
 
+    def test_a_vibration_the_rate_cannot_render_is_said(self):
+        path = os.path.join(self.tmp.name, "razor.FCStd")
+        doc = App.openDocument(self.doc_path)
+        HaptiCAD.make_vibration(doc, doc.getObject("Box"), frequency_hz=700.0, amplitude_n=0.3)
+        doc.saveAs(path)
+        App.closeDocument(doc.Name)
+        proc = run_cli("feel", path, "--stroke", "10,20,20:30,20,20", "--rate", "1000",
+                       "--out", os.path.join(self.tmp.name, "razor"))
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertIn("700 Hz is felt at 300 Hz instead at the 1000 Hz servo rate", proc.stderr)
+
     def test_bad_input_gets_a_clear_error(self):
         out = os.path.join(self.tmp.name, "bad")
         cut_short = os.path.join(self.tmp.name, "cut_short.FCStd")
