@@ -12,7 +12,9 @@ are kept in the study object as JSON and exported and imported as CSV. No GUI.
 import csv
 import math
 import os
+import re
 import statistics as stats
+import unicodedata
 from dataclasses import asdict, dataclass, field
 
 NOT_GIVEN = "not given"  # a participant need not say
@@ -20,6 +22,16 @@ GENDERS = ("F", "M", "other", NOT_GIVEN)
 AGE_BANDS = ("under 18", "18-25", "26-40", "41-60", "over 60", NOT_GIVEN)  # Table 3's bands and more
 WEIGHT_RANGE_KG = (20.0, 300.0)
 HEIGHT_RANGE_MM = (500.0, 2500.0)
+# What a preference can plausibly be, per unit; beyond it a value is a typo or another
+# unit (N/m as N/mm), and near the float limit it breaks the statistics (1e308).
+# N/mm, a bending neck: 1e-4 N/mm pressed 20 mm is 2 mN, below what a fingertip feels,
+# and 1000 N/mm is some 300x the stiffest device in the field notes (Falcon, 3 N/mm) and
+# 200x the stiffest neck of seed 000 Table 3 (4.5 N/mm): a wide margin either way. N, a push button: the model's
+# OperatingForce range, 0.05..50 N (a study feels and records no other). A snap ratio: the
+# model's SnapRatio range, 0.01..0.99 (a button whose force drops by none or all of it
+# does not snap). test_stiffness_study checks the two against the model's properties.
+PREFERENCE_RANGES = {"N/mm": (1e-4, 1000.0), "N": (0.05, 50.0), "snap ratio": (0.01, 0.99)}
+FORMULA_STARTS = ("=", "+", "-", "@")  # a spreadsheet runs a cell starting so as a formula
 OPTIONAL_COLUMNS = ("weight_kg", "height_mm")  # an empty cell: not given
 CSV_COLUMNS = ("name", "gender", "age_band", "weight_kg", "height_mm", "value", "unit", "model", "design",
                "recorded")
@@ -47,6 +59,9 @@ def problems(record):
     found = []
     if not record.name.strip():
         found.append("a participant needs a name (or an alias)")
+    elif any(unicodedata.category(c) == "Cc" for c in record.name):  # a line break, tab or NUL: shown raw
+        found.append(f"the name {record.name!r} holds a control character (a line break, tab or NUL): "
+                     "give it on one line, of printable characters")
     if record.gender not in GENDERS:
         found.append(f"gender {record.gender!r} is not one of {', '.join(GENDERS)}")
     if record.age_band not in AGE_BANDS:
@@ -54,10 +69,38 @@ def problems(record):
     for label, value, (low, high), unit in (("weight", record.weight_kg, WEIGHT_RANGE_KG, "kg"),
                                             ("height", record.height_mm, HEIGHT_RANGE_MM, "mm")):
         if value is not None and not (isinstance(value, (int, float)) and low <= value <= high):
-            found.append(f"{label} {value} {unit} is outside {low:g}..{high:g} {unit}")
+            # Table 3 prints heights in cm under "Height(mm)": say what to give instead
+            hint = (f": in centimetres? give {value * 10:g}" if label == "height" and isinstance(value, (int, float))
+                    and low <= value * 10 <= high else "")
+            found.append(f"{label} {value} {unit} is outside {low:g}..{high:g} {unit}{hint}")
     if not (isinstance(record.value, (int, float)) and math.isfinite(record.value) and record.value > 0):
         found.append(f"the preferred value {record.value} must be a number > 0")
+    elif record.unit not in PREFERENCE_RANGES:
+        found.append(f"unit {record.unit!r} is not one of {', '.join(PREFERENCE_RANGES)}")
+    else:
+        low, high = PREFERENCE_RANGES[record.unit]
+        if not low <= record.value <= high:
+            found.append(f"the preferred value {record.value:g} {record.unit} is outside the plausible "
+                         f"{low:g}..{high:g} {record.unit}")
     return found
+
+
+def beyond_device(record):
+    """Whether a record was felt at the device's limit. Records imported before design
+    values were read back as numbers hold the text "0.0" or "0": not beyond."""
+    flag = record.design.get("BeyondDevice")
+    if isinstance(flag, str):
+        try:
+            return float(flag) != 0.0
+        except ValueError:
+            return flag.strip().lower() == "true"
+    return bool(flag)
+
+
+def namesakes(name, records):
+    """How many records already bear ``name`` (case and spaces aside)."""
+    key = " ".join(name.split()).casefold()
+    return sum(1 for r in records if " ".join(r.name.split()).casefold() == key)
 
 
 def from_dict(data):
@@ -72,8 +115,8 @@ def statistics(records, by=("gender", "age_band")):
     """Rows of {group, n, mean, sd, median, min, max} of the preferred values: all
     participants first, then each group of each field in ``by`` (groups sorted)."""
     def row(group, values):
-        return {"group": group, "n": len(values), "mean": stats.fmean(values),
-                "sd": stats.stdev(values) if len(values) > 1 else 0.0, "median": stats.median(values),
+        mean, sd = _mean_sd(values)
+        return {"group": group, "n": len(values), "mean": mean, "sd": sd, "median": stats.median(values),
                 "min": min(values), "max": max(values)}
 
     if not records:
@@ -86,6 +129,20 @@ def statistics(records, by=("gender", "age_band")):
         for name in sorted(groups):
             rows.append(row(f"{key.replace('_', ' ')} {name}", groups[name]))
     return rows
+
+
+def _mean_sd(values):
+    """fmean and stdev that never raise on stored values (a document saved before their
+    range was checked may hold 1e308, whose sum overflows, or inf): such a cohort must still
+    be shown so the record can be removed."""
+    if not all(isinstance(v, (int, float)) and math.isfinite(v) for v in values):
+        return math.nan, math.nan
+    try:
+        return stats.fmean(values), stats.stdev(values) if len(values) > 1 else 0.0
+    except OverflowError:  # in units of the largest value, then back (inf if it does not fit)
+        scale = max(abs(v) for v in values)
+        scaled = [v / scale for v in values]
+        return stats.fmean(scaled) * scale, stats.stdev(scaled) * scale if len(values) > 1 else 0.0
 
 
 def place_design(value, records):
@@ -118,9 +175,10 @@ def write_csv(path, records):
         out.writerow(CSV_COLUMNS)
         for r in records:
             d = r.as_dict()
-            if d["name"][:1] in ("=", "+", "-", "@"):  # a spreadsheet would run it as a formula
+            if d["name"].lstrip("'")[:1] in FORMULA_STARTS:  # guarded; read_csv takes the guard off
                 d["name"] = "'" + d["name"]
-            d["design"] = ";".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in r.design.items())
+            # repr: the shortest text that reads back as the same float
+            d["design"] = ";".join(f"{k}={v!r}" if isinstance(v, float) else f"{k}={v}" for k, v in r.design.items())
             for key in ("weight_kg", "height_mm"):  # not given: an empty cell
                 if d[key] is None:
                     d[key] = ""
@@ -131,6 +189,23 @@ def _number_or_none(text):
     return float(text) if (text or "").strip() else None
 
 
+def _design_value(text):
+    """A design value as write_csv wrote it, back as the number (or boolean) it was."""
+    if text in ("True", "False"):
+        return text == "True"
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    return text
+
+
+def _unguarded(name):
+    """A name without the apostrophe write_csv put before a formula's first character."""
+    return name[1:] if name[:1] == "'" and name.lstrip("'")[:1] in FORMULA_STARTS else name
+
+
 def read_csv(path):
     """Records from a CSV written by write_csv (or by hand with its columns). Raises
     ValueError naming the line of a record that cannot be kept; nothing is returned then."""
@@ -138,7 +213,11 @@ def read_csv(path):
     try:
         with open(path, newline="", encoding="utf-8-sig") as handle:  # a spreadsheet's BOM too
             reader = csv.DictReader(handle)
-            rows = list(reader)
+            rows, after = [], 1
+            for row in reader:  # each with the line it starts on (a quoted field may hold line breaks)
+                breaks = sum(len(re.findall(r"\r\n|\r|\n", v)) for v in row.values() if isinstance(v, str))
+                rows.append((max(after + 1, reader.line_num - breaks), row))
+                after = reader.line_num
             header = reader.fieldnames or []
     except UnicodeDecodeError:
         raise ValueError(f"{name}: not UTF-8 text; save it from the spreadsheet as CSV UTF-8") from None
@@ -149,13 +228,14 @@ def read_csv(path):
         raise ValueError(f"{name}: needs the comma-separated columns {', '.join(CSV_COLUMNS[:7])}; its header is "
                          f"{', '.join(header) or 'empty'}")
     records = []
-    for line, row in enumerate(rows, start=2):
+    for line, row in rows:
         missing = [c for c in CSV_COLUMNS[:7] if not row.get(c) and c not in OPTIONAL_COLUMNS]
         if missing:
             raise ValueError(f"{name}, line {line}: no {', '.join(missing)}")
         try:
-            design = dict(item.split("=", 1) for item in (row.get("design") or "").split(";") if "=" in item)
-            record = Record(row["name"], row["gender"], row["age_band"], _number_or_none(row["weight_kg"]),
+            design = {key: _design_value(text) for key, text in
+                      (item.split("=", 1) for item in (row.get("design") or "").split(";") if "=" in item)}
+            record = Record(_unguarded(row["name"]), row["gender"], row["age_band"], _number_or_none(row["weight_kg"]),
                             _number_or_none(row["height_mm"]), float(row["value"]), row["unit"], row.get("model", ""),
                             design, row.get("recorded", ""))
         except ValueError:

@@ -317,17 +317,24 @@ def remove_record(study, index):
 
 def import_records(study, path):
     """Adds the records of a cohort CSV that the study does not hold yet (same name,
-    time and value); returns (added, already held). Raises ValueError, adding none, on a
-    bad line or on records of another unit."""
+    time and value), each once; returns (added, already held, repeated in the file).
+    Raises ValueError, adding none, on a bad line or on records of another unit."""
     read = cohort.read_csv(path)
     _, unit = design_value(study)
     other = [r for r in read if r.unit != unit]
     if other:
         raise ValueError(f"{path}: {len(other)} record(s) are in {other[0].unit}, this study's preferences in {unit}")
     held = {(r.name, r.recorded, r.value) for r in records(study)}
-    added = [r for r in read if (r.name, r.recorded, r.value) not in held]
+    added, seen, repeated = [], set(), 0
+    for r in read:
+        key = (r.name, r.recorded, r.value)
+        if key in seen:  # a row listed twice (a merged or pasted-twice file): one participant
+            repeated += 1
+        elif key not in held:
+            added.append(r)
+        seen.add(key)
     _write_records(study, [*records(study), *added])
-    return len(added), len(read) - len(added)
+    return len(added), len(read) - len(added) - repeated, repeated
 
 
 def adjust_info(study):

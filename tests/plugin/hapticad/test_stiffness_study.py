@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Stiffness studies (seed 000 §3): a bending neck and a push button felt through the
 real servo loop, participants' preferences kept with the document, clear errors."""
+import json
 import os
 import sys
 import tempfile
@@ -181,7 +182,7 @@ class StudyTest(unittest.TestCase):
             stiffness_study.remove_record(study, 0)
             self.assertEqual([r.name for r in stiffness_study.records(study)], ["Zhang"])
             # Zhang is held already: only Steven comes back, once
-            self.assertEqual(stiffness_study.import_records(study, csv_path), (1, 1))
+            self.assertEqual(stiffness_study.import_records(study, csv_path), (1, 1, 0))
             self.assertEqual([r.name for r in stiffness_study.records(study)], ["Zhang", "Steven"])
             self.assertEqual(study.Participants, 2)
             study.Model = "Push button"
@@ -195,6 +196,65 @@ class StudyTest(unittest.TestCase):
             self.assertEqual([r.unit for r in stiffness_study.comparable_records(study)], ["N"])
             study.Adjust = "SnapRatio"  # a button whose snap the participants choose records the snap
             self.assertEqual(stiffness_study.design_value(study), (study.SnapRatio, "snap ratio"))
+
+    def test_the_cohorts_preference_ranges_hold_what_the_button_model_can_record(self):
+        # cohort cannot import the model (it is imported by it): the ranges are checked here
+        ranges = {p[0]: p[5][:2] for p in stiffness_study.PROPERTIES if p[5]}
+        self.assertEqual(cohort.PREFERENCE_RANGES["N"], ranges["OperatingForce"])
+        self.assertEqual(cohort.PREFERENCE_RANGES["snap ratio"], ranges["SnapRatio"])
+        # the field notes' toothbrush and Table 3's 4.5 N/mm are plausible beams
+        low, high = cohort.PREFERENCE_RANGES["N/mm"]
+        self.assertTrue(low < 0.5556 < 4.5 < high)
+
+    def test_reimporting_the_own_export_adds_nobody_and_a_repeated_row_is_taken_once(self):
+        study = HaptiCAD.make_study(self.doc, self.head)
+        for name in ("=1+1", "-Neg", "+plus", "@at", "Ann"):
+            HaptiCAD.record_preference(study, name, "F", "18-25", None, None, 3000.0)
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "cohort.csv")
+            cohort.write_csv(path, stiffness_study.records(study))
+            self.assertEqual(stiffness_study.import_records(study, path), (0, 5, 0))
+            self.assertEqual(study.Participants, 5)
+            # into another study: the design comes back as numbers, so nobody is starred beyond the device
+            other_doc = App.newDocument("StudyTestOther")
+            try:
+                box = other_doc.addObject("Part::Box", "Head")
+                other_doc.recompute()
+                other = HaptiCAD.make_study(other_doc, HaptiCAD.make_surface(other_doc, [(box, "Face6")]))
+                self.assertEqual(stiffness_study.import_records(other, path), (5, 0, 0))
+                self.assertEqual([r.design for r in stiffness_study.records(other)],
+                                 [r.design for r in stiffness_study.records(study)])
+                self.assertEqual([cohort.beyond_device(r) for r in stiffness_study.records(other)], [False] * 5)
+            finally:
+                App.closeDocument(other_doc.Name)
+            # a file listing a row twice: one participant, and said
+            with open(path) as handle:
+                lines = handle.readlines()
+            with open(path, "w") as handle:
+                handle.writelines(lines + lines[-1:])
+            stiffness_study.remove_record(study, 4)  # Ann
+            self.assertEqual(stiffness_study.import_records(study, path), (1, 4, 1))
+            self.assertEqual([r.name for r in stiffness_study.records(study)], ["=1+1", "-Neg", "+plus", "@at", "Ann"])
+            # a bad line adds nothing
+            with open(path, "a") as handle:
+                handle.write("Zed,M,18-25,70,1700,1e308,N/mm,Bending beam,,\n")
+            with self.assertRaises(ValueError) as caught:
+                stiffness_study.import_records(study, path)
+            self.assertIn("line 8: the preferred value 1e+308 N/mm is outside", str(caught.exception))
+            self.assertEqual(study.Participants, 5)
+
+    def test_a_stored_implausible_preference_is_still_summarised(self):
+        # saved before the range was checked: the study still gives its statistics (the CLI, the panel)
+        study = HaptiCAD.make_study(self.doc, self.head)
+        HaptiCAD.record_preference(study, *PARTICIPANT)
+        data = json.loads(study.Cohort)
+        data.append(dict(data[0], name="Zed", value=1e308))
+        data.append(dict(data[0], name="Yan", value=1.5e308))
+        study.Cohort = json.dumps(data)
+        held = stiffness_study.comparable_records(study)
+        self.assertEqual(cohort.statistics(held)[0]["n"], 3)
+        self.assertIn("of the 3 participants", cohort.place_design(1.0, held)[1])
+        self.assertIn("outside the plausible", cohort.problems(held[1])[0])
 
     def test_a_live_edit_of_the_study_recompiles_the_faces_law(self):
         study = HaptiCAD.make_study(self.doc, self.head, YoungsModulus=1.5, BeamThickness=4)

@@ -8,6 +8,8 @@ study, in the Feel panel, so the participant presses, moves the slider, presses 
 and records without stopping. Every change is its own undo step; nothing here waits for
 an OK, so a recorded participant is never lost to a Cancel.
 """
+from html import escape
+
 import FreeCAD as App
 from PySide2 import QtCore, QtWidgets
 
@@ -221,6 +223,9 @@ class StudyControls(QtWidgets.QWidget):
     def record(self):
         """Records the participant's preference for the design as it is now."""
         doc = self.study.Document
+        # the same name again is noted, not refused: a second session of one person, or two
+        # people of one name, is the coordinator's call (Remove undoes a slip)
+        earlier = cohort.namesakes(self.name.text(), stiffness_study.comparable_records(self.study))
         doc.openTransaction("Record a participant's preference")
         try:
             record = stiffness_study.record_preference(self.study, self.name.text(), self.gender.currentText(),
@@ -231,9 +236,13 @@ class StudyControls(QtWidgets.QWidget):
             self.show_message(f"Not recorded: {exc}", error=True)
             return None
         doc.commitTransaction()
-        beyond = " (beyond what the device renders: marked)" if record.design.get("BeyondDevice") else ""
-        self.show_message(f"Recorded {record.name}: {record.value:.3g} {record.unit}{beyond} "
-                          f"({self.study.Participants} participant{'s' if self.study.Participants != 1 else ''}).")
+        beyond = " (beyond what the device renders: marked)" if cohort.beyond_device(record) else ""
+        again = (f"<br><span style='color:#a06000'>Note: {escape(record.name)} was recorded before "
+                 f"({earlier} time{'s' if earlier != 1 else ''}): each record counts as a participant in the "
+                 "statistics; remove one if it was a slip.</span>" if earlier else "")
+        self.show_message(f"Recorded {escape(record.name)}: {record.value:.3g} {record.unit}{beyond} "
+                          f"({self.study.Participants} participant{'s' if self.study.Participants != 1 else ''})."
+                          + again)
         self.clear_participant()  # the next participant starts blank, inheriting nothing
         self.load()
         self.changed.emit()

@@ -8,6 +8,8 @@ Edits go to the study at once, each its own undo step, and the panel has only Cl
 participants recorded during a session are never lost to a Cancel. To feel the design,
 close the panel and press Feel: the Feel panel shows the same slider and form.
 """
+from html import escape
+
 from PySide2 import QtCore, QtWidgets
 
 from .. import cohort, preferences, stiffness_study
@@ -50,6 +52,10 @@ class StudyTaskPanel(CloseOnlyPanel):
         self.device_k = _device_stiffness_n_per_m()  # asked once: it probes HID devices
         self.controls = None
         self.controls_model = None
+        # an import's or export's outcome, with the cohort it was said of: kept over the
+        # reloads that follow (the study observer's, a turn later) until the cohort changes
+        # or the next edit
+        self.notice = None
         self.form = [self._status_box("Stiffness study", "studyStatus"), self._model_box(), self._customise_box(), self._cohort_box()]
         self.watch_closing(self.doc)
         self.load()
@@ -225,32 +231,51 @@ class StudyTaskPanel(CloseOnlyPanel):
         others = len(stiffness_study.records(self.obj)) - len(records)
         self.table.setRowCount(len(records))
         for row, r in enumerate(records):
-            beyond = " *" if r.design.get("BeyondDevice") else ""  # felt at the device's limit
-            for column, text in enumerate((r.name, f"{r.value:.3g} {r.unit}{beyond}", r.gender, r.age_band,
-                                           *("-" if v is None else f"{v:g}" for v in (r.weight_kg, r.height_mm)))):
-                self.table.setItem(row, column, QtWidgets.QTableWidgetItem(text))
+            beyond = " *" if cohort.beyond_device(r) else ""  # felt at the device's limit
+            wrong = "; ".join(cohort.problems(r))  # saved before its range was checked
+            for column, text in enumerate((r.name, f"{r.value:.3g} {r.unit}{beyond}{' ⚠' if wrong else ''}", r.gender,
+                                           r.age_band, *("-" if v is None else f"{v:g}" for v in (r.weight_kg,
+                                                                                                  r.height_mm)))):
+                item = QtWidgets.QTableWidgetItem(text)
+                item.setToolTip(wrong)
+                self.table.setItem(row, column, item)
         rows = cohort.statistics(records)
         aside = (f"<br>{others} record(s) in another unit (made with the other model) are kept but not "
                  "compared." if others else "")
-        capped = sum(1 for r in records if r.design.get("BeyondDevice"))
+        capped = sum(1 for r in records if cohort.beyond_device(r))
         if capped:
             aside += (f"<br>* {capped} preference{'s' if capped != 1 else ''} beyond what the device renders: felt at "
                       "its limit, counted as recorded.")
+        wrong = [(r.name, found) for r in records for found in [cohort.problems(r)] if found]
+        if wrong:
+            aside += (f"<br><span style='color:#b00000'>⚠ {len(wrong)} record{'s' if len(wrong) != 1 else ''} could "
+                      f"not be recorded now ({escape(wrong[0][0])}: {escape(wrong[0][1][0])}): select and Remove "
+                      f"{'them' if len(wrong) != 1 else 'it'}.</span>")
+        if self.notice is not None and self.notice[1] != self.obj.Cohort:
+            self.notice = None  # said of a cohort that has changed since (an undo, a record)
+        notice = self.notice[0] + "<br>" if self.notice else ""
         if not rows:
-            self.stats.setText("No participant yet: each records what feels right with the slider above." + aside)
+            self.stats.setText(notice + "No participant yet: each records what feels right with the slider above."
+                               + aside)
             return
         lines = [f"{s['group']}: n 1, {s['mean']:.3g} {records[0].unit}" if s["n"] == 1 else  # no spread of one
                  f"{s['group']}: n {s['n']}, mean {s['mean']:.3g} ± {s['sd']:.2g}, median {s['median']:.3g} "
                  f"({s['min']:.3g}-{s['max']:.3g}) {records[0].unit}" for s in rows]
         value, _ = stiffness_study.design_value(self.obj)
         lines.append("This design: " + cohort.place_design(value, records)[1])
-        self.stats.setText("<br>".join(lines) + aside)
+        self.stats.setText(notice + "<br>".join(lines) + aside)
+
+    def say(self, text):
+        """Shows ``text`` above the statistics until the cohort changes or the next edit."""
+        self.notice = (text, self.obj.Cohort)
+        self.load()
 
     # --- widgets -> object -------------------------------------------------------------
 
     def set_property(self, name, value):
         if self._loading:
             return
+        self.notice = None
         if not set_study_property(self.obj, name, value):
             self.status.setText(f"<span style='color:#b00000'>⚠ {LABELS.get(name, name)}: {value} refused</span>")
             return
@@ -259,6 +284,7 @@ class StudyTaskPanel(CloseOnlyPanel):
     def adjust_chosen(self, index):
         if self._loading or index < 0:
             return
+        self.notice = None
         name = self.widgets["Adjust"].itemData(index)
         low, high = stiffness_study.ADJUSTABLE[self.obj.Model][name][2]
         doc = self.doc
@@ -275,6 +301,7 @@ class StudyTaskPanel(CloseOnlyPanel):
                          reverse=True)
         if not indices:
             return
+        self.notice = None
         self.doc.openTransaction("Remove participants")
         for index in indices:
             stiffness_study.remove_record(self.obj, index)
@@ -291,7 +318,7 @@ class StudyTaskPanel(CloseOnlyPanel):
         try:
             cohort.write_csv(path, stiffness_study.records(self.obj))
         except OSError as exc:
-            self.stats.setText(f"<span style='color:#b00000'>Not exported: {exc}</span>")
+            self.say(f"<span style='color:#b00000'>Not exported: {escape(str(exc))}</span>")
             return False
         return True
 
@@ -303,18 +330,18 @@ class StudyTaskPanel(CloseOnlyPanel):
     def import_from(self, path):
         self.doc.openTransaction("Import participants")
         try:
-            added, held = stiffness_study.import_records(self.obj, path)
+            added, held, repeated = stiffness_study.import_records(self.obj, path)
         except (ValueError, OSError) as exc:
             self.doc.abortTransaction()
-            self.load()
-            self.stats.setText(f"<span style='color:#b00000'>Nothing imported: {exc}</span>")
+            self.say(f"<span style='color:#b00000'>Nothing imported: {escape(str(exc))}</span>")
             return 0
         if added:
             self.doc.commitTransaction()
         else:
             self.doc.abortTransaction()
-        self.load()
-        self.stats.setText(f"Imported {added} participant{'s' if added != 1 else ''}"
-                           + (f"; {held} already held were left out" if held else "") + ".<br>" + self.stats.text())
+        self.say(f"Imported {added} participant{'s' if added != 1 else ''}"
+                 + (f"; {held} already held were left out" if held else "")
+                 + (f"; {repeated} listed again in the file {'was' if repeated == 1 else 'were'} taken once"
+                    if repeated else "") + ".")
         return added
 

@@ -96,7 +96,9 @@ class StudyGuiTest(unittest.TestCase):
         self.assertAlmostEqual(study.BeamThickness, 5.0)
         self.assertAlmostEqual(h.widget(QtWidgets.QDoubleSpinBox, "BeamThickness").value(), 5.0)
 
-        # three participants of Table 3, each at the design the slider gives
+        # three participants with Table 3's names, genders, ages and weights; each records what the slider
+        # gives here (h 8 and 6.5 mm: 4.44 and 2.38 N/mm), not the paper's 4.5/3.5/3.5 (4.5 N/mm needs h 8.03 mm,
+        # beyond the slider's 2-8)
         slider = h.widget(QtWidgets.QSlider, "studySlider")
         for name, gender, age, weight, position in (("Steven", "M", "26-40", 70, 200), ("Yang", "M", "41-60", 60, 150),
                                                     ("Zhang", "F", "26-40", 52, 150)):
@@ -143,10 +145,79 @@ class StudyGuiTest(unittest.TestCase):
         self.assertEqual(panel.import_from(path), 1)  # Steven back; the two still held are left out
         self.assertIn("Imported 1 participant; 2 already held were left out",
                       h.widget(QtWidgets.QLabel, "cohortStats").text())
+        # and it stays over the reload the study's change brings a turn later, with the statistics
+        h.process_events()
+        self.assertIn("Imported 1 participant; 2 already held were left out",
+                      h.widget(QtWidgets.QLabel, "cohortStats").text())
+        self.assertIn("all: n 3", h.widget(QtWidgets.QLabel, "cohortStats").text())
+        # the file again, read back as exported: nobody added, every star as it was
+        self.assertEqual(panel.import_from(path), 0)
+        h.process_events()
+        self.assertIn("Imported 0 participants; 3 already held were left out",
+                      h.widget(QtWidgets.QLabel, "cohortStats").text())
+        self.assertEqual([table.item(r, 1).text().endswith("*") for r in range(3)], [False, False, True])
         self.assertEqual(study.Participants, 3)
+        # until the next action
+        h.widget(QtWidgets.QDoubleSpinBox, "BeamWidth").setValue(6.0)
+        h.process_events()
+        self.assertNotIn("Imported", h.widget(QtWidgets.QLabel, "cohortStats").text())
         h.press_task_button("Close")
         self.assertFalse(Gui.Control.activeDialog())
         self.assertEqual(study.Participants, 3)  # Close keeps everything
+
+    def test_a_study_holding_an_implausible_preference_opens_and_it_can_be_removed(self):
+        # saved before preferences were range-checked: the statistics overflowed and no panel opened
+        import json
+
+        study = HaptiCAD.make_study(self.doc, self.surface)
+        HaptiCAD.record_preference(study, "Ann", "F", "18-25", None, None)
+        data = json.loads(study.Cohort)
+        study.Cohort = json.dumps(data + [dict(data[0], name="Zed", value=1e308),
+                                          dict(data[0], name="Yan", value=1.5e308)])
+        self.doc.recompute()
+        self.open_study()
+        table = h.widget(QtWidgets.QTableWidget, "cohortTable")
+        self.assertEqual([table.item(r, 1).text().endswith("⚠") for r in range(3)], [False, True, True])
+        stats = h.widget(QtWidgets.QLabel, "cohortStats").text()
+        self.assertIn("2 records could not be recorded now (Zed: the preferred value 1e+308 N/mm is outside", stats)
+        self.assertIn("all: n 3", stats)
+        table.selectRow(1)
+        h.widget(QtWidgets.QPushButton, "removeParticipant").click()
+        table.selectRow(1)
+        h.widget(QtWidgets.QPushButton, "removeParticipant").click()
+        self.assertEqual([r.name for r in stiffness_study.records(study)], ["Ann"])
+        self.assertNotIn("could not be recorded", h.widget(QtWidgets.QLabel, "cohortStats").text())
+        # importing them again is refused, naming the line, and the refusal stays on show
+        path = os.path.join(self.tmp.name, "huge.csv")
+        with open(path, "w") as handle:
+            handle.write("name,gender,age_band,weight_kg,height_mm,value,unit,model,design,recorded\n"
+                         "Zed,M,18-25,70,1700,1e308,N/mm,Bending beam,,2024-01-01T00:00:00\n")
+        self.assertEqual(_open_panel().import_from(path), 0)
+        h.process_events()
+        self.assertIn("Nothing imported: huge.csv, line 2: the preferred value 1e+308 N/mm is outside",
+                      h.widget(QtWidgets.QLabel, "cohortStats").text())
+        self.assertEqual(study.Participants, 1)
+        # a row listed twice is one participant, and the panel says so
+        with open(path, "w") as handle:
+            handle.write("name,gender,age_band,weight_kg,height_mm,value,unit,model,design,recorded\n"
+                         + "Zed,M,18-25,70,1700,0.9,N/mm,Bending beam,,2024-01-01T00:00:00\n" * 2)
+        self.assertEqual(_open_panel().import_from(path), 1)
+        h.process_events()
+        self.assertIn("Imported 1 participant; 1 listed again in the file was taken once",
+                      h.widget(QtWidgets.QLabel, "cohortStats").text())
+        self.assertEqual(study.Participants, 2)
+
+    def test_a_name_recorded_again_is_noted_not_refused(self):
+        study = self.open_study()
+        fill_participant("Ann")
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        self.assertNotIn("recorded before", h.widget(QtWidgets.QLabel, "studyMessage").text())
+        fill_participant(" ann ")  # a second session, or a slip: the coordinator decides
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        self.assertEqual(study.Participants, 2)
+        message = h.widget(QtWidgets.QLabel, "studyMessage").text()
+        self.assertIn("Recorded ann", message)
+        self.assertIn("Note: ann was recorded before (1 time)", message)
 
     def test_removing_a_shown_participant_removes_that_one_not_one_kept_from_the_other_model(self):
         study = self.open_study()
