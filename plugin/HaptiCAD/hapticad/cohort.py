@@ -26,10 +26,10 @@ HEIGHT_RANGE_MM = (500.0, 2500.0)
 # unit (N/m as N/mm), and near the float limit it breaks the statistics (1e308).
 # N/mm, a bending neck: 1e-4 N/mm pressed 20 mm is 2 mN, below what a fingertip feels,
 # and 1000 N/mm is some 300x the stiffest device in the field notes (Falcon, 3 N/mm) and
-# 200x the stiffest neck of seed 000 Table 3 (4.5 N/mm): a wide margin either way. N, a push button: the model's
-# OperatingForce range, 0.05..50 N (a study feels and records no other). A snap ratio: the
-# model's SnapRatio range, 0.01..0.99 (a button whose force drops by none or all of it
-# does not snap). test_stiffness_study checks the two against the model's properties.
+# 200x the stiffest neck of seed 000 Table 3 (4.5 N/mm): a wide margin either way.
+# N, a push button: the model's OperatingForce range, 0.05..50 N (a study feels and
+# records no other). A snap ratio: the model's SnapRatio range, 0.01..0.99 (a button
+# whose force drops by none or all of it does not snap). test_stiffness_study checks the two against the model's properties.
 PREFERENCE_RANGES = {"N/mm": (1e-4, 1000.0), "N": (0.05, 50.0), "snap ratio": (0.01, 0.99)}
 FORMULA_STARTS = ("=", "+", "-", "@")  # a spreadsheet runs a cell starting so as a formula
 OPTIONAL_COLUMNS = ("weight_kg", "height_mm")  # an empty cell: not given
