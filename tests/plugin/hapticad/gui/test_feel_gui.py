@@ -241,7 +241,8 @@ class FeelGuiTest(unittest.TestCase):
         surface.Pattern = "Curve"
         self.doc.recompute()
         h.wait(0.3)
-        self.assertIn("PatternCurve", h.widget(QtWidgets.QLabel, "feelMessage").text())
+        self.assertIn("the Curve pattern needs a sketch or edge to follow",
+                      h.widget(QtWidgets.QLabel, "feelMessage").text())
         self.assertTrue(stop.isEnabled())
         # an error of another kind (OCC's, the core's) is shown too, not lost to Qt
         from hapticad.gui import task_panel_feel
