@@ -29,7 +29,8 @@ HEIGHT_RANGE_MM = (500.0, 2500.0)
 # 200x the stiffest neck of seed 000 Table 3 (4.5 N/mm): a wide margin either way.
 # N, a push button: the model's OperatingForce range, 0.05..50 N (a study feels and
 # records no other). A snap ratio: the model's SnapRatio range, 0.01..0.99 (a button
-# whose force drops by none or all of it does not snap). test_stiffness_study checks the two against the model's properties.
+# whose force drops by none or all of it does not snap). test_stiffness_study checks the
+# two against the model's properties.
 PREFERENCE_RANGES = {"N/mm": (1e-4, 1000.0), "N": (0.05, 50.0), "snap ratio": (0.01, 0.99)}
 FORMULA_STARTS = ("=", "+", "-", "@")  # a spreadsheet runs a cell starting so as a formula
 OPTIONAL_COLUMNS = ("weight_kg", "height_mm")  # an empty cell: not given
