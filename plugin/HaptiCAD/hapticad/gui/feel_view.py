@@ -166,10 +166,16 @@ class MouseSteering:
 
     def aim_again(self):
         """Aims at the face it was on with the current depth (the wheel or the slider
-        changed it): felt at once, not at the next mouse move."""
-        if self.landed and self.last_surface is not None:
-            point_mm, normal = self.last_surface
-            self.set_target((point_mm - self.depth_mm * normal) * MM)
+        changed it): felt at once, not at the next mouse move; coming down, it lands at
+        the new depth."""
+        if self.last_surface is None:
+            return
+        point_mm, normal = self.last_surface
+        press_w = (point_mm - self.depth_mm * normal) * MM
+        if self.landed:
+            self.set_target(press_w)
+        elif self.approach is not None:
+            self.approach = (self.approach[0], press_w)
 
     def aim_at_pixel(self, x, y):
         """Aims the hand at the part under view pixel (x, y) (Coin's: y up)."""

@@ -162,6 +162,17 @@ class FeelGuiTest(unittest.TestCase):
         self.assertGreater(pressed, 0.2)
         self.assertLess(float(normal.max()), 1.3 * pressed)
 
+    def test_the_wheel_turned_while_coming_down_sets_where_it_lands(self):
+        panel = self.open_feel()
+        chart = h.widget(QtWidgets.QWidget, "stripChart")
+        point = h.screen_pos(np.array([20.0, 15.0, 20.0]))
+        h.mouse("move", point)
+        h.wheel(point, 6)  # 1 -> 2.5 mm before it has landed
+        h.wait(1.5)
+        self.assertEqual(panel.depth_mm(), 2.5)
+        # grip (0.4 N/mm) in series with the face (0.8 N/mm): 0.67 N at 2.5 mm, 0.27 at 1
+        self.assertGreater(float(np.asarray(chart.values["normal_force_n"][-200:]).mean()), 0.55)
+
     def test_the_probe_comes_down_onto_the_face_under_the_cursor_and_over_a_step_not_into_its_wall(self):
         # a 60 x 30 x 10 mm base with a 5 mm block standing on it at x 30..50
         App.closeDocument(self.doc.Name)
