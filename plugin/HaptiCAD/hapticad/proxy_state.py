@@ -89,7 +89,8 @@ def is_restoring(obj):
 
 
 def is_alive(obj):
-    """False once a document object is deleted (its proxy outlives it in Python)."""
+    """False once a document object (or a document) is deleted: its Python object
+    outlives it."""
     try:
         return bool(obj.Name)
     except Exception:  # noqa: BLE001 (FreeCAD raises its own error for a deleted object)

@@ -8,7 +8,9 @@ texture on the study's face at the next servo tick, strokes it, and rates how al
 two feel; in the classing part, *Texture*, *Reference A* and *Reference B*, then *Closer
 to A* or *Closer to B*. They never see which stimulus is which. *Back* takes the last
 answer back. When the last trial is answered the run is kept in the document as one
-undo step; a run stopped before is not kept (a half run would skew the cohort).
+undo step; a run stopped before is not kept (a half run would skew the cohort). While a
+run holds answers its document cannot be closed (``holds_answers``; the Feel panel sets
+it), so no way of closing it loses them unasked.
 """
 import FreeCAD as App
 from PySide2 import QtCore, QtWidgets
@@ -28,6 +30,7 @@ class SimilarityControls(QtWidgets.QWidget):
 
     presented = QtCore.Signal()
     changed = QtCore.Signal()
+    shown = QtCore.Signal()  # after every change of the run's state
 
     def __init__(self, study, session_running=None, parent=None):
         super().__init__(parent)
@@ -125,6 +128,11 @@ class SimilarityControls(QtWidgets.QWidget):
 
     # --- state ---------------------------------------------------------------------------
 
+    @property
+    def holds_answers(self):
+        """True while a run in progress has answers that ending it would lose."""
+        return self.run is not None and bool(self.run.answers)
+
     def release(self):
         """Nothing held out on the face any more (the panel closes)."""
         if is_alive(self.study):
@@ -152,6 +160,7 @@ class SimilarityControls(QtWidgets.QWidget):
         if not is_alive(self.study):
             self.setEnabled(False)
             self.show_message("The study was deleted.", error=True)
+            self.shown.emit()
             return
         running = self.run is not None
         trial = self.run.current if running else None
@@ -186,7 +195,10 @@ class SimilarityControls(QtWidgets.QWidget):
             self.trial_label.setText(
                 f"<b>{KIND_TITLES[title]} {number} of {count}</b>" + (
                     " (feel the texture and both references, then class it)" if title == "class" else
-                    " (feel both textures, then rate how alike they are)"))
+                    " (feel both textures, then rate how alike they are)") + (
+                    "<br><small>The document stays open until this run ends: finish it, or Stop run "
+                    "(its answers are not kept).</small>" if self.holds_answers else ""))
+        self.shown.emit()
 
     def _protocol(self):
         n = len(ss.stimuli(self.study))

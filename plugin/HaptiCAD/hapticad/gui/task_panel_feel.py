@@ -14,6 +14,7 @@ import FreeCADGui as Gui
 from PySide2 import QtCore, QtGui, QtWidgets
 
 from .. import _core, feel_session, icon, preferences, vibration_object
+from ..proxy_state import is_alive
 from ..similarity_study import similarity_studies_of
 from ..surface_object import hidden_part_notes, surfaces_of
 from ..stiffness_study import studies_of
@@ -60,6 +61,7 @@ class FeelTaskPanel:
                                     for study in similarity_studies_of(doc)]
         for controls in self.similarity_controls:
             controls.presented.connect(self.presented)
+            controls.shown.connect(self.hold_document)
         self.form = [self.main, *(self._study_box(c) for c in self.study_controls),
                      *(self._study_box(c, "Similarity study", "HaptiCAD_SimilarityStudy")
                        for c in self.similarity_controls)]
@@ -248,6 +250,14 @@ class FeelTaskPanel:
                               "built again and you feel it now." + _note(self.session.reach_note)
                               + self.session_notes())
 
+    def hold_document(self):
+        """A half-answered similarity run keeps the document open: FreeCAD then refuses
+        every way of closing it (the window, Close All, quitting, a script), and the
+        run's controls say why. Closing the document under the run took its answers
+        without the question the panel's Close asks."""
+        if is_alive(self.doc):
+            self.doc.setClosable(not any(c.holds_answers for c in self.similarity_controls))
+
     def presented(self):
         """A similarity study put another texture on its face: the loop gets the surfaces
         again (no document edit, so the edit observer does not see it)."""
@@ -348,6 +358,8 @@ class FeelTaskPanel:
         and it is no longer active."""
         for controls in self.similarity_controls:
             controls.release()
+        if is_alive(self.doc):
+            self.doc.setClosable(True)
         if self.closing is not None:
             self.closing.remove()
             self.closing = None

@@ -77,6 +77,35 @@ def wheel(pos, steps):
     QtWidgets.QApplication.sendEvent(gl_widget(), event)
 
 
+class MessageBoxes:
+    """Closes every modal message box FreeCAD shows while in use (a timer, since the box
+    runs its own event loop), keeping its title and text in ``seen``:
+
+        with h.MessageBoxes() as boxes:
+            Gui.runCommand("Std_CloseActiveWindow")
+        boxes.seen  # [("Document not closable", "The document is not closable ...")]"""
+
+    def __init__(self):
+        self.seen = []
+        self.timer = QtCore.QTimer()
+        self.timer.setInterval(50)
+        self.timer.timeout.connect(self._close)
+
+    def _close(self):
+        for box in QtWidgets.QApplication.topLevelWidgets():
+            if isinstance(box, QtWidgets.QMessageBox) and box.isVisible():
+                self.seen.append((box.windowTitle(), box.text()))
+                box.reject()
+
+    def __enter__(self):
+        self.timer.start()
+        return self
+
+    def __exit__(self, *_):
+        process_events()
+        self.timer.stop()
+
+
 def widget(kind, name):
     """The visible widget of a type and objectName in the main window."""
     found = [w for w in Gui.getMainWindow().findChildren(kind, name)]

@@ -8,6 +8,7 @@ import os
 import random
 import sys
 import unittest
+from unittest import mock
 
 import numpy as np
 
@@ -137,6 +138,49 @@ class SimilarityGuiTest(unittest.TestCase):
         self.assertFalse(Gui.Control.activeDialog())
         self.assertEqual(study.Participants, 0)  # a run is kept only when finished
         self.assertIsNone(ss.presented_texture(self.plate))
+
+    def test_the_document_stays_open_while_a_run_holds_answers(self):
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=2)
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        controls = task_panel_feel.active_panel().similarity_controls[0]
+        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Eve")
+        h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        self.assertTrue(self.doc.isClosable())  # nothing answered yet: nothing to lose
+        for slot in (1, 2):
+            h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
+        h.widget(QtWidgets.QPushButton, "similarityRate4").click()
+        self.assertIn("The document stays open until this run ends",
+                      h.widget(QtWidgets.QLabel, "similarityTrial").text())
+        # every way of closing it: the 3D view's window, Close All, a script
+        with h.MessageBoxes() as boxes:
+            Gui.runCommand("Std_CloseActiveWindow")
+            h.process_events()
+            Gui.runCommand("Std_CloseAllWindows")
+            h.process_events()
+        self.assertEqual([title for title, _ in boxes.seen], ["Document not closable"] * 2)
+        with self.assertRaises(Exception):
+            App.closeDocument(self.doc.Name)
+        self.assertIn(self.doc.Name, App.listDocuments())
+        self.assertEqual(len(controls.run.answers), 1)  # the run and its answer are still there
+        h.widget(QtWidgets.QPushButton, "similarityBack").click()  # nothing answered again
+        self.assertTrue(self.doc.isClosable())
+        h.widget(QtWidgets.QPushButton, "similarityFeel1").click()
+        h.widget(QtWidgets.QPushButton, "similarityFeel2").click()
+        h.widget(QtWidgets.QPushButton, "similarityRate3").click()
+        self.assertFalse(self.doc.isClosable())
+        h.widget(QtWidgets.QPushButton, "similarityStop").click()  # ended on purpose: closable
+        self.assertTrue(self.doc.isClosable())
+        h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        h.widget(QtWidgets.QPushButton, "similarityFeel1").click()
+        h.widget(QtWidgets.QPushButton, "similarityFeel2").click()
+        h.widget(QtWidgets.QPushButton, "similarityRate5").click()
+        self.assertFalse(self.doc.isClosable())
+        with mock.patch.object(QtWidgets.QMessageBox, "question", return_value=QtWidgets.QMessageBox.Close):
+            h.press_task_button("Close")
+        self.assertFalse(Gui.Control.activeDialog())
+        self.assertTrue(self.doc.isClosable())
+        self.assertEqual(study.Participants, 0)
 
     def test_a_participants_run_in_the_feel_panel(self):
         study = HaptiCAD.make_similarity_study(self.doc, self.plate, ReferenceA=self.ref_a, ReferenceB=self.ref_b,
