@@ -24,6 +24,11 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gui_helpers as h  # noqa: E402
 
 
+class SeededRun(ss.Run):
+    def __init__(self, study, participant, seed=20261124):
+        super().__init__(study, participant, seed)
+
+
 def simulated_run(study, name, seed):
     """A participant (answered in code) who tells the textures apart by f_DC and f_vis."""
     rng = random.Random(seed)
@@ -43,6 +48,11 @@ def simulated_run(study, name, seed):
 class SimilarityGuiTest(unittest.TestCase):
     def setUp(self):
         preferences.update(device="simulated", servo_rate_hz=1000)
+        # a participant's run is shuffled from the system's entropy: here from a seed, so
+        # each test strokes the same pairs every time
+        seeded = mock.patch.object(ss, "Run", SeededRun)
+        seeded.start()
+        self.addCleanup(seeded.stop)
         self.doc = App.newDocument("SimilarityGui")
         self.doc.UndoMode = 1
         self.box = self.doc.addObject("Part::Box", "Plate")
@@ -146,6 +156,7 @@ class SimilarityGuiTest(unittest.TestCase):
         controls = task_panel_feel.active_panel().similarity_controls[0]
         h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Eve")
         h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        self.assertEqual(controls.run.seed, 20261124)  # the same trials every time
         self.assertTrue(self.doc.isClosable())  # nothing answered yet: nothing to lose
         for slot in (1, 2):
             h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
