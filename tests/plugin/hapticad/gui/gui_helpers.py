@@ -25,6 +25,17 @@ def wait(seconds):
         time.sleep(0.005)
 
 
+def wait_for(condition, what="", dead_after_s=20.0):
+    """Runs Qt's events until ``condition()`` holds, however long a slow host takes; the
+    limit only catches a loop or timer that never gets there."""
+    end = time.monotonic() + dead_after_s
+    while not condition():
+        if time.monotonic() > end:
+            raise AssertionError(f"not within {dead_after_s} s: {what or condition}")
+        process_events(1)
+        time.sleep(0.005)
+
+
 def show_workbench():
     """Switches to the HaptiCAD workbench and shows the active document isometric, fitted."""
     Gui.activateWorkbench("HaptiCADWorkbench")

@@ -54,9 +54,15 @@ class FeelGuiTest(unittest.TestCase):
         """Opens Feel, steers the probe onto the top face; returns the panel."""
         panel = self.open_feel()
         h.mouse("move", h.screen_pos(np.array([20.0, 15.0, 20.0])))
-        h.wait(0.4)
-        self.assertIn("Box.Face6", h.widget(QtWidgets.QLabel, "feelFace").text())
+        self.wait_touching("Box.Face6")
         return panel
+
+    def wait_touching(self, face):
+        """Until the probe touches ``face`` (it comes down at 150 mm/s, then slows near the
+        face: a loaded host draws that later), then 0.3 s more for it to settle."""
+        label = h.widget(QtWidgets.QLabel, "feelFace")
+        h.wait_for(lambda: face in label.text(), f"touching {face}: {label.text()}")
+        h.wait(0.3)
 
     def test_closing_the_document_while_feeling_stops_the_session_and_closes_the_panel(self):
         from hapticad.gui import task_panel_feel
@@ -111,7 +117,7 @@ class FeelGuiTest(unittest.TestCase):
         h.wait(0.1)
         h.grab_screen("feel_session.png")
         h.save_view("feel_session_view.png", "Current")
-        self.assertGreater(chart.sample_count, 800)  # about 1.5 s at 1 kHz
+        h.wait_for(lambda: chart.sample_count > 800, "800 samples charted")  # about 1.5 s at 1 kHz
         normal = chart.values["normal_force_n"]
         self.assertGreater(float(normal[-200:].mean()), 0.2)  # pressing on the face
         self.assertGreater(float(np.abs(chart.values["friction_force_n"][-600:]).max()), 0.05)
@@ -190,15 +196,13 @@ class FeelGuiTest(unittest.TestCase):
         # first touch right of the block: the hand starts above the middle (over the
         # block); straight for the face it would land on the block's top and stay there
         h.mouse("move", h.screen_pos(np.array([56.0, 15.0, 10.0])))
-        h.wait(0.8)
-        self.assertIn("Base.Face6", h.widget(QtWidgets.QLabel, "feelFace").text())
+        self.wait_touching("Base.Face6")
         self.assertAlmostEqual(float(panel.last_sample["proxy_m"][2]) * 1e3, 10.0, delta=0.1)
         # slide left onto the block: over its 5 mm step, onto its top, not pressed into its wall
         for x in np.linspace(56.0, 40.0, 17):
             h.mouse("move", h.screen_pos(np.array([x, 15.0, 10.0 if x > 50 else 15.0])))
             h.wait(0.03)
-        h.wait(0.8)
-        self.assertIn("Block.Face6", h.widget(QtWidgets.QLabel, "feelFace").text())
+        self.wait_touching("Block.Face6")
         proxy_mm = np.asarray(panel.last_sample["proxy_m"]) * 1e3
         self.assertAlmostEqual(float(proxy_mm[2]), 15.0, delta=0.1)
         self.assertLess(abs(float(proxy_mm[0]) - 40.0), 2.0)
