@@ -4,14 +4,21 @@
 One legend per document, drawn in screen space (its own orthographic camera, on top
 of everything, unpickable, outside the view's bounding box so "fit all" ignores it),
 rebuilt whenever a surface changes. Hidden with the overlay.
+
+Laid out in pixels, as its text is: the camera's units are kept at one pixel at every
+render (the view can be resized). Laid out in fractions of the view, the swatches drifted
+off their labels: in a 400 pixel high view each sat a row below its own.
 """
 import FreeCAD as App
 
 from .. import overlay, preferences
 
 NODE_NAME = "HaptiCAD_Legend"
-ROW_HEIGHT = 0.075  # of the view's half-height
-LEFT, TOP = -0.97, 0.92
+FONT_PX = 14
+ROW_PX = 20  # baseline to baseline
+SWATCH_PX = 12
+LEFT_PX, TOP_PX = 10, 10  # the first row's top, from the view's top-left corner
+_FITTERS = {}  # the render callbacks' Python functions, kept alive with their legend
 
 
 def _views(doc):
@@ -93,27 +100,50 @@ def refresh(doc, exclude=None):
     root, content = _new_root()
     annotation = coin.SoAnnotation()  # drawn last, without depth test
     content.addChild(annotation)
-    camera = coin.SoOrthographicCamera()
-    camera.viewportMapping = coin.SoCamera.LEAVE_ALONE  # x and y in -1..1 across the view
-    camera.position.setValue(0, 0, 5)
-    camera.height = 2.0
-    camera.nearDistance = 1.0
-    camera.farDistance = 10.0
+    fit, camera = _pixel_camera()
+    _FITTERS[doc.Name] = fit
     pick = coin.SoPickStyle()
     pick.style = coin.SoPickStyle.UNPICKABLE
     light = coin.SoLightModel()
     light.model = coin.SoLightModel.BASE_COLOR
     font = coin.SoFont()
-    font.size = 14
-    for node in (camera, pick, light, font):
+    font.size = FONT_PX
+    for node in (fit, camera, pick, light, font):
         annotation.addChild(node)
     for i, (colour, label) in enumerate(rows):
-        y = TOP - i * ROW_HEIGHT
-        annotation.addChild(_swatch(colour, LEFT, y))
-        annotation.addChild(_label(label, LEFT + 0.05, y - 0.02))
+        top = -(TOP_PX + i * ROW_PX)  # y grows up: rows go down from the top edge
+        annotation.addChild(_swatch(colour, LEFT_PX, top))
+        # the text's baseline level with the swatch's bottom, as a row of text sits on it
+        annotation.addChild(_label(label, LEFT_PX + SWATCH_PX + 6, top - SWATCH_PX))
     for view in _views(doc):
         view.getSceneGraph().addChild(root)
     return rows
+
+
+def _pixel_camera():
+    """(callback node, camera): the camera's units are the view's pixels, x from the left
+    edge, y up from the top edge; the callback sets it so at each render, before the
+    camera is used, and only when the view's size changed (setting a field redraws)."""
+    from pivy import coin
+
+    camera = coin.SoOrthographicCamera()
+    camera.viewportMapping = coin.SoCamera.LEAVE_ALONE
+    camera.nearDistance = 1.0
+    camera.farDistance = 10.0
+
+    def fit(_data, action):
+        if not action.isOfType(coin.SoGLRenderAction.getClassTypeId()):
+            return
+        region = coin.cast(action, "SoGLRenderAction").getViewportRegion()
+        width, height = region.getViewportSizePixels().getValue()
+        if (camera.height.getValue(), camera.position.getValue()[0]) != (height, width / 2):
+            camera.height = height
+            camera.aspectRatio = width / height  # left alone, the view stretches x to its width
+            camera.position.setValue(width / 2, -height / 2, 5)
+
+    node = coin.SoCallback()
+    node.setCallback(fit)
+    return node, camera
 
 
 def _quad(x0, y0, x1, y1, colour):
@@ -131,18 +161,19 @@ def _quad(x0, y0, x1, y1, colour):
     return sep
 
 
-def _swatch(colour, x, y):
-    """A filled square; for the stripes key, black and white bars."""
+def _swatch(colour, x, top):
+    """A filled square, its top-left corner at (x, top); for the stripes key, black and
+    white bars."""
     from pivy import coin
 
     sep = coin.SoSeparator()
-    w, h = 0.035, 0.05
+    w = h = SWATCH_PX
     if colour is None:
         for k in range(4):
-            sep.addChild(_quad(x + k * w / 4, y - h, x + (k + 1) * w / 4, y,
+            sep.addChild(_quad(x + k * w / 4, top - h, x + (k + 1) * w / 4, top,
                                (0.0, 0.0, 0.0) if k % 2 == 0 else (1.0, 1.0, 1.0)))
     else:
-        sep.addChild(_quad(x, y - h, x + w, y, colour))
+        sep.addChild(_quad(x, top - h, x + w, top, colour))
     return sep
 
 

@@ -11,7 +11,7 @@ import numpy as np
 
 import FreeCAD as App
 import FreeCADGui as Gui
-from PySide2 import QtWidgets
+from PySide2 import QtGui, QtWidgets
 
 import HaptiCAD
 from hapticad import overlay, preferences
@@ -21,6 +21,21 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gui_helpers as h  # noqa: E402
 
 MM = 1e-3
+
+
+def bands(flags, gap=3):
+    """(first, last) index of each run of True, runs at most ``gap`` apart taken as one
+    (a line of text and the underscores below it)."""
+    found, start = [], None
+    for i, flag in enumerate(list(flags) + [False]):
+        if flag and start is None:
+            start = i
+        elif not flag and start is not None:
+            if found and start - found[-1][1] <= gap + 1:
+                start = found.pop()[0]
+            found.append((start, i - 1))
+            start = None
+    return found
 
 
 class OverlayTest(unittest.TestCase):
@@ -116,6 +131,28 @@ class OverlayTest(unittest.TestCase):
         h.press_task_button("Cancel")
         h.process_events()
         self.assertEqual(overlay_legend.shown_labels(self.doc), before)
+
+    def test_each_swatch_sits_beside_its_own_label_at_any_view_size(self):
+        # laid out in fractions of the view, each swatch sat a row below its own label in
+        # a 400 pixel high view (the README's picture paired the grip's colour with PP)
+        from hapticad.gui import overlay_legend as legend
+
+        for size in (None, (640, 400), (1600, 1200)):
+            path = os.path.join(h.SHOTS, f"overlay_legend_{size[1] if size else 'view'}.png")
+            view = Gui.ActiveDocument.ActiveView
+            width, height = size or view.getSize()
+            view.saveImage(path, width, height, "White")
+            image = QtGui.QImage(path)
+            x = legend.LEFT_PX + legend.SWATCH_PX // 2
+            text_x = range(legend.LEFT_PX + legend.SWATCH_PX + 6, 120)  # left of the part
+            rows = range(0, legend.TOP_PX + 4 * legend.ROW_PX)
+            swatch = [h.classify(h.pixel(image, x, y)) != "white" for y in rows]
+            text = [any(h.classify(h.pixel(image, tx, y)) == "black" for tx in text_x) for y in rows]
+            swatches, labels = bands(swatch), bands(text)
+            self.assertEqual(len(swatches), len(legend.shown_labels(self.doc)), (size, swatches))
+            self.assertEqual(len(labels), len(swatches), (size, labels))
+            for (s0, s1), (t0, t1) in zip(swatches, labels):
+                self.assertLessEqual(abs((s0 + s1) / 2 - (t0 + t1) / 2), 3, (size, swatches, labels))
 
     def test_one_command_hides_and_shows_overlay_and_legend(self):
         _, shown = h.save_view("overlay_shown.png")
