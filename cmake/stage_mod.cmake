@@ -9,7 +9,7 @@ foreach(f IN LISTS staged)
   endif()
 endforeach()
 file(COPY "${PLUGIN}/" DESTINATION "${STAGE}" PATTERN "__pycache__" EXCLUDE)
-file(COPY "${RESOURCES}/" DESTINATION "${STAGE}/resources")
+file(COPY "${RESOURCES}/" DESTINATION "${STAGE}/resources" PATTERN "*.FCStd1" EXCLUDE)  # FreeCAD's backups
 # drop folders left empty by removed sources
 file(GLOB_RECURSE dirs LIST_DIRECTORIES true "${STAGE}/*")
 list(REVERSE dirs)

@@ -93,7 +93,13 @@ def cmd_demo(args):
 
     headless = args.headless or not os.environ.get("DISPLAY")
     if not headless:
-        return demo.launch_gui()
+        result = demo.launch_gui(args.out)
+        if args.json:
+            return result
+        print(f"HaptiCAD demo: FreeCAD opens {result['document']}, "
+              + ("a copy of the example: save your changes there" if result["copied"] else
+                 "your copy from before (delete it for the example as shipped)"))
+        return None
     ensure_freecad()
     result = demo.run_headless(args.out)
     if args.json:
@@ -438,7 +444,8 @@ def build_parser():
 
     demo = sub.add_parser("demo", help="open the example toothbrush and feel it")
     demo.add_argument("--headless", action="store_true", help="stroke every tagged face, even with a display")
-    demo.add_argument("--out", default="hapticad-demo", metavar="DIR", help="output folder (hapticad-demo)")
+    demo.add_argument("--out", default="hapticad-demo", metavar="DIR",
+                      help="output folder (hapticad-demo): the traces and plots, or the example's copy the GUI opens")
     demo.add_argument("--json", action="store_true", help="print every stroke's summary as JSON")
     demo.set_defaults(run=cmd_demo)
     return parser

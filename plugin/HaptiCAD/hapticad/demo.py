@@ -15,15 +15,28 @@ EXAMPLE = os.path.join(EXAMPLES_DIR, "toothbrush.FCStd")
 GUI_STARTUP = os.path.join(os.path.dirname(os.path.abspath(__file__)), "gui", "demo_startup.py")
 
 
-def launch_gui(document=EXAMPLE):
+def working_copy(out_dir, example=EXAMPLE):
+    """The example's copy in ``out_dir`` that the GUI demo opens: the shipped example
+    stays as shipped (Save would overwrite it, or fail where it is installed read-only),
+    and a copy saved there before is opened again, not replaced. Returns (path, new)."""
+    path = os.path.join(os.path.abspath(out_dir), os.path.basename(example))
+    if os.path.exists(path):
+        return path, False
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    shutil.copyfile(example, path)
+    return path, True
+
+
+def launch_gui(out_dir):
     freecad = shutil.which("freecad")
     if freecad is None:
         raise RuntimeError("FreeCAD's GUI ('freecad') is not installed")
+    document, new = working_copy(out_dir)
     env = dict(os.environ)
     if os.geteuid() == 0:
         env.setdefault("QTWEBENGINE_DISABLE_SANDBOX", "1")  # else the Start page kills FreeCAD
     subprocess.Popen([freecad, document, GUI_STARTUP], env=env, start_new_session=True)
-    return {"gui": True, "document": document}
+    return {"gui": True, "document": document, "copied": new}
 
 
 def off_ball_rows(surface, face, p0, p1):
