@@ -212,7 +212,7 @@ int Main(int argc, char** argv) {
   loop.DrainTrace(&trace);
   stop_load.store(true);
   if (load.joinable()) load.join();  // a build under way finishes first
-  const ServoStats s = loop.stats();
+  const ServoStats s = loop.CalcStats();
   std::size_t contact = 0;
   for (const TraceSample& t : trace) contact += (t.flags & kContact) ? 1 : 0;
 
@@ -251,7 +251,7 @@ int Main(int argc, char** argv) {
       static_cast<unsigned long long>(s.faults.non_finite));
   if (emulated >= 0) {
     const hidemu::Snapshot d = hidemu::GetSnapshot(emulated);
-    const HidLinkStats link = static_cast<HidDevice&>(*device).link_stats();
+    const HidLinkStats link = static_cast<HidDevice&>(*device).CalcLinkStats();
     std::printf(",\n  \"transport_latency_us\": %g,\n", o.transport_latency_s * 1e6);
     std::printf(
         "  \"round_trip_us\": {\"p50\": %.1f, \"p99\": %.1f, \"max\": %.1f, \"count\": %llu},\n",

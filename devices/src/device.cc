@@ -36,20 +36,4 @@ void ValidateDeviceLimits(const DeviceLimits& limits) {
   }
 }
 
-const char* ReadStatusName(ReadStatus status) {
-  switch (status) {
-    case ReadStatus::kOk:
-      return "ok";
-    case ReadStatus::kNoData:
-      return "no data";
-    case ReadStatus::kOutOfRange:
-      return "out of range";
-    case ReadStatus::kDeviceFault:
-      return "device fault";
-    case ReadStatus::kUnplugged:
-      return "unplugged";
-  }
-  return "unknown";
-}
-
 }  // namespace hapticad

@@ -242,6 +242,7 @@ void ServoLoop::Tick(double loop_time_s, double gap_s) {
       tool_w = mapping_.DeviceToWorld(state_.position_d);
       velocity_w = mapping_.VelocityToWorld(state_.velocity_d);
       if (renderer_needs_reset_) {
+        // a restart tick: bounded, but up to some 200 sweeps (ForceRenderer::Reset)
         current_->Reset(reset_from_proxy_ ? last_proxy_w_ : tool_w);
         renderer_needs_reset_ = false;
         reset_from_proxy_ = false;
@@ -440,7 +441,7 @@ std::size_t ServoLoop::DrainTrace(std::vector<TraceSample>* out) {
   return n;
 }
 
-ServoStats ServoLoop::stats() const {
+ServoStats ServoLoop::CalcStats() const {
   static_assert(sizeof(fault_counts_) / sizeof(fault_counts_[0]) == kNumFaultCounters);
   ServoStats s;
   s.ticks = ticks_.load(std::memory_order_relaxed);

@@ -617,7 +617,8 @@ void DefineDevices(py::module_& m) {
   py::class_<HidDevice, Device>(m, "HidDevice")
       .def_static("open", &HidDevice::Open, py::arg("path"), py::arg("watchdog_ms") = 5,
                   py::call_guard<py::gil_scoped_release>())
-      .def_property_readonly("link_stats", &HidDevice::link_stats)
+      .def("calc_link_stats", &HidDevice::CalcLinkStats,
+           "The link statistics so far (scans the round-trip histogram).")
       .def_property_readonly("unplugged", &HidDevice::unplugged);
   // what `hapticad devices --json` prints: kind, name, path, limits (None when the
   // device could not be read), protocol (HID: the versions it speaks), error
@@ -675,7 +676,9 @@ void DefineDevices(py::module_& m) {
       .def_property_readonly("session_end", &ServoLoop::session_end)
       .def_property_readonly("fault_message", &ServoLoop::fault_message)
       .def_property_readonly("realtime_report", &ServoLoop::realtime_report)
-      .def_property_readonly("stats", &ServoLoop::stats)
+      .def("calc_stats", &ServoLoop::CalcStats,
+           "The statistics so far (scans the latency histograms); ticks alone: .ticks.")
+      .def_property_readonly("ticks", &ServoLoop::ticks)
       .def("drain_trace",
            [](ServoLoop& loop) {
              std::vector<TraceSample> samples;

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+// HOT PATH: ConstraintSet::Add, Feasible and Project run on the servo tick (proxy update).
 #include "hapticad/core/contact/constraint_set.h"
 
 #include <cmath>

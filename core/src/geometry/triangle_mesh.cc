@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+// HOT PATH: TriangleMesh::CalcShadingNormal runs on the servo tick (Build does not).
 #include "hapticad/core/geometry/triangle_mesh.h"
 
 #include <algorithm>

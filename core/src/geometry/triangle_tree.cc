@@ -1,4 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+// HOT PATH: TriangleTree::FirstHit and Search run on the servo thread every tick (a sphere
+// proxy's sweeps); FindClosestPointWithin on a restart tick. Build does not.
 // The only translation unit of the core that includes CGAL's AABB tree.
 #include "hapticad/core/geometry/triangle_tree.h"
 

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+// HOT PATH: CurvePattern::Evaluate and MemberOffset run on the servo tick (Build does not).
 #include "hapticad/core/surfaces/curve_pattern.h"
 
 #include <algorithm>

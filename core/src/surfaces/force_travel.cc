@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+// HOT PATH: ForceTravel::ForceClamped and MaxSlope run on the servo tick.
 #include "hapticad/core/surfaces/force_travel.h"
 
 #include <algorithm>

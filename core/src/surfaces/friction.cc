@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+// HOT PATH: CalcFrictionForce runs on the servo tick.
 #include "hapticad/core/surfaces/friction.h"
 
 #include <cmath>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+// HOT PATH: NurbsCurve2::Evaluate runs on the servo tick (curve patterns).
 #include "hapticad/core/surfaces/nurbs_curve.h"
 
 #include <algorithm>

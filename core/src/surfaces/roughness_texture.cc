@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+// HOT PATH: SampleRoughness runs on the servo tick.
 #include "hapticad/core/surfaces/roughness_texture.h"
 
 #include <cmath>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+// HOT PATH: EvaluateLinear and EvaluateCircular run on the servo tick.
 #include "hapticad/core/surfaces/stripe_pattern.h"
 
 #include <algorithm>

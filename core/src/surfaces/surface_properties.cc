@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+// HOT PATH: EvaluateStripe and GratingCoordinate run on the servo tick.
 #include "hapticad/core/surfaces/surface_properties.h"
 
 #include <cmath>

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+// HOT PATH: CalcViscousTextureForce runs on the servo tick.
 #include "hapticad/core/surfaces/viscous_texture.h"
 
 #include <algorithm>

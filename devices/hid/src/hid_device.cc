@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstring>
 #include <cwchar>
-#include <mutex>
 #include <utility>
 
 #include "hid_text.h"
@@ -317,7 +316,7 @@ void HidDevice::MarkUnplugged() {
 }
 
 std::string HidDevice::DescribeFault() const {
-  const HidLinkStats s = link_stats();
+  const HidLinkStats s = CalcLinkStats();
   const std::uint8_t status = last_status_.load(std::memory_order_relaxed);
   std::string text;
   if (unplugged()) {
@@ -340,7 +339,7 @@ std::string HidDevice::DescribeFault() const {
   return text;
 }
 
-HidLinkStats HidDevice::link_stats() const {
+HidLinkStats HidDevice::CalcLinkStats() const {
   HidLinkStats s;
   auto get = [](const std::atomic<std::uint64_t>& c) { return c.load(std::memory_order_relaxed); };
   s.reports_read = get(reports_read_);

@@ -115,7 +115,7 @@ def run_stroke(doc_scene, stroke, limits=None):
     loop = _core.ServoLoop(device, renderer, stroke.rate_hz,
                            trace_capacity=int(stroke.rate_hz * (plan.times_s[-1] + 1)) + 1024)
     trace = loop.run_for(float(plan.times_s[-1]))
-    return FeelResult(trace, plan, stroke, loop.stats, limits)
+    return FeelResult(trace, plan, stroke, loop.calc_stats(), limits)
 
 
 def _contact(trace):

@@ -11,7 +11,7 @@ The binding's contract (devices/README.md):
 
     _core.SimulatedHand(limits)            .set_target(p_w)   (world m; identity mapping)
     _core.ServoLoop(device, renderer, rate_hz, trace_capacity)
-        .start() .stop() .drain_trace() .stats .running .set_mapping(mapping)
+        .start() .stop() .drain_trace() .calc_stats() .ticks .running .set_mapping(mapping)
     _core.ForceRenderer(scene, surfaces, limits) .set_surfaces(surfaces)
     loop.set_renderer(renderer)            (a new scene, taken at the next tick)
     loop.release_replaced_renderers()      (frees a scene the loop moved past)
@@ -179,7 +179,7 @@ class LiveSession:
         self.doc_scene = doc_scene
         if not self.simulated:  # the device's mapping was fitted to the parts as they were
             # the mapping in effect, clutch offsets included, once the loop has ticked
-            mapping = self.loop.mapping if self.loop.stats.ticks > 0 else self.mapping
+            mapping = self.loop.mapping if self.loop.ticks > 0 else self.mapping
             self.reach_note = beyond_reach(self.limits, mapping, *scene_box_m(doc_scene))
 
     def apply_edit(self, doc, geometry):
@@ -220,19 +220,18 @@ class LiveSession:
         return bool(self.loop.running)
 
     @property
-    def stats(self):
-        return self.loop.stats
+    def ticks(self):
+        """Ticks the loop ran so far (cheap: one atomic read)."""
+        return int(self.loop.ticks)
 
     @property
     def end_message(self):
         return getattr(self.loop, "fault_message", "") or ""
 
     def achieved_rate_hz(self):
-        stats = self.loop.stats
-        rate = getattr(stats, "achieved_rate_hz", 0.0)
-        if not rate and stats.elapsed_s > 0:
-            rate = stats.ticks / stats.elapsed_s
-        return float(rate)
+        """The rate the loop kept, (ticks - 1) over its wall time (the loop computes its
+        statistics for this: call it at display rate, not in a tight loop)."""
+        return float(self.loop.calc_stats().achieved_rate_hz)
 
     def describe_face(self, cad_face):
         """"Object.FaceN: surface (material, mu_s, mu_d, roughness)" of a face, or ""."""

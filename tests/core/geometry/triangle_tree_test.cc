@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "alloc_counter.h"
+#include "closest_on_triangle.h"
 #include "test_meshes.h"
 
 namespace hapticad {
@@ -134,30 +135,6 @@ TEST(TriangleTree, ClosestPointAtAVertexNamesATriangleThatHasIt) {
   EXPECT_GT(checked, 900);
 }
 
-// The closest point of triangle abc to p, by the region p projects into (corner, edge
-// or face): an independent reference for the tree's search.
-Vec3 ClosestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
-    return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-  }
-  const double denom = 1.0 / (va + vb + vc);
-  return a + vb * denom * ab + vc * denom * ac;
-}
-
 TEST(TriangleTree, ClosestPointMatchesEveryTriangleTested) {
   // a bumpy ball (radial noise keeps it a closed surface) and points inside, near and
   // far: the answer is as near as the nearest of all triangles, and lies on its own
@@ -176,15 +153,15 @@ TEST(TriangleTree, ClosestPointMatchesEveryTriangleTested) {
     double nearest = INFINITY;
     for (std::uint32_t t = 0; t < mesh->num_triangles(); ++t) {
       const auto& tri = mesh->triangle(t);
-      const Vec3 c =
-          ClosestOnTriangle(q, mesh->vertex(tri[0]), mesh->vertex(tri[1]), mesh->vertex(tri[2]));
+      const Vec3 c = testing::ClosestOnTriangle(q, mesh->vertex(tri[0]), mesh->vertex(tri[1]),
+                                                mesh->vertex(tri[2]));
       nearest = std::min(nearest, (c - q).norm());
     }
     ASSERT_NEAR(got.distance, nearest, 1e-12) << i;
     ASSERT_NEAR((got.point - q).norm(), got.distance, 1e-12) << i;
     const auto& own = mesh->triangle(got.triangle);
-    const Vec3 on = ClosestOnTriangle(got.point, mesh->vertex(own[0]), mesh->vertex(own[1]),
-                                      mesh->vertex(own[2]));
+    const Vec3 on = testing::ClosestOnTriangle(got.point, mesh->vertex(own[0]),
+                                               mesh->vertex(own[1]), mesh->vertex(own[2]));
     ASSERT_NEAR((on - got.point).norm(), 0.0, 1e-12) << i << ": not on triangle " << got.triangle;
   }
 }

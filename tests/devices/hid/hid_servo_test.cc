@@ -121,11 +121,11 @@ TEST_F(HidServo, TheUserPressesOnTheSurfaceThroughTheDevice) {
   EXPECT_NEAR(device.applied_force_n.z(), 1.71, 0.1);
   EXPECT_NEAR(trace.back().force_n[2], device.applied_force_n.z(), 0.02);
   EXPECT_TRUE(trace.back().flags & kContact);
-  EXPECT_EQ(loop_->stats().faults.zero_force_ticks, 1u);  // the first tick: no data yet
+  EXPECT_EQ(loop_->CalcStats().faults.zero_force_ticks, 1u);  // the first tick: no data yet
   // round trip measured by the device: a report sent at k ms arrives at k + 0.25 ms, is
   // read by the tick at k + 1 ms, whose command arrives 0.25 ms later
   EXPECT_NEAR(device.round_trip_p50_s, 1.25e-3, 0.04e-3);
-  EXPECT_NEAR(device_->link_stats().round_trip_p50_us, 1250, 40);
+  EXPECT_NEAR(device_->CalcLinkStats().round_trip_p50_us, 1250, 40);
   EXPECT_EQ(device.outputs_rejected, 0u);
 }
 
@@ -140,7 +140,7 @@ TEST_F(HidServo, UnplugZeroesTheForceInThatTickAndEndsTheSessionWithAMessage) {
   EXPECT_EQ(Norm(last.force_n), 0.0);
   EXPECT_GT(trace[trace.size() - 2].force_n[2], 1.0);  // it was pressing a tick before
   // the servo thread would now end the session; the tick-driven test ends it the same way
-  EXPECT_EQ(loop_->stats().faults.unplugged, 1u);
+  EXPECT_EQ(loop_->CalcStats().faults.unplugged, 1u);
   EXPECT_TRUE(device_->unplugged());
   EXPECT_TRUE(Contains(device_->DescribeFault(), "device disconnected"));
 }
@@ -151,8 +151,8 @@ TEST_F(HidServo, AStallZeroesTheForceUntilDataComesBackThenRampsIn) {
   const auto trace = Run(c, 1.4);
   // stale once the last report is over 5 ms old: 1.005 .. 1.029 (reports resume at 1.03)
   ExpectZeroForceDuring(trace, 1.0055, 1.0295, kFaultStale);
-  EXPECT_GE(loop_->stats().faults.stale, 24u);  // 1.005 is 5 ms after 0.999, give or take a bit
-  EXPECT_LE(loop_->stats().faults.stale, 26u);
+  EXPECT_GE(loop_->CalcStats().faults.stale, 24u);  // 1.005 is 5 ms after 0.999, give or take a bit
+  EXPECT_LE(loop_->CalcStats().faults.stale, 26u);
   // the device got zero force from the host during the stall, not its last command
   EXPECT_GT(hidemu::GetSnapshot(id_).outputs_applied, 1300u);
 }
@@ -175,7 +175,7 @@ TEST_F(HidServo, ADeviceThatStaysSilentEndsTheSession) {
   EXPECT_EQ(loop.session_end(), SessionEnd::kDeviceLost);
   EXPECT_TRUE(Contains(loop.fault_message(), "gave no usable data for 0.5 s (no data)"))
       << loop.fault_message();
-  EXPECT_EQ(loop.stats().faults.zero_force_ticks, loop.stats().ticks);  // never any force
+  EXPECT_EQ(loop.CalcStats().faults.zero_force_ticks, loop.ticks());  // never any force
 }
 
 TEST_F(HidServo, LateReportsZeroTheForce) {
@@ -183,7 +183,7 @@ TEST_F(HidServo, LateReportsZeroTheForce) {
   c.faults.push_back(FaultWindow{Fault::kLate, 1.0, 1.05, 0.02});
   const auto trace = Run(c, 1.5);
   ExpectZeroForceDuring(trace, 1.0055, 1.0685, kFaultStale);
-  EXPECT_GT(loop_->stats().faults.stale, 55u);
+  EXPECT_GT(loop_->CalcStats().faults.stale, 55u);
 }
 
 TEST_F(HidServo, ReorderedDroppedAndDuplicatedReportsAreAbsorbed) {
@@ -194,9 +194,9 @@ TEST_F(HidServo, ReorderedDroppedAndDuplicatedReportsAreAbsorbed) {
     c.faults.push_back(FaultWindow{fault, 1.0, 1.2, 0.3});
     const auto trace = Run(c, 1.4);
     // the user feels nothing: no tick without force after the start
-    EXPECT_EQ(loop_->stats().faults.zero_force_ticks, 1u) << static_cast<int>(fault);
+    EXPECT_EQ(loop_->CalcStats().faults.zero_force_ticks, 1u) << static_cast<int>(fault);
     EXPECT_GT(trace.back().force_n[2], 1.0);
-    const HidLinkStats link = device_->link_stats();
+    const HidLinkStats link = device_->CalcLinkStats();
     EXPECT_GT(link.not_newer + link.dropped, 40u) << static_cast<int>(fault);
   }
 }
@@ -209,8 +209,8 @@ TEST_F(HidServo, TruncatedAndGarbageReportsNeverReachTheForce) {
     c.faults.push_back(FaultWindow{fault, 1.0, 1.02, 12});
     const auto trace = Run(c, 1.4);
     ExpectZeroForceDuring(trace, 1.0055, 1.0195, kFaultStale);
-    EXPECT_EQ(device_->link_stats().malformed, 20u);
-    EXPECT_EQ(loop_->stats().faults.out_of_range, 0u);
+    EXPECT_EQ(device_->CalcLinkStats().malformed, 20u);
+    EXPECT_EQ(loop_->CalcStats().faults.out_of_range, 0u);
     // the handle the renderer saw moved smoothly from tick to tick (the hand moves under
     // 1 mm per ms): nothing of the garbage got through
     for (std::size_t i = 2; i < trace.size(); ++i) {
@@ -228,7 +228,7 @@ TEST_F(HidServo, ExtremeValuesZeroTheForceAndAreCounted) {
   c.faults.push_back(FaultWindow{Fault::kExtreme, 1.0, 1.01});
   const auto trace = Run(c, 1.4);
   ExpectZeroForceDuring(trace, 1.0, 1.01, kFaultOutOfRange);
-  EXPECT_EQ(loop_->stats().faults.out_of_range, 10u);
+  EXPECT_EQ(loop_->CalcStats().faults.out_of_range, 10u);
   for (const auto& s : trace) {
     EXPECT_LT(std::abs(s.device_m[1]), 0.1) << s.time_s;  // never reached the renderer
     EXPECT_LT(Norm(s.velocity_mps), 1.0) << s.time_s;
@@ -240,7 +240,7 @@ TEST_F(HidServo, AFaultTheDeviceReportsZeroesTheForce) {
   c.faults.push_back(FaultWindow{Fault::kDeviceFault, 1.0, 1.01});
   const auto trace = Run(c, 1.4);
   ExpectZeroForceDuring(trace, 1.0, 1.01, kFaultReported);
-  EXPECT_EQ(loop_->stats().faults.reported, 10u);
+  EXPECT_EQ(loop_->CalcStats().faults.reported, 10u);
 }
 
 TEST_F(HidServo, AFrozenDeviceClockIsStaleData) {
@@ -257,7 +257,7 @@ TEST_F(HidServo, LostCommandsTripTheDeviceWatchdogAndTheForceRampsBack) {
   hidemu::Snapshot device = hidemu::GetSnapshot(id_);
   EXPECT_TRUE(device.watchdog_tripped);  // 30 ms without a command: the device let go
   EXPECT_EQ(device.applied_force_n, Vec3::Zero());
-  EXPECT_GT(device_->link_stats().watchdog_reports, 5u);  // and told the host...
+  EXPECT_GT(device_->CalcLinkStats().watchdog_reports, 5u);  // and told the host...
   std::vector<TraceSample> trace;
   for (long i = 1030; i < 1300; ++i) {  // commands get through again from 1.05 s
     hidemu::SetTime(kPlugTime + i * 1e-3);
@@ -306,8 +306,8 @@ TEST_F(HidServo, ALateTickDoesNotMakeTheReportsAfterItLookStale) {
   }
   std::vector<TraceSample> trace;
   loop_->DrainTrace(&trace);
-  EXPECT_EQ(loop_->stats().faults.watchdog, 1u);  // the late tick itself
-  EXPECT_EQ(loop_->stats().faults.stale, 0u);     // nothing after it
+  EXPECT_EQ(loop_->CalcStats().faults.watchdog, 1u);  // the late tick itself
+  EXPECT_EQ(loop_->CalcStats().faults.stale, 0u);     // nothing after it
   EXPECT_GT(trace.back().force_n[2], 1.0);
 }
 
@@ -335,8 +335,8 @@ TEST_F(HidServo, ATickThroughTheHidBackendDoesNotAllocate) {
     loop_->Tick(i * 1e-3, 1e-3);
   }
   EXPECT_EQ(counter.count(), 0u);
-  EXPECT_GT(loop_->stats().faults.stale, 10u);
-  EXPECT_GT(device_->link_stats().malformed, 10u);
+  EXPECT_GT(loop_->CalcStats().faults.stale, 10u);
+  EXPECT_GT(device_->CalcLinkStats().malformed, 10u);
 }
 
 // The real servo thread, on the real clock.
@@ -372,7 +372,7 @@ TEST_F(HidServoRealTime, RunsAndEndsTheSessionWhenUnplugged) {
   ASSERT_GT(trace.size(), 100u);
   EXPECT_TRUE(trace.back().flags & kFaultUnplugged);
   EXPECT_EQ(Norm(trace.back().force_n), 0.0);
-  EXPECT_GT(device->link_stats().reports_used, 100u);
+  EXPECT_GT(device->CalcLinkStats().reports_used, 100u);
   loop.Stop();  // joins quietly
   EXPECT_EQ(loop.session_end(), SessionEnd::kUnplugged);
   EXPECT_THROW(loop.Start(), DeviceError);  // no new session on a device that is gone

@@ -28,8 +28,11 @@ T = np.array([[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4],
 FACES = np.array([4, 4, 5, 5, 2, 2, 1, 1, 3, 3, 0, 0], np.int32)
 
 
-def box_renderer(limits):
-    scene = _core.HapticScene.build(V, T, FACES, 1.0)
+def box_renderer(limits, top=0.05):
+    """The box, its top face at `top` m."""
+    v = V.copy()
+    v[4:, 2] = top
+    scene = _core.HapticScene.build(v, T, FACES, 1.0)
     surfaces = _core.SurfaceTable([_core.SurfaceProperties() for _ in range(6)])
     return _core.ForceRenderer(scene, surfaces, _core.render_limits_for(limits, _core.WorkspaceMapping()))
 
@@ -75,7 +78,7 @@ class SimulatedHandSession(unittest.TestCase):
             chunks.append(loop.drain_trace())  # never blocks
             time.sleep(0.05)
         loop.stop()
-        stats = loop.stats  # after the stop: the trace below holds every tick it counted
+        stats = loop.calc_stats()  # after the stop: the trace below holds every tick it counted
         chunks.append(loop.drain_trace())
         trace = np.concatenate(chunks)
         check_host_stall(trace, _core.FLAG_FAULT_WATCHDOG)
@@ -105,13 +108,19 @@ class SimulatedHandSession(unittest.TestCase):
         hand = _core.SimulatedHand(limits=hand_limits())
         loop = _core.ServoLoop(hand, box_renderer(hand_limits()))
         loop.start()
-        before = loop.stats.ticks
-        end = time.monotonic() + 0.2
-        while time.monotonic() < end:  # pure Python: the GIL is never released here
+        before = loop.ticks
+        # pure Python (loop.ticks keeps the GIL too): the GIL is never released here, until
+        # the loop has counted 100 more ticks; the deadline only bounds a loop that stopped
+        end = time.monotonic() + 10.0
+        while loop.ticks - before <= 100 and time.monotonic() < end:
             pass
-        after = loop.stats.ticks
+        after = loop.ticks
         loop.stop()
         self.assertGreater(after - before, 100)
+        # the ticks ran on the loop's clock: each at its own period
+        stats = loop.calc_stats()
+        self.assertGreaterEqual(stats.ticks, after)
+        self.assertGreaterEqual(stats.elapsed_s, (stats.ticks - 1) * 1e-3 - 1e-9)
 
     @rerun_after_host_stall
     def test_follows_a_path_and_a_recorded_trajectory(self):
@@ -160,12 +169,19 @@ class SimulatedHandSession(unittest.TestCase):
         loop.set_clutch(True)
         self.assertTrue(wait_until(lambda: loop.latest()["flags"] & _core.FLAG_CLUTCHED))
         loop.set_clutch(False)
-        loop.set_renderer(box_renderer(limits))
         self.assertTrue(wait_until(lambda: not loop.latest()["flags"] & _core.FLAG_CLUTCHED))
         world = loop.mapping.device_to_world(hand.true_state.position_d)
+        self.assertFalse(loop.latest()["flags"] & _core.FLAG_CONTACT)  # free, 40 mm over the top
+        # a box whose top, at 95 mm, is over the tool (90 mm): the proxy restarts on it
+        loop.set_renderer(box_renderer(limits, top=0.095))
+        self.assertTrue(wait_until(lambda: loop.latest()["flags"] & _core.FLAG_CONTACT),
+                        "the new scene never reached the loop")
+        after = loop.latest()
         loop.stop()
         check_host_stall(loop.drain_trace(), _core.FLAG_FAULT_WATCHDOG)
         self.assertAlmostEqual(world[2], 0.09, delta=2e-4)
+        self.assertEqual(after["cad_face"], 5)
+        self.assertAlmostEqual(after["proxy_m"][2], 0.095, delta=1e-6)  # on the new top
 
 
 class HidSession(unittest.TestCase):
@@ -185,7 +201,7 @@ class HidSession(unittest.TestCase):
         trace = loop.drain_trace()
         self.assertTrue(trace[-1]["flags"] & _core.FLAG_FAULT_UNPLUGGED)
         self.assertEqual(np.abs(trace[-1]["force_n"]).max(), 0.0)
-        self.assertGreater(device.link_stats.reports_used, 100)
+        self.assertGreater(device.calc_link_stats().reports_used, 100)
         self.assertTrue(device.unplugged)
         with self.assertRaisesRegex(_core.DeviceError, "cannot open the HID device emu:0"):
             _core.HidDevice.open("emu:0")

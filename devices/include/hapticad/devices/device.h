@@ -60,8 +60,6 @@ enum class ReadStatus : std::uint8_t {
   kUnplugged,    // the device is gone; every later read returns this too
 };
 
-const char* ReadStatusName(ReadStatus status);
-
 // Thrown when a device cannot be opened or used; what() is a message for the user.
 class DeviceError : public std::runtime_error {
  public:
@@ -78,8 +76,9 @@ class Device {
   virtual void BeginSession() {}
 
   // The latest state. `loop_time_s` is the servo loop's clock (s since the session
-  // started), which a simulated device uses as its own and a real one to age its data.
-  // On anything but kOk, `state` keeps the last good values.
+  // started: the tick's scheduled time), which a simulated device uses as its own; a
+  // real one may ignore it (HidDevice ages its data on the host's monotonic clock, which
+  // a late tick does not skew). On anything but kOk, `state` keeps the last good values.
   virtual ReadStatus ReadState(double loop_time_s, DeviceState* state) = 0;
 
   // Commands a force (N, device frame) until the next call.

@@ -332,7 +332,7 @@ class FeelTaskPanel:
         trace = self.session.drain()
         if len(trace):
             self.chart.append(trace)
-        self.rate_label.setText(f"Loop: stopped after {self.session.stats.ticks} ticks "
+        self.rate_label.setText(f"Loop: stopped after {self.session.ticks} ticks "
                                 f"({self.session.achieved_rate_hz():.0f} Hz)")
 
     def _tear_down(self):

@@ -48,7 +48,10 @@ class TriangleTree {
   // The same, closer than `max_distance` to `p` only: the walk skips every box farther
   // away, so a point clear of the surface costs the few boxes round it, not a search for
   // the nearest triangle however far. Returns false (and leaves *out) if none is that
-  // close (always for a max_distance that is not > 0). Not for the servo tick either.
+  // close (always for a max_distance that is not > 0). No allocation. Not for every
+  // tick, but a restart tick runs it: a sphere proxy's GodObjectProxy::ResetOutside (the
+  // tick that starts a session or takes a new scene or mapping) asks it up to
+  // kMaxClearSteps + 1 = 5 times, within the proxy's radius.
   bool FindClosestPointWithin(const Vec3& p, double max_distance, SurfacePoint* out) const;
 
   std::size_t num_triangles() const;

@@ -52,8 +52,8 @@ struct HidLinkStats {
   std::uint64_t not_newer = 0;         // sequence or device time not newer
   std::uint64_t dropped = 0;           // sequence numbers skipped
   std::uint64_t out_of_range = 0;      // positions outside the workspace (+25 %)
-  std::uint64_t device_faults = 0;     // reports with FAULT or NOT_HOMED
-  std::uint64_t watchdog_reports = 0;  // reports saying the device watchdog tripped
+  std::uint64_t device_faults = 0;     // reports with FAULT, NOT_HOMED or WATCHDOG (not used)
+  std::uint64_t watchdog_reports = 0;  // of those, the ones saying the device watchdog tripped
   std::uint64_t writes = 0;
   std::uint64_t writes_failed = 0;
   // round trip as measured by the device (input sent -> answering output received)
@@ -94,7 +94,9 @@ class HidDevice final : public Device {
   void EndSession() override;
   std::string DescribeFault() const override;
 
-  HidLinkStats link_stats() const;
+  // The link statistics so far: reads the counters and computes two percentiles from the
+  // round-trip histogram (up to two scans of its 1184 bins each).
+  HidLinkStats CalcLinkStats() const;
 
   // The host clock, s (CLOCK_MONOTONIC by default; the tests give the emulator's).
   using Clock = double (*)();
@@ -130,7 +132,7 @@ class HidDevice final : public Device {
   bool have_good_ = false;
   double last_fresh_s_ = 0.0;   // host clock
   double fresh_delay_s_ = 0.0;  // how late the last fresh report was
-  double min_offset_s_ = 0.0;   // smallest recent (loop time - device time)
+  double min_offset_s_ = 0.0;   // smallest recent (host clock at receipt - device time)
   double min_offset_time_s_ = 0.0;
   ReadStatus verdict_ = ReadStatus::kNoData;
   Vec3 position_d_ = Vec3::Zero();
