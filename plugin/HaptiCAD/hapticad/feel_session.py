@@ -209,6 +209,10 @@ class LiveSession:
         """Where the device's tool was at the loop's last tick, world metres."""
         return np.asarray(self.loop.latest()["device_m"], float)
 
+    def proxy_w(self):
+        """Where the proxy was held at the loop's last tick, world metres."""
+        return np.asarray(self.loop.latest()["proxy_m"], float)
+
     def drain(self):
         """Trace samples since the last drain (a NumPy structured array). Also frees a
         scene the loop has swapped out (the GUI polls this)."""

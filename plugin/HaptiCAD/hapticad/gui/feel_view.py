@@ -5,30 +5,17 @@ Drawn in its own Coin node added to the view (unpickable, so picking still sees 
 part): the probe (where the device, or the simulated hand, is) as a blue sphere, the
 proxy (the point held on the surface) as a green sphere, and the force on the hand as
 a red arrow from the proxy. With the simulated probe, moving the mouse over a part aims
-the hand at the point under the cursor, pressed ``depth_mm`` into the surface; the wheel
-sets that depth (and is not passed on to zoom while the session runs).
+the hand at the point under the cursor, pressed ``depth_mm`` into the surface (how it
+comes there: hand_approach.py); the wheel sets that depth (and is not passed on to zoom
+while the session runs).
 """
 import numpy as np
 
 import FreeCAD as App
 
-MM = 1e-3
+from ..hand_approach import MM, HandApproach
+
 ARROW_MM_PER_N = 8.0  # force arrow length per newton
-LIFT_MM = 5.0  # where the hand goes when the cursor leaves the part: lifted off along the normal
-HOVER_MM = 5.0  # coming to a face it is not on: this far off it, along its normal, first
-CLEAR_MM = 10.0  # above the parts' top, where a hand crosses to a face that looks up
-ARRIVED_MM = 1.0  # near enough the hover point to come down
-APPROACH_TIMEOUT_S = 1.0  # comes down then anyway (a hand held back by something)
-# How the hand comes down from there: a target stepped onto the face landed at 1.45 N
-# on ABS pressed to 0.40 N, a knock on every first touch. At 150 mm/s to 4 mm above the
-# face, then slowing as it nears (the distance left / 0.1 s, 30 to 10 mm/s), it lands
-# at 1.16x / 1.10x / 1.03x what it then presses at 1 / 1.5 / 3 mm, in 0.4-0.6 s from
-# 10 mm above (the hand lags a fast target by some 3 mm: slow down before the face)
-DESCENT_FAST_MM_S = 150.0
-DESCENT_SLOW_ZONE_MM = 4.0
-DESCENT_TIME_S = 0.1
-DESCENT_MM_S = (10.0, 30.0)
-STEP_MM = 2.0  # a face under the cursor this much (beyond the press) above the hand: a step up, lifted over
 
 
 class FeelView:
@@ -108,37 +95,25 @@ class FeelView:
 
 
 class MouseSteering:
-    """Turns mouse moves and the wheel in the 3D view into the simulated hand's target.
+    """Turns mouse moves and the wheel in the 3D view into the simulated hand's target:
+    the face under the cursor goes to a HandApproach (hand_approach.py says where the
+    hand goes and how it comes to the part), which a timer ticks every TICK_MS."""
 
-    On the part, the hand presses ``depth_mm`` into the face under the cursor; off it,
-    it lifts LIFT_MM off the face it was on. Coming to the part (the session's first
-    touch, the cursor back on it, or a face that stands above the hand: a step up), the
-    hand does not go straight for the face, which would drag it through whatever stands
-    between (a grip's side wall caught it and held it there): it goes to a point
-    HOVER_MM off the face along its normal (for a face that looks up, at least CLEAR_MM
-    above the parts' top), and once ``tool_w()`` says it is there comes down, slowing
-    over the last DESCENT_SLOW_ZONE_MM, as a hand lowers a finger, not in one step
-    that lands with a knock."""
+    TICK_MS = 20
 
-    def __init__(self, view, doc_scene, set_target, depth_changed, tool_w=None, top_mm=None):
+    def __init__(self, view, doc_scene, set_target, depth_changed, tool_w=None, proxy_w=None, top_mm=None):
         from pivy import coin
         from PySide2 import QtCore
 
         self.view = view
         self.doc_scene = doc_scene
-        self.set_target = set_target  # callable(target_w in m)
         self.depth_changed = depth_changed  # callable(step), from the wheel
-        self.tool_w = tool_w  # callable() -> the tool's position in m, or None: no approach
-        self.top_mm = top_mm  # the parts' highest z, mm
-        self.depth_mm = 1.0
-        self.last_surface = None  # (point_mm, normal) under the cursor last
-        self.landed = False  # the hand is on the part (not lifted, not coming down)
-        self.approach = None  # (hover_w, press_w) while coming to the part
-        self.descent_left_mm = None  # while coming down from the hover point: how far is left
-        self._approach_time = 0.0
-        self._approach_timer = QtCore.QTimer()
-        self._approach_timer.setInterval(20)
-        self._approach_timer.timeout.connect(self._check_approach)
+        self.hand = HandApproach(set_target, tool_w, proxy_w, top_mm)
+        self._timer = QtCore.QTimer()
+        self._timer.setInterval(self.TICK_MS)
+        self._timer.timeout.connect(lambda: self.hand.step(self.TICK_MS / 1000.0))
+        if tool_w is not None:
+            self._timer.start()
         self.moves = 0
         self._move_type = coin.SoLocation2Event.getClassTypeId()
         self._move_callback = view.addEventCallbackPivy(self._move_type, self._on_move)
@@ -158,6 +133,14 @@ class MouseSteering:
         if self._viewport is not None:
             self._viewport.installEventFilter(self._wheel_filter)
 
+    @property
+    def depth_mm(self):
+        return self.hand.depth_mm
+
+    @depth_mm.setter
+    def depth_mm(self, value):
+        self.hand.depth_mm = value
+
     def _on_move(self, event_callback):
         event = event_callback.getEvent()
         x, y = event.getPosition().getValue()
@@ -165,95 +148,22 @@ class MouseSteering:
         self.aim_at_pixel(int(x), int(y))
 
     def aim_again(self):
-        """Aims at the face it was on with the current depth (the wheel or the slider
-        changed it): felt at once, not at the next mouse move; coming down, it lands at
-        the new depth."""
-        if self.last_surface is None:
-            return
-        point_mm, normal = self.last_surface
-        press_w = (point_mm - self.depth_mm * normal) * MM
-        if self.landed:
-            self.set_target(press_w)
-        elif self.approach is not None:
-            self.approach = (self.approach[0], press_w)
+        self.hand.aim_again()
 
     def aim_at_pixel(self, x, y):
         """Aims the hand at the part under view pixel (x, y) (Coin's: y up)."""
         info = self.view.getObjectInfo((x, y))
-        on_part = bool(info) and "x" in info
-        if on_part:
+        surface = None
+        if info and "x" in info:
             point_mm = np.array([info["x"], info["y"], info["z"]], float)
             sample = self.doc_scene.scene.calc_closest_point(point_mm * MM)
-            self.last_surface = (point_mm, np.asarray(sample.normal_w, float))
-        if self.last_surface is None:
-            return
-        point_mm, normal = self.last_surface
-        if not on_part:
-            self.landed = False
-            self.approach = self.descent_left_mm = None
-            self.set_target((point_mm + LIFT_MM * normal) * MM)
-            return
-        press_w = (point_mm - self.depth_mm * normal) * MM
-        if self.landed and self.tool_w is not None and self._below(point_mm, normal):
-            self.landed = False  # a step up under the cursor: over it, as a hand would, not into its wall
-        if self.landed or self.tool_w is None:
-            self.set_target(press_w)
-            return
-        hover_mm = point_mm + HOVER_MM * normal
-        if self.top_mm is not None and normal[2] > 0.5:
-            hover_mm[2] = max(hover_mm[2], self.top_mm + CLEAR_MM)
-        if self.approach is None:
-            self._approach_time = 0.0
-            self._approach_timer.start()
-        self.approach = (hover_mm * MM, press_w)
-        self.set_target(self._descending_target())
-
-    def _below(self, point_mm, normal):
-        """True when the hand is under the face at ``point_mm`` by more than it presses."""
-        return float(np.dot(self.tool_w() / MM - point_mm, normal)) < -(self.depth_mm + STEP_MM)
-
-    def _descending_target(self):
-        """The approach's target: the hover point, or on the way down from it to the press
-        point (the cursor moved while coming down: as far down over the new point)."""
-        hover_w, press_w = self.approach
-        if self.descent_left_mm is None:
-            return hover_w
-        way = hover_w - press_w
-        length_mm = float(np.linalg.norm(way)) / MM
-        return press_w + way * min(1.0, self.descent_left_mm / length_mm) if length_mm > 0 else press_w
-
-    def _check_approach(self):
-        """While coming to the part: once the hand hovers over it, down onto the face."""
-        if self.approach is None:
-            self._approach_timer.stop()
-            return
-        step_s = self._approach_timer.interval() / 1000.0
-        if self.descent_left_mm is None:
-            hover_w, press_w = self.approach
-            self._approach_time += step_s
-            there = np.linalg.norm(self.tool_w() - hover_w) < ARRIVED_MM * MM
-            if there or self._approach_time >= APPROACH_TIMEOUT_S:
-                self.descent_left_mm = float(np.linalg.norm(hover_w - press_w)) / MM
-            return
-        above_mm = self.descent_left_mm - self.depth_mm  # the face is depth_mm up the way
-        if above_mm > DESCENT_SLOW_ZONE_MM:
-            self.descent_left_mm = max(self.depth_mm + DESCENT_SLOW_ZONE_MM,
-                                       self.descent_left_mm - DESCENT_FAST_MM_S * step_s)
-        else:
-            self.descent_left_mm -= float(np.clip(above_mm / DESCENT_TIME_S, *DESCENT_MM_S)) * step_s
-        if self.descent_left_mm > 0:
-            self.set_target(self._descending_target())
-            return
-        press_w = self.approach[1]
-        self._approach_timer.stop()
-        self.approach = self.descent_left_mm = None
-        self.landed = True
-        self.set_target(press_w)
+            surface = (point_mm, np.asarray(sample.normal_w, float))
+        self.hand.aim(surface)
 
     def halt(self):
-        """No more aiming: a hand coming down stops where it is."""
-        self._approach_timer.stop()
-        self.approach = self.descent_left_mm = None
+        """No more aiming: a hand on its way stops where it is."""
+        self._timer.stop()
+        self.hand.halt()
 
     def remove(self):
         self.halt()

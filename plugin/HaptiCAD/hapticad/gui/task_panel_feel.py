@@ -192,7 +192,8 @@ class FeelTaskPanel:
         start_w = None
         if self.session.simulated:
             self.steering = MouseSteering(view, self.doc_scene, self.session.set_target, self.wheel,
-                                          tool_w=self.session.tool_w, top_mm=high[2] / feel_session.MM)
+                                          tool_w=self.session.tool_w, proxy_w=self.session.proxy_w,
+                                          top_mm=high[2] / feel_session.MM)
             self.steering.depth_mm = self.depth_mm()
             # the hand starts above the middle of the parts, clear of them
             start_w = np.array([0.5 * (low[0] + high[0]), 0.5 * (low[1] + high[1]), high[2] + 0.01])

@@ -1,0 +1,194 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Where the simulated hand aims: how it comes to the part and presses on it. The Feel
+panel's mouse steering (gui/feel_view.py) hands it the face under the cursor and ticks
+it from a timer; no GUI here.
+
+Points are world millimetres, normals unit vectors; ``set_target`` takes metres, and
+``tool_w()`` / ``proxy_w()`` give the loop's last device and proxy positions in metres.
+
+The hand presses ``depth_mm`` into the face under the cursor. It goes straight there
+only while it rests on the part and the new point is near. Otherwise it comes over,
+as a hand lowers a finger, not dragged through whatever stands between:
+
+1. lift: when it rests on the part, off the face it rests on, along its normal (for a
+   face that looks up, to CLEAR_MM above the parts' top);
+2. hover: HOVER_MM off the new face along its normal (for a face that looks up, at
+   least CLEAR_MM above the parts' top);
+3. down onto the face: at DESCENT_FAST_MM_S to DESCENT_SLOW_ZONE_MM above it, then
+   slowing as it nears, so it lands without a knock.
+
+It comes over on the session's first touch, when the cursor comes back onto the part,
+when a face stands above the hand (a step up), when the cursor jumped (the new point
+farther than JUMP_MM from the hand), and when the proxy is held far from the hand
+(caught: the hand went where the proxy could not follow). Off the part, the hand lifts
+LIFT_MM off the face it was on.
+"""
+import numpy as np
+
+MM = 1e-3
+LIFT_MM = 5.0  # where the hand goes when the cursor leaves the part: lifted off along the normal
+HOVER_MM = 5.0  # coming to a face it is not on: this far off it, along its normal, first
+CLEAR_MM = 10.0  # above the parts' top, where a hand crosses to a face that looks up
+ARRIVED_MM = 1.0  # near enough a lift or hover point to go on
+WAYPOINT_TIMEOUT_S = 1.0  # goes on then anyway (a hand held back by something)
+# How the hand comes down: a target stepped onto the face landed at 1.45 N on ABS
+# pressed to 0.40 N, a knock on every first touch. At 150 mm/s to 4 mm above the face,
+# then slowing as it nears (the distance left / 0.1 s, 30 to 10 mm/s), it lands at
+# 1.16x / 1.10x / 1.03x what it then presses at 1 / 1.5 / 3 mm, in 0.4-0.6 s from 10 mm
+# above (the hand lags a fast target by some 3 mm: slow down before the face)
+DESCENT_FAST_MM_S = 150.0
+DESCENT_SLOW_ZONE_MM = 4.0
+DESCENT_TIME_S = 0.1
+DESCENT_MM_S = (10.0, 30.0)
+STEP_MM = 2.0  # a face under the cursor this much (beyond the press) above the hand: a step up
+# A cursor that jumped: straight there, a reviewer's jump along a toothbrush dragged
+# the hand through a 1.5 mm step, its proxy caught on the step's wall 101 mm away.
+# A drag moves the target 1-5 mm per mouse event, the hand lagging some 3 mm.
+JUMP_MM = 10.0
+
+
+class HandApproach:
+    def __init__(self, set_target, tool_w=None, proxy_w=None, top_mm=None):
+        """``tool_w``: None aims straight at every face (no approach); ``proxy_w``: None
+        does not watch for a caught proxy; ``top_mm``: the parts' highest z."""
+        self.set_target = set_target
+        self.tool_w = tool_w
+        self.proxy_w = proxy_w
+        self.top_mm = top_mm
+        self.depth_mm = 1.0
+        self.last_surface = None  # (point_mm, normal) under the cursor last
+        self.resting = None  # (point_mm, normal) of the face the hand rests on, while landed
+        self.landed = False  # the hand is on the part (not lifted, not coming)
+        self.lift_w = None  # while lifting off the face it rested on
+        self.approach = None  # (hover_w, press_w) while coming to the part
+        self.descent_left_mm = None  # while coming down from the hover point: how far is left
+        self._waited_s = 0.0  # at the current lift or hover point
+
+    @property
+    def coming(self):
+        """True while the hand lifts, hovers or comes down (``step`` has work)."""
+        return self.approach is not None
+
+    def aim(self, surface):
+        """The cursor is on ``surface`` = (point_mm, normal) of a part, or off the parts
+        (None)."""
+        if surface is not None:
+            self.last_surface = (np.asarray(surface[0], float), np.asarray(surface[1], float))
+        if self.last_surface is None:
+            return
+        point_mm, normal = self.last_surface
+        if surface is None:
+            self.landed = False
+            self.resting = self.lift_w = self.approach = self.descent_left_mm = None
+            self.set_target((point_mm + LIFT_MM * normal) * MM)
+            return
+        press_w = (point_mm - self.depth_mm * normal) * MM
+        if self.landed and self.tool_w is not None and self._must_come_over(point_mm, normal, press_w):
+            self.landed = False
+            self.lift_w = self._lift_point()
+            self._waited_s = 0.0
+        if self.landed or self.tool_w is None:
+            self.resting = self.last_surface
+            self.set_target(press_w)
+            return
+        hover_mm = point_mm + HOVER_MM * normal
+        if self.top_mm is not None and normal[2] > 0.5:
+            hover_mm[2] = max(hover_mm[2], self.top_mm + CLEAR_MM)
+        if self.approach is None:
+            self._waited_s = 0.0
+        self.approach = (hover_mm * MM, press_w)
+        self.set_target(self._target())
+
+    def aim_again(self):
+        """Aims at the face it was on with the current depth (the wheel or the slider
+        changed it): felt at once, not at the next mouse move; coming down, it lands at
+        the new depth."""
+        if self.last_surface is None:
+            return
+        point_mm, normal = self.last_surface
+        press_w = (point_mm - self.depth_mm * normal) * MM
+        if self.landed:
+            self.set_target(press_w)
+        elif self.approach is not None:
+            self.approach = (self.approach[0], press_w)
+
+    def step(self, dt_s):
+        """``dt_s`` later: on along the way (lift, hover, down), or, resting on the part,
+        over again if the proxy is caught where the hand left it."""
+        if self.approach is None:
+            if self.landed and self._caught():
+                self.aim(self.last_surface)
+            return
+        if self.lift_w is not None:
+            if self._reached(self.lift_w, dt_s):
+                self.lift_w = None
+                self._waited_s = 0.0
+                self.set_target(self._target())
+            return
+        hover_w, press_w = self.approach
+        if self.descent_left_mm is None:
+            if self._reached(hover_w, dt_s):
+                self.descent_left_mm = float(np.linalg.norm(hover_w - press_w)) / MM
+            return
+        above_mm = self.descent_left_mm - self.depth_mm  # the face is depth_mm up the way
+        if above_mm > DESCENT_SLOW_ZONE_MM:
+            self.descent_left_mm = max(self.depth_mm + DESCENT_SLOW_ZONE_MM,
+                                       self.descent_left_mm - DESCENT_FAST_MM_S * dt_s)
+        else:
+            self.descent_left_mm -= float(np.clip(above_mm / DESCENT_TIME_S, *DESCENT_MM_S)) * dt_s
+        if self.descent_left_mm > 0:
+            self.set_target(self._target())
+            return
+        self.approach = self.descent_left_mm = None
+        self.landed = True
+        self.resting = self.last_surface
+        self.set_target(press_w)
+
+    def halt(self):
+        """No more aiming: a hand on its way stops where it is."""
+        self.lift_w = self.approach = self.descent_left_mm = None
+
+    # --- the way -----------------------------------------------------------------------
+
+    def _must_come_over(self, point_mm, normal, press_w):
+        tool_w = self.tool_w()
+        step_up = float(np.dot(tool_w / MM - point_mm, normal)) < -(self.depth_mm + STEP_MM)
+        jump = float(np.linalg.norm(tool_w - press_w)) / MM > JUMP_MM
+        return step_up or jump or self._caught()
+
+    def _caught(self):
+        """The proxy is held much farther from the hand than pressing puts it (at most
+        the depth, and as far again sideways under friction up to 1)."""
+        if self.proxy_w is None or self.tool_w is None:
+            return False
+        apart_mm = float(np.linalg.norm(self.proxy_w() - self.tool_w())) / MM
+        return apart_mm > 2.0 * self.depth_mm + STEP_MM
+
+    def _lift_point(self):
+        point_mm, normal = self.resting if self.resting is not None else self.last_surface
+        lift_mm = point_mm + HOVER_MM * normal
+        if self.top_mm is not None and normal[2] > 0.5:
+            lift_mm[2] = max(lift_mm[2], self.top_mm + CLEAR_MM)
+        return lift_mm * MM
+
+    def _reached(self, point_w, dt_s):
+        """True once the hand is at ``point_w``, or has tried for WAYPOINT_TIMEOUT_S."""
+        self._waited_s += dt_s
+        there = np.linalg.norm(self.tool_w() - point_w) < ARRIVED_MM * MM
+        if there or self._waited_s >= WAYPOINT_TIMEOUT_S:
+            self._waited_s = 0.0
+            return True
+        return False
+
+    def _target(self):
+        """Where the hand aims on its way: the lift point, the hover point, or on the way
+        down from it to the press point (the cursor moved while coming down: as far down
+        over the new point)."""
+        if self.lift_w is not None:
+            return self.lift_w
+        hover_w, press_w = self.approach
+        if self.descent_left_mm is None:
+            return hover_w
+        way = hover_w - press_w
+        length_mm = float(np.linalg.norm(way)) / MM
+        return press_w + way * min(1.0, self.descent_left_mm / length_mm) if length_mm > 0 else press_w
