@@ -85,8 +85,52 @@ class CohortCommandTest(unittest.TestCase):
         with open(out_csv) as handle:  # all three, each with its unit: nothing lost
             self.assertEqual([(r["name"], r["unit"]) for r in csv.DictReader(handle)],
                              [("Steven", "N/mm"), ("Yang", "N/mm"), ("Zhang", "N/mm")])
+        self.assertEqual(study["other_note"], "3 made with the bending beam model (N/mm) are kept but not compared "
+                                              "with the operating force; the study's Participants (3) counts every "
+                                              "record")
         text = run_cli("cohort", switched).stdout
-        self.assertIn("0 participants (3 more recorded with the other model, kept but not compared)", text)
+        self.assertIn("0 participants (3 made with the bending beam model (N/mm) are kept but not compared", text)
+
+    def test_starred_preferences_are_counted_and_said_as_the_panel_does(self):
+        doc = App.newDocument("CliCohortButton")
+        try:
+            box = doc.addObject("Part::Box", "Cap")
+            doc.recompute()
+            study = HaptiCAD.make_study(doc, HaptiCAD.make_surface(doc, [(box, "Face6")], material="ABS"),
+                                        model="Push button")
+            study.Label = "Button"
+            # Omron B3F's 1.47 N: 5.9 N/mm to its operating point, beyond the 3 N/mm device; 0.5 N is not
+            for name, force in (("Ann", 1.47), ("Bo", 0.5)):
+                study.OperatingForce = force
+                HaptiCAD.record_preference(study, name, "F", "26-40", None, None, 3000.0)
+            path = os.path.join(self.tmp.name, "button.FCStd")
+            doc.saveAs(path)
+        finally:
+            App.closeDocument(doc.Name)
+        proc = run_cli("cohort", path, "--json")
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        (study,) = json.loads(proc.stdout)
+        note = ("* 1 preference steeper than the device renders stably, its forces felt as designed over a longer "
+                "travel; counted as recorded.")
+        self.assertEqual((study["beyond_device"], study["beyond_device_note"]), (1, note))
+        text = run_cli("cohort", path).stdout
+        self.assertIn("Button (Push button): design 0.5 N, 2 participants\n", text)
+        self.assertIn(f"  {note}", text)
+        self.assertNotIn("at its limit", text)
+        # one participant is one
+        single = run_cli("cohort", self.path).stdout
+        self.assertNotIn("*", single)
+        doc = App.openDocument(self.path)
+        try:
+            (neck,) = HaptiCAD.studies_of(doc)
+            stiffness_study_records = json.loads(neck.Cohort)[:1]
+            neck.Cohort = json.dumps(stiffness_study_records)
+            neck.Participants = 1
+            one = os.path.join(self.tmp.name, "one.FCStd")
+            doc.saveAs(one)
+        finally:
+            App.closeDocument(doc.Name)
+        self.assertIn("Neck (Bending beam): design 0.556 N/mm, 1 participant\n", run_cli("cohort", one).stdout)
 
     def test_bad_input_is_refused(self):
         for args, message in ((("cohort", os.path.join(self.tmp.name, "none.FCStd")), "no such file"),

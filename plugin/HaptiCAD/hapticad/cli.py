@@ -296,8 +296,12 @@ def cmd_cohort(args):
             records = stiffness_study.comparable_records(study)
             held = stiffness_study.records(study)
             value, unit = stiffness_study.design_value(study)
+            # starred: felt beyond the device (cohort.BEYOND_DEVICE says how), as the panel's table marks them
             result.append({"study": study.Label, "model": study.Model, "design_value": value, "unit": unit,
                            "participants": len(records), "other_unit": len(held) - len(records),
+                           "other_note": stiffness_study.others_note(study),
+                           "beyond_device": sum(1 for r in records if cohort.beyond_device(r)),
+                           "beyond_device_note": cohort.beyond_device_note(records),
                            "statistics": cohort.statistics(records),
                            "design_among_preferences": cohort.place_design(value, records)[1]})
             if args.csv:  # every record, as the panel exports: each row says its unit
@@ -307,14 +311,15 @@ def cmd_cohort(args):
     if args.json:
         return result
     for study in result:
-        print(f"{study['study']} ({study['model']}): design {study['design_value']:.3g} {study['unit']}, "
-              f"{study['participants']} participants"
-              + (f" ({study['other_unit']} more recorded with the other model, kept but not compared)"
-                 if study["other_unit"] else ""))
+        print(f"{study['study']} ({study['model']}): design {cohort.format_value(study['design_value'], study['unit'])}"
+              f", {cohort.plural(study['participants'], 'participant')}"
+              + (f" ({study['other_note']})" if study["other_note"] else ""))
         for row in study["statistics"]:
             print(f"  {row['group']:<20} n {row['n']:<3} mean {row['mean']:.3g} sd {row['sd']:.2g} "
                   f"median {row['median']:.3g} range {row['min']:.3g}-{row['max']:.3g}")
         print(f"  this design: {study['design_among_preferences']}")
+        if study["beyond_device_note"]:
+            print(f"  {study['beyond_device_note']}")
     return None
 
 

@@ -98,10 +98,63 @@ def beyond_device(record):
     return bool(flag)
 
 
+# what the star beside a preference means, by the unit it is in: the renderer stretches a
+# law's travel until its steepest slope fits the device (force_travel.h, ForceClamped), so a
+# neck stiffer than the device is felt at the device's stiffness, while a button keeps its
+# forces (its operating force and snap ratio are felt as designed) over a longer travel
+BEYOND_DEVICE = {
+    "N/mm": "beyond what the device renders stably, felt at its limit (softer)",
+    "N": "steeper than the device renders stably, its forces felt as designed over a longer travel",
+}
+BEYOND_DEVICE["snap ratio"] = BEYOND_DEVICE["N"]
+
+
+def beyond_device_note(records):
+    """The footnote of the starred records (beyond_device) among ``records``, all of one
+    unit, saying what the star means there, or "" when none is starred."""
+    starred = [r for r in records if beyond_device(r)]
+    if not starred:
+        return ""
+    meaning = BEYOND_DEVICE.get(starred[0].unit, "beyond what the device renders stably")
+    return f"* {plural(len(starred), 'preference')} {meaning}; counted as recorded."
+
+
+def plural(count, noun):
+    """"1 participant", "3 participants"."""
+    return f"{count} {noun}{'' if count == 1 else 's'}"
+
+
+def format_value(value, unit):
+    """A preferred value with its unit as it reads: "0.556 N/mm", "snap ratio 0.5"."""
+    return f"{unit} {value:.3g}" if unit == "snap ratio" else f"{value:.3g} {unit}"
+
+
 def namesakes(name, records):
     """How many records already bear ``name`` (case and spaces aside)."""
     key = " ".join(name.split()).casefold()
     return sum(1 for r in records if " ".join(r.name.split()).casefold() == key)
+
+
+def _same_number(a, b):
+    """Two recorded numbers alike, not given (None) alike: within a relative 1e-12, so a
+    value saved back by a spreadsheet (rounded to 15 significant digits) still matches."""
+    if a is None or b is None:
+        return a is None and b is None
+    try:
+        return math.isclose(float(a), float(b), rel_tol=1e-12, abs_tol=1e-300)
+    except (TypeError, ValueError):
+        return a == b
+
+
+def same_record(a, b):
+    """Whether two records are one participant's one preference (a re-import, a row listed
+    twice): every field the participant gave or was recorded with alike (name, gender, age
+    band, weight, height, the value, its unit and the time), numbers as _same_number. Two
+    people of one name and value, or one person's two sessions, are two records. The
+    design is left out: it is the study's, and the value and time already tell it."""
+    return (a.name == b.name and a.gender == b.gender and a.age_band == b.age_band and a.unit == b.unit
+            and a.recorded == b.recorded and _same_number(a.value, b.value)
+            and _same_number(a.weight_kg, b.weight_kg) and _same_number(a.height_mm, b.height_mm))
 
 
 def from_dict(data):
@@ -114,7 +167,7 @@ def from_dict(data):
 
 def statistics(records, by=("gender", "age_band")):
     """Rows of {group, n, mean, sd, median, min, max} of the preferred values: all
-    participants first, then each group of each field in ``by`` (groups sorted)."""
+    participants first, then each group of each field in ``by`` (in _group_order)."""
     def row(group, values):
         mean, sd = _mean_sd(values)
         return {"group": group, "n": len(values), "mean": mean, "sd": sd, "median": stats.median(values),
@@ -127,9 +180,20 @@ def statistics(records, by=("gender", "age_band")):
         groups = {}
         for r in records:
             groups.setdefault(getattr(r, key), []).append(r.value)
-        for name in sorted(groups):
+        for name in sorted(groups, key=lambda g, k=key: _group_order(k, g)):
             rows.append(row(f"{key.replace('_', ' ')} {name}", groups[name]))
     return rows
+
+
+def _group_order(key, group):
+    """Groups in their own order (age bands young to old, genders as listed), a value not
+    listed after them, "not given" last."""
+    listed = {"gender": GENDERS, "age_band": AGE_BANDS}.get(key, ())
+    if group == NOT_GIVEN:
+        return (2, 0, "")
+    if group in listed:
+        return (0, listed.index(group), "")
+    return (1, 0, str(group))
 
 
 def _mean_sd(values):

@@ -20,9 +20,12 @@ finds the design right, :func:`record_preference` keeps their personal data and 
 value they chose (cohort.Record), saved with the document. App-only.
 """
 import json
+import math
+import re
 from datetime import datetime
 
 import FreeCAD as App
+import numpy as np
 
 from . import _core, cohort, materials
 from .proxy_state import SchemaState, add_hidden_state, add_properties, add_type_tag, is_restoring
@@ -59,7 +62,9 @@ PROPERTIES = [
      None, None),
     ("AdjustMin", "App::PropertyFloat", "Customise", "The slider's low end, in the parameter's unit", 2.0, None),
     ("AdjustMax", "App::PropertyFloat", "Customise", "The slider's high end, in the parameter's unit", 8.0, None),
-    ("Participants", "App::PropertyInteger", "Cohort", "Participants who recorded a preference", 0, None),
+    ("Participants", "App::PropertyInteger", "Cohort", "Records of participants' preferences, all kept: those "
+     "of another unit (what the slider moved before, or the other model) too, which the panel does not compare",
+     0, None),
 ]
 HIDDEN_STATE = [("Cohort", "The participants' records (JSON)")]
 # what a slider can move, per model: property -> (label, unit, default range)
@@ -69,6 +74,14 @@ ADJUSTABLE = {
     BUTTON: {"OperatingForce": ("operating force", "N", (0.5, 5.0)), "SnapRatio": ("snap ratio", "", (0.2, 0.8))},
 }
 ALL_ADJUSTABLE = [name for model in MODELS for name in ADJUSTABLE[model]]
+# what the slider's low and high ends do to the design: a longer neck is softer, a larger
+# snap ratio drops the force further (a crisper click)
+SLIDER_ENDS = {"BeamThickness": ("softer", "stiffer"), "BeamWidth": ("softer", "stiffer"),
+               "YoungsModulus": ("softer", "stiffer"), "BeamLength": ("stiffer", "softer"),
+               "OperatingForce": ("lighter", "heavier"), "SnapRatio": ("less snap", "more snap")}
+# what a preference in each unit is the value of, and the model that records it (design_value)
+UNIT_SOURCES = {"N/mm": ("bending stiffness", BEAM), "N": ("operating force", BUTTON),
+                "snap ratio": ("snap ratio", BUTTON)}
 
 
 def _material_names():
@@ -101,15 +114,27 @@ class StiffnessStudy(SchemaState):
             obj.Cohort = "[]"
         _update_stiffness(obj)
 
+    def onBeforeChange(self, obj, prop):
+        if prop == "Adjust" and "Adjust" in obj.PropertiesList:
+            try:  # onChanged resets the range only on a real change
+                self._adjust_before = obj.Adjust
+            except Exception:  # noqa: BLE001 (an enumeration not listed yet)
+                self._adjust_before = None
+
     def onChanged(self, obj, prop):
         if is_restoring(obj):
             return
         if prop == "BeamMaterial" and obj.BeamMaterial in materials.default_database():
             obj.YoungsModulus = materials.default_database().get(obj.BeamMaterial).youngs_modulus_gpa
         elif prop == "Model" and "Adjust" in obj.PropertiesList and obj.Adjust not in ADJUSTABLE[obj.Model]:
-            name, (_, _, (low, high)) = next(iter(ADJUSTABLE[obj.Model].items()))
-            obj.Adjust = name
-            obj.AdjustMin, obj.AdjustMax = low, high
+            obj.Adjust = next(iter(ADJUSTABLE[obj.Model]))  # its range follows (below)
+        elif prop == "Adjust" and {"AdjustMin", "AdjustMax"} <= set(obj.PropertiesList):
+            # the slider moves another parameter: its range is that one's, whoever chose it (the
+            # panel, the property editor, a script); not on an undo or a restore (returned above)
+            before = getattr(self, "_adjust_before", None)
+            self._adjust_before = None
+            if obj.Adjust != before:
+                reset_adjust_range(obj)
         if prop in ("YoungsModulus", "BeamWidth", "BeamThickness", "BeamLength"):
             _update_stiffness(obj)
 
@@ -125,6 +150,16 @@ class StiffnessStudy(SchemaState):
         found = validate(obj)
         if found:
             App.Console.PrintError(f"{obj.Label}: {'; '.join(found)}\n")
+
+
+def reset_adjust_range(study):
+    """Sets the slider's range to the default of the parameter it moves (ADJUSTABLE)."""
+    for model in MODELS:
+        if study.Adjust in ADJUSTABLE[model]:
+            low, high = ADJUSTABLE[model][study.Adjust][2]
+            if (study.AdjustMin, study.AdjustMax) != (low, high):
+                study.AdjustMin, study.AdjustMax = low, high
+            return
 
 
 def _update_stiffness(obj):
@@ -196,6 +231,66 @@ def device_note(study, max_stiffness_n_per_m):
                 f"{limit}: it is felt as {max_stiffness_n_per_m * MM:.3g} N/mm, and stiffer necks alike")
     return (f"the button's steepest slope, {steepest * MM:.3g} N/mm, is more than the device renders stably "
             f"{limit}: its forces are kept, over a travel {steepest / max_stiffness_n_per_m:.2g} x longer")
+
+
+def force_note(study, max_force_n):
+    """A sentence when a button's operating force is above the force the session renders
+    (the force limit: the force stops there and the click never comes), else ""."""
+    if study.Model != BUTTON or float(study.OperatingForce) <= max_force_n:
+        return ""
+    return (f"the operating force, {float(study.OperatingForce):.3g} N, is above the force limit, "
+            f"{max_force_n:.3g} N: the force stops there and the click is never felt; raise the force "
+            "limit in HaptiCAD's Preferences (as far as the device gives)")
+
+
+def device_stiffness_n_per_m(doc, prefs=None):
+    """The stable stiffness (N/m, in the world) a Feel session on ``doc`` renders with
+    the preferences' device and workspace mapping: the device's limit through the mapping
+    (_core.render_limits_for), as LiveSession.render_limits holds it, so a record made in
+    the study's panel keeps the stiffness and mark the Feel panel's would. The simulated
+    hand's when the preferences choose it, or a device that is not connected now."""
+    from . import feel_session, preferences
+
+    prefs = prefs or preferences.load()
+    if prefs.device != feel_session.SIMULATED:
+        limits = _listed_limits(prefs.device)
+        if limits is not None:
+            try:
+                low, high = _parts_box_m(doc)
+            except ValueError:  # nothing tagged: the mapping a session would fit is unknown
+                low, high = np.zeros(3), np.full(3, 0.1)
+            mapping = feel_session.LiveSession._mapping(limits, low, high, prefs)
+            return _core.render_limits_for(limits, mapping).max_stiffness_n_per_m
+    return _core.render_limits_for(_core.simulated_hand_limits(), _core.WorkspaceMapping()).max_stiffness_n_per_m
+
+
+def _listed_limits(path):
+    """The _core.DeviceLimits of the device at ``path`` as listed now, or None."""
+    try:
+        listed = [info for info in _core.list_devices() if info["path"] == path and info["limits"]]
+    except RuntimeError:  # a device that fails to enumerate
+        return None
+    if not listed:
+        return None
+    limits = _core.DeviceLimits()
+    for name, value in listed[0]["limits"].items():
+        if hasattr(limits, name):
+            setattr(limits, name, np.asarray(value, float) if isinstance(value, (list, tuple)) else value)
+    return limits
+
+
+def _parts_box_m(doc):
+    """(min, max) corners, world m, of the parts a Feel session on ``doc`` would hold
+    (feel_session.scene_box_m of its scene, without tessellating it)."""
+    from types import SimpleNamespace
+
+    from .document_scene import _tagging, global_shape
+    from .feel_session import scene_box_m
+
+    objects = _tagging(doc)[2]
+    if not objects:
+        raise ValueError("no part")
+    return scene_box_m(SimpleNamespace(shapes={o.Name: global_shape(o) for o in objects}))
 
 
 def design_value(study):
@@ -315,26 +410,126 @@ def remove_record(study, index):
     _write_records(study, kept)
 
 
-def import_records(study, path):
-    """Adds the records of a cohort CSV that the study does not hold yet (same name,
-    time and value), each once; returns (added, already held, repeated in the file).
-    Raises ValueError, adding none, on a bad line or on records of another unit."""
-    read = cohort.read_csv(path)
+def others_note(study):
+    """What the records not compared now (comparable_records) are, naming what differs,
+    as a sentence without its full stop, or "": "4 recorded while the slider moved the
+    operating force (N) are kept but not compared ...", "3 made with the bending beam
+    model (N/mm) ..."."""
+    held = records(study)
     _, unit = design_value(study)
-    other = [r for r in read if r.unit != unit]
+    counts = {}
+    for r in held:
+        if r.unit != unit:
+            counts[r.unit] = counts.get(r.unit, 0) + 1
+    if not counts:
+        return ""
+    parts = []
+    for other, count in counts.items():
+        label, model = UNIT_SOURCES.get(other, (other, None))
+        if model == study.Model:  # the same mechanism: the slider moved another parameter
+            parts.append(f"{count} recorded while the slider moved the {label}" + (f" ({other})" if other != label
+                                                                                 else ""))
+        elif model is not None:
+            parts.append(f"{count} made with the {model.lower()} model ({other})")
+        else:
+            parts.append(f"{count} in {other}")
+    total = sum(counts.values())
+    return (f"{', '.join(parts)} {'is' if total == 1 else 'are'} kept but not compared with the "
+            f"{UNIT_SOURCES[unit][0]}; the study's Participants ({len(held)}) counts every record")
+
+
+def import_records(study, path):
+    """Adds the records of a cohort CSV that the study does not hold yet (cohort.same_record:
+    every field alike), each once; returns (added, already held, repeated in the file).
+    Records in a unit the study does not compare now are kept as its own are (others_note):
+    those its model records (a button's operating force or snap ratio) or that it holds
+    already (made before its model changed), so its own export comes back whole. Raises
+    ValueError, adding none, on a bad line or on records of a unit this study neither
+    records nor holds (a beam's cohort into a button study)."""
+    read = cohort.read_csv(path)
+    held = records(study)
+    _, unit = design_value(study)
+    known = {u for u, (_, model) in UNIT_SOURCES.items() if model == study.Model} | {r.unit for r in held}
+    other = [r for r in read if r.unit not in known]
     if other:
-        raise ValueError(f"{path}: {len(other)} record(s) are in {other[0].unit}, this study's preferences in {unit}")
-    held = {(r.name, r.recorded, r.value) for r in records(study)}
-    added, seen, repeated = [], set(), 0
+        label, model = UNIT_SOURCES.get(other[0].unit, (None, None))
+        of = f" (a {model.lower()}'s {label})" if model else ""
+        raise ValueError(f"{path}: {len(other)} record(s) are in {other[0].unit}{of}, this study's preferences "
+                         f"in {unit}")
+
+    def key(r):  # same_record compares within these (numbers with a tolerance)
+        return r.name, r.recorded, r.unit
+
+    held_by_key, seen_by_key = {}, {}
+    for r in held:
+        held_by_key.setdefault(key(r), []).append(r)
+    added, repeated = [], 0
     for r in read:
-        key = (r.name, r.recorded, r.value)
-        if key in seen:  # a row listed twice (a merged or pasted-twice file): one participant
+        seen = seen_by_key.setdefault(key(r), [])
+        if any(cohort.same_record(r, s) for s in seen):  # a row listed twice (a merged file): one
             repeated += 1
-        elif key not in held:
+        elif not any(cohort.same_record(r, h) for h in held_by_key.get(key(r), ())):
             added.append(r)
-        seen.add(key)
-    _write_records(study, [*records(study), *added])
+        seen.append(r)
+    _write_records(study, [*held, *added])
     return len(added), len(read) - len(added) - repeated, repeated
+
+
+# the unit each constrained property is in (its tooltip's), for what is typed into it
+UNITS = {"YoungsModulus": "GPa", "BeamWidth": "mm", "BeamThickness": "mm", "BeamLength": "mm", "OperatingForce": "N",
+         "Pretravel": "mm", "SnapRatio": "", "SnapTravel": "mm", "TotalTravel": "mm"}
+# gram- and kilogram-force, as switch datasheets give operating forces (Omron B3F: 100 gf)
+_FORCE_UNITS = ((re.compile(r"(?<![A-Za-z])kgf\b"), "*9.80665 N"), (re.compile(r"(?<![A-Za-z])gf\b"), "*9.80665 mN"))
+
+
+def typed_value(name, text, label=None):
+    """What ``text`` typed for the property ``name`` (or the slider's range over it) is,
+    in the property's unit (UNITS), read as FreeCAD reads a quantity: "6 cm" is 60 mm,
+    "1500 MPa" 1.5 GPa, "4,5" 4.5 (a decimal comma), a number alone in the property's
+    unit; "150 gf" is 1.47 N. Raises ValueError with a sentence when it is not a value of
+    that kind or is outside the property's range: nothing is to be set then."""
+    unit = UNITS[name]
+    label = label or name
+    typed = " ".join(text.split())
+    if not typed:
+        raise ValueError(f"{label}: give a value{' in ' + unit if unit else ''}")
+    if re.search(r"\d,\d{3}(?!\d)", typed):  # 1,000: a decimal comma, or thousands?
+        plain = typed.replace(",", "")
+        raise ValueError(f"{label}: is {typed!r} {plain} or {typed.replace(',', '.')}? give it without the comma "
+                         f"({plain}) or with a decimal point")
+    parsed = typed
+    if unit == "N":
+        for pattern, replacement in _FORCE_UNITS:
+            parsed = pattern.sub(replacement, parsed)
+    try:
+        quantity = App.Units.Quantity(parsed)
+    except (ValueError, OverflowError):
+        raise ValueError(f"{label}: {typed!r} is not a value FreeCAD reads"
+                         + (f" (a number, or one with a unit, like 6 {unit})" if unit else " (a number)")) from None
+    expected = App.Units.Quantity(f"1 {unit}") if unit else App.Units.Quantity(1.0)
+    if quantity.Unit == App.Units.Quantity(1.0).Unit:  # a number alone: in the property's unit
+        value = quantity.Value
+    elif quantity.Unit != expected.Unit:
+        kind = str(quantity.Unit).rpartition("[")[2].rstrip("]").lower() or "quantity"
+        want = str(expected.Unit).rpartition("[")[2].rstrip("]").lower() if unit else "plain number"
+        raise ValueError(f"{label}: {typed!r} is a {kind}, not a {want}")
+    else:
+        value = quantity.Value / expected.Value
+    if not math.isfinite(value):
+        raise ValueError(f"{label}: {typed!r} is not a finite value")
+    low, high = next(p[5][:2] for p in PROPERTIES if p[0] == name)
+    if not low <= value <= high:
+        hint = ""
+        if name == "YoungsModulus" and low <= value / 1000 <= high and quantity.Unit != expected.Unit:
+            hint = f": in MPa? give {value:g} MPa"  # a number alone is in GPa
+        raise ValueError(f"{label}: {value:g}{' ' + unit if unit else ''} is outside {low:g}..{high:g}"
+                         f"{' ' + unit if unit else ''}{hint}")
+    return value
+
+
+def slider_ends(study):
+    """(low end, high end): what moving the slider that way does to the design."""
+    return SLIDER_ENDS.get(study.Adjust, ("", ""))
 
 
 def adjust_info(study):
@@ -375,8 +570,8 @@ def make_study(doc, surface, model=BEAM, name="StiffnessStudy", **properties):
     StiffnessStudy(obj)
     obj.Surface = surface
     obj.Model = model
-    try:
-        for key, value in properties.items():
+    try:  # Adjust first: it sets AdjustMin and AdjustMax to its defaults
+        for key, value in sorted(properties.items(), key=lambda item: item[0] != "Adjust"):
             setattr(obj, key, value)
     except Exception as exc:  # a value the property refuses: no half-made study
         doc.removeObject(obj.Name)

@@ -178,6 +178,50 @@ class CohortTest(unittest.TestCase):
         self.assertEqual(cohort.namesakes(" ann ", [TABLE_3[0], cohort.Record("Ann", "F", "18-25", None, None, 1.0,
                                                                                "N/mm", "")]), 1)
 
+    def test_age_bands_and_genders_are_listed_in_their_order_not_given_last(self):
+        people = [cohort.Record(f"P{i}", gender, age, None, None, 1.0 + i, "N/mm", "") for i, (gender, age) in
+                  enumerate((("not given", "over 60"), ("other", "not given"), ("M", "under 18"), ("F", "41-60"),
+                             ("M", "18-25"), ("F", "26-40")))]
+        groups = [r["group"] for r in cohort.statistics(people)]
+        self.assertEqual(groups, ["all", "gender F", "gender M", "gender other", "gender not given",
+                                  "age band under 18", "age band 18-25", "age band 26-40", "age band 41-60",
+                                  "age band over 60", "age band not given"])
+
+    def test_one_participant_is_told_from_another_by_every_field_they_gave(self):
+        wang = cohort.Record("Wang", "M", "26-40", 70, 1750, 3.5, "N/mm", "Bending beam", {}, "2026-01-01T10:00:00")
+        self.assertTrue(cohort.same_record(wang, cohort.Record(**wang.as_dict())))
+        for field, other in (("gender", "F"), ("age_band", "41-60"), ("weight_kg", 55.0), ("height_mm", 1600.0),
+                             ("weight_kg", None), ("value", 3.6), ("unit", "N"), ("recorded", "2026-01-02T10:00:00"),
+                             ("name", "Li")):
+            with self.subTest(field=field):
+                self.assertFalse(cohort.same_record(wang, cohort.Record(**dict(wang.as_dict(), **{field: other}))))
+        # a spreadsheet saves 15 significant digits: the same record still
+        k = 0.4396961805555557
+        exact = cohort.Record("Ann", "F", "18-25", 58.3, None, k, "N/mm", "", {}, "2026-01-01T10:00:00")
+        for rounded in (float(f"{k:.15g}"), float(f"{k:.13g}")):
+            self.assertTrue(cohort.same_record(exact, cohort.Record(**dict(exact.as_dict(), value=rounded))))
+        self.assertFalse(cohort.same_record(exact, cohort.Record(**dict(exact.as_dict(), value=k * (1 + 1e-9)))))
+
+    def test_the_star_says_what_the_device_did_to_each_kind_of_preference(self):
+        def starred(unit, value):
+            return cohort.Record("Ann", "F", "18-25", None, None, value, unit, "", {"BeyondDevice": 1.0})
+
+        self.assertEqual(cohort.beyond_device_note(TABLE_3), "")
+        # a neck stiffer than the device is felt at its limit
+        self.assertEqual(cohort.beyond_device_note([starred("N/mm", 4.4), *TABLE_3]),
+                         "* 1 preference beyond what the device renders stably, felt at its limit (softer); counted "
+                         "as recorded.")
+        # a button's travel is stretched: its forces, and so its operating force and snap, are as designed
+        for unit, value in (("N", 1.47), ("snap ratio", 0.5)):
+            note = cohort.beyond_device_note([starred(unit, value), starred(unit, value)])
+            self.assertEqual(note, "* 2 preferences steeper than the device renders stably, its forces felt as "
+                                   "designed over a longer travel; counted as recorded.")
+            self.assertNotIn("at its limit", note)
+        self.assertEqual((cohort.plural(1, "participant"), cohort.plural(2, "participant")),
+                         ("1 participant", "2 participants"))
+        self.assertEqual((cohort.format_value(0.5, "snap ratio"), cohort.format_value(0.5556, "N/mm")),
+                         ("snap ratio 0.5", "0.556 N/mm"))
+
 
 if __name__ == "__main__":
     unittest.main()

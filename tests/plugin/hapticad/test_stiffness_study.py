@@ -1,6 +1,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Stiffness studies (seed 000 §3): a bending neck and a push button felt through the
 real servo loop, participants' preferences kept with the document, clear errors."""
+import csv
+import dataclasses
 import json
 import os
 import sys
@@ -105,6 +107,19 @@ class StudyTest(unittest.TestCase):
         study.OperatingForce = 1.47  # Omron B3F's: 5.9 N/mm to the operating point
         self.assertIn("the button's steepest slope", stiffness_study.device_note(study, 3000.0))
 
+    def test_a_button_whose_click_lies_above_the_force_limit_says_so(self):
+        # the preferences' 3 N limit against a 4.5 N button: the force stops at 3 N and the
+        # click never comes, though the slider offers up to 5 N
+        study = HaptiCAD.make_study(self.doc, self.head, model="Push button", OperatingForce=4.5)
+        note = stiffness_study.force_note(study, 3.0)
+        self.assertIn("the operating force, 4.5 N, is above the force limit, 3 N", note)
+        self.assertIn("raise the force limit", note)
+        self.assertEqual(stiffness_study.force_note(study, 5.0), "")
+        study.OperatingForce = 2.55
+        self.assertEqual(stiffness_study.force_note(study, 3.0), "")
+        study.Model = "Bending beam"  # a neck's force is the hand's press, not the design's
+        self.assertEqual(stiffness_study.force_note(study, 0.1), "")
+
     def test_a_study_that_cannot_hold_says_why_and_the_face_keeps_its_stiffness(self):
         study = HaptiCAD.make_study(self.doc, self.head, model="Push button")
         study.TotalTravel = 0.3  # less than pretravel and snap
@@ -186,10 +201,17 @@ class StudyTest(unittest.TestCase):
             self.assertEqual([r.name for r in stiffness_study.records(study)], ["Zhang", "Steven"])
             self.assertEqual(study.Participants, 2)
             study.Model = "Push button"
-            with self.assertRaises(ValueError) as caught:
-                stiffness_study.import_records(study, csv_path)
-            self.assertIn("this study's preferences in N", str(caught.exception))
+            # its own beam records come back as held: nothing added, nothing refused
+            self.assertEqual(stiffness_study.import_records(study, csv_path), (0, 2, 0))
             self.assertEqual(study.Participants, 2)
+            # but a beam's cohort into a button study holding none is another study's: refused
+            button = HaptiCAD.make_study(self.doc, HaptiCAD.make_surface(
+                self.doc, [(self.doc.getObject("Head"), "Face1")]), model="Push button")
+            with self.assertRaises(ValueError) as caught:
+                stiffness_study.import_records(button, csv_path)
+            self.assertIn("2 record(s) are in N/mm (a bending beam's bending stiffness), this study's preferences "
+                          "in N", str(caught.exception))
+            self.assertEqual(button.Participants, 0)
             # the beam's records stay, but a button's preferences are not compared with them
             self.assertEqual(stiffness_study.comparable_records(study), [])
             HaptiCAD.record_preference(study, "Yang", "M", "41-60", 60, 1680)
@@ -242,6 +264,166 @@ class StudyTest(unittest.TestCase):
                 stiffness_study.import_records(study, path)
             self.assertIn("line 8: the preferred value 1e+308 N/mm is outside", str(caught.exception))
             self.assertEqual(study.Participants, 5)
+
+    def test_an_import_keeps_namesakes_apart_and_a_spreadsheets_save_adds_nobody(self):
+        study = HaptiCAD.make_study(self.doc, self.head)
+        with tempfile.TemporaryDirectory() as tmp:
+            # two people of one name and one preferred value: two participants, not one
+            two = os.path.join(tmp, "two_wangs.csv")
+            with open(two, "w") as handle:
+                handle.write("name,gender,age_band,weight_kg,height_mm,value,unit\n"
+                             "Wang,M,26-40,70,1750,3.5,N/mm\nWang,F,41-60,55,1600,3.5,N/mm\n"
+                             "Wang,F,41-60,55,,3.5,N/mm\nLi,F,18-25,50,1620,2.5,N/mm\n")
+            self.assertEqual(stiffness_study.import_records(study, two), (4, 0, 0))
+            self.assertEqual([(r.gender, r.height_mm) for r in stiffness_study.records(study)],
+                             [("M", 1750.0), ("F", 1600.0), ("F", None), ("F", 1620.0)])
+            self.assertEqual(stiffness_study.import_records(study, two), (0, 4, 0))
+            # an export saved back by a spreadsheet, its numbers rounded to 15 significant digits
+            for i, h in enumerate((3.0, 3.7, 4.1, 5.3, 6.2)):
+                study.BeamThickness = h
+                HaptiCAD.record_preference(study, f"P{i}", "F", "18-25", 60.7, 1650)
+            exported = os.path.join(tmp, "cohort.csv")
+            cohort.write_csv(exported, stiffness_study.records(study))
+            with open(exported, newline="") as handle:
+                rows = list(csv.DictReader(handle))
+            self.assertTrue(any(len(r["value"].replace(".", "").lstrip("0")) > 15 for r in rows))  # 16 digits
+            saved = os.path.join(tmp, "sheet.csv")
+            with open(saved, "w", newline="") as handle:
+                out = csv.DictWriter(handle, fieldnames=list(rows[0]))
+                out.writeheader()
+                for r in rows:
+                    out.writerow(dict(r, value=f"{float(r['value']):.15g}", weight_kg=r["weight_kg"] and
+                                      f"{float(r['weight_kg']):.15g}"))
+            self.assertEqual(stiffness_study.import_records(study, saved), (0, 9, 0))
+            self.assertEqual(study.Participants, 9)
+
+    def test_a_button_whose_slider_moved_another_parameter_keeps_says_and_round_trips_its_records(self):
+        study = HaptiCAD.make_study(self.doc, self.head, model="Push button")
+        for i, force in enumerate((1.0, 1.5, 2.5)):
+            study.OperatingForce = force
+            HaptiCAD.record_preference(study, f"Op{i}", "M", "26-40", None, None)
+        self.assertEqual(stiffness_study.others_note(study), "")
+        study.Adjust = "SnapRatio"
+        HaptiCAD.record_preference(study, "Snap0", "F", "26-40", None, None)
+        self.assertEqual(len(stiffness_study.comparable_records(study)), 1)
+        # what differs is the slider's parameter, not the model; and Participants counts all four
+        self.assertEqual(stiffness_study.others_note(study),
+                         "3 recorded while the slider moved the operating force (N) are kept but not compared with "
+                         "the snap ratio; the study's Participants (4) counts every record")
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "export.csv")
+            cohort.write_csv(path, stiffness_study.records(study))  # what Export CSV... writes
+            self.assertEqual(stiffness_study.import_records(study, path), (0, 4, 0))
+            self.assertEqual(study.Participants, 4)
+            other_doc = App.newDocument("StudyTestButton")
+            try:
+                box = other_doc.addObject("Part::Box", "Cap")
+                other_doc.recompute()
+                other = HaptiCAD.make_study(other_doc, HaptiCAD.make_surface(other_doc, [(box, "Face6")]),
+                                            model="Push button")
+                self.assertEqual(stiffness_study.import_records(other, path), (4, 0, 0))
+                self.assertEqual(len(stiffness_study.comparable_records(other)), 3)  # by operating force
+                self.assertIn("1 recorded while the slider moved the snap ratio is kept",
+                              stiffness_study.others_note(other))
+            finally:
+                App.closeDocument(other_doc.Name)
+        study.Model = "Bending beam"
+        self.assertEqual(stiffness_study.others_note(study),
+                         "3 made with the push button model (N), 1 made with the push button model (snap ratio) are "
+                         "kept but not compared with the bending stiffness; the study's Participants (4) counts every "
+                         "record")
+
+    def test_the_slider_takes_the_range_of_what_it_moves_however_that_is_chosen(self):
+        self.doc.UndoMode = 1
+        study = HaptiCAD.make_study(self.doc, self.head, model="Push button")
+        study.Adjust = "SnapRatio"  # a script, or the property editor
+        self.assertEqual((study.AdjustMin, study.AdjustMax), (0.2, 0.8))
+        study.AdjustMin, study.AdjustMax = 0.3, 0.6  # a range of one's own
+        study.Adjust = "SnapRatio"  # chosen again: kept
+        self.assertEqual((study.AdjustMin, study.AdjustMax), (0.3, 0.6))
+        self.doc.openTransaction("slider")
+        study.Adjust = "OperatingForce"
+        self.doc.commitTransaction()
+        self.assertEqual((study.AdjustMin, study.AdjustMax), (0.5, 5.0))
+        self.assertEqual(stiffness_study.validate(study), [])
+        self.doc.undo()  # the range comes back with what the slider moved, not reset by the undo
+        self.assertEqual((study.Adjust, study.AdjustMin, study.AdjustMax), ("SnapRatio", 0.3, 0.6))
+        study.Model = "Bending beam"
+        self.assertEqual((study.Adjust, study.AdjustMin, study.AdjustMax), ("BeamThickness", 2.0, 8.0))
+        # made with a range of its own, in any order of the keywords
+        made = HaptiCAD.make_study(self.doc, HaptiCAD.make_surface(self.doc, [(self.box, "Face1")]),
+                                   AdjustMin=40.0, AdjustMax=100.0, Adjust="BeamLength")
+        self.assertEqual((made.Adjust, made.AdjustMin, made.AdjustMax), ("BeamLength", 40.0, 100.0))
+        with tempfile.TemporaryDirectory() as tmp:  # a reopened document keeps its range
+            path, name = os.path.join(tmp, "range.FCStd"), made.Name
+            self.doc.saveAs(path)
+            App.closeDocument(self.doc.Name)
+            self.doc = App.openDocument(path)
+            made = self.doc.getObject(name)
+            self.assertEqual((made.Adjust, made.AdjustMin, made.AdjustMax), ("BeamLength", 40.0, 100.0))
+
+    def test_the_slider_ends_say_what_they_do_to_the_design(self):
+        study = HaptiCAD.make_study(self.doc, self.head)
+        for adjust, ends in (("BeamThickness", ("softer", "stiffer")), ("BeamLength", ("stiffer", "softer"))):
+            study.Adjust = adjust
+            self.assertEqual(stiffness_study.slider_ends(study), ends)
+        study.Model = "Push button"
+        self.assertEqual(stiffness_study.slider_ends(study), ("lighter", "heavier"))
+        study.Adjust = "SnapRatio"
+        self.assertEqual(stiffness_study.slider_ends(study), ("less snap", "more snap"))
+
+    def test_a_value_typed_is_read_with_its_unit_and_refused_outside_its_range(self):
+        for name, text, value in (("BeamLength", "6 cm", 60.0), ("BeamLength", "60", 60.0),
+                                  ("BeamThickness", "4,5", 4.5), ("BeamThickness", "4.5 mm", 4.5),
+                                  ("YoungsModulus", "1500 MPa", 1.5), ("YoungsModulus", "2", 2.0),
+                                  ("OperatingForce", "150 gf", 1.4709975), ("OperatingForce", "0.1 kgf", 0.980665),
+                                  ("OperatingForce", "1 lbf", 4.44822), ("SnapRatio", "0.7", 0.7)):
+            with self.subTest(name=name, text=text):
+                self.assertAlmostEqual(stiffness_study.typed_value(name, text), value)
+        for name, text, message in (
+                ("YoungsModulus", "1500", "E: 1500 GPa is outside 0.001..1000 GPa: in MPa? give 1500 MPa"),
+                ("BeamLength", "3 m", "L: 3000 mm is outside 1..2000 mm"),
+                ("BeamLength", "5 kg", "L: '5 kg' is a mass, not a length"),
+                ("BeamLength", "1,000", "is '1,000' 1000 or 1.000?"),
+                ("BeamLength", "abc", "'abc' is not a value FreeCAD reads"),
+                ("BeamLength", " ", "give a value in mm"),
+                ("SnapRatio", "1.5", "ratio: 1.5 is outside 0.01..0.99"),
+                ("SnapRatio", "5 mm", "'5 mm' is a length, not a plain number")):
+            with self.subTest(name=name, text=text):
+                with self.assertRaises(ValueError) as caught:
+                    stiffness_study.typed_value(name, text, {"YoungsModulus": "E", "BeamLength": "L",
+                                                             "SnapRatio": "ratio"}[name])
+                self.assertIn(message, str(caught.exception))
+
+    def test_the_study_judges_by_the_stiffness_a_feel_session_renders(self):
+        from hapticad import feel_session, preferences
+
+        study = HaptiCAD.make_study(self.doc, self.head, model="Push button", OperatingForce=0.8, Pretravel=0.4,
+                                    SnapRatio=0.5, SnapTravel=0.2, TotalTravel=1.0)
+        self.doc.recompute()
+        scene = build_document_scene(self.doc)
+        base = preferences.load()
+        # a device through the workspace mapping: 2 model mm per device mm halves what it renders
+        for prefs in (dataclasses.replace(base, **{"device": "simulated"}),
+                      dataclasses.replace(base, **{"device": "sim:hand",
+                                                 "workspace_mapping": "Fixed scale", "workspace_scale": 2.0}),
+                      dataclasses.replace(base, **{"device": "sim:hand",
+                                                 "workspace_mapping": "Fit part"})):
+            with self.subTest(device=prefs.device, mapping=prefs.workspace_mapping):
+                session = feel_session.LiveSession(scene, device=prefs.device, prefs=prefs)
+                try:
+                    rendered = session.render_limits.max_stiffness_n_per_m
+                finally:
+                    session.stop()
+                self.assertAlmostEqual(stiffness_study.device_stiffness_n_per_m(self.doc, prefs), rendered)
+        scaled = dataclasses.replace(base, **{"device": "sim:hand", "workspace_mapping": "Fixed scale",
+                                            "workspace_scale": 2.0})
+        k = stiffness_study.device_stiffness_n_per_m(self.doc, scaled)
+        self.assertAlmostEqual(k, _core.simulated_hand_limits().max_stiffness_n_per_m / 2)
+        # 2 N/mm to the operating point: within the raw 3 N/mm, beyond the 1.5 rendered: marked so
+        record = HaptiCAD.record_preference(study, *PARTICIPANT, k)
+        self.assertEqual((record.design["DeviceStiffness"], cohort.beyond_device(record)), (k * 1e-3, True))
+        self.assertEqual(stiffness_study.device_note(study, _core.simulated_hand_limits().max_stiffness_n_per_m), "")
 
     def test_a_stored_implausible_preference_is_still_summarised(self):
         # saved before the range was checked: the study still gives its statistics (the CLI, the panel)

@@ -11,6 +11,7 @@ an OK, so a recorded participant is never lost to a Cancel.
 from html import escape
 
 import FreeCAD as App
+import shiboken2
 from PySide2 import QtCore, QtWidgets
 
 from .. import cohort, stiffness_study
@@ -20,16 +21,36 @@ SLIDER_STEPS = 200
 
 
 def _optional_spin(name, value_range, suffix, decimals):
-    """A spin box over ``value_range`` whose lowest position, one step below it, reads
-    "not given" (_given then gives None)."""
-    spin = QtWidgets.QDoubleSpinBox()
+    """A spin box whose lowest position, 0, reads "not given" (_given then gives None).
+    It takes any number up to ten times ``value_range``'s top, not only the plausible
+    range: a value outside that (170 typed as a height in cm) is kept as typed, and the
+    record refused with cohort.problems' message (in centimetres? give 1700), where a spin
+    box bounded by the range dropped it to "not given" on leaving the field, unsaid."""
+    spin = _OptionalSpin(value_range[0])
     spin.setObjectName(name)
     spin.setDecimals(decimals)
-    spin.setRange(value_range[0] - 1.0, value_range[1])
+    spin.setRange(0.0, 10.0 * value_range[1])
     spin.setSpecialValueText(cohort.NOT_GIVEN)
     spin.setSuffix(suffix)
     spin.setValue(spin.minimum())
     return spin
+
+
+class _OptionalSpin(QtWidgets.QDoubleSpinBox):
+    """A step up from "not given" goes to the plausible range's ``low`` end, a step down
+    from there back to "not given" (not through 1, 2, 3 kg)."""
+
+    def __init__(self, low):
+        super().__init__()
+        self.low = low
+
+    def stepBy(self, steps):
+        if steps > 0 and self.value() == self.minimum():
+            self.setValue(self.low)
+        elif steps < 0 and self.minimum() < self.value() <= self.low:
+            self.setValue(self.minimum())
+        else:
+            super().stepBy(steps)
 
 
 def _given(spin):
@@ -56,10 +77,15 @@ class StudyObserver:
     def __init__(self, study, callback, watch_references=False):
         self.study, self.callback, self.pending = study, callback, False
         self.watch_references = watch_references  # a similarity study's ReferenceA and B too
+        self.removed = False
         App.addDocumentObserver(self)
 
     def remove(self):
-        App.removeDocumentObserver(self)
+        """Stops watching; a call already due (a turn later) is dropped: the widgets it
+        would load may be deleted by then (an undone study closes its panel)."""
+        if not self.removed:
+            self.removed = True
+            App.removeDocumentObserver(self)
 
     def slotChangedObject(self, obj, prop):
         try:
@@ -76,7 +102,8 @@ class StudyObserver:
 
     def _fire(self):
         self.pending = False
-        self.callback()
+        if not self.removed:
+            self.callback()
 
 
 
@@ -85,14 +112,16 @@ class StudyControls(QtWidgets.QWidget):
     """Slider, value and participant form of one study. ``changed`` is emitted after the
     study changed through these controls or any other way. ``device_stiffness``: a
     callable giving the device's stable stiffness (N/m), to say when a design is beyond
-    it and to keep that with each record."""
+    it and to keep that with each record; ``force_limit``: one giving the largest force
+    rendered (N), to say when a button's click lies above it."""
 
     changed = QtCore.Signal()
 
-    def __init__(self, study, device_stiffness=None, parent=None):
+    def __init__(self, study, device_stiffness=None, parent=None, force_limit=None):
         super().__init__(parent)
         self.study = study
         self.device_stiffness = device_stiffness or (lambda: None)
+        self.force_limit = force_limit or (lambda: None)
         self._loading = False
         self._dragging = False
         layout = QtWidgets.QVBoxLayout(self)
@@ -102,7 +131,9 @@ class StudyControls(QtWidgets.QWidget):
         self.slider_label.setWordWrap(True)
         layout.addWidget(self.slider_label)
         row = QtWidgets.QHBoxLayout()
-        row.addWidget(QtWidgets.QLabel("softer" if study.Model == stiffness_study.BEAM else "lighter"))
+        self.lower_end = QtWidgets.QLabel()  # what the slider's ends do to the design (slider_ends)
+        self.lower_end.setObjectName("studySliderLow")
+        row.addWidget(self.lower_end)
         self.slider = QtWidgets.QSlider(QtCore.Qt.Horizontal)
         self.slider.setObjectName("studySlider")
         self.slider.setRange(0, SLIDER_STEPS)
@@ -112,6 +143,7 @@ class StudyControls(QtWidgets.QWidget):
         self.slider.sliderReleased.connect(self.drag_ended)
         row.addWidget(self.slider, 1)
         self.harder = QtWidgets.QLabel()
+        self.harder.setObjectName("studySliderHigh")
         row.addWidget(self.harder)
         layout.addLayout(row)
         self.value_label = QtWidgets.QLabel()
@@ -151,6 +183,9 @@ class StudyControls(QtWidgets.QWidget):
         self.load()
 
     def external_change(self):
+        if not shiboken2.isValid(self):  # deleted with its panel (the study's creation undone)
+            self.observer.remove()
+            return
         if not is_alive(self.study):
             self.setEnabled(False)
             self.show_message("The study was deleted.", error=True)
@@ -173,14 +208,23 @@ class StudyControls(QtWidgets.QWidget):
             if high > low:
                 self.slider.setValue(round((current - low) / (high - low) * SLIDER_STEPS))
             self.slider_label.setText(f"Slide to change the {label}: {low:g}-{high:g} {unit}".rstrip())
-            self.harder.setText("stiffer" if self.study.Model == stiffness_study.BEAM else "heavier")
+            low_end, high_end = stiffness_study.slider_ends(self.study)
+            self.lower_end.setText(low_end)
+            self.harder.setText(high_end)
             value, value_unit = stiffness_study.design_value(self.study)
             placed = cohort.place_design(value, stiffness_study.comparable_records(self.study))[1]
             problems = stiffness_study.law_problems(self.study)
             limit = self.device_stiffness()
             note = stiffness_study.device_note(self.study, limit) if limit else ""
+            force_limit = self.force_limit()
+            note = "; ".join(n for n in (note, stiffness_study.force_note(self.study, force_limit)
+                                         if force_limit else "") if n)
+            recorded = f"<b>{cohort.format_value(value, value_unit)}</b>"
+            # a neck's thickness gives its stiffness; a button's slider moves the value recorded itself
+            moved = (f"{label} {current:.3g} {unit}".rstrip() + f" → {recorded}" if self.study.Model ==
+                     stiffness_study.BEAM else recorded)
             self.value_label.setText(
-                f"{label} {current:.3g} {unit} → <b>{value:.3g} {value_unit}</b>. {placed[0].upper() + placed[1:]}."
+                f"{moved}. {placed[0].upper() + placed[1:]}."
                 + (f"<br><span style='color:#a06000'>Note: {note}.</span>" if note else "")
                 + (f"<br><span style='color:#a06000'>The {label} is set by the expression {bound}: clear "
                    "it to move the slider.</span>" if bound else "")
@@ -236,13 +280,17 @@ class StudyControls(QtWidgets.QWidget):
             self.show_message(f"Not recorded: {exc}", error=True)
             return None
         doc.commitTransaction()
-        beyond = " (beyond what the device renders: marked)" if cohort.beyond_device(record) else ""
+        beyond = (f" Marked *: {cohort.BEYOND_DEVICE.get(record.unit, 'beyond what the device renders')}."
+                  if cohort.beyond_device(record) else "")
         again = (f"<br><span style='color:#a06000'>Note: {escape(record.name)} was recorded before "
                  f"({earlier} time{'s' if earlier != 1 else ''}): each record counts as a participant in the "
                  "statistics; remove one if it was a slip.</span>" if earlier else "")
-        self.show_message(f"Recorded {escape(record.name)}: {record.value:.3g} {record.unit}{beyond} "
-                          f"({self.study.Participants} participant{'s' if self.study.Participants != 1 else ''})."
-                          + again)
+        # the count the table and statistics show; the records kept of another unit said apart
+        compared = len(stiffness_study.comparable_records(self.study))
+        held = self.study.Participants
+        count = cohort.plural(compared, "participant") + (f" compared, {held} in all" if held != compared else "")
+        self.show_message(f"Recorded {escape(record.name)}: {cohort.format_value(record.value, record.unit)} "
+                          f"({count}).{beyond}" + again)
         self.clear_participant()  # the next participant starts blank, inheriting nothing
         self.load()
         self.changed.emit()

@@ -13,7 +13,7 @@ import numpy as np
 import FreeCADGui as Gui
 from PySide2 import QtCore, QtGui, QtWidgets
 
-from .. import _core, feel_session, icon, preferences, vibration_object
+from .. import _core, feel_session, icon, preferences, stiffness_study, vibration_object
 from ..proxy_state import is_alive
 from ..similarity_study import similarity_studies_of
 from ..surface_object import hidden_part_notes, surfaces_of
@@ -55,7 +55,8 @@ class FeelTaskPanel:
         self.last_sample = None
         self.main = self._build()
         # a stiffness study's slider and participant form, next to the session (seed 000 Fig. 10)
-        self.study_controls = [StudyControls(study, self.device_stiffness) for study in studies_of(doc)]
+        self.study_controls = [StudyControls(study, self.device_stiffness, force_limit=self.force_limit)
+                               for study in studies_of(doc)]
         # a similarity study's runs: the participant picks the texture on the face and answers (seed 001 §IV)
         self.similarity_controls = [SimilarityControls(study, self.session_running)
                                     for study in similarity_studies_of(doc)]
@@ -128,8 +129,17 @@ class FeelTaskPanel:
         return box
 
     def device_stiffness(self):
-        """The running session's stable stiffness (N/m, in the world), or None."""
-        return self.session.render_limits.max_stiffness_n_per_m if self.session is not None else None
+        """The stable stiffness (N/m, in the world) of the running session, or with none
+        running, the one a session would have (a record made then keeps its device mark)."""
+        if self.session is not None:
+            return self.session.render_limits.max_stiffness_n_per_m
+        return stiffness_study.device_stiffness_n_per_m(self.doc)
+
+    def force_limit(self):
+        """The largest force rendered (N): the running session's, or the preferences' limit."""
+        if self.session is not None:
+            return self.session.render_limits.max_force_n
+        return preferences.load().force_limit_n
 
     def _study_box(self, controls, kind="Stiffness study", icon_name="HaptiCAD_Study"):
         box = QtWidgets.QWidget()

@@ -10,15 +10,14 @@ close the panel and press Feel: the Feel panel shows the same slider and form.
 """
 from html import escape
 
-from PySide2 import QtCore, QtWidgets
+from PySide2 import QtCore, QtGui, QtWidgets
 
 from .. import cohort, preferences, stiffness_study
+from ..proxy_state import is_alive
 from .narrow import let_narrow
 from .study_controls import StudyControls, set_study_property
 from .task_panel_base import CloseOnlyPanel
 
-UNITS = {"YoungsModulus": " GPa", "BeamWidth": " mm", "BeamThickness": " mm", "BeamLength": " mm",
-         "OperatingForce": " N", "Pretravel": " mm", "SnapTravel": " mm", "TotalTravel": " mm"}
 LABELS = {"YoungsModulus": "Young's modulus E", "BeamWidth": "Width b", "BeamThickness": "Thickness h",
           "BeamLength": "Length L", "OperatingForce": "Operating force", "Pretravel": "Pretravel",
           "SnapRatio": "Snap ratio", "SnapTravel": "Snap travel", "TotalTravel": "Total travel",
@@ -26,19 +25,54 @@ LABELS = {"YoungsModulus": "Young's modulus E", "BeamWidth": "Width b", "BeamThi
 TABLE_COLUMNS = ("Participant", "Preferred", "Gender", "Age", "Weight (kg)", "Height (mm)")  # what counts, first
 
 
-def _device_stiffness_n_per_m():
-    """The stable stiffness (N/m) of the device the preferences choose; the simulated
-    probe's when that one is not connected."""
-    from .. import _core
+class QuantitySpin(QtWidgets.QDoubleSpinBox):
+    """A spin box of one of the study's values, read as FreeCAD reads a quantity
+    (stiffness_study.typed_value): "6 cm" in a length is 60 mm, "1500 MPa" in the modulus
+    1.5 GPa, "4,5" 4.5, a number alone in the shown unit. Every key typed stays (a spin box
+    bounded by its range dropped the 4th digit of 1500, and its suffix took "6 cm" as
+    6 mm); on Return or leaving the field, a value that is not one, or is outside the
+    range, is not set, and ``refused`` says why ("" when what was typed is taken)."""
 
-    chosen = preferences.load().device
-    try:
-        for info in _core.list_devices():
-            if info["path"] == chosen and info["limits"]:
-                return info["limits"]["max_stiffness_n_per_m"]
-    except RuntimeError:  # a device that fails to enumerate: judge by the simulated probe
-        pass
-    return _core.simulated_probe_limits().max_stiffness_n_per_m
+    refused = QtCore.Signal(str)
+
+    def __init__(self, name, label):
+        super().__init__()
+        self.setObjectName(name)
+        self.name, self.label, self.problem = name, label, None
+        self.quantity_of = name  # the property whose unit and range it takes (AdjustMin: the slider's)
+        self.setDecimals(6)
+        self.setKeyboardTracking(False)
+        self.editingFinished.connect(self._finished)
+
+    def set_quantity(self, name, value_range, step):
+        """Takes ``name``'s unit, over ``value_range`` (signals blocked by the caller)."""
+        self.quantity_of = name
+        self.setRange(*value_range)
+        self.setSingleStep(step)
+
+    def validate(self, text, pos):
+        return QtGui.QValidator.Acceptable  # whatever is typed stays; valueFromText judges it
+
+    def fixup(self, text):
+        return text
+
+    def valueFromText(self, text):
+        try:
+            value = stiffness_study.typed_value(self.quantity_of, text, self.label)
+        except ValueError as exc:
+            self.problem = str(exc)
+            return self.value()  # nothing set
+        self.problem = None
+        return value
+
+    def textFromValue(self, value):
+        unit = stiffness_study.UNITS.get(self.quantity_of, "")
+        shown = f"{value:.{self.decimals()}f}".rstrip("0").rstrip(".")
+        return f"{shown} {unit}".rstrip()
+
+    def _finished(self):
+        problem, self.problem = self.problem, None
+        self.refused.emit(problem or "")
 
 
 class StudyTaskPanel(CloseOnlyPanel):
@@ -49,7 +83,8 @@ class StudyTaskPanel(CloseOnlyPanel):
         self.doc = study.Document
         self.widgets = {}
         self._loading = False
-        self.device_k = _device_stiffness_n_per_m()  # asked once: it probes HID devices
+        # asked once (it probes HID devices): what a Feel session renders, the Feel panel's
+        self.device_k = stiffness_study.device_stiffness_n_per_m(self.doc)
         self.controls = None
         self.controls_model = None
         # an import's or export's outcome, with the cohort it was said of: kept over the
@@ -64,16 +99,22 @@ class StudyTaskPanel(CloseOnlyPanel):
 
     # --- building -------------------------------------------------------------------
 
-    def _spin(self, name, constraint):
-        box = QtWidgets.QDoubleSpinBox()
-        box.setObjectName(name)
-        box.setRange(constraint[0], constraint[1])
-        box.setSingleStep(constraint[2])
-        box.setDecimals(3)
-        box.setSuffix(UNITS.get(name, ""))
-        box.setKeyboardTracking(False)
+    def _spin(self, name, constraint, label=None):
+        box = QuantitySpin(name, label or LABELS.get(name, name))
+        if constraint is not None:
+            box.set_quantity(name, constraint[:2], constraint[2])
         box.valueChanged.connect(lambda v, n=name: self.set_property(n, float(v)))
+        box.refused.connect(self.refused)
         return box
+
+    def refused(self, text):
+        """A value typed that is not set: said where the study's problems are, until the
+        next edit ("": taken, or nothing typed; the status as the study is)."""
+        if self._loading or not self._alive():
+            return
+        self.load()
+        if text:
+            self.status.setText(f"<span style='color:#b00000'>⚠ Not set: {escape(text, quote=False)}</span>")
 
     def _model_box(self):
         box = self._box("Mechanism")
@@ -118,15 +159,11 @@ class StudyTaskPanel(CloseOnlyPanel):
         adjust.currentIndexChanged.connect(self.adjust_chosen)
         self.widgets["Adjust"] = adjust
         form.addRow("Slider moves", adjust)
-        for name in ("AdjustMin", "AdjustMax"):
-            spin = QtWidgets.QDoubleSpinBox()
-            spin.setObjectName(name)
-            spin.setRange(0.0, 2000.0)
-            spin.setDecimals(3)
-            spin.setKeyboardTracking(False)
-            spin.valueChanged.connect(lambda v, n=name: self.set_property(n, float(v)))
+        for name in ("AdjustMin", "AdjustMax"):  # in the unit of what the slider moves (_load)
+            label = "From" if name == "AdjustMin" else "To"
+            spin = self._spin(name, None, f"The slider's {'low' if name == 'AdjustMin' else 'high'} end")
             self.widgets[name] = spin
-            form.addRow("From" if name == "AdjustMin" else "To", spin)
+            form.addRow(label, spin)
         layout.addLayout(form)
         self.controls_holder = QtWidgets.QVBoxLayout()
         layout.addLayout(self.controls_holder)
@@ -185,6 +222,10 @@ class StudyTaskPanel(CloseOnlyPanel):
             if isinstance(widget, QtWidgets.QComboBox):
                 widget.setCurrentText(str(value))
             else:
+                if name in ("AdjustMin", "AdjustMax") and obj.Adjust in stiffness_study.UNITS:
+                    # the moved parameter's unit and range, widened to show a value set beyond it
+                    low, high, step = next(p[5] for p in stiffness_study.PROPERTIES if p[0] == obj.Adjust)
+                    widget.set_quantity(obj.Adjust, (min(low, value), max(high, value)), step)
                 widget.setValue(float(value))
             widget.blockSignals(False)
         adjust = self.widgets["Adjust"]
@@ -203,7 +244,8 @@ class StudyTaskPanel(CloseOnlyPanel):
                stiffness_study.BEAM else f"Operating force <b>{obj.OperatingForce:.3g} N</b> at "
                f"{obj.Pretravel:g} mm, returning at {obj.OperatingForce * (1 - obj.SnapRatio):.3g} N; bottoms "
                f"out at {obj.TotalTravel:g} mm on the surface's stiffness")
-        note = stiffness_study.device_note(obj, self.device_k)
+        note = "; ".join(n for n in (stiffness_study.device_note(obj, self.device_k),
+                                     stiffness_study.force_note(obj, preferences.load().force_limit_n)) if n)
         override = stiffness_study.material_override(obj)  # the combo still names the material
         self.law_label.setText(law + (f"<br>Modulus edited: {override}." if override else "")
                                + (f"<br><span style='color:#a06000'>Note: {note}.</span>" if note else ""))
@@ -211,7 +253,8 @@ class StudyTaskPanel(CloseOnlyPanel):
             if self.controls is not None:
                 self.controls.setParent(None)
                 self.controls.deleteLater()
-            self.controls = StudyControls(obj, lambda: self.device_k)
+            self.controls = StudyControls(obj, lambda: self.device_k,
+                                          force_limit=lambda: preferences.load().force_limit_n)
             self.controls.changed.connect(self.load)
             self.controls_holder.addWidget(self.controls)
             let_narrow(self.controls)
@@ -224,7 +267,7 @@ class StudyTaskPanel(CloseOnlyPanel):
             self.status.setText("<span style='color:#b00000'>⚠ " + "<br>⚠ ".join(problems) + "</span>")
         else:
             self.status.setText(f"<span style='color:#006000'>✓ {obj.Model} under "
-                                f"{obj.Surface.Label}: {value:.3g} {unit}. Close, then Feel it.</span>")
+                                f"{obj.Surface.Label}: {cohort.format_value(value, unit)}. Close, then Feel it.</span>")
 
     def _load_cohort(self):
         records = stiffness_study.comparable_records(self.obj)
@@ -240,12 +283,10 @@ class StudyTaskPanel(CloseOnlyPanel):
                 item.setToolTip(wrong)
                 self.table.setItem(row, column, item)
         rows = cohort.statistics(records)
-        aside = (f"<br>{others} record(s) in another unit (made with the other model) are kept but not "
-                 "compared." if others else "")
-        capped = sum(1 for r in records if cohort.beyond_device(r))
-        if capped:
-            aside += (f"<br>* {capped} preference{'s' if capped != 1 else ''} beyond what the device renders: felt at "
-                      "its limit, counted as recorded.")
+        aside = f"<br>{escape(stiffness_study.others_note(self.obj), quote=False)}." if others else ""
+        starred = cohort.beyond_device_note(records)  # what the star means for this unit
+        if starred:
+            aside += f"<br>{escape(starred, quote=False)}"
         wrong = [(r.name, found) for r in records for found in [cohort.problems(r)] if found]
         if wrong:
             aside += (f"<br><span style='color:#b00000'>⚠ {len(wrong)} record{'s' if len(wrong) != 1 else ''} could "
@@ -258,7 +299,7 @@ class StudyTaskPanel(CloseOnlyPanel):
             self.stats.setText(notice + "No participant yet: each records what feels right with the slider above."
                                + aside)
             return
-        lines = [f"{s['group']}: n 1, {s['mean']:.3g} {records[0].unit}" if s["n"] == 1 else  # no spread of one
+        lines = [f"{s['group']}: n 1, {cohort.format_value(s['mean'], records[0].unit)}" if s["n"] == 1 else  # one
                  f"{s['group']}: n {s['n']}, mean {s['mean']:.3g} ± {s['sd']:.2g}, median {s['median']:.3g} "
                  f"({s['min']:.3g}-{s['max']:.3g}) {records[0].unit}" for s in rows]
         value, _ = stiffness_study.design_value(self.obj)
@@ -272,8 +313,12 @@ class StudyTaskPanel(CloseOnlyPanel):
 
     # --- widgets -> object -------------------------------------------------------------
 
+    def _alive(self):
+        """False once the panel is closed or its study deleted (a field left as it goes)."""
+        return not getattr(self, "_left", False) and is_alive(self.obj)
+
     def set_property(self, name, value):
-        if self._loading:
+        if self._loading or not self._alive():
             return
         self.notice = None
         if not set_study_property(self.obj, name, value):
@@ -285,13 +330,8 @@ class StudyTaskPanel(CloseOnlyPanel):
         if self._loading or index < 0:
             return
         self.notice = None
-        name = self.widgets["Adjust"].itemData(index)
-        low, high = stiffness_study.ADJUSTABLE[self.obj.Model][name][2]
-        doc = self.doc
-        doc.openTransaction("Stiffness study: slider")
-        self.obj.Adjust = name
-        self.obj.AdjustMin, self.obj.AdjustMax = low, high
-        doc.commitTransaction()
+        # the study sets the slider's range to the parameter's (StiffnessStudy.onChanged)
+        set_study_property(self.obj, "Adjust", self.widgets["Adjust"].itemData(index))
         self.load()
 
     def remove_selected(self):

@@ -7,13 +7,14 @@ panel. Run by gui_test_runner.py."""
 import os
 import sys
 import tempfile
+import traceback
 import unittest
 
 import numpy as np
 
 import FreeCAD as App
 import FreeCADGui as Gui
-from PySide2 import QtWidgets
+from PySide2 import QtCore, QtGui, QtWidgets
 
 import HaptiCAD
 from hapticad import preferences, stiffness_study
@@ -29,6 +30,27 @@ def fill_participant(name, gender="M", age="26-40", weight=70.0, height=1700.0):
     h.widget(QtWidgets.QComboBox, "participantAge").setCurrentText(age)
     h.widget(QtWidgets.QDoubleSpinBox, "participantWeight").setValue(weight)
     h.widget(QtWidgets.QDoubleSpinBox, "participantHeight").setValue(height)
+
+
+def type_into(spin, text, finish="return"):
+    """Types ``text`` into a spin box as a user does (its text selected, key by key), then
+    presses Return, leaves the field ("leave") or neither (None)."""
+    spin.setFocus()
+    h.process_events()
+    line = spin.lineEdit()
+    line.selectAll()
+    for char in text:
+        for kind in (QtCore.QEvent.KeyPress, QtCore.QEvent.KeyRelease):
+            QtWidgets.QApplication.sendEvent(line, QtGui.QKeyEvent(kind, 0, QtCore.Qt.NoModifier, char))
+    if finish is None:  # still being typed
+        pass
+    elif finish == "return":
+        for kind in (QtCore.QEvent.KeyPress, QtCore.QEvent.KeyRelease):
+            QtWidgets.QApplication.sendEvent(line, QtGui.QKeyEvent(kind, QtCore.Qt.Key_Return, QtCore.Qt.NoModifier))
+    else:
+        Gui.getMainWindow().setFocus()
+        spin.clearFocus()
+    h.process_events()
 
 
 class StudyGuiTest(unittest.TestCase):
@@ -303,12 +325,145 @@ class StudyGuiTest(unittest.TestCase):
         self.assertIn("is more than the device renders stably", h.widget(QtWidgets.QLabel, "studyValue").text())
         fill_participant("Yang", age="41-60", weight=60)
         h.widget(QtWidgets.QPushButton, "recordPreference").click()
-        self.assertIn("beyond what the device renders: marked", h.widget(QtWidgets.QLabel, "studyMessage").text())
+        self.assertIn("Marked *: beyond what the device renders stably, felt at its limit",
+                      h.widget(QtWidgets.QLabel, "studyMessage").text())
         steven, yang = stiffness_study.records(study)
         self.assertEqual((steven.design["BeyondDevice"], yang.design["BeyondDevice"]), (0.0, 1.0))
         h.widen_panel(480)
         h.grab_screen("feel_study.png")
         h.widget(QtWidgets.QPushButton, "feelStop").click()
+
+    def test_a_height_typed_in_cm_is_kept_as_typed_and_refused_with_what_to_give(self):
+        study = self.open_study()
+        h.widget(QtWidgets.QLineEdit, "participantName").setText("Steven")
+        weight = h.widget(QtWidgets.QDoubleSpinBox, "participantWeight")
+        height = h.widget(QtWidgets.QDoubleSpinBox, "participantHeight")
+        type_into(weight, "15", finish="leave")  # a child's weight, below the range
+        type_into(height, "170", finish="leave")  # Table 3's height, in cm
+        # leaving the field keeps what was typed: it used to read "not given", and the record lost it unsaid
+        self.assertEqual((weight.text(), height.text()), ("15.0 kg", "170 mm"))
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        message = h.widget(QtWidgets.QLabel, "studyMessage").text()
+        self.assertIn("Not recorded: weight 15.0 kg is outside 20..300 kg; height 170.0 mm is outside 500..2500 mm: "
+                      "in centimetres? give 1700", message)
+        self.assertEqual(study.Participants, 0)
+        self.assertEqual((weight.text(), height.text()), ("15.0 kg", "170 mm"))  # still there to correct
+        type_into(weight, "25", finish="leave")
+        type_into(height, "1700", finish="leave")
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        (steven,) = stiffness_study.records(study)
+        self.assertEqual((steven.weight_kg, steven.height_mm), (25.0, 1700.0))
+        # the form is blank again; a step up from "not given" starts at the plausible range, a step down returns
+        weight.stepBy(1)
+        self.assertEqual(weight.text(), "20.0 kg")
+        weight.stepBy(1)
+        self.assertEqual(weight.text(), "21.0 kg")
+        weight.stepBy(-1)
+        weight.stepBy(-1)
+        self.assertEqual(weight.text(), "not given")
+
+    def test_values_typed_with_units_are_converted_and_beyond_the_range_refused_visibly(self):
+        study = self.open_study()
+        status = h.widget(QtWidgets.QLabel, "studyStatus")
+        length = h.widget(QtWidgets.QDoubleSpinBox, "BeamLength")
+        type_into(length, "8 cm")
+        self.assertEqual(study.BeamLength, 80.0)  # not 8 mm
+        self.assertEqual(length.text(), "80 mm")
+        type_into(h.widget(QtWidgets.QDoubleSpinBox, "BeamThickness"), "4,5")
+        self.assertEqual(study.BeamThickness, 4.5)  # a decimal comma, not 45 mm
+        modulus = h.widget(QtWidgets.QDoubleSpinBox, "YoungsModulus")
+        type_into(modulus, "1500")  # MPa meant: every digit kept, and refused with what to give
+        self.assertEqual(study.YoungsModulus, 1.5)
+        self.assertIn("Not set: Young's modulus E: 1500 GPa is outside 0.001..1000 GPa: in MPa? give 1500 MPa",
+                      status.text())
+        type_into(modulus, "2300 MPa")
+        self.assertAlmostEqual(study.YoungsModulus, 2.3)
+        self.assertNotIn("Not set", status.text())
+        type_into(length, "3 m", finish="leave")
+        self.assertEqual(study.BeamLength, 80.0)
+        self.assertIn("Not set: Length L: 3000 mm is outside 1..2000 mm", status.text())
+        type_into(length, "5 kg")
+        self.assertIn("Not set: Length L: '5 kg' is a mass, not a length", status.text())
+        # the slider's range is in the unit of what it moves
+        type_into(h.widget(QtWidgets.QDoubleSpinBox, "AdjustMax"), "1 cm")
+        self.assertEqual(study.AdjustMax, 10.0)
+        h.widget(QtWidgets.QComboBox, "Model").setCurrentText("Push button")
+        h.process_events()
+        type_into(h.widget(QtWidgets.QDoubleSpinBox, "OperatingForce"), "150 gf")  # a switch datasheet's unit
+        self.assertAlmostEqual(study.OperatingForce, 1.471, places=3)
+        type_into(h.widget(QtWidgets.QDoubleSpinBox, "SnapRatio"), "1.5")
+        self.assertEqual(study.SnapRatio, 0.5)
+        self.assertIn("Not set: Snap ratio: 1.5 is outside 0.01..0.99", status.text())
+        type_into(h.widget(QtWidgets.QDoubleSpinBox, "AdjustMax"), "60 N")
+        self.assertEqual(study.AdjustMax, 5.0)
+        self.assertIn("Not set: The slider's high end: 60 N is outside 0.05..50 N", status.text())
+
+    def test_a_button_slider_moved_to_the_snap_ratio_says_what_differs_and_round_trips(self):
+        study = self.open_study()
+        h.widget(QtWidgets.QComboBox, "Model").setCurrentText("Push button")
+        h.process_events()
+        self.assertEqual([h.widget(QtWidgets.QLabel, n).text() for n in ("studySliderLow", "studySliderHigh")],
+                         ["lighter", "heavier"])
+        slider = h.widget(QtWidgets.QSlider, "studySlider")
+        for name, position in (("Op0", 20), ("Op1", 60)):
+            slider.setValue(position)
+            fill_participant(name)
+            h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        adjust = h.widget(QtWidgets.QComboBox, "Adjust")
+        adjust.setCurrentIndex(adjust.findData("SnapRatio"))
+        h.process_events()
+        # the study set the snap ratio's range itself; the panel relies on it
+        self.assertEqual((study.Adjust, study.AdjustMin, study.AdjustMax), ("SnapRatio", 0.2, 0.8))
+        self.assertEqual([h.widget(QtWidgets.QLabel, n).text() for n in ("studySliderLow", "studySliderHigh")],
+                         ["less snap", "more snap"])
+        value = h.widget(QtWidgets.QLabel, "studyValue").text()
+        self.assertTrue(value.startswith("<b>snap ratio 0.5</b>. "), value)  # not "snap ratio 0.5 → 0.5 snap ratio"
+        stats = h.widget(QtWidgets.QLabel, "cohortStats").text()
+        self.assertIn("2 recorded while the slider moved the operating force (N) are kept but not compared with the "
+                      "snap ratio; the study's Participants (2) counts every record", stats)
+        self.assertNotIn("other model", stats)
+        fill_participant("Snap0")
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        self.assertIn("Recorded Snap0: snap ratio 0.5 (1 participant compared, 3 in all)",
+                      h.widget(QtWidgets.QLabel, "studyMessage").text())
+        self.assertEqual((h.widget(QtWidgets.QTableWidget, "cohortTable").rowCount(), study.Participants), (1, 3))
+        panel = _open_panel()
+        path = os.path.join(self.tmp.name, "button.csv")
+        self.assertTrue(panel.export_to(path))
+        self.assertEqual(panel.import_from(path), 0)  # its own export: taken back whole, nobody added
+        h.process_events()
+        self.assertIn("Imported 0 participants; 3 already held were left out",
+                      h.widget(QtWidgets.QLabel, "cohortStats").text())
+        self.assertEqual(study.Participants, 3)
+
+    def test_a_button_preference_beyond_the_device_is_starred_for_its_travel_not_its_force(self):
+        study = self.open_study()
+        h.widget(QtWidgets.QComboBox, "Model").setCurrentText("Push button")
+        h.process_events()
+        fill_participant("Ann")  # 1.47 N at 0.25 mm: 5.9 N/mm, beyond the simulated probe's 3
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        self.assertIn("Marked *: steeper than the device renders stably, its forces felt as designed over a longer "
+                      "travel", h.widget(QtWidgets.QLabel, "studyMessage").text())
+        self.assertEqual(h.widget(QtWidgets.QTableWidget, "cohortTable").item(0, 1).text(), "1.47 N *")
+        stats = h.widget(QtWidgets.QLabel, "cohortStats").text()
+        self.assertIn("* 1 preference steeper than the device renders stably, its forces felt as designed", stats)
+        self.assertNotIn("at its limit", stats)
+        self.assertEqual(study.Participants, 1)
+
+    def test_undoing_the_studys_creation_with_its_panel_open_leaves_no_traceback(self):
+        self.open_study()
+        type_into(h.widget(QtWidgets.QDoubleSpinBox, "BeamLength"), "7 cm", finish=None)  # left as it closes
+        errors = []
+        hook = sys.excepthook
+        sys.excepthook = lambda *info: errors.append("".join(traceback.format_exception(*info)))
+        try:
+            Gui.runCommand("Std_Undo")
+            h.wait(0.5)
+        finally:
+            sys.excepthook = hook
+        self.assertEqual(HaptiCAD.studies_of(self.doc), [])
+        self.assertFalse(Gui.Control.activeDialog())
+        self.assertEqual([e for e in errors if "study" in e or "already deleted" in e], [])
 
 
 def _open_panel():
