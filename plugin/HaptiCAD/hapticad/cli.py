@@ -253,7 +253,10 @@ def cmd_fit_texture(args):
                 names = ", ".join(o.Label for o in surfaces_of(doc)) or "none"
                 raise ValueError(f"{args.apply}: no haptic surface named {args.surface!r} (it has: {names})")
             surface = found[0]
-            notes = texture_fit.apply_to_surface(surface, report)
+            try:
+                notes = texture_fit.apply_to_surface(surface, report)
+            except ValueError as exc:
+                raise ValueError(f"{exc}; nothing was changed") from None
             doc.recompute()
             problems = validate(surface)
             if problems:

@@ -308,16 +308,16 @@ def apply_to_surface(surface, report):
     values.update(extra)
     bad = [k for k, v in values.items() if not math.isfinite(v)]
     if bad:
-        raise ValueError(f"the fit gave a non-finite {', '.join(bad)}; nothing was changed")
+        raise ValueError(f"the fit gave a non-finite {', '.join(bad)}")
     if report.fit.beta_h_n.intercept <= 0 or report.fit.alpha_h.intercept <= 0:
         raise ValueError(f"the fit is no grating of period {report.fit.period_m / MM:g} mm (beta_h "
                          f"{report.fit.beta_h_n.intercept:.3g} N, alpha_h {report.fit.alpha_h.intercept:.3g}: "
-                         "its harmonics do not fall off); check the period. Nothing was changed")
+                         "its harmonics do not fall off); check the period")
     if values["TexturePeriod"] < 1e-3:
-        raise ValueError("the grating period is below 0.001 mm; nothing was changed")
+        raise ValueError("the grating period is below 0.001 mm")
     wrong = wrong_period(report.fit)
     if wrong:
-        raise ValueError(f"{wrong}. Nothing was changed")
+        raise ValueError(wrong)
     from .similarity_study import pooled_runs, unpooling_notes
 
     pooled = pooled_runs(surface.Document)

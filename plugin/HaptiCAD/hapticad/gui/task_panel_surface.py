@@ -15,6 +15,7 @@ everything as one undo step and Cancel reverts everything. Values are checked li
 the object's own validation (surface_object.validate, which includes the core's) and
 the message is shown at the top; OK is refused while there is a problem.
 """
+import html
 import re
 
 import FreeCAD as App
@@ -38,16 +39,19 @@ UNITS = {
 LABELS = {
     "StaticFriction": "Static friction μs", "DynamicFriction": "Dynamic friction μd",
     "RoughnessCategory": "Category", "FeelRoughness": "Feel the roughness grid",
-    "PatternAngle": "Stripe angle", "PatternCenter": "Centre", "PatternAxis": "Axis",
+    "PatternAngle": "Angle", "PatternCenter": "Centre", "PatternAxis": "Axis",
     "PatternCurve": "Curve", "AcrossFriction": "Across / along", "BackwardFriction": "Backward / forward",
     "TextureDC": "f_DC", "TextureViscosity": "f_vis", "TextureBeta": "β_h", "TextureAlpha": "α_h",
     "TextureBetaViscosity": "β_vis", "TextureAlphaViscosity": "α_vis", "TexturePeriod": "Period λ",
     "TextureFullRange": "Full range", "TextureScale": "Level 1 is",
+    "RoughnessHeight": "Height × grid",
 }
 GROUP_TITLES = [("Surface", "Material"), ("Friction", "Friction and stiffness"), ("Roughness", "Roughness"),
                 ("Pattern", "Friction pattern"), ("Texture", "Viscous texture")]
 # widgets shown only when they apply
 RELEVANT = {
+    # the angle turns the linear stripes and the roughness grid (surface_compile.face_frame)
+    "PatternAngle": lambda o: o.Pattern == "Linear" or o.FeelRoughness,
     "PatternCenter": lambda o: o.Pattern == "Circular",
     "PatternAxis": lambda o: o.Pattern == "Circular",
     "PatternBlendRadius": lambda o: o.Pattern == "Circular",
@@ -59,8 +63,8 @@ RELEVANT = {
     "BackwardFriction": lambda o: o.Pattern != "None",
     "RoughnessHeight": lambda o: o.FeelRoughness,
     "RoughnessFrictionModulation": lambda o: o.FeelRoughness,
-    **{name: (lambda o: o.Texture != "None") for name in surface_object.TEXTURE_VALUES + ("TexturePeriod",
-                                                                                          "TextureScale")},
+    # the period shows with no texture too: a fit to recordings (the rows below it) reads it
+    **{name: (lambda o: o.Texture != "None") for name in surface_object.TEXTURE_VALUES + ("TextureScale",)},
     "TextureFullRange": lambda o: o.Texture != "None" and o.TextureScale == "Device force",
 }
 FLOAT_DECIMALS = 4
@@ -134,6 +138,11 @@ class SurfaceTaskPanel:
     def _status_box(self):
         box = self._box("Haptic surface")
         layout = QtWidgets.QVBoxLayout(box)
+        # named: the command opens the surface that tags a selected face already
+        self.name_label = QtWidgets.QLabel()
+        self.name_label.setObjectName("surfaceName")
+        self.name_label.setWordWrap(True)
+        layout.addWidget(self.name_label)
         self.status = QtWidgets.QLabel()
         self.status.setObjectName("status")
         self.status.setWordWrap(True)
@@ -360,6 +369,7 @@ class SurfaceTaskPanel:
 
     def _load(self):
         obj = self.obj
+        self.name_label.setText(f"<b>{html.escape(obj.Label)}</b>")
         self._load_faces()
         names = obj.getEnumerationsOfProperty("Material")
         combo = self.widgets["Material"]

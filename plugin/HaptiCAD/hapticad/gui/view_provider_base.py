@@ -31,7 +31,8 @@ class DrawsNothing(NoState):
 
 
 class EditsInTaskPanel:
-    """setEdit shows ``task_panel(obj)``; a double click edits, unless a dialog is open."""
+    """setEdit shows ``task_panel(obj)``; a double click edits, or, with a dialog open,
+    says what to do instead."""
 
     def task_panel(self, obj):
         raise NotImplementedError
@@ -54,6 +55,17 @@ class EditsInTaskPanel:
         import FreeCADGui as Gui
 
         if Gui.Control.activeDialog():
-            return False
+            # FreeCAD shows one task panel at a time: say so, rather than nothing happening
+            from . import task_panel_feel
+
+            label = vobj.Object.Label
+            feel = task_panel_feel.active_panel()
+            if feel is not None:
+                feel.show_message(f"While you feel, edit {label} in the property editor (its Data tab): "
+                                  "every change is felt at once. Close Feel to edit it in its panel.")
+            else:
+                Gui.getMainWindow().statusBar().showMessage(
+                    f"Close the open task panel first to edit {label}.", 10000)
+            return True
         vobj.Document.setEdit(vobj.Object.Name, 0)
         return True

@@ -265,6 +265,19 @@ class FeelGuiTest(unittest.TestCase):
         np.testing.assert_allclose(chart.values["texture_force_n"], [0.0, 0.9, 0.9])
         np.testing.assert_allclose(chart.values["normal_force_n"], [1.0, 2.0, 2.0])
 
+    def test_a_double_click_on_a_surface_while_feeling_says_where_to_edit_it(self):
+        self.open_feel()
+        surface = self.doc.getObject("HapticSurface")
+        handled = surface.ViewObject.Proxy.doubleClicked(surface.ViewObject)  # what the tree calls
+        h.process_events()
+        self.assertTrue(handled)
+        self.assertIn(f"While you feel, edit {surface.Label} in the property editor",
+                      h.widget(QtWidgets.QLabel, "feelMessage").text())
+        from hapticad.gui import task_panel_feel
+
+        self.assertIsNotNone(task_panel_feel.active_panel())  # Feel goes on, not replaced
+        self.assertTrue(Gui.Control.activeDialog())
+
     def test_editing_the_surface_during_a_session_is_felt_at_once(self):
         stop, chart = self.press_on_the_top()
         abs_normal = float(chart.values["normal_force_n"][-200:].mean())

@@ -206,6 +206,28 @@ class TaskPanelTest(unittest.TestCase):
         h.press_task_button("Cancel")
         self.assertEqual(HaptiCAD.surfaces_of(self.doc), [])
 
+    def test_the_panel_names_its_surface_and_shows_what_applies(self):
+        surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS", FeelRoughness=False)
+        surface.Label = "ThumbGrip"
+        # the face tagged already: the command opens the surface that tags it, by name
+        Gui.Selection.addSelection(self.box, "Face6")
+        Gui.runCommand("HaptiCAD_Surface")
+        h.process_events()
+        self.assertEqual(h.widget(QtWidgets.QLabel, "surfaceName").text(), "<b>ThumbGrip</b>")
+        angle = h.widget(QtWidgets.QDoubleSpinBox, "PatternAngle")
+        self.assertFalse(angle.isVisibleTo(Gui.getMainWindow()))  # no stripes, no grid: it turns nothing
+        h.widget(QtWidgets.QCheckBox, "FeelRoughness").setChecked(True)
+        self.assertTrue(angle.isVisibleTo(Gui.getMainWindow()))  # it turns the roughness grid
+        h.widget(QtWidgets.QCheckBox, "FeelRoughness").setChecked(False)
+        h.widget(QtWidgets.QComboBox, "Pattern").setCurrentText("Linear")
+        self.assertTrue(angle.isVisibleTo(Gui.getMainWindow()))
+        # no texture yet: the fit to recordings is offered, and the period it reads is shown
+        self.assertEqual(surface.Texture, "None")
+        self.assertTrue(h.widget(QtWidgets.QPushButton, "fitTexture").isVisibleTo(Gui.getMainWindow()))
+        self.assertTrue(h.widget(QtWidgets.QDoubleSpinBox, "TexturePeriod").isVisibleTo(Gui.getMainWindow()))
+        self.assertFalse(h.widget(QtWidgets.QDoubleSpinBox, "TextureDC").isVisibleTo(Gui.getMainWindow()))
+        h.press_task_button("Cancel")
+
     def test_cancel_on_a_new_surface_removes_it(self):
         self.open_new_surface()
         h.press_task_button("Cancel")
