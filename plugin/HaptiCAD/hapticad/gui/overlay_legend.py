@@ -17,6 +17,7 @@ NODE_NAME = "HaptiCAD_Legend"
 FONT_PX = 14
 ROW_PX = 20  # baseline to baseline
 SWATCH_PX = 12
+CHAR_PX = 10  # the width of a character of the 14 px font, measured on screenshots
 LEFT_PX, TOP_PX = 10, 10  # the first row's top, from the view's top-left corner
 _FITTERS = {}  # the render callbacks' Python functions, kept alive with their legend
 
@@ -110,6 +111,10 @@ def refresh(doc, exclude=None):
     font.size = FONT_PX
     for node in (fit, camera, pick, light, font):
         annotation.addChild(node)
+    # a white card under it: black text is unreadable on FreeCAD's dark blue background
+    width = SWATCH_PX + 6 + CHAR_PX * max(len(label) for _, label in rows) + 8
+    annotation.addChild(_quad(LEFT_PX - 4, -(TOP_PX - 4), LEFT_PX + width, -(TOP_PX + len(rows) * ROW_PX),
+                              (1.0, 1.0, 1.0)))
     for i, (colour, label) in enumerate(rows):
         top = -(TOP_PX + i * ROW_PX)  # y grows up: rows go down from the top edge
         annotation.addChild(_swatch(colour, LEFT_PX, top))
