@@ -450,6 +450,21 @@ class StudyGuiTest(unittest.TestCase):
         self.assertNotIn("at its limit", stats)
         self.assertEqual(study.Participants, 1)
 
+    def test_a_button_whose_click_lies_above_the_force_limit_says_so_while_feeling(self):
+        # the slider offers up to 5 N; the preferences' force limit stops the force at 3 N,
+        # where a 4.5 N button's click never comes: said beside the slider
+        preferences.update(force_limit_n=3.0)
+        HaptiCAD.make_study(self.doc, self.surface, model="Push button", OperatingForce=4.5)
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        self.assertTrue(h.widget(QtWidgets.QPushButton, "feelStop").isEnabled())
+        value = h.widget(QtWidgets.QLabel, "studyValue").text()
+        self.assertIn("the operating force, 4.5 N, is above the force limit, 3 N", value)
+        slider = h.widget(QtWidgets.QSlider, "studySlider")
+        slider.setValue(slider.minimum())  # 0.5 N: felt whole
+        h.process_events()
+        self.assertNotIn("above the force limit", h.widget(QtWidgets.QLabel, "studyValue").text())
+
     def test_undoing_the_studys_creation_with_its_panel_open_leaves_no_traceback(self):
         self.open_study()
         type_into(h.widget(QtWidgets.QDoubleSpinBox, "BeamLength"), "7 cm", finish=None)  # left as it closes
