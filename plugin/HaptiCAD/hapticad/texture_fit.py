@@ -374,7 +374,8 @@ def summary(report):
 
 def describe(result):
     """``summary()``'s data (and what --apply set) as text for a terminal."""
-    lines = [f"grating period {result['period_mm']:g} mm, {result['sections']} sections of constant speed"]
+    count = result["sections"]
+    lines = [f"grating period {result['period_mm']:g} mm, {count} section{'' if count == 1 else 's'} of constant speed"]
     lines.append("  speed mm/s  sections  DC N (sd)        harmonics beta N, alpha  background beta N, alpha")
     for s in result["speeds"]:
         lines.append(f"  {s['measured_mm_s']:9.1f}  {s['sections']:8d}  {s['dc_n']:.4f} ({s['dc_sd_n']:.4f})"

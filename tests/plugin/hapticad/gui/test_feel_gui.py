@@ -179,13 +179,11 @@ class FeelGuiTest(unittest.TestCase):
         # grip (0.4 N/mm) in series with the face (0.8 N/mm): 0.67 N at 2.5 mm, 0.27 at 1
         self.assertGreater(float(np.asarray(chart.values["normal_force_n"][-200:]).mean()), 0.55)
 
-    def test_a_jump_of_the_cursor_across_the_part_comes_over_it_not_through(self):
-        # a 60 x 30 x 10 mm base, a 5 mm block on it at x 30..50; the cursor jumps from the
-        # base right of the block to the base left of it in one move. Straight there, the
-        # hand was dragged through the block: the proxy stayed caught on its wall, the hand
-        # tens of mm away, pulled at the force limit (a reviewer's toothbrush: 101 mm, 3 N)
+    def feel_a_stepped_part(self):
+        """Feel on a 60 x 30 x 10 mm base with a 5 mm block standing on it at x 30..50,
+        both tops tagged; returns the panel."""
         App.closeDocument(self.doc.Name)
-        self.doc = App.newDocument("FeelJump")
+        self.doc = App.newDocument("FeelStep")
         base = self.doc.addObject("Part::Box", "Base")
         base.Length, base.Width, base.Height = 60, 30, 10
         block = self.doc.addObject("Part::Box", "Block")
@@ -195,7 +193,14 @@ class FeelGuiTest(unittest.TestCase):
         HaptiCAD.make_surface(self.doc, [(base, "Face6"), (block, "Face6")], material="ABS")
         self.doc.recompute()
         Gui.SendMsgToActiveView("ViewFit")
-        panel = self.open_feel()
+        return self.open_feel()
+
+    def test_a_jump_of_the_cursor_across_the_part_comes_over_it_not_through(self):
+        # the cursor jumps from the base right of the block to the base left of it in one
+        # move. Straight there, the hand was dragged through the block: the proxy stayed
+        # caught on its wall, the hand tens of mm away, pulled at the force limit (a
+        # reviewer's toothbrush: 101 mm, 3 N)
+        panel = self.feel_a_stepped_part()
         h.mouse("move", h.screen_pos(np.array([56.0, 15.0, 10.0])))
         self.wait_touching("Base.Face6")
         h.mouse("move", h.screen_pos(np.array([10.0, 15.0, 10.0])))  # one move, across the block
@@ -208,19 +213,7 @@ class FeelGuiTest(unittest.TestCase):
         self.assertLess(float(np.linalg.norm(panel.last_sample["force_n"])), 1.0)
 
     def test_the_probe_comes_down_onto_the_face_under_the_cursor_and_over_a_step_not_into_its_wall(self):
-        # a 60 x 30 x 10 mm base with a 5 mm block standing on it at x 30..50
-        App.closeDocument(self.doc.Name)
-        self.doc = App.newDocument("FeelStep")
-        base = self.doc.addObject("Part::Box", "Base")
-        base.Length, base.Width, base.Height = 60, 30, 10
-        block = self.doc.addObject("Part::Box", "Block")
-        block.Length, block.Width, block.Height = 20, 30, 5
-        block.Placement.Base = App.Vector(30, 0, 10)
-        self.doc.recompute()
-        HaptiCAD.make_surface(self.doc, [(base, "Face6"), (block, "Face6")], material="ABS")
-        self.doc.recompute()
-        Gui.SendMsgToActiveView("ViewFit")
-        panel = self.open_feel()
+        panel = self.feel_a_stepped_part()
         # first touch right of the block: the hand starts above the middle (over the
         # block); straight for the face it would land on the block's top and stay there
         h.mouse("move", h.screen_pos(np.array([56.0, 15.0, 10.0])))
