@@ -4,7 +4,7 @@
 Drawn in its own Coin node added to the view (unpickable, so picking still sees the
 part): the probe (where the device, or the simulated hand, is) as a blue sphere, the
 proxy (the point held on the surface) as a green sphere, and the force on the hand as
-a red arrow from the proxy. With the simulated probe, moving the mouse over a part aims
+an amber arrow from the proxy. With the simulated probe, moving the mouse over a part aims
 the hand at the point under the cursor, pressed ``depth_mm`` into the surface (how it
 comes there: hand_approach.py); the wheel sets that depth (and is not passed on to zoom
 while the session runs).

@@ -163,6 +163,8 @@ class SimilarityGuiTest(unittest.TestCase):
         h.widget(QtWidgets.QPushButton, "similarityRate4").click()
         self.assertIn("The document stays open until this run ends",
                       h.widget(QtWidgets.QLabel, "similarityTrial").text())
+        h.widen_panel()
+        h.grab_screen("feel_similarity_held.png")
         # every way of closing it: the 3D view's window, Close All, a script
         with h.MessageBoxes() as boxes:
             Gui.runCommand("Std_CloseActiveWindow")
