@@ -140,6 +140,12 @@ def _normal_at(face, point):
     return (n.x / length, n.y / length, n.z / length) if length > 0 else None
 
 
+def tagged_objects(doc):
+    """The parts a Feel session on ``doc`` holds: tagged by a surface or vibrating.
+    ValueError when nothing is tagged."""
+    return _tagging(doc)[2]
+
+
 def _tagging(doc):
     """({"Object.FaceN": surface}, [vibration], [tagged or vibrating object]) of doc."""
     surfaces = surfaces_of(doc)

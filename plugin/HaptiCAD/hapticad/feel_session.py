@@ -61,8 +61,26 @@ def _limits_workspace(limits, low_m, high_m):
 
 def scene_box_m(doc_scene):
     """(min, max) corners of the parts in the scene, world metres."""
+    return shapes_box_m(doc_scene.shapes.values())
+
+
+def workspace_mapping(limits, low, high, prefs):
+    """The device-to-world mapping the preferences choose for a device of ``limits`` and
+    parts between ``low`` and ``high`` (world m): fitted to the parts, or a fixed scale
+    centred on them."""
+    if prefs.workspace_mapping == "Fit part":
+        return _core.fit_workspace(limits, low, high)
+    mapping = _core.WorkspaceMapping()
+    mapping.scale = prefs.workspace_scale
+    centre_d = 0.5 * (np.asarray(limits.workspace_min_d) + np.asarray(limits.workspace_max_d))
+    mapping.offset_w = 0.5 * (low + high) - prefs.workspace_scale * centre_d
+    return mapping
+
+
+def shapes_box_m(shapes):
+    """(min, max) corners of Part shapes placed in the world (mm), world metres."""
     low, high = np.full(3, np.inf), np.full(3, -np.inf)
-    for shape in doc_scene.shapes.values():
+    for shape in shapes:
         box = shape.BoundBox
         low = np.minimum(low, [box.XMin, box.YMin, box.ZMin])
         high = np.maximum(high, [box.XMax, box.YMax, box.ZMax])
@@ -105,7 +123,7 @@ class LiveSession:
         else:
             self.device = _core.open_device(device)
             limits = self.device.info.limits
-            mapping = self._mapping(limits, low, high, prefs)
+            mapping = workspace_mapping(limits, low, high, prefs)
         self.limits = limits
         render = _core.render_limits_for(limits, mapping or _core.WorkspaceMapping())
         render.max_force_n = min(render.max_force_n, prefs.force_limit_n)
@@ -118,16 +136,6 @@ class LiveSession:
         self.mapping = mapping or _core.WorkspaceMapping()  # the loop takes it at its first tick
         # a device's reach: the simulated hand's is the parts' box and a margin
         self.reach_note = None if self.simulated else beyond_reach(limits, self.mapping, low, high)
-
-    @staticmethod
-    def _mapping(limits, low, high, prefs):
-        if prefs.workspace_mapping == "Fit part":
-            return _core.fit_workspace(limits, low, high)
-        mapping = _core.WorkspaceMapping()
-        mapping.scale = prefs.workspace_scale
-        centre_d = 0.5 * (np.asarray(limits.workspace_min_d) + np.asarray(limits.workspace_max_d))
-        mapping.offset_w = 0.5 * (low + high) - prefs.workspace_scale * centre_d
-        return mapping
 
     # --- control (GUI thread) --------------------------------------------------------
 

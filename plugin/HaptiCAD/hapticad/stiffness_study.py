@@ -259,7 +259,7 @@ def device_stiffness_n_per_m(doc, prefs=None):
                 low, high = _parts_box_m(doc)
             except ValueError:  # nothing tagged: the mapping a session would fit is unknown
                 low, high = np.zeros(3), np.full(3, 0.1)
-            mapping = feel_session.LiveSession._mapping(limits, low, high, prefs)
+            mapping = feel_session.workspace_mapping(limits, low, high, prefs)
             return _core.render_limits_for(limits, mapping).max_stiffness_n_per_m
     return _core.render_limits_for(_core.simulated_hand_limits(), _core.WorkspaceMapping()).max_stiffness_n_per_m
 
@@ -282,15 +282,13 @@ def _listed_limits(path):
 def _parts_box_m(doc):
     """(min, max) corners, world m, of the parts a Feel session on ``doc`` would hold
     (feel_session.scene_box_m of its scene, without tessellating it)."""
-    from types import SimpleNamespace
+    from .document_scene import global_shape, tagged_objects
+    from .feel_session import shapes_box_m
 
-    from .document_scene import _tagging, global_shape
-    from .feel_session import scene_box_m
-
-    objects = _tagging(doc)[2]
+    objects = tagged_objects(doc)
     if not objects:
         raise ValueError("no part")
-    return scene_box_m(SimpleNamespace(shapes={o.Name: global_shape(o) for o in objects}))
+    return shapes_box_m(global_shape(o) for o in objects)
 
 
 def design_value(study):
