@@ -154,6 +154,24 @@ class TablesCommandTest(unittest.TestCase):
             self.assertIn("HaptiCAD-TPE-soft-touch.FCMat", cards)
         self.assertEqual(run_cli("materials", "--export-fcmat", "/nonexistent/dir").returncode, 2)
 
+    def test_a_rejected_card_is_said_and_fails_the_command_but_the_rest_is_listed(self):
+        with tempfile.TemporaryDirectory() as data:
+            os.makedirs(os.path.join(data, "FreeCAD", "Material"))
+            card = os.path.join(data, "FreeCAD", "Material", "Broken.FCMat")
+            with open(card, "w", encoding="utf-8") as handle:
+                handle.write("[General]\nName = Broken\n[HaptiCAD]\nHaptiCAD_StaticFriction = 0.5\n")
+            env = dict(os.environ, XDG_DATA_HOME=data)
+            proc = subprocess.run([CLI, "materials", "--json"], capture_output=True, text=True, timeout=120, env=env)
+            self.assertEqual(proc.returncode, 1, proc.stderr)
+            self.assertIn(f"rejected {card}:4: the card lacks HaptiCAD_DynamicFriction", proc.stderr)
+            self.assertIn("1 entry rejected", proc.stderr)
+            names = [r["name"] for r in json.loads(proc.stdout)]
+            self.assertIn("Steel", names)
+            self.assertNotIn("Broken", names)
+            # --shipped-only does not read the user's cards: nothing to refuse
+            self.assertEqual(subprocess.run([CLI, "materials", "--shipped-only"], capture_output=True,
+                                            timeout=120, env=env).returncode, 0)
+
 
 class PatternStrokeTest(unittest.TestCase):
     """A linear pattern felt through the CLI: mu_a along the stripes, mu_n across."""

@@ -134,13 +134,18 @@ def cmd_materials(args):
             safe = "".join(c if c.isalnum() or c in "-_" else "-" for c in material.name)
             materials.write_fcmat(material, os.path.join(args.export_fcmat, f"HaptiCAD-{safe}.FCMat"))
     rows = [m.as_dict() for m in database]
-    if args.json:
-        return rows
-    for row in rows:
-        print(f"{row['name']:<16} mu_s {row['mu_static']:<5} mu_d {row['mu_dynamic']:<5} "
-              f"range {row['mu_range'][0]}-{row['mu_range'][1]:<5} E {row['youngs_modulus_gpa']:g} GPa  "
-              f"k {row['stiffness_n_per_mm']} N/mm")
-    return None
+    if not args.json:
+        for row in rows:
+            print(f"{row['name']:<16} mu_s {row['mu_static']:<5} mu_d {row['mu_dynamic']:<5} "
+                  f"range {row['mu_range'][0]}-{row['mu_range'][1]:<5} E {row['youngs_modulus_gpa']:g} GPa  "
+                  f"k {row['stiffness_n_per_mm']} N/mm")
+    if database.errors:
+        # the others are still listed, but a script checking its cards must see the refusal
+        count = len(database.errors)
+        print(f"hapticad materials: {count} entr{'ies' if count != 1 else 'y'} rejected; the other materials "
+              "are listed", file=sys.stderr)
+        return Finished(rows if args.json else None, 1)
+    return rows if args.json else None
 
 
 def cmd_roughness_table(args):
@@ -459,6 +464,14 @@ def build_parser():
     return parser
 
 
+class Finished:
+    """A command's result with a non-zero exit status: it did its work, but refused part of
+    its input (said on stderr)."""
+
+    def __init__(self, result, status):
+        self.result, self.status = result, status
+
+
 def main(argv=None):
     # a closed pipe (`hapticad materials | head`) ends the program quietly
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)
@@ -478,10 +491,13 @@ def main(argv=None):
     except RuntimeError as exc:
         print(f"hapticad {args.command}: {exc}", file=sys.stderr)
         return 1
+    status = 0
+    if isinstance(result, Finished):
+        result, status = result.result, result.status
     if result is not None:
         json.dump(result, sys.stdout, indent=2)
         sys.stdout.write("\n")
-    return 0
+    return status
 
 
 if __name__ == "__main__":

@@ -103,6 +103,8 @@ class SurfaceTaskPanel:
         self._own_transaction = not self.doc.HasPendingTransaction
         if self._own_transaction:
             self.doc.openTransaction("Edit haptic surface")
+        # Cancel restores these values; what was up to date with them is up to date again
+        self.up_to_date = [o.Name for o in self.doc.Objects if "Touched" not in o.State]
         # a circular centre whose part moved in its App::Part (no recompute since) is
         # shown, and edited, where the part took it
         surface_object.follow_pattern_anchor(surface)
@@ -726,6 +728,10 @@ class SurfaceTaskPanel:
         self._stop_picking()
         # abort before leaving edit mode: resetEdit commits any open transaction
         self.doc.abortTransaction()
+        for name in self.up_to_date:
+            obj = self.doc.getObject(name)
+            if obj is not None and "Touched" in obj.State:
+                obj.purgeTouched()
         self._leave_edit()
         if is_alive(self.obj):  # an edit, not a creation: show the restored values
             self.obj.ViewObject.Proxy.refresh()

@@ -246,6 +246,9 @@ class TaskPanelTest(unittest.TestCase):
         h.press_task_button("Cancel")
         self.assertEqual((surface.Material, surface.StaticFriction, surface.RoughnessCategory, surface.Pattern),
                          before)
+        # the values it was recomputed with are back: it is not left waiting for a recompute
+        self.assertNotIn("Touched", surface.State)
+        self.assertNotIn("Touched", self.box.State)
 
     def test_faces_are_picked_in_the_3d_view_listed_highlighted_and_removed(self):
         surface = self.open_new_surface()
