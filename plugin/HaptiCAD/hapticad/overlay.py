@@ -78,10 +78,13 @@ def material_label(surface):
 
 
 def legend_entries(surfaces, colour_by):
-    """[(rgb, label), ...] for the legend: one per colour in use, then the stripes key."""
+    """[(rgb, label), ...] for the legend: one per colour in use on a shown part, then the
+    stripes key."""
     entries, seen = [], set()
     patterned = False
     for s in surfaces:
+        if not shown_reference_pairs(s):
+            continue
         key = s.RoughnessCategory if colour_by == "Roughness" else (s.Material, s.StaticFriction, s.DynamicFriction)
         patterned = patterned or s.Pattern != "None"
         if key in seen:
@@ -242,12 +245,29 @@ def face_outline(obj, sub):
     return lines
 
 
-def overlay_faces(surface, colour_by="Material"):
-    """OverlayFaces of every face a surface tags (broken references left out)."""
+def is_shown(obj):
+    """True when ``obj`` is drawn: it, and every App::Part or Body holding it, is visible.
+    (Hiding an App::Part hides its content but leaves each child's Visibility on.)"""
+    while obj is not None:
+        if not obj.Visibility:
+            return False
+        obj = obj.getParentGeoFeatureGroup()
+    return True
+
+
+def shown_reference_pairs(surface):
+    """The (object, "FaceN") a surface tags on parts that are drawn (broken references
+    left out): an overlay on a hidden part would float in the air, and its legend entry
+    would explain nothing in view."""
     from .surface_object import active_reference_pairs
 
+    return [(obj, sub) for obj, sub in active_reference_pairs(surface) if is_shown(obj)]
+
+
+def overlay_faces(surface, colour_by="Material"):
+    """OverlayFaces of every face a surface tags on a shown part (shown_reference_pairs)."""
     faces = []
-    for obj, sub in active_reference_pairs(surface):
+    for obj, sub in shown_reference_pairs(surface):
         try:
             faces.append(overlay_face(surface, obj, sub, colour_by))
         except Exception as exc:  # a face that cannot be drawn must not hide the others

@@ -76,6 +76,29 @@ class OverlayGeometryTest(unittest.TestCase):
         self.assertIn("Ra", rows[0][1])
         self.assertTrue(all(label.isascii() for _, label in rows))
 
+    def test_faces_of_a_hidden_part_are_not_drawn_nor_in_the_legend(self):
+        lid = self.doc.addObject("Part::Box", "Lid")
+        assembly = self.doc.addObject("App::Part", "Assembly")
+        assembly.addObject(lid)
+        self.doc.recompute()
+        a = HaptiCAD.make_surface(self.doc, [(self.box, "Face6"), (lid, "Face6")], material="Steel")
+        b = HaptiCAD.make_surface(self.doc, [(lid, "Face1")], material="ABS", pattern="Linear")
+        self.doc.recompute()
+        self.assertEqual(len(overlay.overlay_faces(a)), 2)
+        self.assertEqual([label.split(":")[0] for _, label in overlay.legend_entries([a, b], "Material")],
+                         ["Steel", "ABS", "Stripes"])
+        # the App::Part hidden: its child keeps Visibility on but is not drawn
+        assembly.Visibility = False
+        self.assertTrue(lid.Visibility)
+        self.assertEqual([f.name for f in overlay.overlay_faces(a)], ["Box.Face6"])
+        self.assertEqual(overlay.overlay_faces(b), [])
+        self.assertEqual([label.split(":")[0] for _, label in overlay.legend_entries([a, b], "Material")],
+                         ["Steel"])
+        self.box.Visibility = False
+        self.assertEqual(overlay.legend_entries([a, b], "Material"), [])
+        self.box.Visibility = assembly.Visibility = True
+        self.assertEqual(len(overlay.legend_entries([a, b], "Roughness")), 2)  # one category and the stripes
+
     def test_broken_references_are_not_drawn(self):
         hole = self.doc.addObject("Part::Cylinder", "Hole")
         hole.Placement.Base = App.Vector(110, 10, -5)

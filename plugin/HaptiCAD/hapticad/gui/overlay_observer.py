@@ -5,12 +5,13 @@ A surface's overlay is drawn in global coordinates. Moving a tagged part, or the
 App::Part or Body holding it, changes where its faces are without changing anything
 of the surface itself, so this document observer redraws the overlays of the surfaces
 whose parts (or their containers) changed placement or shape; and of those whose
-Curve pattern follows a sketch or edge that was edited or moved. Installed once, by the
-first surface view provider.
+Curve pattern follows a sketch or edge that was edited or moved. A part (or its
+container) hidden or shown again takes its faces' overlay, and their legend entries, with
+it. Installed once, by the first surface view provider.
 """
 import FreeCAD as App
 
-WATCHED = frozenset(("Placement", "Shape"))
+WATCHED = frozenset(("Placement", "Shape", "Visibility"))
 _OBSERVER = []
 
 

@@ -179,6 +179,33 @@ class OverlayTest(unittest.TestCase):
         _, again = h.save_view("overlay_shown_again.png")
         self.assertGreaterEqual(h.runs(self.scan_top(again, e2)), 8)
 
+    def test_a_hidden_part_takes_its_overlay_and_legend_entries_with_it(self):
+        from hapticad.gui import overlay_legend
+
+        lid = self.doc.addObject("Part::Box", "Lid")
+        lid.Placement.Base = App.Vector(60, 0, 0)
+        self.doc.recompute()
+        glass = HaptiCAD.make_surface(self.doc, [(lid, "Face6")], material="Glass")
+        self.doc.recompute()
+        h.process_events()
+        self.assertTrue(any(label.startswith("Glass") for label in overlay_legend.shown_labels(self.doc)))
+        self.assertEqual(glass.ViewObject.Proxy.overlay_face_count(), 1)
+        Gui.getDocument(self.doc.Name).getObject("Lid").Visibility = False  # as the space bar does
+        h.process_events()
+        self.assertEqual(glass.ViewObject.Proxy.overlay_face_count(), 0)
+        self.assertFalse(any(label.startswith("Glass") for label in overlay_legend.shown_labels(self.doc)))
+        self.assertEqual(len(overlay_legend.shown_labels(self.doc)), 3)  # Steel, Rubber, the stripes
+        # the box hidden too: nothing tagged in view, no legend
+        self.box.ViewObject.Visibility = False
+        h.process_events()
+        self.assertEqual(overlay_legend.shown_labels(self.doc), [])
+        _, image = h.save_view("overlay_parts_hidden.png")
+        self.assertLess(h.non_white_fraction(image, 0.0, 0.0, 0.35, 0.12), 0.002)
+        lid.ViewObject.Visibility = True
+        h.process_events()
+        self.assertEqual([label.split(":")[0] for label in overlay_legend.shown_labels(self.doc)], ["Glass"])
+        self.assertEqual(glass.ViewObject.Proxy.overlay_face_count(), 1)
+
     def test_circular_pattern_draws_rings_and_clicks_still_reach_the_part(self):
         self.top.Pattern = "Circular"
         self.top.PatternCenter = App.Vector(20, 15, 20)
