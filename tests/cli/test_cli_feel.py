@@ -11,6 +11,7 @@ import subprocess
 import sys
 import tempfile
 import unittest
+import zipfile
 
 CLI = os.environ["HAPTICAD_CLI"]
 sys.path.insert(0, os.environ["HAPTICAD_MOD"])
@@ -98,8 +99,17 @@ class FeelCommandTest(unittest.TestCase):
         cut_short = os.path.join(self.tmp.name, "cut_short.FCStd")
         with open(self.doc_path, "rb") as whole, open(cut_short, "wb") as part:
             part.write(whole.read()[:3000])  # FreeCAD opened it and said every face was gone
+        # a whole archive whose Document.xml is cut short: FreeCAD opened it as surfaces
+        # without their properties, and feel raised AttributeError
+        bad_xml = os.path.join(self.tmp.name, "bad_xml.FCStd")
+        with zipfile.ZipFile(self.doc_path) as source, zipfile.ZipFile(bad_xml, "w") as copy:
+            for item in source.infolist():
+                data = source.read(item.filename)
+                copy.writestr(item, data[:len(data) // 2] if item.filename == "Document.xml" else data)
         cases = [
             (("feel", cut_short, "--stroke", "1,1,20:2,2,20", "--out", out), "a damaged one"),
+            (("feel", bad_xml, "--stroke", "1,1,20:2,2,20", "--out", out),
+             f"{bad_xml}: a damaged FreeCAD document: its Document.xml cannot be read ("),
             (("feel", self.doc_path + "x", "--stroke", "1,1,20:2,2,20", "--out", out), "no such file"),
             (("feel", self.doc_path, "--stroke", "10,20,50:70,20,50", "--out", out), "from the nearest surface"),
             (("feel", self.doc_path, "--stroke", "10,20:70,20,20", "--out", out), "is not X,Y,Z"),
@@ -114,10 +124,6 @@ class FeelCommandTest(unittest.TestCase):
                 self.assertEqual(proc.returncode, 2, proc.stderr)
                 self.assertIn(message, proc.stderr)
                 self.assertEqual(proc.stdout, "")
-
-
-if __name__ == "__main__":
-    unittest.main()
 
 
 class TablesCommandTest(unittest.TestCase):
@@ -203,3 +209,7 @@ class PatternStrokeTest(unittest.TestCase):
         self.assertAlmostEqual(self.ratio("10,40,20:70,40,20"), 0.3, delta=0.015)   # along x: mu_a
         self.assertAlmostEqual(self.ratio("40,10,20:40,70,20"), 0.6, delta=0.03)    # across: mu_n
         self.assertAlmostEqual(self.ratio("15,15,20:65,65,20"), 0.45, delta=0.0225)  # eq. 3 at 45 degrees
+
+
+if __name__ == "__main__":
+    unittest.main()

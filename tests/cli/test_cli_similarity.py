@@ -106,7 +106,9 @@ class SimilarityCommandTest(unittest.TestCase):
     def test_bad_input_gets_a_clear_error(self):
         for args, message in ((["--study", "Nope"], "no similarity study named 'Nope' (it has: Gratings, Empty)"),
                               (["--study", "Empty"], "Empty: no participant has rated these stimuli yet"),
-                              (["--plot", os.path.join(self.tmp.name, "x.png")], "--plot draws one study's space")):
+                              (["--plot", os.path.join(self.tmp.name, "x.png")], "--plot draws one study's space"),
+                              # an empty name (a script's unset variable) used to mean every study
+                              (["--study", ""], "--study needs a study's name or label (it has: Gratings, Empty)")):
             proc = run_cli("similarity", self.path, *args)
             self.assertEqual(proc.returncode, 2, proc.stdout)
             self.assertIn(message, proc.stderr)

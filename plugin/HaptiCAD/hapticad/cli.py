@@ -1,12 +1,14 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The ``hapticad`` command line. Prints JSON on stdout; errors go to stderr with
-exit status 2 (bad input) or 1 (failure)."""
+exit status 2 (bad input) or 1 (failure, or a material card refused)."""
 import argparse
 import json
 import os
 import signal
 import sys
 import zipfile
+import zlib
+from xml.etree import ElementTree
 
 from .accuracy import PRESETS
 from .freecad_env import ensure_freecad
@@ -230,6 +232,15 @@ def _open_document(App, path):
         # their shapes, and every face looks gone
         raise ValueError(f"{path}: not a FreeCAD document, or a damaged one (cut short in a copy or "
                          "download?): it is not a readable zip archive")
+    # a damaged Document.xml opens too, as objects without their properties: a study looked
+    # absent and a surface without its references raised
+    try:
+        with zipfile.ZipFile(path) as archive:
+            ElementTree.fromstring(archive.read("Document.xml"))
+    except KeyError:
+        raise ValueError(f"{path}: not a FreeCAD document: the archive holds no Document.xml") from None
+    except (ElementTree.ParseError, zipfile.BadZipFile, zlib.error) as exc:
+        raise ValueError(f"{path}: a damaged FreeCAD document: its Document.xml cannot be read ({exc})") from None
     return App.openDocument(os.path.abspath(path))
 
 
@@ -282,7 +293,10 @@ def cmd_fit_texture(args):
 
 def _chosen_studies(args, found, kind):
     """The studies --study names (name or label), or all; ValueError naming those there are."""
-    studies = [s for s in found if not args.study or args.study in (s.Name, s.Label)]
+    if args.study is not None and not args.study.strip():
+        raise ValueError(f"--study needs a study's name or label (it has: "
+                         f"{', '.join(s.Label for s in found) or 'none'})")
+    studies = [s for s in found if args.study is None or args.study in (s.Name, s.Label)]
     if not studies:
         names = ", ".join(s.Label for s in found) or "none"
         raise ValueError(f"{args.file}: no {kind}{' named ' + repr(args.study) if args.study else ''} "
@@ -347,7 +361,7 @@ def cmd_similarity(args):
             try:
                 analysis = similarity_study.analyse(study)
             except ValueError as exc:
-                if args.study:  # the one asked for
+                if args.study is not None:  # the one asked for
                     raise
                 result.append({"study": study.Label, "error": str(exc)})  # the others are still told
                 lines.append(str(exc))  # it names the study

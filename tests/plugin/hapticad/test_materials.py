@@ -86,10 +86,6 @@ class BadFileTest(unittest.TestCase):
         self.assertIn("cannot read", db.errors[1])
 
 
-if __name__ == "__main__":
-    unittest.main()
-
-
 class FcmatTest(unittest.TestCase):
     """Haptic materials as FreeCAD 0.20 cards in the user's Material folder."""
 
@@ -178,3 +174,7 @@ class FcmatTest(unittest.TestCase):
             handle.write(HEADER + "\nCork,0.7,0.6,0.4,0.9,0.03,240,0.3,own test,own test\n")
         db = materials.load_database(data_dir=self.dir.name)
         self.assertEqual(db.get("Cork").dynamic_friction, 0.6)
+
+
+if __name__ == "__main__":
+    unittest.main()
