@@ -332,6 +332,17 @@ def reference_pairs(surface):
     return pairs
 
 
+def link_sub_list(pairs):
+    """[(object, ("FaceN", ...)), ...] of [(object, "FaceN"), ...], as a PropertyLinkSubList
+    takes it: grouped by object in first-seen order, each face once."""
+    grouped = {}
+    for obj, sub in pairs:
+        subs = grouped.setdefault(obj, [])
+        if sub not in subs:
+            subs.append(sub)
+    return [(obj, tuple(subs)) for obj, subs in grouped.items()]
+
+
 def pattern_curve_object(surface):
     """The object whose edges a Curve pattern follows, or None (another pattern, or no
     curve): editing or moving it changes what the surface renders."""
@@ -467,12 +478,7 @@ def rematch_references(obj):
         App.Console.PrintMessage(f"{obj.Label}: face references now follow {', '.join(followed)}\n")
     new_pairs = [(objects[e["object"]], e["face"]) for e in entries]
     if new_pairs != pairs:
-        grouped = {}
-        for o, sub in new_pairs:
-            grouped.setdefault(o, [])
-            if sub not in grouped[o]:
-                grouped[o].append(sub)
-        obj.References = [(o, tuple(subs)) for o, subs in grouped.items()]
+        obj.References = link_sub_list(new_pairs)
     _write_reference_state(obj, entries)
     _write_reference_shapes(obj, signed)
 
@@ -578,7 +584,7 @@ def _normalise_references(doc, references):
     """Checks [(obj, "FaceN"), ...] and groups it as PropertyLinkSubList wants."""
     if not references:
         raise ValueError("make_surface: no faces given; pass [(object, 'FaceN'), ...]")
-    grouped = {}
+    pairs = []
     for item in references:
         try:
             obj, sub = item
@@ -601,10 +607,8 @@ def _normalise_references(doc, references):
         if other is not None:
             raise ValueError(f"make_surface: {obj.Label}.{sub} is already tagged by {other.Label}; "
                              "edit that surface, or remove the face from it first")
-        grouped.setdefault(obj, [])
-        if sub not in grouped[obj]:
-            grouped[obj].append(sub)
-    return [(obj, tuple(subs)) for obj, subs in grouped.items()]
+        pairs.append((obj, sub))
+    return link_sub_list(pairs)
 
 
 def _check_range(label, value, low, high):

@@ -40,6 +40,14 @@ class MakeSurfaceTest(unittest.TestCase):
         s = HaptiCAD.make_surface(self.doc, [("Box", "Face1"), (self.box, "Face2"), (self.box, "Face1")])
         self.assertEqual(s.References, [(self.box, ("Face1", "Face2"))])
 
+    def test_link_sub_list_groups_by_object_in_first_seen_order_each_face_once(self):
+        from hapticad.surface_object import link_sub_list
+
+        other = self.doc.addObject("Part::Cylinder", "Other")
+        pairs = [(self.box, "Face3"), (other, "Face1"), (self.box, "Face1"), (self.box, "Face3"), (other, "Face2")]
+        self.assertEqual(link_sub_list(pairs), [(self.box, ("Face3", "Face1")), (other, ("Face1", "Face2"))])
+        self.assertEqual(link_sub_list(iter([])), [])
+
     def test_overrides_take_precedence_over_the_material(self):
         s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="Steel",
                                   static_friction=0.9, dynamic_friction=0.7, stiffness_n_per_mm=0.25)

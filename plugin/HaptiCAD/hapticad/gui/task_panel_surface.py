@@ -643,10 +643,7 @@ class SurfaceTaskPanel:
             self.show_problems([f"{obj.Label}.{face} is already tagged by {other.Label}: a face feels one way; "
                                 "remove it there first"])
             return
-        grouped = {}
-        for o, f in pairs + [(obj, face)]:
-            grouped.setdefault(o, []).append(f)
-        self.obj.References = [(o, tuple(fs)) for o, fs in grouped.items()]
+        self.obj.References = surface_object.link_sub_list(pairs + [(obj, face)])
         self.load()
 
     def remove_selected_faces(self):
@@ -654,11 +651,8 @@ class SurfaceTaskPanel:
         if not chosen:
             self.show_problems(["select the faces to remove in the list first"])
             return
-        grouped = {}
-        for o, f in surface_object.reference_pairs(self.obj):
-            if f"{o.Name}.{f}" not in chosen:
-                grouped.setdefault(o, []).append(f)
-        self.obj.References = [(o, tuple(fs)) for o, fs in grouped.items()]
+        self.obj.References = surface_object.link_sub_list(
+            (o, f) for o, f in surface_object.reference_pairs(self.obj) if f"{o.Name}.{f}" not in chosen)
         self.highlight([])
         self.load()
 
