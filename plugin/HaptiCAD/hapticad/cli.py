@@ -215,13 +215,12 @@ def cmd_devices(args):
 
 
 def _speeds(text):
+    from .texture_fit import parse_speeds
+
     try:
-        values = [float(v) for v in text.split(",")]
-    except ValueError:
-        values = []
-    if not values or not all(v > 0 and v == v and v != float("inf") for v in values):
-        raise argparse.ArgumentTypeError(f"{text!r} is not a list of speeds > 0, like 50,80,120")
-    return values
+        return parse_speeds(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 def _open_document(App, path):

@@ -57,6 +57,22 @@ class FitReport:
         return float(np.mean(np.concatenate(values))) if values else None
 
 
+SPEED_MAX_MM_S = 1e4  # 10 m/s: no finger or rig scans a texture faster
+
+
+def parse_speeds(text):
+    """The scanning speeds in ``text``, mm/s: numbers separated by commas or semicolons
+    (blanks ignored), each > 0 and below SPEED_MAX_MM_S. ValueError saying so otherwise."""
+    try:
+        values = [float(v) for v in text.replace(";", ",").split(",") if v.strip()]
+    except ValueError:
+        values = []
+    if not values or not all(0 < v < SPEED_MAX_MM_S for v in values):  # NaN fails both
+        raise ValueError(f"{text!r} is not a list of speeds in mm/s (each > 0 and < {SPEED_MAX_MM_S:g}), "
+                         "like 50, 80, 120")
+    return values
+
+
 def _read_columns(path):
     name = os.path.basename(path)
     try:

@@ -147,6 +147,16 @@ class RoundTripTest(unittest.TestCase):
             App.closeDocument(doc.Name)
 
 
+class SpeedsTest(unittest.TestCase):
+    def test_speeds_are_read_with_commas_or_semicolons_and_bad_ones_refused(self):
+        self.assertEqual(texture_fit.parse_speeds("50, 80;120,"), [50.0, 80.0, 120.0])
+        self.assertEqual(texture_fit.parse_speeds(" 2.5e2 "), [250.0])
+        for text in ("", " , ", "fast", "50, -80", "0", "nan", "inf", "50,20000"):
+            with self.subTest(text=text), self.assertRaises(ValueError) as caught:
+                texture_fit.parse_speeds(text)
+            self.assertIn(f"{text!r} is not a list of speeds in mm/s", str(caught.exception))
+
+
 class RigRecordingTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):

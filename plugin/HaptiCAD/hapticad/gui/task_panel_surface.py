@@ -540,12 +540,9 @@ class SurfaceTaskPanel:
         """Fits the texture to the CSV files in ``paths`` and sets it; on an error nothing changes
         and the panel says why."""
         try:
-            speeds = [float(v) for v in self.fit_speeds.text().replace(";", ",").split(",") if v.strip()]
-        except ValueError:
-            speeds = []
-        if not speeds or not all(0 < v < 1e4 for v in speeds):
-            self.fit_info.setText("<span style='color:#b00000'>Recorded speeds: give speeds in mm/s, like "
-                                  "50, 80, 120</span>")
+            speeds = texture_fit.parse_speeds(self.fit_speeds.text())
+        except ValueError as exc:
+            self.fit_info.setText(f"<span style='color:#b00000'>Recorded speeds: {html.escape(str(exc), quote=False)}</span>")
             return False
         try:
             with busy_cursor():  # reading long recordings takes seconds

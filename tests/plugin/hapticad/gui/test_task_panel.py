@@ -172,7 +172,12 @@ class TaskPanelTest(unittest.TestCase):
         QtWidgets.QFileDialog.getOpenFileNames = staticmethod(lambda *a, **k: (chosen, "CSV recordings (*.csv)"))
         try:
             info = h.widget(QtWidgets.QLabel, "fitInfo")
-            h.widget(QtWidgets.QLineEdit, "fitSpeeds").setText("50, 120")
+            h.widget(QtWidgets.QLineEdit, "fitSpeeds").setText("50, fast")
+            chosen[:] = [rig]
+            h.widget(QtWidgets.QPushButton, "fitTexture").click()
+            self.assertIn("Recorded speeds: '50, fast' is not a list of speeds in mm/s", info.text())
+            self.assertEqual(surface.Texture, "None")
+            h.widget(QtWidgets.QLineEdit, "fitSpeeds").setText("50; 120")
             chosen[:] = [bad]
             h.widget(QtWidgets.QPushButton, "fitTexture").click()
             self.assertIn("Not fitted, nothing changed", info.text())
