@@ -152,19 +152,20 @@ def cmd_materials(args):
 
 def cmd_roughness_table(args):
     from . import _core
+    from .roughness_text import ra_band
 
-    rows = [{
-        "category": r.category,
-        "ra_min_um": r.ra_min_um,
-        "ra_max_um": r.ra_max_um,
-        "n_grades": list(r.n_grades),
-        "grid_size_mm": r.grid_size_mm,
-    } for r in _core.roughness_table()]
+    table = _core.roughness_table()
     if args.json:
-        return rows
-    for r in rows:
-        ra = f"{r['ra_min_um'] if r['ra_min_um'] is not None else ''}~{r['ra_max_um'] if r['ra_max_um'] is not None else ''}"
-        print(f"{r['category']}  Ra {ra:<10} um  {', '.join(r['n_grades']) or 'Unclassified':<10}  grid {r['grid_size_mm']} mm")
+        return [{
+            "category": r.category,
+            "ra_min_um": r.ra_min_um,
+            "ra_max_um": r.ra_max_um,
+            "n_grades": list(r.n_grades),
+            "grid_size_mm": r.grid_size_mm,
+        } for r in table]
+    for r in table:
+        print(f"{r.category}  {ra_band(r, grades=False):<20}  {', '.join(r.n_grades) or 'Unclassified':<12}  "
+              f"grid {r.grid_size_mm:g} mm")
     return None
 
 

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _core, materials
+from .roughness_text import ra_band
 from .surface_compile import curve_pattern, face_frame
 from .surface_object import circular_centre_axis
 
@@ -66,11 +67,7 @@ def surface_colour(surface, colour_by):
 
 
 def roughness_label(category):
-    row = _core.roughness_category(int(category))
-    low = "" if row.ra_min_um is None else f"{row.ra_min_um:g}"
-    high = "" if row.ra_max_um is None else f"{row.ra_max_um:g}"
-    grades = "-".join([row.n_grades[0], row.n_grades[-1]] if len(row.n_grades) > 1 else list(row.n_grades))
-    return f"Roughness {category}: Ra {low}~{high} um" + (f" ({grades})" if grades else "")
+    return f"Roughness {category}: {ra_band(_core.roughness_category(int(category)), ascii_only=True)}"
 
 
 def material_label(surface):

@@ -25,6 +25,7 @@ from PySide2 import QtCore, QtGui, QtWidgets
 from .. import (_core, face_references, icon, materials, preferences, similarity_study, surface_compile,
                surface_object, texture_fit, vibration_object)
 from ..proxy_state import is_alive
+from ..roughness_text import ra_band
 from .busy_cursor import busy_cursor
 from .document_closing import DocumentClosingObserver
 from .narrow import SPIN_WIDTH_PX, let_narrow
@@ -399,7 +400,7 @@ class SurfaceTaskPanel:
         felt = (f"felt {float(obj.RoughnessHeight) * row.grid_size_mm * 1e3:.3g} µm high" if obj.FeelRoughness
                 else "not felt")
         self.roughness_info.setText(f"Grid of {row.grid_size_mm:g} mm balls, {felt} "
-                                    f"(the category's real surfaces: {_ra_text(row)})")
+                                    f"(the category's real surfaces: {ra_band(row)})")
         curve = obj.PatternCurve
         self.curve_label.setText("none: select a sketch or edges" if curve is None else
                                  f"{curve[0].Label}" + (f": {', '.join(curve[1])}" if curve[1] and any(curve[1])
@@ -785,14 +786,5 @@ def _set_widget(widget, value, index=False):
         widget.blockSignals(False)
 
 
-def _ra_text(row):
-    if row.ra_min_um is None and row.ra_max_um is None:
-        return "Ra unclassified"
-    low = "" if row.ra_min_um is None else f"{row.ra_min_um:g}"
-    high = "" if row.ra_max_um is None else f"{row.ra_max_um:g}"
-    grades = ", ".join(row.n_grades)
-    return f"Ra {low}–{high} µm" + (f" ({grades})" if grades else "")
-
-
 def _roughness_item(row):
-    return f"{row.category}: {_ra_text(row)}"
+    return f"{row.category}: {ra_band(row)}"
