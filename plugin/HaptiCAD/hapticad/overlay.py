@@ -74,6 +74,21 @@ def material_label(surface):
     return f"{surface.Material}: mu_s {surface.StaticFriction:.2f}, mu_d {surface.DynamicFriction:.2f}"
 
 
+def draws_stripes(surface):
+    """True when the surface's overlay has stripes: a pattern, and for a Curve pattern a
+    curve that is there (its sketch deleted, the stripes go and the legend must not
+    explain them)."""
+    if surface.Pattern == "Curve":
+        from .surface_compile import _curve_edges
+
+        link = surface.PatternCurve
+        try:
+            return bool(link and link[0] is not None and _curve_edges(link))
+        except ValueError:
+            return False
+    return surface.Pattern != "None"
+
+
 def legend_entries(surfaces, colour_by):
     """[(rgb, label), ...] for the legend: one per colour in use on a shown part, then the
     stripes key."""
@@ -83,7 +98,7 @@ def legend_entries(surfaces, colour_by):
         if not shown_reference_pairs(s):
             continue
         key = s.RoughnessCategory if colour_by == "Roughness" else (s.Material, s.StaticFriction, s.DynamicFriction)
-        patterned = patterned or s.Pattern != "None"
+        patterned = patterned or draws_stripes(s)
         if key in seen:
             continue
         seen.add(key)

@@ -75,6 +75,18 @@ class OverlayGeometryTest(unittest.TestCase):
         self.assertEqual(rows[0][1], overlay.roughness_label(3))
         self.assertIn("Ra", rows[0][1])
         self.assertTrue(all(label.isascii() for _, label in rows))
+        # a Curve pattern whose sketch is deleted draws no stripes: the key goes with them
+        import Part
+
+        guide = self.doc.addObject("Sketcher::SketchObject", "Guide")
+        guide.addGeometry(Part.LineSegment(App.Vector(0, 0, 0), App.Vector(10, 0, 0)))
+        a.Pattern, a.PatternCurve = "Curve", (guide, [])
+        self.doc.recompute()
+        self.assertEqual(overlay.legend_entries([a, b], "Material")[-1][1], "Stripes: direction of lowest friction")
+        self.doc.removeObject(guide.Name)
+        self.doc.recompute()
+        self.assertEqual([label.split(":")[0] for _, label in overlay.legend_entries([a, b], "Material")], ["Steel"])
+        self.assertIsNone(overlay.overlay_faces(a)[0].stripes)
 
     def test_faces_of_a_hidden_part_are_not_drawn_nor_in_the_legend(self):
         lid = self.doc.addObject("Part::Box", "Lid")

@@ -245,6 +245,16 @@ class OverlayTest(unittest.TestCase):
         _, image = h.save_view("overlay_curve_edited.png")
         self.assertLessEqual(h.runs(self.scan_top(image, x)), 2)
         self.assertGreaterEqual(h.runs(self.scan_top(image, y)), 8)
+        # the sketch deleted: no stripes, and the legend no longer explains them
+        from hapticad.gui import overlay_legend
+
+        self.assertIn("Stripes: direction of lowest friction", overlay_legend.shown_labels(self.doc))
+        self.doc.removeObject(sketch.Name)
+        self.doc.recompute()
+        h.process_events()
+        _, image = h.save_view("overlay_curve_deleted.png")
+        self.assertEqual(h.runs(self.scan_top(image, y)), 0)
+        self.assertNotIn("Stripes: direction of lowest friction", overlay_legend.shown_labels(self.doc))
 
     def test_the_overlay_follows_a_moved_part_and_a_moved_app_part(self):
         def top_points():
