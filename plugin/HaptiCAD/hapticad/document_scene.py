@@ -20,7 +20,7 @@ import MeshPart
 
 from . import _core
 from . import accuracy as accuracy_presets
-from .surface_compile import compile_surface, compile_vibration
+from .surface_compile import compile_surface, compile_vibration, global_shape  # noqa: F401 (re-exported)
 from .surface_object import active_reference_pairs, surfaces_of
 from .vibration_object import vibrations_of
 
@@ -58,13 +58,6 @@ class DocumentScene:
 
     def surface_properties(self, face_id):
         return self.surfaces.surface(face_id)
-
-
-def global_shape(obj):
-    """obj's shape placed where it sits in the document (App::Part parents included)."""
-    shape = obj.Shape.copy()
-    shape.Placement = obj.getGlobalPlacement()
-    return shape
 
 
 def tessellate(shape, accuracy):

@@ -23,7 +23,7 @@ import numpy as np
 
 from . import _core, materials
 from .roughness_text import ra_band
-from .surface_compile import curve_pattern, face_frame
+from .surface_compile import curve_pattern, face_frame, global_shape
 from .surface_object import circular_centre_axis
 
 MM = 1e-3
@@ -122,9 +122,7 @@ class OverlayFace:
 
 
 def _global_face(obj, sub):
-    shape = obj.Shape.copy()
-    shape.Placement = obj.getGlobalPlacement()
-    return shape.getElement(sub)
+    return global_shape(obj).getElement(sub)
 
 
 _MESHES = {}  # (face key) -> (points, normals, triangles): geometry edits are rarer than value edits

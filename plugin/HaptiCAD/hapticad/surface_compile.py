@@ -53,14 +53,20 @@ def face_frame(face, angle_deg):
     return origin, e1, e2, n
 
 
+def global_shape(obj):
+    """obj's shape placed where it sits in the document (App::Part parents included)."""
+    shape = obj.Shape.copy()
+    shape.Placement = obj.getGlobalPlacement()
+    return shape
+
+
 def _curve_edges(link):
     """The edges a PatternCurve link names: a whole sketch, or chosen edges, where they
     sit in the document (App::Part parents included: the faces are read there too, and a
     sketch read in its container's own frame ran turned with the container). Raises
     ValueError naming an edge the object does not have."""
     obj, _ = link
-    shape = obj.Shape.copy()
-    shape.Placement = obj.getGlobalPlacement()
+    shape = global_shape(obj)
     names = curve_references.named_edges(link)
     if not names:
         return list(shape.Edges)
@@ -94,6 +100,23 @@ def _as_bspline(edges):
 def curve_pattern(surface, frame):
     """The core CurvePattern of a surface: the curve, in a plane through the face frame's
     origin, the lookup axis y along the curve's chord. Raises ValueError clearly."""
+    curve, x, y = _pattern_curve_in_plane(surface, frame)
+    origin = frame[0]
+    poles = np.array([[(p - origin).dot(x), (p - origin).dot(y)]
+                      for p in (_vec(q, MM) for q in curve.getPoles())])
+    knots = [k for k, m in zip(curve.getKnots(), curve.getMultiplicities()) for _ in range(m)]
+    evaluation = (_core.CurveEvaluation.EXACT if surface.CurveEvaluation == "Exact"
+                  else _core.CurveEvaluation.LOOKUP_TABLE)
+    try:
+        return _core.CurvePattern.build(_core.PatternPlane(origin, x, y), curve.Degree, knots, poles,
+                                        list(curve.getWeights()), surface.CurveTableSize, evaluation)
+    except ValueError as exc:
+        raise ValueError(f"{surface.Label}: {exc}") from None
+
+
+def _pattern_curve_in_plane(surface, frame):
+    """(B-spline curve, x, y) of a Curve pattern on a face frame: the family's translation
+    axis x and the lookup axis y, along the curve's chord in the face's plane."""
     if surface.PatternCurve is None:
         raise ValueError(f"{surface.Label}: {curve_references.NO_CURVE}")
     problem = curve_references.problem(curve_references.loads(getattr(surface, "PatternCurveState", "")),
@@ -120,17 +143,43 @@ def curve_pattern(surface, frame):
     if np.linalg.norm(y) < 1e-12:
         raise ValueError(f"{surface.Label}: the pattern curve is closed or normal to the face")
     y /= np.linalg.norm(y)
-    x = np.cross(y, n)
-    poles = np.array([[(p - origin).dot(x), (p - origin).dot(y)]
-                      for p in (_vec(q, MM) for q in curve.getPoles())])
-    knots = [k for k, m in zip(curve.getKnots(), curve.getMultiplicities()) for _ in range(m)]
-    evaluation = (_core.CurveEvaluation.EXACT if surface.CurveEvaluation == "Exact"
-                  else _core.CurveEvaluation.LOOKUP_TABLE)
-    try:
-        return _core.CurvePattern.build(_core.PatternPlane(origin, x, y), curve.Degree, knots, poles,
-                                        list(curve.getWeights()), surface.CurveTableSize, evaluation)
-    except ValueError as exc:
-        raise ValueError(f"{surface.Label}: {exc}") from None
+    return curve, np.cross(y, n), y
+
+
+CURVE_BEYOND_NOTE = 0.25  # of a face's extent along the curve: more beyond its ends is said
+
+
+def curve_notes(surface):
+    """Faces a Curve pattern mostly misses, as sentences. The stripes are the curve's
+    copies slid across it (seed 000 Fig. 7); beyond the curve's ends, along its chord,
+    its end directions run on straight, so a face lying there feels straight stripes,
+    not the curve's shape. Problems with the curve itself are validate()'s."""
+    if surface.Pattern != "Curve" or surface.PatternCurve is None:
+        return []
+    from .surface_object import active_reference_pairs
+
+    notes = []
+    for obj, sub in active_reference_pairs(surface):
+        face = global_shape(obj).getElement(sub)
+        frame = face_frame(face, float(surface.PatternAngle))
+        try:
+            curve, _, y = _pattern_curve_in_plane(surface, frame)
+        except ValueError:
+            return []
+        ends = [(_vec(curve.value(t), MM) - frame[0]).dot(y) for t in (curve.FirstParameter, curve.LastParameter)]
+        # a face's extent along a direction: its boundary, sampled (its edges bound it)
+        points = [_vec(p, MM) for edge in face.Edges for p in edge.discretize(Number=33)]
+        heights = [(p - frame[0]).dot(y) for p in points]
+        lo, hi = min(heights), max(heights)
+        if hi - lo < 1e-9:
+            continue
+        beyond = (max(0.0, min(ends) - lo) + max(0.0, hi - max(ends))) / (hi - lo)
+        if beyond > CURVE_BEYOND_NOTE:
+            where = "all of it" if beyond >= 1.0 else f"{100 * min(beyond, 1.0):.0f} % of it"
+            notes.append(f"{obj.Label}.{sub}: {where} lies beyond the ends of {surface.PatternCurve[0].Label} "
+                         f"(along the curve), where the stripes run straight on in its end directions: "
+                         f"draw the curve across the face to feel its shape there")
+    return notes
 
 
 def viscous_params(texture):

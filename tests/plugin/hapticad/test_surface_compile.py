@@ -148,6 +148,31 @@ class CompileTest(unittest.TestCase):
         ys = np.linspace(table.y_min, table.y_max, 200)
         self.assertLess(max(abs(table.lookup_angle(y) - table.exact_angle(y)) for y in ys), 1e-4)
 
+    def test_a_face_lying_beyond_the_curves_ends_is_said(self):
+        from hapticad.surface_compile import curve_notes
+
+        # the top face spans y 0..40; the line runs along y
+        s = self.surface(Pattern="Curve")
+        for (y0, y1), expected in (((0, 40), None), ((-5, 45), None), ((5, 35), None),  # 25 % beyond: not said
+                                   ((0, 10), "75 % of it lies beyond the ends of Guide"),
+                                   ((200, 230), "all of it lies beyond the ends of Guide")):
+            with self.subTest(y=(y0, y1)):
+                sketch = self.sketch([Part.LineSegment(V(20, y0, 0), V(20, y1, 0))])
+                sketch.Label = "Guide"
+                s.PatternCurve = (sketch, [])
+                notes = curve_notes(s)
+                if expected is None:
+                    self.assertEqual(notes, [])
+                else:
+                    (note,) = notes
+                    self.assertTrue(note.startswith(f"Box.Face6: {expected} (along the curve)"), note)
+                    self.assertIn("draw the curve across the face", note)
+                self.doc.removeObject(sketch.Name)
+                self.doc.recompute()
+        # no curve, or another pattern: nothing to say here (validate() names a missing curve)
+        self.assertEqual(curve_notes(s), [])
+        self.assertEqual(curve_notes(self.surface(Pattern="Linear")), [])
+
     def test_curve_pattern_from_one_edge_of_an_object(self):
         wire = self.doc.addObject("Part::Feature", "Guide")
         wire.Shape = Part.Edge(Part.LineSegment(V(0, 0, 10), V(20, 40, 10)))

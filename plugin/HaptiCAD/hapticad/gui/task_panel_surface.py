@@ -689,7 +689,7 @@ class SurfaceTaskPanel:
         else:
             n = len(surface_object.reference_pairs(self.obj))
             notes = surface_object.hidden_part_notes(self.obj) + surface_compile.friction_notes(self.obj)
-            notes += surface_compile.texture_notes(self.obj)
+            notes += surface_compile.texture_notes(self.obj) + surface_compile.curve_notes(self.obj)
             notes += similarity_study.unpooling_notes(self.doc, self.pooled_at_open)
             vib = self.vibration()
             if vib is not None:  # the servo rate Feel will run at, from the preferences

@@ -384,6 +384,17 @@ class TaskPanelTest(unittest.TestCase):
         self.assertEqual(surface.PatternCurve[0], sketch_line)
         self.assertNotIn("⚠", status.text())
         self.assertIn("Guide", h.widget(QtWidgets.QLabel, "curveLabel").text())
+        self.assertNotIn("lies beyond the ends", status.text())
+        # a stub of a curve: the face beyond its ends feels straight stripes, and the panel says so
+        stub = self.doc.addObject("Part::Feature", "Stub")
+        stub.Shape = Part.makeLine(App.Vector(18, 0, 20), App.Vector(18, 6, 20))
+        self.doc.recompute()
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(stub, "Edge1")
+        h.widget(QtWidgets.QPushButton, "useCurve").click()
+        self.assertIn("Note: Box.Face6: 80 % of it lies beyond the ends of Stub", status.text())
+        self.assertNotIn("⚠", status.text())  # a note: it is felt, and OK is allowed
+        h.grab_screen("task_panel_curve_note.png")
         # the core's own check speaks through the panel: no stick speed below the minimum exists,
         # so remove the only face instead
         faces = h.widget(QtWidgets.QListWidget, "faces")
