@@ -67,7 +67,7 @@ class Figures:
         return scene
 
     def stroke(self, scene, p0, p1, speed=50.0, depth=1.0, rate=1000.0):
-        result = self.feel.run_stroke(scene, self.feel.Stroke(p0, p1, speed, depth, rate))
+        result = self.feel.run_stroke_in_servo_loop(scene, self.feel.Stroke(p0, p1, speed, depth, rate))
         trace = result.trace
         sliding = self.feel.sliding_mask(result, scene)
         x = self.feel.distance_along_stroke_mm(result)
@@ -278,7 +278,8 @@ class Figures:
         with tempfile.TemporaryDirectory() as tmp:
             paths = []
             for speed in texture_fit.PAPER_SPEEDS_MM_S:
-                result = self.feel.run_stroke(scene, self.feel.Stroke((20, 10, 10), (20, 90, 10), speed, 1.0, 5000.0))
+                result = self.feel.run_stroke_in_servo_loop(
+                    scene, self.feel.Stroke((20, 10, 10), (20, 90, 10), speed, 1.0, 5000.0))
                 paths.append(os.path.join(tmp, f"trace_{speed:.0f}.csv"))
                 self.feel.write_trace_csv(paths[-1], result, scene)
             report = texture_fit.fit_files(paths, 2.5, lowpass_hz=0)
@@ -307,7 +308,8 @@ class Figures:
                      else f"F_op {study.OperatingForce:g} N at {study.Pretravel:g} mm, snap {study.SnapRatio:.0%}")
             scene = self.build(doc)
             self.App.closeDocument(doc.Name)
-            result = self.feel.run_stroke(scene, self.feel.Stroke((20, 20, 10), (20.01, 20, 10), 2.0, depth, 1000.0))
+            result = self.feel.run_stroke_in_servo_loop(
+                scene, self.feel.Stroke((20, 20, 10), (20.01, 20, 10), 2.0, depth, 1000.0))
             z = (10.0 - np.asarray(result.trace["device_m"])[:, 2] * 1e3)
             return z, result.trace["normal_force_n"], result.trace["time_s"] < result.plan.slide_start_s, label
 
@@ -374,6 +376,7 @@ class Figures:
             run = ss.Run(study, f"P{p}", seed=p)
             while not run.done:
                 t = run.current
+                run.present_each()
                 a, b = (run.stimuli[i]["values"] for i in (t.first, t.second))
                 d = np.hypot((a["TextureDC"] - b["TextureDC"]) / 0.35,
                              0.5 * (a["TextureViscosity"] - b["TextureViscosity"]) / 0.4)

@@ -31,6 +31,7 @@ def rate(run, seed):
     rng = random.Random(seed)
     while not run.done:
         t = run.current
+        run.present_each()
         a, b = (run.stimuli[i]["values"]["TextureDC"] for i in (t.first, t.second))
         alike = 1 - abs(a - b) / 0.35 + rng.gauss(0, 0.05)
         run.answer(int(min(run.steps, max(1, round(1 + alike * (run.steps - 1))))))

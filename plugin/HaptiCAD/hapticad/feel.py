@@ -103,8 +103,12 @@ class FeelResult:
     limits: object  # _core.DeviceLimits
 
 
-def run_stroke(doc_scene, stroke, limits=None):
-    """Runs a stroke through the real servo loop with the simulated probe."""
+def run_stroke_in_servo_loop(doc_scene, stroke, limits=None):
+    """Plans ``stroke`` (plan_stroke: approach, dwell, slide, retreat) and runs it in real
+    time through the real servo loop, the simulated probe following the plan; returns a
+    FeelResult with the loop's trace. Takes as long as the stroke (seconds). Not
+    _core.run_stroke, which renders a given path tick by tick straight through a
+    ForceRenderer, with no loop, device or real time, to time each tick."""
     plan = plan_stroke(doc_scene, stroke)
     limits = limits or _core.simulated_probe_limits()
     device = _core.SimulatedDevice(list(plan.times_s), plan.positions_m, limits)
@@ -255,7 +259,7 @@ def feel_document(doc_scene, stroke, out_dir, title=""):
     from .trace_plot import plot_trace
 
     os.makedirs(out_dir, exist_ok=True)
-    result = run_stroke(doc_scene, stroke)
+    result = run_stroke_in_servo_loop(doc_scene, stroke)
     summary = summarize(result, doc_scene)
     csv_path = os.path.join(out_dir, "trace.csv")
     png_path = os.path.join(out_dir, "trace.png")

@@ -18,6 +18,9 @@ A participant's run (:class:`Run`) follows the paper's protocol:
 3. with references A and B, each stimulus ``Repeats`` times (3) in a random order,
    classed as closer to A or to B.
 
+A trial takes its answer only once its textures were felt (both of a pair, a class
+trial's own), whoever asks: the Feel panel or a script.
+
 While a run holds a stimulus out to feel, :func:`presented_texture` gives it and
 surface_compile renders it on the surface in place of the surface's own texture, so the
 participant feels it at the next servo tick and never sees which it is. A finished run
@@ -346,9 +349,12 @@ class Trial:
 
 class Run:
     """One participant's run through the protocol, in the order a seeded shuffle gives.
-    ``answer`` takes a rating (1..steps) for a pair or warm-up, "A" or "B" for a class
-    trial; ``back`` takes the last answer back. Nothing is kept in the document until
-    record_run."""
+    ``present`` holds a texture of the current trial out on the face, and a texture held
+    out counts as felt (present only while a Feel session renders the face; when it
+    stops, ``forget_felt``). ``answer`` takes a rating (1..steps) for a pair or warm-up,
+    "A" or "B" for a class trial, once the trial's textures were felt (both of a pair,
+    the texture of a class trial: ``unfelt``); ``back`` takes the last answer back.
+    Nothing is kept in the document until record_run."""
 
     def __init__(self, study, participant, seed=None):
         found = validate(study)
@@ -376,6 +382,7 @@ class Run:
             rng.shuffle(classed)
             self.trials += [Trial("class", i) for i in classed]
         self.answers = []
+        self.felt = set()  # the slots of the current trial felt so far (1, 2, "A", "B")
 
     @property
     def done(self):
@@ -418,23 +425,62 @@ class Run:
         found = validate(self.study)
         if found:
             raise ValueError("; ".join(found))
-        return present(self.study, self.values(slot))
+        values = present(self.study, self.values(slot))
+        self.felt.add(slot)
+        return values
+
+    def present_each(self):
+        """Presents in turn every texture the current trial needs felt (a scripted
+        participant's strokes); the last stays held out."""
+        for slot in self.needed():
+            self.present(slot)
+
+    def needed(self):
+        """The slots the current trial must have felt before an answer, in order: a
+        pair's (or warm-up's) two textures, a class trial's texture (empty when done)."""
+        trial = self.current
+        if trial is None:
+            return []
+        return [1] if trial.kind == "class" else [1, 2]
+
+    def unfelt(self):
+        """The needed slots (``needed``) not felt yet in the current trial."""
+        return [slot for slot in self.needed() if slot not in self.felt]
+
+    @property
+    def ready(self):
+        """True when the current trial can be answered: its textures were felt."""
+        return self.current is not None and not self.unfelt()
+
+    def forget_felt(self):
+        """Nothing of the current trial counts as felt any more (the Feel session
+        stopped: nothing was felt since, so the trial starts over)."""
+        self.felt = set()
 
     def answer(self, value):
+        """Takes the current trial's answer. Raises ValueError, changing nothing, when
+        the run is done, a texture of the trial was not felt yet, or ``value`` is not an
+        answer the trial takes."""
         trial = self.current
         if trial is None:
             raise ValueError("the run is done")
+        unfelt = self.unfelt()
+        if unfelt:
+            names = " and ".join("the texture" if trial.kind == "class" else f"texture {slot}" for slot in unfelt)
+            raise ValueError(f"feel {names} before answering")
         if trial.kind == "class":
             if value not in ("A", "B"):
                 raise ValueError(f"class the texture as A or B, not {value!r}")
         elif not (type(value) is int and 1 <= value <= self.steps):
             raise ValueError(f"rate the pair 1..{self.steps}, not {value!r}")
         self.answers.append(value)
+        self.felt = set()  # the next trial's textures are felt anew
         stop_presenting(self.study)  # the next trial starts with nothing held out
 
     def back(self):
         if self.answers:
             self.answers.pop()
+        self.felt = set()  # the trial taken back is felt again before it is answered
         stop_presenting(self.study)
 
     def as_record(self):

@@ -8,7 +8,7 @@ import FreeCAD as App
 
 import HaptiCAD
 from hapticad.document_scene import build_document_scene
-from hapticad.feel import Stroke, plan_stroke, run_stroke, summarize
+from hapticad.feel import Stroke, plan_stroke, run_stroke_in_servo_loop, summarize
 
 
 class FeelTest(unittest.TestCase):
@@ -53,7 +53,7 @@ class FeelTest(unittest.TestCase):
                 self.assertIn(message, str(caught.exception))
 
     def test_a_stroke_feels_k_depth_and_mu_d(self):
-        result = run_stroke(self.scene, Stroke((10, 20, 20), (50, 20, 20), speed_mm_s=80, depth_mm=1.5))
+        result = run_stroke_in_servo_loop(self.scene, Stroke((10, 20, 20), (50, 20, 20), speed_mm_s=80, depth_mm=1.5))
         summary = summarize(result, self.scene)
         face = summary["faces"]["Box.Face6"]
         self.assertGreater(face["sliding_ticks"], 300)

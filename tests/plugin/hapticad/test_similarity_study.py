@@ -18,7 +18,7 @@ import FreeCAD as App
 import HaptiCAD
 from hapticad import _core, similarity_study as ss
 from hapticad.document_scene import build_document_scene, recompile_surfaces
-from hapticad.feel import Stroke, run_stroke, sliding_mask
+from hapticad.feel import Stroke, run_stroke_in_servo_loop, sliding_mask
 from hapticad.surface_compile import compile_surface
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -45,6 +45,7 @@ def finish(run, weights=(1.0, 0.5), seed=0, noise=0.05, likes_a=None, warp=None)
     rng = random.Random(seed)
     likes_a = likes_a or (lambda v: v["TextureDC"] + v["TextureViscosity"] < 0.5)
     while not run.done:
+        run.present_each()  # a trial is answered once its textures were felt
         run.answer(simulated_answer(run, run.current, weights, rng, noise, likes_a, warp))
     return run
 
@@ -110,6 +111,7 @@ class StudyTest(unittest.TestCase):
                             [(t.first, t.second) for t in run.trials])
         self.assertEqual(run.progress(), ("warm-up", 1, 12))
         for _ in range(12):
+            run.present_each()
             run.answer(4)
         self.assertEqual(run.progress(), ("pair", 1, 36))
         run.back()
@@ -131,7 +133,7 @@ class StudyTest(unittest.TestCase):
 
         def resisting_force_n():
             stroke = Stroke((20, 10, 10), (20, 90, 10), speed_mm_s=100.0, depth_mm=1.0, rate_hz=1000)
-            result = run_without_host_stall(lambda: run_stroke(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
+            result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
             sliding = sliding_mask(result, scene)
             self.assertGreater(sliding.sum(), 300)
             return float(np.mean(result.trace["tangential_force_n"][sliding]))
@@ -156,6 +158,7 @@ class StudyTest(unittest.TestCase):
         study = HaptiCAD.make_similarity_study(self.doc, self.plate, ReferenceA=a, ReferenceB=b, WarmUps=0)
         run = ss.Run(study, "P1", seed=2)
         while run.current.kind != "class":
+            run.present_each()
             run.answer(3)
         with self.assertRaises(ValueError):
             run.values(2)  # a class trial has one texture
@@ -166,7 +169,8 @@ class StudyTest(unittest.TestCase):
         self.assertEqual(ss.rendered_texture(self.plate)["TexturePeriod"], self.plate.TexturePeriod)
         run.answer("A")
         self.assertIsNone(ss.presented_texture(self.plate))
-        with self.assertRaises(ValueError):
+        run.present(1)
+        with self.assertRaisesRegex(ValueError, "class the texture as A or B, not 4"):
             run.answer(4)  # a class trial takes A or B
         # the study's own deletion leaves nothing held out
         run.present(1)
@@ -176,10 +180,12 @@ class StudyTest(unittest.TestCase):
     def test_a_finished_run_is_kept_with_the_document_and_nothing_before(self):
         study = HaptiCAD.make_similarity_study(self.doc, self.plate)
         run = ss.Run(study, "Ada", seed=1)
+        run.present_each()
         run.answer(5)
         with self.assertRaisesRegex(ValueError, "not done: 47 trials remain"):
             ss.record_run(study, run)
         self.assertEqual((ss.runs(study), study.Participants), ([], 0))
+        run.present_each()
         with self.assertRaisesRegex(ValueError, r"rate the pair 1\.\.7"):
             run.answer(8)
         finish(run)
@@ -375,10 +381,73 @@ class StudyTest(unittest.TestCase):
     def test_answers_are_whole_numbers_on_the_scale(self):
         study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=0)
         run = ss.Run(study, "P1", seed=1)
+        run.present_each()  # felt: what is refused is the answer itself
         for bad in (True, 4.0, 0, 8, "4"):
-            with self.assertRaises(ValueError):
+            with self.assertRaisesRegex(ValueError, "rate the pair"):
                 run.answer(bad)
         self.assertEqual(run.answers, [])
+
+    def test_an_answer_waits_until_the_trials_textures_were_felt(self):
+        a, b = self.references()
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, ReferenceA=a, ReferenceB=b, WarmUps=1)
+        run = ss.Run(study, "P1", seed=3)
+        first = run.current
+
+        def state():
+            return (list(run.answers), set(run.felt), run.current, run.progress(),
+                    ss.presented_texture(self.plate))
+
+        # nothing felt: refused, and nothing changes (no answer, nothing felt or held out)
+        self.assertFalse(run.ready)
+        self.assertEqual(run.unfelt(), [1, 2])
+        before = state()
+        with self.assertRaisesRegex(ValueError, "feel texture 1 and texture 2 before answering"):
+            run.answer(4)
+        self.assertEqual(state(), before)
+        self.assertEqual(before[:2], ([], set()))
+        # one of the pair felt: still refused; what is felt and held out stays
+        run.present(2)
+        self.assertEqual(run.unfelt(), [1])
+        before = state()
+        self.assertEqual(before[1], {2})
+        self.assertIsNotNone(before[4])
+        with self.assertRaisesRegex(ValueError, "feel texture 1 before answering"):
+            run.answer(4)
+        self.assertEqual(state(), before)
+        # both felt: taken; the next trial starts with nothing felt
+        run.present(1)
+        self.assertTrue(run.ready)
+        run.answer(4)
+        self.assertEqual(run.answers, [4])
+        self.assertEqual(run.felt, set())
+        with self.assertRaisesRegex(ValueError, "feel texture 1 and texture 2"):
+            run.answer(4)
+        # a trial taken back is felt again before it is answered again
+        run.present_each()
+        run.back()
+        self.assertIs(run.current, first)
+        with self.assertRaisesRegex(ValueError, "feel texture 1 and texture 2"):
+            run.answer(4)
+        # the session stopped (forget_felt): what was felt before no longer counts
+        run.present_each()
+        run.forget_felt()
+        with self.assertRaisesRegex(ValueError, "before answering"):
+            run.answer(4)
+        self.assertEqual(run.answers, [])
+        # a class trial: the references alone are not the texture classed
+        while run.current.kind != "class":
+            run.present_each()
+            run.answer(4)
+        self.assertEqual(run.needed(), [1])
+        run.present("A")
+        run.present("B")
+        answered = len(run.answers)
+        with self.assertRaisesRegex(ValueError, "feel the texture before answering"):
+            run.answer("A")
+        self.assertEqual((len(run.answers), run.felt), (answered, {"A", "B"}))
+        run.present(1)
+        run.answer("A")
+        self.assertEqual(run.answers[-1], "A")
 
     def test_a_stimulus_can_come_from_a_surfaces_texture(self):
         a, _ = self.references()

@@ -17,7 +17,7 @@ import HaptiCAD
 from hapticad import cohort, stiffness_study
 from hapticad.document_scene import build_document_scene, recompile_surfaces
 from hapticad import _core
-from hapticad.feel import Stroke, expected_normal_force_n, run_stroke
+from hapticad.feel import Stroke, expected_normal_force_n, run_stroke_in_servo_loop
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from host_stalls import run_without_host_stall  # noqa: E402
@@ -30,7 +30,7 @@ def pressed_normal_force(doc, depth_mm, start=(20, 20, 10)):
     scene = build_document_scene(doc)
     p0 = np.asarray(start, float)
     stroke = Stroke(tuple(p0), tuple(p0 + [0.01, 0, 0]), speed_mm_s=25.0, depth_mm=depth_mm, rate_hz=1000)
-    result = run_without_host_stall(lambda: run_stroke(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
+    result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
     trace, plan = result.trace, result.plan
     held = (trace["time_s"] > plan.slide_start_s - 0.05) & (trace["time_s"] < plan.slide_start_s)
     return float(np.mean(trace["normal_force_n"][held]))
@@ -95,7 +95,7 @@ class StudyTest(unittest.TestCase):
         self.assertAlmostEqual(law.force(1.0e-3 + 1e-4) - law.force(1.0e-3), self.head.Stiffness * 1e3 * 1e-4)
         # on the way down to 1.5 mm, the probe felt the operating force, then the snap
         stroke = Stroke((20, 20, 10), (20.01, 20, 10), speed_mm_s=5.0, depth_mm=1.5)
-        result = run_without_host_stall(lambda: run_stroke(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
+        result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
         fn = result.trace["normal_force_n"][result.trace["time_s"] < result.plan.slide_start_s]
         highest = np.maximum.accumulate(fn)
         snap = int(np.argmax(highest - fn > 0.2))  # the first tick 0.2 N below the highest so far

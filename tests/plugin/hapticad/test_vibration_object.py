@@ -72,7 +72,7 @@ class VibrationTest(unittest.TestCase):
 
     def test_a_frequency_the_servo_rate_cannot_render_is_said_as_it_would_be_felt(self):
         import numpy as np
-        from hapticad.feel import Stroke, run_stroke
+        from hapticad.feel import Stroke, run_stroke_in_servo_loop
 
         self.razor.Length, self.razor.Width, self.razor.Height = 80, 40, 20
         self.doc.recompute()
@@ -83,7 +83,7 @@ class VibrationTest(unittest.TestCase):
         def felt(rate_hz):
             """(strongest frequency, its amplitude) of the normal force while sliding."""
             scene = build_document_scene(self.doc)
-            result = run_stroke(scene, Stroke((10, 20, 20), (70, 20, 20), 50, 1.0, rate_hz=rate_hz))
+            result = run_stroke_in_servo_loop(scene, Stroke((10, 20, 20), (70, 20, 20), 50, 1.0, rate_hz=rate_hz))
             t = result.trace
             sliding = (t["time_s"] > result.plan.slide_start_s) & (t["time_s"] < result.plan.slide_end_s)
             fz = np.asarray(t["force_n"])[sliding, 2]

@@ -17,7 +17,7 @@ from PySide2 import QtCore, QtWidgets
 
 from .. import similarity_study as ss
 from ..proxy_state import is_alive
-from .study_controls import StudyObserver
+from .study_observer import StudyObserver
 
 KIND_TITLES = {"warm-up": "Warm-up (not kept)", "pair": "Pair", "class": "Closer to A or to B?"}
 
@@ -38,7 +38,6 @@ class SimilarityControls(QtWidgets.QWidget):
         self.session_running = session_running or (lambda: True)
         self.run = None
         self.slot = None  # what is on the face now: 1, 2, "A", "B" or None
-        self._felt = set()  # the slots felt in this trial: an answer waits for them
         layout = QtWidgets.QVBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
         row = QtWidgets.QHBoxLayout()
@@ -113,7 +112,6 @@ class SimilarityControls(QtWidgets.QWidget):
                                      or self.run.context != ss.felt_context(self.study)):
             self.run = None
             self.slot = None
-            self._felt = set()
             self.release()
             self.presented.emit()
             self.show_message("The study changed during the run: the run was stopped, nothing kept.", error=True)
@@ -123,7 +121,8 @@ class SimilarityControls(QtWidgets.QWidget):
         """The Feel session stopped: nothing is felt, so the trial starts over."""
         self.release()
         self.slot = None
-        self._felt = set()
+        if self.run is not None:
+            self.run.forget_felt()
         self.load()
 
     # --- state ---------------------------------------------------------------------------
@@ -176,7 +175,7 @@ class SimilarityControls(QtWidgets.QWidget):
             button.setChecked(self.slot == slot)
         self.feel_buttons[1].setText("Texture" if kind == "class" else "Texture 1")
         # an answer once both textures of a pair (or the texture of a class trial) were felt
-        ready = trial is not None and ({1, 2} <= self._felt if kind != "class" else 1 in self._felt)
+        ready = running and self.run.ready
         for button in self.rating_buttons:
             button.setVisible(kind != "class")
             button.setEnabled(ready and kind != "class")
@@ -194,7 +193,7 @@ class SimilarityControls(QtWidgets.QWidget):
             title, number, count = self.run.progress()
             self.trial_label.setText(
                 f"<b>{KIND_TITLES[title]} {number} of {count}</b>" + (
-                    " (feel the texture and both references, then class it)" if title == "class" else
+                    " (feel the texture, and references A and B as often as you need, then class it)" if title == "class" else
                     " (feel both textures, then rate how alike they are)") + (
                     "<br><small>The document stays open until this run ends: finish it, or Stop run "
                     "(its answers are not kept).</small>" if self.holds_answers else ""))
@@ -219,7 +218,6 @@ class SimilarityControls(QtWidgets.QWidget):
         except ValueError as exc:
             self.show_message(f"Not started: {exc}", error=True)
             return False
-        self._felt = set()
         self.slot = None
         self.show_message("")
         self.load()
@@ -228,7 +226,6 @@ class SimilarityControls(QtWidgets.QWidget):
     def stop(self):
         self.run = None
         self.slot = None
-        self._felt = set()
         ss.stop_presenting(self.study)
         self.presented.emit()
         self.show_message("Run stopped; nothing kept.")
@@ -247,8 +244,7 @@ class SimilarityControls(QtWidgets.QWidget):
         except ValueError as exc:
             self.show_message(str(exc), error=True)
             return
-        self.slot = slot
-        self._felt.add(slot)
+        self.slot = slot  # the run counts it felt
         self.show_message("")
         self.presented.emit()
         self.load()
@@ -262,7 +258,6 @@ class SimilarityControls(QtWidgets.QWidget):
             self.show_message(str(exc), error=True)
             return
         held, self.slot = self.slot, None
-        self._felt = set()
         if held is not None:
             self.presented.emit()  # the face is back to the surface's own texture
         if self.run.done:
@@ -273,7 +268,6 @@ class SimilarityControls(QtWidgets.QWidget):
         if self.run is not None and is_alive(self.study):
             self.run.back()
             self.slot = None
-            self._felt = set()
             self.presented.emit()
             self.load()
 

@@ -7,25 +7,13 @@ history; paints at most as often as the Feel panel's display timer updates it.
 import numpy as np
 from PySide2 import QtCore, QtGui, QtWidgets
 
+from ..trace_lateral import felt_lateral_parts
+
 SERIES = (  # trace field, label, colour
     ("normal_force_n", "normal", QtGui.QColor(31, 119, 180)),
     ("friction_force_n", "friction", QtGui.QColor(214, 39, 40)),
     ("texture_force_n", "texture", QtGui.QColor(44, 160, 44)),
 )
-
-
-def felt_lateral_parts(trace):
-    """{"friction_force_n", "texture_force_n"} of ``trace`` as felt: where the renderer
-    clamped the force, the two scaled so that they add up to the lateral force sent."""
-    from .. import _core
-
-    friction = np.asarray(trace["friction_force_n"], float)
-    texture = np.asarray(trace["texture_force_n"], float)
-    lateral = friction + texture
-    sent = np.asarray(trace["tangential_force_n"], float)
-    clamped = ((np.asarray(trace["flags"]) & _core.FLAG_FORCE_CLAMPED) != 0) & (lateral > sent)
-    factor = np.where(clamped, sent / np.where(lateral > 0, lateral, 1.0), 1.0)
-    return {"friction_force_n": friction * factor, "texture_force_n": texture * factor}
 
 
 class StripChart(QtWidgets.QWidget):

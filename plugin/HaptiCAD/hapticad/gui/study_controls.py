@@ -16,6 +16,7 @@ from PySide2 import QtCore, QtWidgets
 
 from .. import cohort, stiffness_study
 from ..proxy_state import is_alive
+from .study_observer import StudyObserver
 
 SLIDER_STEPS = 200
 
@@ -68,44 +69,6 @@ def set_study_property(study, name, value):
         return False
     doc.commitTransaction()
     return True
-
-
-class StudyObserver:
-    """Calls back, once per event-loop turn, when the study changes by any way (an undo,
-    the property editor), so the controls never show a design that is not the study's."""
-
-    def __init__(self, study, callback, watch_references=False):
-        self.study, self.callback, self.pending = study, callback, False
-        self.watch_references = watch_references  # a similarity study's ReferenceA and B too
-        self.removed = False
-        App.addDocumentObserver(self)
-
-    def remove(self):
-        """Stops watching; a call already due (a turn later) is dropped: the widgets it
-        would load may be deleted by then (an undone study closes its panel)."""
-        if not self.removed:
-            self.removed = True
-            App.removeDocumentObserver(self)
-
-    def slotChangedObject(self, obj, prop):
-        try:
-            ours = obj is self.study or obj == self.study.Surface or (
-                self.watch_references and obj in (self.study.ReferenceA, self.study.ReferenceB))
-        except Exception:  # noqa: BLE001 (an object being deleted)
-            ours = False
-        if ours and not self.pending:
-            self.pending = True
-            QtCore.QTimer.singleShot(0, self._fire)
-
-    def slotDeletedObject(self, obj):
-        self.slotChangedObject(obj, "")
-
-    def _fire(self):
-        self.pending = False
-        if not self.removed:
-            self.callback()
-
-
 
 
 class StudyControls(QtWidgets.QWidget):

@@ -14,7 +14,7 @@ from PySide2 import QtCore, QtGui, QtWidgets
 from .. import similarity_study as ss
 from ..similarity_plot import space_png
 from ..surface_object import is_haptic_surface
-from .study_controls import StudyObserver
+from .study_observer import StudyObserver
 from .narrow import let_narrow
 from .task_panel_base import CloseOnlyPanel
 

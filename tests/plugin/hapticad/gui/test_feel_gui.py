@@ -319,7 +319,7 @@ class FeelGuiTest(unittest.TestCase):
 
     def test_editing_the_sketch_a_curve_pattern_follows_is_felt_at_once(self):
         import Part
-        from hapticad.feel import Stroke, run_stroke, summarize
+        from hapticad.feel import Stroke, run_stroke_in_servo_loop, summarize
 
         sketch = self.doc.addObject("Sketcher::SketchObject", "Guide")
         sketch.Placement.Base = App.Vector(0, 0, 20)
@@ -333,7 +333,7 @@ class FeelGuiTest(unittest.TestCase):
 
         def along_x():
             """Ft/Fn of a stroke along x through what the session renders now."""
-            summary = summarize(run_stroke(panel.doc_scene, Stroke((5, 15, 20), (35, 15, 20), 50, 1.0)),
+            summary = summarize(run_stroke_in_servo_loop(panel.doc_scene, Stroke((5, 15, 20), (35, 15, 20), 50, 1.0)),
                                 panel.doc_scene)
             return summary["faces"]["Box.Face6"]["mean_ft_over_fn"]
 

@@ -35,6 +35,7 @@ def simulated_run(study, name, seed):
     run = ss.Run(study, name, seed=seed)
     while not run.done:
         t = run.current
+        run.present_each()  # a trial takes its answer once its textures were felt
         if t.kind == "class":
             v = run.stimuli[t.first]["values"]
             run.answer("A" if v["TextureDC"] + v["TextureViscosity"] < 0.5 else "B")
@@ -286,10 +287,20 @@ class SimilarityGuiTest(unittest.TestCase):
         self.doc.undo()
         h.process_events()
         self.assertEqual(len(ss.stimuli(study)), 9)
-        # a run without a running session: a press is not felt, so it does not count
+        # the session stopped after both textures were felt: the trial starts over, and the
+        # run itself refuses an answer (not only the disabled buttons)
         h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Di")
         h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        for slot in (1, 2):
+            h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
+        self.assertTrue(h.widget(QtWidgets.QPushButton, "similarityRate4").isEnabled())
         h.widget(QtWidgets.QPushButton, "feelStop").click()
+        self.assertFalse(h.widget(QtWidgets.QPushButton, "similarityRate4").isEnabled())
+        controls.answer(4)
+        self.assertEqual(controls.run.answers, [])
+        self.assertIn("feel texture 1 and texture 2 before answering",
+                      h.widget(QtWidgets.QLabel, "similarityMessage").text())
+        # a run without a running session: a press is not felt, so it does not count
         for slot in (1, 2):
             h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
         self.assertIn("Start the Feel session first", h.widget(QtWidgets.QLabel, "similarityMessage").text())

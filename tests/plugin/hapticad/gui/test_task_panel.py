@@ -135,6 +135,7 @@ class TaskPanelTest(unittest.TestCase):
         study = HaptiCAD.make_similarity_study(self.doc, surface, WarmUps=0)
         run = ss.Run(study, "Ada", seed=1)
         while not run.done:
+            run.present_each()
             run.answer(4)
         ss.record_run(study, run)
         self.doc.recompute()

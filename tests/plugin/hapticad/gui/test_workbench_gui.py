@@ -103,6 +103,7 @@ class WorkbenchGuiTest(unittest.TestCase):
         similarity = HaptiCAD.make_similarity_study(self.doc, surface, WarmUps=0)
         run = similarity_study.Run(similarity, "Ada", seed=1)
         while not run.done:
+            run.present_each()
             run.answer(1 + (run.current.first + run.current.second) % 7)
         similarity_study.record_run(similarity, run)  # its space is drawn in the panel
         self.doc.recompute()
