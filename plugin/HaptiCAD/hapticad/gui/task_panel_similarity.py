@@ -34,7 +34,7 @@ class FittedPicture(QtWidgets.QLabel):
 
     def set_picture(self, pixmap):
         self.picture = pixmap
-        self._fit()
+        self._fit(new_picture=True)
 
     def clear(self):
         self.picture = None
@@ -44,11 +44,13 @@ class FittedPicture(QtWidgets.QLabel):
         super().resizeEvent(event)
         self._fit()
 
-    def _fit(self):
+    def _fit(self, new_picture=False):
         if self.picture is None:
             return
         width = max(min(self.width(), self.picture.width()), 1)
-        if self.pixmap() is None or self.pixmap().width() != width:
+        # a new picture of the same width is shown too: an analysis redrawn (another
+        # scaling, a run removed) kept showing the old one
+        if new_picture or self.pixmap() is None or self.pixmap().width() != width:
             self.setPixmap(self.picture.scaledToWidth(width, QtCore.Qt.SmoothTransformation))
 
 

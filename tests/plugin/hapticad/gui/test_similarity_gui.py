@@ -226,11 +226,24 @@ class SimilarityGuiTest(unittest.TestCase):
             expected = controls.run.stimuli[trial.first if slot == 1 else trial.second]["values"]["TextureDC"]
             texture = panel.session.doc_scene.surface_properties(face).texture
             self.assertAlmostEqual(texture.params.f_dc, expected)
-            for k in range(12):  # a stroke across the grating
-                h.mouse("move", h.screen_pos(np.array([20.0 + 1.5 * k, 20.0, 10.0])))
+            chart = panel.chart
+            since = chart.times[-1] if len(chart.times) else -np.inf
+            strokes = []
+
+            def felt(since=since, chart=chart, strokes=strokes):
+                # moves across the grating, back and forth, until the chart holds its force
+                # (from this texture on): a loaded host may need more than one stroke
+                k = len(strokes)
+                strokes.append(k)
+                step = k % 12 if k // 12 % 2 == 0 else 11 - k % 12
+                h.mouse("move", h.screen_pos(np.array([20.0 + 1.5 * step, 20.0, 10.0])))
                 h.wait(0.04)
-        # felt, and kept in the trace, but not drawn: the participant cannot read the texture off the chart
-        self.assertGreater(float(np.abs(panel.chart.values["texture_force_n"][-300:]).max()), 0.1)
+                force = chart.values["texture_force_n"][chart.times > since]
+                return len(force) > 0 and float(np.abs(force).max()) > 0.1
+
+            # felt, and kept in the trace (but not drawn: below)
+            h.wait_for(felt, f"texture {slot} felt in the chart's trace")
+        # not drawn: the participant cannot read the texture off the chart
         self.assertEqual(panel.chart.hidden, {"texture_force_n", "friction_force_n"})
         self.assertTrue(rate4.isEnabled())
         h.widen_panel(480)
@@ -316,12 +329,17 @@ class SimilarityGuiTest(unittest.TestCase):
         text = h.widget(QtWidgets.QLabel, "spaceText").text()
         self.assertIn("9 stimuli, 6 participants", text)
         self.assertIn("f_DC", text)
-        self.assertFalse(h.widget(QtWidgets.QLabel, "spacePlot").pixmap().isNull())
+        plot = h.widget(QtWidgets.QLabel, "spacePlot")
+        self.assertFalse(plot.pixmap().isNull())
+        metric = plot.pixmap().toImage()
         # the space made by ordinal scaling instead, one undo step
         steps = self.doc.UndoCount
         h.widget(QtWidgets.QComboBox, "Scaling").setCurrentIndex(1)
         self.assertEqual((study.Scaling, self.doc.UndoCount), ("Ordinal", steps + 1))
         self.assertIn("ordinal scaling, Kruskal's stress-1", h.widget(QtWidgets.QLabel, "spaceText").text())
+        # and drawn: a new picture of the same width used to leave the metric one shown
+        self.assertEqual(plot.pixmap().width(), metric.width())
+        self.assertNotEqual(plot.pixmap().toImage(), metric)
         h.widen_panel(520)
         h.grab_screen("similarity_panel.png")
         space = h.widget(QtWidgets.QLabel, "spacePlot").parentWidget()
