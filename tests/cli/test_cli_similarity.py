@@ -4,6 +4,7 @@ runs, the perceptual space as JSON, text and a plot; bad input gets a clear erro
 
 Environment: HAPTICAD_CLI (the launcher), HAPTICAD_MOD (the staged Mod folder).
 Runs under /usr/bin/python3 (FreeCAD's interpreter)."""
+import csv
 import json
 import os
 import random
@@ -11,6 +12,8 @@ import subprocess
 import sys
 import tempfile
 import unittest
+
+import numpy as np
 
 CLI = os.environ["HAPTICAD_CLI"]
 sys.path.insert(0, os.environ["HAPTICAD_MOD"])
@@ -72,6 +75,38 @@ class SimilarityCommandTest(unittest.TestCase):
             self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
         self.assertGreater(os.path.getsize(png), 20000)
 
+    def test_every_answer_as_csv_and_the_matrix_in_the_json(self):
+        answers = os.path.join(self.tmp.name, "answers.csv")
+        proc = run_cli("similarity", self.path, "--study", "Gratings", "--json", "--csv", answers)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        (study,) = json.loads(proc.stdout)
+        with open(answers, newline="", encoding="utf-8") as handle:
+            rows = list(csv.DictReader(handle))
+        per_run = 36  # 9 stimuli: 36 pairs; no warm-ups, no references to class by
+        self.assertEqual((study["csv"], study["answers"], len(rows)), (answers, 4 * per_run, 4 * per_run))
+        self.assertEqual([r["participant"] for r in rows[::per_run]], ["P0", "P1", "P2", "P3"])
+        self.assertEqual([int(r["position"]) for r in rows[:per_run]], list(range(1, per_run + 1)))
+        self.assertEqual({r["pooled"] for r in rows}, {"yes"})
+        pairs = [r for r in rows if r["kind"] == "pair"]
+        self.assertEqual(len(pairs), len(rows))
+        self.assertTrue(all(1 <= int(r["rating"]) <= 7 and r["class"] == "" for r in pairs))
+        # the matrix the space is drawn from, back from the rows: 1 - the mean rating scaled to 0..1
+        names = study["stimuli"]
+        d = np.array(study["dissimilarity"])
+        self.assertEqual(d.shape, (9, 9))
+        np.testing.assert_allclose(d, d.T)
+        for i, j in ((0, 1), (2, 7)):
+            ratings = [int(r["rating"]) for r in pairs if {r["first"], r["second"]} == {names[i], names[j]}]
+            self.assertEqual(len(ratings), 4)
+            self.assertAlmostEqual(d[i, j], 1 - np.mean([(x - 1) / 6 for x in ratings]), places=12)
+        # each row carries its stimuli's values, as the JSON lists them
+        row = pairs[0]
+        first = study["stimulus_values"][names.index(row["first"])]
+        self.assertEqual(float(row["first_f_DC"]), first["TextureDC"])
+        # text mode says where they went
+        proc = run_cli("similarity", self.path, "--study", "Gratings", "--csv", answers)
+        self.assertIn(f"answers: {answers} (144 rows)", proc.stdout)
+
     def test_text_summary(self):
         proc = run_cli("similarity", self.path, "--study", "Gratings")
         self.assertEqual(proc.returncode, 0, proc.stderr)
@@ -109,7 +144,10 @@ class SimilarityCommandTest(unittest.TestCase):
                               (["--study", "Empty"], "Empty: no participant has rated these stimuli yet"),
                               (["--plot", os.path.join(self.tmp.name, "x.png")], "--plot draws one study's space"),
                               # an empty name (a script's unset variable) used to mean every study
-                              (["--study", ""], "--study needs a study's name or label (it has: Gratings, Empty)")):
+                              (["--study", ""], "--study needs a study's name or label (it has: Gratings, Empty)"),
+                              (["--csv", os.path.join(self.tmp.name, "a.csv")], "--csv writes one study's answers"),
+                              (["--study", "Empty", "--csv", os.path.join(self.tmp.name, "a.csv")],
+                               "Empty: no participant's run is kept yet: nothing to export")):
             proc = run_cli("similarity", self.path, *args)
             self.assertEqual(proc.returncode, 2, proc.stdout)
             self.assertIn(message, proc.stderr)

@@ -68,6 +68,7 @@ def _output_file(kind, example):
 
 _png_file = _output_file("PNG", "plot.png")
 _csv_file = _output_file("CSV", "cohort.csv")
+_answers_csv_file = _output_file("CSV", "answers.csv")
 
 
 def cmd_feel(args):
@@ -354,6 +355,14 @@ def cmd_similarity(args):
         studies = _chosen_studies(args, similarity_study.similarity_studies_of(doc), "similarity study")
         if args.plot and len(studies) > 1:
             raise ValueError("--plot draws one study's space: name it with --study")
+        if args.csv and len(studies) > 1:
+            raise ValueError("--csv writes one study's answers: name it with --study")
+        written, said = None, ""
+        if args.csv:  # every kept answer, whether the space can be drawn or not
+            from .similarity_export import write_csv
+
+            written = {"csv": os.path.abspath(args.csv), "answers": write_csv(args.csv, studies[0])}
+            said = f" (its {written['answers']} answers were written to {written['csv']})"
         result, lines = [], []
         for study in studies:
             if args.scaling:  # for this analysis only: the document is not saved
@@ -362,20 +371,23 @@ def cmd_similarity(args):
                 analysis = similarity_study.analyse(study)
             except ValueError as exc:
                 if args.study is not None:  # the one asked for
-                    raise
+                    raise ValueError(f"{exc}{said}") from None
                 result.append({"study": study.Label, "error": str(exc)})  # the others are still told
                 lines.append(str(exc))  # it names the study
                 continue
             result.append({"study": study.Label, **analysis})
             if args.plot:
-                from .similarity_plot import plot_space
+                from .similarity_plot import plot_space, space_title
 
-                plot_space(args.plot, analysis, f"{study.Label}: perceptual space")
+                plot_space(args.plot, analysis, space_title(analysis, study.Label))
                 result[-1]["plot"] = os.path.abspath(args.plot)  # where it went: the file written
             lines.append(similarity_study.describe(study, analysis)
                          + (f"\nplot: {os.path.abspath(args.plot)}" if args.plot else ""))
         if all("error" in r for r in result):  # said once, as the command's error
-            raise ValueError("; ".join(r["error"] for r in result))
+            raise ValueError("; ".join(r["error"] for r in result) + said)
+        if written:
+            result[0].update(written)
+            lines.append(f"answers: {written['csv']} ({written['answers']} rows)")
         if not args.json:
             print("\n".join(lines))
     finally:
@@ -466,7 +478,10 @@ def build_parser():
     sim.add_argument("--scaling", choices=("metric", "ordinal"),
                      help="classical MDS, or Kruskal's ordinal MDS (only the order of the dissimilarities counts); "
                           "default: each study's Scaling")
-    sim.add_argument("--json", action="store_true", help="print JSON")
+    sim.add_argument("--csv", type=_answers_csv_file, metavar="FILE",
+                     help="also write every participant's answers (one row each, with the stimuli's values) as CSV")
+    sim.add_argument("--json", action="store_true", help="print JSON (with the dissimilarity matrix and the "
+                     "stimuli's values)")
     sim.set_defaults(run=cmd_similarity)
 
     demo = sub.add_parser("demo", help="open the example toothbrush and feel it")

@@ -234,14 +234,19 @@ def place_design(value, records):
     return below, f"{value:.3g} is {where}; {below:.0%} of {people} preferred less"
 
 
+def spreadsheet_safe(text):
+    """``text`` as a CSV cell a spreadsheet shows as text: one starting like a formula
+    (FORMULA_STARTS) is guarded with a leading apostrophe, which read_csv takes off."""
+    return "'" + text if text.lstrip("'")[:1] in FORMULA_STARTS else text
+
+
 def write_csv(path, records):
     with open(path, "w", newline="") as handle:
         out = csv.writer(handle)
         out.writerow(CSV_COLUMNS)
         for r in records:
             d = r.as_dict()
-            if d["name"].lstrip("'")[:1] in FORMULA_STARTS:  # guarded; read_csv takes the guard off
-                d["name"] = "'" + d["name"]
+            d["name"] = spreadsheet_safe(d["name"])
             # repr: the shortest text that reads back as the same float
             d["design"] = ";".join(f"{k}={v!r}" if isinstance(v, float) else f"{k}={v}" for k, v in r.design.items())
             for key in ("weight_kg", "height_mm"):  # not given: an empty cell

@@ -19,6 +19,15 @@ PARAMETER_COLOURS = ("#2f855a", "#6b46c1", "#b7791f", "#2c7a7b", "#4a5568", "#71
 LIKENESS_COLOUR = "#c53030"
 
 
+def space_title(result, study_label=""):
+    """"[Study: ]ordinal perceptual space: 6 participants, stress-1 0.02" of ``result``
+    (analyse): which scaling, how many people, how well it fits."""
+    ordinal = result.get("scaling") == "ordinal"
+    n = result["participants"]
+    return (f"{study_label + ': ' if study_label else ''}{'ordinal ' if ordinal else ''}perceptual space: "
+            f"{n} participant{'s' if n != 1 else ''}, stress{'-1' if ordinal else ''} {result['stress']:.2f}")
+
+
 def draw_space(ax, result, title=""):
     """Draws ``result`` (similarity_study.analyse) on matplotlib axes of a figure with a
     canvas. The names are placed last, each where it covers the fewest other names,
@@ -53,9 +62,7 @@ def draw_space(ax, result, title=""):
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("axis 1")
     ax.set_ylabel("axis 2")
-    ordinal = result.get("scaling") == "ordinal"
-    ax.set_title(title or f"{'ordinal ' if ordinal else ''}perceptual space: {result['participants']} participants, "
-                 f"stress{'-1' if ordinal else ''} {result['stress']:.2f}", fontsize=9)
+    ax.set_title(title or space_title(result), fontsize=9)
     if result["vectors"]:  # below the axes: inside, "best" still lands on names
         ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=1, frameon=False)
     ax.grid(alpha=0.3)

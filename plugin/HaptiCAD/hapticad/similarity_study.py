@@ -491,9 +491,12 @@ class Run:
         ratings = [[min(t.first, t.second), max(t.first, t.second), a]
                    for t, a in zip(self.trials, self.answers) if t.kind == "pair"]
         choices = [[t.first, a] for t, a in zip(self.trials, self.answers) if t.kind == "class"]
+        # every answer in the order given, warm-ups included, each pair in the order felt:
+        # for order effects (the ratings above are what the analysis reads)
+        sequence = [[t.kind, t.first, t.second, a] for t, a in zip(self.trials, self.answers)]
         return {"name": self.participant, "recorded": datetime.now().isoformat(timespec="seconds"),
                 "seed": self.seed, "steps": self.steps, "stimuli": self.stimuli, "ratings": ratings,
-                "choices": choices, "context": self.context}
+                "choices": choices, "trials": sequence, "context": self.context}
 
 
 def record_problems(record):
@@ -516,6 +519,11 @@ def record_problems(record):
             found.append(f"{record['name']}: a rating is outside 1..{steps}")
         if any(c not in ("A", "B") or not 0 <= i < count for i, c in record["choices"]):
             found.append(f"{record['name']}: a class is not A or B of a stimulus")
+        for kind, first, second, _ in record.get("trials", []):  # the order (runs kept since it is)
+            if kind not in ("warm-up", "pair", "class") or type(first) is not int or type(second) is not int or (
+                    not 0 <= first < count or not (second == -1 if kind == "class" else 0 <= second < count)):
+                found.append(f"{record['name']}: the trial order names a stimulus it does not have")
+                break
         found.extend(stimulus_problems(items))
     except (KeyError, TypeError, ValueError) as exc:
         found.append(f"not a similarity run: {exc}")
@@ -588,7 +596,8 @@ def dissimilarity(kept, n):
 
 def analyse(study):
     """The perceptual space of the study's comparable runs, as a dict:
-    ``stimuli`` (names), ``points`` (n x dims), ``stress``, ``explained``,
+    ``stimuli`` (names), ``stimulus_values`` (eq. 2's values of each), ``dissimilarity``
+    (the pooled n x n matrix scaled), ``points`` (n x dims), ``stress``, ``explained``,
     ``eigenvalues``, ``vectors`` ({label: {direction, length, correlation, low, high}}),
     ``likeness`` (per stimulus, the share classed closer to A, or None), ``participants``,
     ``held`` (runs on other stimuli), ``notes``, ``scaling`` ("metric" or "ordinal", the
@@ -643,7 +652,8 @@ def analyse(study):
     if len(kept) < 3:
         notes.append(f"{len(kept)} participant{'s' if len(kept) != 1 else ''}: the space shows one or two people's "
                      "impressions, not a cohort's")
-    return {"stimuli": [s["name"] for s in items], "points": space.points.tolist(), "stress": space.stress,
+    return {"stimuli": [s["name"] for s in items], "stimulus_values": [dict(s["values"]) for s in items],
+            "dissimilarity": d.tolist(), "points": space.points.tolist(), "stress": space.stress,
             "scaling": "ordinal" if ordinal else "metric", "iterations": space.iterations,
             "explained": space.explained, "eigenvalues": list(space.eigenvalues), "vectors": vectors,
             "likeness": likeness, "participants": len(kept), "held": held, "notes": notes}

@@ -12,6 +12,7 @@ import html
 from PySide2 import QtCore, QtGui, QtWidgets
 
 from .. import similarity_study as ss
+from ..similarity_export import write_csv as write_answers_csv
 from ..similarity_plot import space_png
 from ..surface_object import is_haptic_surface
 from .study_observer import StudyObserver
@@ -115,7 +116,16 @@ class SimilarityTaskPanel(CloseOnlyPanel):
         layout = QtWidgets.QVBoxLayout(box)
         self.runs_table = self._table("runsTable", RUN_COLUMNS)
         layout.addWidget(self.runs_table)
-        layout.addWidget(self._button("Remove", "removeRun", self.remove_runs))
+        row = QtWidgets.QHBoxLayout()
+        row.addWidget(self._button("Remove", "removeRun", self.remove_runs))
+        row.addWidget(self._button("Export answers…", "exportAnswers", self.choose_export,
+                                   "Every answer of every run, one row each with its stimuli's values, as CSV "
+                                   "(for statistics elsewhere)"))
+        layout.addLayout(row)
+        self.runs_message = QtWidgets.QLabel()
+        self.runs_message.setObjectName("runsMessage")
+        self.runs_message.setWordWrap(True)
+        layout.addWidget(self.runs_message)
         # how the space is made: classical MDS or Kruskal's ordinal MDS, in how many dimensions
         analysis = QtWidgets.QFormLayout()
         self.scaling = QtWidgets.QComboBox()
@@ -261,6 +271,22 @@ class SimilarityTaskPanel(CloseOnlyPanel):
 
     def paper_stimuli(self):
         return self._edit("The paper's nine stimuli", lambda: ss.set_stimuli(self.obj, ss.paper_stimuli()))
+
+    def choose_export(self):
+        path, _ = QtWidgets.QFileDialog.getSaveFileName(None, "Export the answers", f"{self.obj.Label}.csv",
+                                                        "CSV (*.csv)")
+        if path:
+            self.export_to(path)
+
+    def export_to(self, path):
+        try:
+            count = write_answers_csv(path, self.obj)
+        except (OSError, ValueError) as exc:
+            self.runs_message.setText(f"<span style='color:#b00000'>Not exported: {html.escape(str(exc))}</span>")
+            return False
+        self.runs_message.setText(f"<span style='color:#006000'>{count} answer{'s' if count != 1 else ''} "
+                                  f"exported to {html.escape(path)}</span>")
+        return True
 
     def remove_runs(self):
         rows = sorted({i.row() for i in self.runs_table.selectedIndexes()}, reverse=True)

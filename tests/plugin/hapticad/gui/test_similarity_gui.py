@@ -7,6 +7,7 @@ then shows the cohort's perceptual space. Run by gui_test_runner.py."""
 import os
 import random
 import sys
+import tempfile
 import unittest
 from unittest import mock
 
@@ -340,6 +341,23 @@ class SimilarityGuiTest(unittest.TestCase):
         # and drawn: a new picture of the same width used to leave the metric one shown
         self.assertEqual(plot.pixmap().width(), metric.width())
         self.assertNotEqual(plot.pixmap().toImage(), metric)
+        # every answer out for statistics elsewhere; a folder that cannot be written is said
+        answers = os.path.join(tempfile.mkdtemp(), "answers.csv")
+        chosen = [answers]
+        original = QtWidgets.QFileDialog.getSaveFileName
+        QtWidgets.QFileDialog.getSaveFileName = staticmethod(lambda *a, **k: (chosen[0], "CSV (*.csv)"))
+        try:
+            h.widget(QtWidgets.QPushButton, "exportAnswers").click()
+            with open(answers, encoding="utf-8") as handle:
+                lines = handle.read().splitlines()
+            self.assertIn(f"answers exported to {answers}", h.widget(QtWidgets.QLabel, "runsMessage").text())
+            self.assertEqual(h.widget(QtWidgets.QLabel, "runsMessage").text().count(f"{len(lines) - 1} answers"), 1)
+            self.assertEqual(sum(line.startswith("Ada,") for line in lines), 2 + 36 + 27)  # her warm-ups too
+            chosen[0] = "/nonexistent/folder/answers.csv"
+            h.widget(QtWidgets.QPushButton, "exportAnswers").click()
+            self.assertIn("Not exported:", h.widget(QtWidgets.QLabel, "runsMessage").text())
+        finally:
+            QtWidgets.QFileDialog.getSaveFileName = original
         h.widen_panel(520)
         h.grab_screen("similarity_panel.png")
         space = h.widget(QtWidgets.QLabel, "spacePlot").parentWidget()
