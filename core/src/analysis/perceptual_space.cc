@@ -189,9 +189,11 @@ PerceptualSpace ComputePerceptualSpace(const Eigen::MatrixXd& dissimilarity, int
 PerceptualSpace ComputeOrdinalPerceptualSpace(const Eigen::MatrixXd& dissimilarity, int dimensions,
                                               const OrdinalScalingOptions& options) {
   if (options.max_iterations < 1 || !(options.tolerance >= 0) ||
-      !std::isfinite(options.tolerance)) {
+      !std::isfinite(options.tolerance) || !(options.exact_stress >= 0) ||
+      !std::isfinite(options.exact_stress)) {
     throw std::invalid_argument(
-        "ordinal perceptual space: give at least 1 iteration and a finite tolerance >= 0");
+        "ordinal perceptual space: give at least 1 iteration and a finite tolerance and exact "
+        "stress >= 0");
   }
   // the classical space: the start, and the data's scree (checks the input too)
   PerceptualSpace space = ComputePerceptualSpace(dissimilarity, dimensions);
@@ -235,7 +237,9 @@ PerceptualSpace ComputeOrdinalPerceptualSpace(const Eigen::MatrixXd& dissimilari
     disparity *= std::sqrt(target / disparity.squaredNorm());
     const double now = (disparity - distance).squaredNorm() / target;
     space.iterations = round;
-    if (now <= 1e-28 || (round > 1 && stress - now <= options.tolerance * stress)) {
+    // `now` is the squared stress-1 of these points against disparities of their spread
+    if (now <= options.exact_stress * options.exact_stress ||
+        (round > 1 && stress - now <= options.tolerance * stress)) {
       space.converged = true;
       break;
     }

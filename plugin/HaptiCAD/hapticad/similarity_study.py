@@ -56,6 +56,7 @@ REFERENCE_VALUES = (*TEXTURE_VALUES, "TexturePeriod", "TextureScale", "TextureFu
 # what the stimuli take from the study's surface: runs felt with other values are not pooled
 CONTEXT_VALUES = ("TexturePeriod", "TextureScale", "TextureFullRange", "StaticFriction")
 LIKENESS = "closer to A"
+EXACT_STRESS = 1e-5  # the core's OrdinalScalingOptions.exact_stress: below it the order fits exactly
 PROPERTIES = [
     ("Surface", "App::PropertyLink", "Study", "The haptic surface whose faces the participants stroke", None, None),
     ("ReferenceA", "App::PropertyLink", "References",
@@ -150,7 +151,8 @@ def stimulus_problems(items):
         return ["each stimulus is {name, values} (a list of them)"]
     found = []
     if len(items) < 3:
-        found.append(f"{len(items)} stimuli: a perceptual space needs at least 3")
+        found.append(f"{len(items)} {'stimulus' if len(items) == 1 else 'stimuli'}: a perceptual space needs "
+                     "at least 3")
     if len(items) > MAX_STIMULI:
         found.append(f"{len(items)} stimuli make {len(items) * (len(items) - 1) // 2} pairs to rate; "
                      f"keep to {MAX_STIMULI} or fewer")
@@ -194,9 +196,38 @@ def texture_of(surface):
 
 
 def add_stimulus_from(study, surface, name=None):
-    """Adds a surface's texture as a stimulus (a texture fitted to a recording, say)."""
+    """Adds a surface's texture as a stimulus (a texture fitted to a recording, say).
+    Returns notes (sentences): a stimulus is eq. 2's values only, felt with the study
+    surface's period and scale, so a source felt otherwise is said."""
     items = [*stimuli(study), {"name": name or surface.Label, "values": texture_of(surface)}]
     set_stimuli(study, items)
+    return stimulus_notes(study, surface)
+
+
+def stimulus_notes(study, surface):
+    """What of ``surface``'s texture a stimulus taken from it leaves behind: its period,
+    scale or full range, where they differ from the study surface's."""
+    felt_on = study.Surface
+    if felt_on is None or surface is felt_on:
+        return []
+    keys = ["TexturePeriod", "TextureScale"]
+    if surface.TextureScale == felt_on.TextureScale == "Device force":
+        keys.append("TextureFullRange")
+    differ = [k for k in keys if getattr(surface, k) != getattr(felt_on, k)]
+    if not differ:
+        return []
+
+    def said(obj, key):
+        value = getattr(obj, key)
+        if key == "TexturePeriod":
+            return f"period {value:g} mm"
+        if key == "TextureFullRange":
+            return f"full range {value:g} N" if value else "the device's full range"
+        return f"scale {value}"
+
+    return [f"{surface.Label}'s texture was added as eq. 2's values; a stimulus is felt with {felt_on.Label}'s "
+            f"{', '.join(said(felt_on, k) for k in differ)}, not {surface.Label}'s "
+            f"{', '.join(said(surface, k) for k in differ)}: it will not feel as it does there"]
 
 
 # --- validity ------------------------------------------------------------------------
@@ -572,6 +603,41 @@ def comparable(record, study):
             and record.get("context") == felt_context(study))
 
 
+_CONTEXT_WORDS = {"TexturePeriod": ("period", " mm"), "TextureScale": ("texture scale", ""),
+                  "TextureFullRange": ("full range", " N"), "StaticFriction": ("static friction", "")}
+
+
+def why_not_pooled(record, study):
+    """Why a kept run is not pooled with the study as it is now, in words ("" when it is):
+    what of its stimuli, surface or references differs."""
+    if record_problems(record):
+        return "incomplete or damaged"
+    if not same_stimuli(record["stimuli"], stimuli(study)):
+        return "on other stimuli"
+    then, now = record.get("context") or {}, felt_context(study)
+    if not now:
+        return "on a surface the study no longer has"
+    said = []
+    for key, (word, unit) in _CONTEXT_WORDS.items():
+        if then.get(key) != now.get(key):
+            def text(v, unit=unit):
+                return "none" if v is None else f"{v:g}{unit}" if isinstance(v, float) else f"{v}{unit}"
+            said.append(f"the surface's {word} {text(then.get(key))} (now {text(now.get(key))})")
+    said += [f"another reference {key}" for key in "AB" if then.get(f"Reference{key}") != now.get(f"Reference{key}")]
+    return "felt with " + ", ".join(said) if said else ""
+
+
+def held_note(study, kept):
+    """"3 runs felt with the surface's period 2.5 mm (now 3 mm)" and the like: the kept runs
+    of ``study`` not among ``kept`` (pooled), grouped by why."""
+    reasons = {}
+    for record in runs(study):
+        if record not in kept:
+            reason = why_not_pooled(record, study) or "of another kind"
+            reasons[reason] = reasons.get(reason, 0) + 1
+    return "; ".join(f"{n} run{'s' if n != 1 else ''} {reason}" for reason, n in reasons.items())
+
+
 def comparable_runs(study):
     """The runs analyse pools: those comparable with the study as it is."""
     return [r for r in runs(study) if comparable(r, study)]
@@ -600,16 +666,17 @@ def analyse(study):
     (the pooled n x n matrix scaled), ``points`` (n x dims), ``stress``, ``explained``,
     ``eigenvalues``, ``vectors`` ({label: {direction, length, correlation, low, high}}),
     ``likeness`` (per stimulus, the share classed closer to A, or None), ``participants``,
-    ``held`` (runs on other stimuli), ``notes``, ``scaling`` ("metric" or "ordinal", the
+    ``held`` (runs not pooled), ``held_note`` (why, in words), ``notes``, ``scaling`` ("metric" or "ordinal", the
     study's Scaling) and ``iterations`` (ordinal scaling's rounds). Raises ValueError
     when there is nothing to analyse."""
     items = stimuli(study)
     kept = comparable_runs(study)
     held = len(runs(study)) - len(kept)
     if not kept:
-        other = (f" ({held} runs on other stimuli, surface or references are kept but not pooled with these)"
-                 if held else "")
-        raise ValueError(f"{study.Label}: no participant has rated these stimuli yet{other}")
+        if held:
+            raise ValueError(f"{study.Label}: no run is pooled with the study as it is now: {held_note(study, kept)} "
+                             f"(kept, not pooled)")
+        raise ValueError(f"{study.Label}: no participant has rated these stimuli yet")
     n = len(items)
     dims = int(study.Dimensions)
     if dims >= n:
@@ -649,6 +716,10 @@ def analyse(study):
     if space.stress > 0.2:
         notes.append(f"stress {space.stress:.2f}: the space's distances stray from the dissimilarities by a "
                      "fifth or more; more dimensions or more participants may help")
+    steps = sorted({record["steps"] for record in kept})
+    if len(steps) > 1:  # pooled as the share of each scale's range: say so, it is a choice
+        notes.append(f"runs rated on {' and '.join(map(str, steps))}-step scales are pooled, each rating taken as "
+                     "its share of its own scale's range")
     if len(kept) < 3:
         notes.append(f"{len(kept)} participant{'s' if len(kept) != 1 else ''}: the space shows one or two people's "
                      "impressions, not a cohort's")
@@ -656,15 +727,18 @@ def analyse(study):
             "dissimilarity": d.tolist(), "points": space.points.tolist(), "stress": space.stress,
             "scaling": "ordinal" if ordinal else "metric", "iterations": space.iterations,
             "explained": space.explained, "eigenvalues": list(space.eigenvalues), "vectors": vectors,
-            "likeness": likeness, "participants": len(kept), "held": held, "notes": notes}
+            "likeness": likeness, "participants": len(kept), "held": held,
+            "held_note": held_note(study, kept) if held else "", "notes": notes}
 
 
 def describe(study, result):
     """A few lines of text of ``result`` (analyse) for the console and the panel."""
-    lines = [f"{study.Label}: {len(result['stimuli'])} stimuli, {result['participants']} participants"
-             + (f" ({result['held']} runs on other stimuli, surface or references not pooled)"
-                if result["held"] else ""),
-             (f"  ordinal scaling, Kruskal's stress-1 {result['stress']:.3f} ({result['iterations']} rounds)"
+    n = result["participants"]
+    lines = [f"{study.Label}: {len(result['stimuli'])} stimuli, {n} participant{'s' if n != 1 else ''}"
+             + (f" (not pooled: {result['held_note']})" if result["held"] else ""),
+             (f"  ordinal scaling, Kruskal's stress-1 {result['stress']:.3f}"
+              + (": the ratings' order fits exactly" if result["stress"] < EXACT_STRESS else "")
+              + f" ({result['iterations']} rounds)"
               if result.get("scaling") == "ordinal" else
               f"  stress {result['stress']:.3f}, the axes hold {100 * result['explained']:.0f} % of the spread")]
     for label, v in sorted(result["vectors"].items(), key=lambda kv: -kv[1]["length"]):

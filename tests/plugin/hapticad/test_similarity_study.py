@@ -280,13 +280,34 @@ class StudyTest(unittest.TestCase):
         ss.record_run(study, finish(ss.Run(study, "P1", seed=1)))
         items = ss.stimuli(study)[:4]
         ss.set_stimuli(study, items)
-        with self.assertRaisesRegex(ValueError, "no participant has rated these stimuli yet \\(1 runs on other"):
+        with self.assertRaisesRegex(ValueError, "no run is pooled with the study as it is now: 1 run on other "
+                                                "stimuli \\(kept, not pooled\\)"):
             ss.analyse(study)
         ss.record_run(study, finish(ss.Run(study, "P2", seed=2)))
         result = ss.analyse(study)
         self.assertEqual((result["participants"], result["held"]), (1, 1))
         self.assertEqual(len(result["points"]), 4)
         self.assertTrue(any("one or two people" in n for n in result["notes"]))
+        self.assertIn("4 stimuli, 1 participant (not pooled: 1 run on other stimuli)", ss.describe(study, result))
+
+    def test_why_runs_are_not_pooled_is_said_and_two_rating_scales_pooled_are_noted(self):
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=0)
+        for p in range(2):
+            ss.record_run(study, finish(ss.Run(study, f"P{p}", seed=p)))
+        # the same stimuli, felt now with another period: the message names it, not "no one rated these"
+        self.plate.TexturePeriod = 3.0
+        with self.assertRaises(ValueError) as caught:
+            ss.analyse(study)
+        self.assertIn("no run is pooled with the study as it is now: 2 runs felt with the surface's period 2.5 mm "
+                      "(now 3 mm)", str(caught.exception))
+        self.plate.TexturePeriod = 2.5
+        # a run on a 5-step scale pooled with 7-step ones: each rating as its share of its scale, and said
+        study.RatingSteps = 5
+        ss.record_run(study, finish(ss.Run(study, "P5", seed=5)))
+        result = ss.analyse(study)
+        self.assertEqual(result["participants"], 3)
+        self.assertIn("runs rated on 5 and 7-step scales are pooled, each rating taken as its share of its own "
+                      "scale's range", result["notes"])
 
     def test_bad_input_is_refused_and_changes_nothing(self):
         study = HaptiCAD.make_similarity_study(self.doc, self.plate)
@@ -452,7 +473,13 @@ class StudyTest(unittest.TestCase):
     def test_a_stimulus_can_come_from_a_surfaces_texture(self):
         a, _ = self.references()
         study = HaptiCAD.make_similarity_study(self.doc, self.plate)
-        ss.add_stimulus_from(study, a, "Fitted A")
+        notes = ss.add_stimulus_from(study, a, "Fitted A")
+        # only eq. 2's values travel: the period and the force level 1 stands for are the plate's
+        (note,) = notes
+        self.assertIn(f"is felt with {self.plate.Label}'s period 2.5 mm, full range {FULL_RANGE_N:g} N, "
+                      f"not {a.Label}'s period 2 mm, the device's full range", note)
+        a.TexturePeriod, a.TextureFullRange = self.plate.TexturePeriod, self.plate.TextureFullRange
+        self.assertEqual(ss.stimulus_notes(study, a), [])  # felt alike on both: nothing to say
         added = ss.stimuli(study)[-1]
         self.assertEqual(added["name"], "Fitted A")
         self.assertEqual(added["values"]["TextureDC"], 0.2)

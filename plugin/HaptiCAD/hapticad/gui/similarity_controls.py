@@ -77,12 +77,15 @@ class SimilarityControls(QtWidgets.QWidget):
         self.scale_box = QtWidgets.QHBoxLayout()
         self.scale_box.setSpacing(2)
         layout.addLayout(self.scale_box)
-        ends = QtWidgets.QHBoxLayout()
+        self.scale_ends = QtWidgets.QWidget()  # hidden with the scale in a class trial
+        self.scale_ends.setObjectName("similarityScaleEnds")
+        ends = QtWidgets.QHBoxLayout(self.scale_ends)
+        ends.setContentsMargins(0, 0, 0, 0)
         ends.addWidget(QtWidgets.QLabel("1: nothing alike"))
         ends.addStretch(1)
         self.top_label = QtWidgets.QLabel()
         ends.addWidget(self.top_label)
-        layout.addLayout(ends)
+        layout.addWidget(self.scale_ends)
         classes = QtWidgets.QHBoxLayout()
         self.class_buttons = {}
         for key in "AB":
@@ -179,6 +182,7 @@ class SimilarityControls(QtWidgets.QWidget):
         for button in self.rating_buttons:
             button.setVisible(kind != "class")
             button.setEnabled(ready and kind != "class")
+        self.scale_ends.setVisible(kind != "class")
         for button in self.class_buttons.values():
             button.setVisible(kind == "class")
             button.setEnabled(ready and kind == "class")

@@ -227,7 +227,8 @@ class FeelTaskPanel:
     def session_notes(self):
         """As notes: what the servo rate keeps a vibration from being felt as set, and
         tagged parts hidden behind what is shown (a fillet made after tagging)."""
-        hidden = [n for s in surfaces_of(self.doc) for n in hidden_part_notes(s)]
+        # one part under two surfaces is said once
+        hidden = list(dict.fromkeys(n for s in surfaces_of(self.doc) for n in hidden_part_notes(s)))
         return "".join(_note(n) for n in vibration_object.rate_notes(self.doc, self.session.rate_hz) + hidden)
 
     def edited(self, geometry):

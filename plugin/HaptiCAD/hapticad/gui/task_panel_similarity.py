@@ -260,7 +260,13 @@ class SimilarityTaskPanel(CloseOnlyPanel):
         if surface is None:
             self.stimuli_message.setText("<span style='color:#b00000'>No textured haptic surface to add.</span>")
             return False
-        return self._edit("Add a stimulus", lambda: ss.add_stimulus_from(self.obj, surface))
+        notes = []
+        if not self._edit("Add a stimulus", lambda: notes.extend(ss.add_stimulus_from(self.obj, surface))):
+            return False
+        if notes:
+            self.stimuli_message.setText("".join(
+                f"<span style='color:#a06000'>Note: {html.escape(n, quote=False)}.</span>" for n in notes))
+        return True
 
     def remove_stimuli(self):
         rows = {i.row() for i in self.stimuli_table.selectedIndexes()}

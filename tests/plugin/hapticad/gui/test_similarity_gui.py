@@ -98,6 +98,9 @@ class SimilarityGuiTest(unittest.TestCase):
         h.widget(QtWidgets.QPushButton, "addStimulus").click()
         self.assertEqual(table.rowCount(), 10)
         self.assertEqual(ss.stimuli(study)[-1]["name"], "Soft grating")
+        # only eq. 2's values come along: felt at the plate's level 1, which the panel says
+        self.assertIn(f"a stimulus is felt with {self.plate.Label}'s full range 1.5 N, not Soft grating's the "
+                      "device's full range", h.widget(QtWidgets.QLabel, "stimuliMessage").text())
         # adding it again is refused, said, and changes nothing
         h.widget(QtWidgets.QPushButton, "addStimulus").click()
         self.assertIn("same texture as", h.widget(QtWidgets.QLabel, "stimuliMessage").text())
@@ -262,8 +265,11 @@ class SimilarityGuiTest(unittest.TestCase):
                 for slot in (1, "A", "B"):
                     h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
                 self.assertFalse(h.widget(QtWidgets.QPushButton, "similarityFeel2").isVisible())
+                # no rating scale, so no legend of its ends
+                self.assertFalse(h.widget(QtWidgets.QWidget, "similarityScaleEnds").isVisible())
                 h.widget(QtWidgets.QPushButton, "similarityClassA").click()
             else:
+                self.assertTrue(h.widget(QtWidgets.QWidget, "similarityScaleEnds").isVisible())
                 for slot in (1, 2):
                     h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
                 h.widget(QtWidgets.QPushButton, "similarityRate5").click()
