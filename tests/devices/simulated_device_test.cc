@@ -1,23 +1,17 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hapticad/devices/simulated_device.h"
 
-#include <limits>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
 
+#include "scripted_paths.h"
+
 namespace hapticad {
 namespace {
 
-ScriptedPath Path() {
-  ScriptedPath p;
-  p.times_s = {0.0, 1.0, 3.0};
-  p.positions = {Vec3(0, 0, 0), Vec3(0.1, 0, 0), Vec3(0.1, 0.2, 0)};
-  return p;
-}
-
 TEST(SimulatedDevice, InterpolatesPositionWithExactSegmentVelocity) {
-  SimulatedDevice d(Path(), DeviceLimits{});
+  SimulatedDevice d(testing::ThreeWaypointPath(), DeviceLimits{});
   DeviceState s;
   ASSERT_EQ(d.ReadState(0.25, &s), ReadStatus::kOk);
   EXPECT_NEAR((s.position_d - Vec3(0.025, 0, 0)).norm(), 0, 1e-15);
@@ -29,7 +23,7 @@ TEST(SimulatedDevice, InterpolatesPositionWithExactSegmentVelocity) {
 }
 
 TEST(SimulatedDevice, RestsBeforeTheStartAndAfterTheEnd) {
-  SimulatedDevice d(Path(), DeviceLimits{});
+  SimulatedDevice d(testing::ThreeWaypointPath(), DeviceLimits{});
   DeviceState s;
   d.ReadState(5.0, &s);
   EXPECT_EQ(s.position_d, Vec3(0.1, 0.2, 0));
@@ -41,32 +35,25 @@ TEST(SimulatedDevice, RestsBeforeTheStartAndAfterTheEnd) {
 }
 
 TEST(SimulatedDevice, RecordsTheLastForce) {
-  SimulatedDevice d(Path(), DeviceLimits{});
+  SimulatedDevice d(testing::ThreeWaypointPath(), DeviceLimits{});
   d.WriteForce(Vec3(1, 2, 3));
   EXPECT_EQ(d.last_force_d(), Vec3(1, 2, 3));
   EXPECT_EQ(d.info().kind, "sim");
 }
 
 TEST(SimulatedDevice, ItsWorkspaceHoldsTheWholePath) {
-  ScriptedPath p = Path();
+  ScriptedPath p = testing::ThreeWaypointPath();
   p.positions[2] = Vec3(0.3, -0.2, 0);  // beyond the default +-0.08 m box
   SimulatedDevice d(p, DeviceLimits{});
   EXPECT_EQ(d.info().limits.workspace_max_d, Vec3(0.3, 0.08, 0.08));
   EXPECT_EQ(d.info().limits.workspace_min_d, Vec3(-0.08, -0.2, -0.08));
 }
 
-TEST(ScriptedPath, RejectsBadPaths) {
-  ScriptedPath empty;
-  EXPECT_THROW(SimulatedDevice(empty, DeviceLimits{}), std::invalid_argument);
-  ScriptedPath back = Path();
+TEST(SimulatedDevice, RefusesAnInvalidPath) {  // what is invalid: scripted_path_test.cc
+  EXPECT_THROW(SimulatedDevice(ScriptedPath{}, DeviceLimits{}), std::invalid_argument);
+  ScriptedPath back = testing::ThreeWaypointPath();
   back.times_s[2] = 0.5;
   EXPECT_THROW(SimulatedDevice(back, DeviceLimits{}), std::invalid_argument);
-  ScriptedPath nan = Path();
-  nan.positions[1].y() = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_THROW(SimulatedDevice(nan, DeviceLimits{}), std::invalid_argument);
-  ScriptedPath uneven = Path();
-  uneven.times_s.pop_back();
-  EXPECT_THROW(SimulatedDevice(uneven, DeviceLimits{}), std::invalid_argument);
 }
 
 }  // namespace

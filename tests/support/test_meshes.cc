@@ -1,6 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "test_meshes.h"
 
+#include <algorithm>
+#include <array>
+#include <cstdint>
+
 namespace hapticad::testing {
 
 TriangleSoup MakeBoxSoup(const Vec3& lo, const Vec3& hi) {
@@ -29,6 +33,23 @@ TriangleSoup MakeSheetSoup(double half, double height) {
   soup.triangles = {{0, 1, 2}, {0, 2, 3}};
   soup.cad_faces = {0, 0};
   return soup;
+}
+
+void AppendBoxSoup(TriangleSoup* soup, const Vec3& lo, const Vec3& hi, bool inward) {
+  const TriangleSoup box = MakeBoxSoup(lo, hi);
+  const auto base = static_cast<std::int32_t>(soup->vertices.size());
+  const std::int32_t faces =
+      soup->cad_faces.empty()
+          ? 0
+          : *std::max_element(soup->cad_faces.begin(), soup->cad_faces.end()) + 1;
+  soup->vertices.insert(soup->vertices.end(), box.vertices.begin(), box.vertices.end());
+  for (std::size_t t = 0; t < box.triangles.size(); ++t) {
+    const auto& c = box.triangles[t];
+    soup->triangles.push_back(
+        inward ? std::array<std::int32_t, 3>{base + c[0], base + c[2], base + c[1]}
+               : std::array<std::int32_t, 3>{base + c[0], base + c[1], base + c[2]});
+    soup->cad_faces.push_back(faces + box.cad_faces[t]);
+  }
 }
 
 }  // namespace hapticad::testing

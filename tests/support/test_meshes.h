@@ -12,4 +12,8 @@ TriangleSoup MakeBoxSoup(const Vec3& lo, const Vec3& hi);
 // A single square sheet z = height spanning [-half, half]^2, one CAD face, two triangles.
 TriangleSoup MakeSheetSoup(double half, double height);
 
+// Appends box [lo, hi] to `soup` as another piece, its CAD faces numbered after the
+// soup's (0..5 in an empty soup), wound outward or (`inward`) inward.
+void AppendBoxSoup(TriangleSoup* soup, const Vec3& lo, const Vec3& hi, bool inward = false);
+
 }  // namespace hapticad::testing

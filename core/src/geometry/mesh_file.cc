@@ -2,12 +2,16 @@
 // CGAL translation unit (walled off in hapticad_cgal).
 #include "hapticad/core/geometry/mesh_file.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
@@ -49,6 +53,421 @@ std::size_t FindNonFiniteLine(const std::string& path, std::string* token) {
   return 0;
 }
 
+// Truncated files. CGAL answers a file that ends early with a bare `false` (or, for a short STL or
+// an OBJ cut inside a line, quietly with fewer faces). Where a format says how much it holds (OFF's
+// and PLY's counts, binary STL's triangle count) or how a record ends (ASCII STL's keywords, OBJ's
+// lines), the file is read again to name what is missing.
+
+constexpr const char* kTruncated = "; the file is truncated";
+
+// The extension CGAL picks the reader by: after the last '.', lowercased.
+std::string Extension(const std::string& path) {
+  const std::size_t dot = path.rfind('.');
+  if (dot == std::string::npos) return {};
+  std::string ext = path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+// The file's first `limit` bytes (all of it by default).
+std::string ReadBytes(const std::string& path, std::size_t limit = std::string::npos) {
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes;
+  std::istreambuf_iterator<char> it(in), end;
+  for (; it != end && bytes.size() < limit; ++it) bytes.push_back(*it);
+  return bytes;
+}
+
+std::vector<std::string> Words(const std::string& text) {
+  std::istringstream in(text);
+  return std::vector<std::string>(std::istream_iterator<std::string>(in),
+                                  std::istream_iterator<std::string>());
+}
+
+bool IsNumber(const std::string& word) {
+  char* end = nullptr;
+  std::strtod(word.c_str(), &end);
+  return !word.empty() && end != word.c_str() && *end == '\0';
+}
+
+// "1st", "2nd", "3rd", "4th", ... "11th", "12th", "13th", "21st"
+std::string Ordinal(std::uint64_t n) {
+  const char* suffix = "th";
+  if (n % 100 < 11 || n % 100 > 13) {
+    if (n % 10 == 1) suffix = "st";
+    if (n % 10 == 2) suffix = "nd";
+    if (n % 10 == 3) suffix = "rd";
+  }
+  return std::to_string(n) + suffix;
+}
+
+// "8 vertices", "1 face", "3 'edge' elements"
+std::string Counted(std::uint64_t n, const std::string& element) {
+  std::string noun;
+  if (element == "vertex") {
+    noun = n == 1 ? "vertex" : "vertices";
+  } else if (element == "face") {
+    noun = n == 1 ? "face" : "faces";
+  } else {
+    noun = "'" + element + (n == 1 ? "' element" : "' elements");
+  }
+  return std::to_string(n) + " " + noun;
+}
+
+// How many of each element a file declares and how many it holds: "declares 8 vertices
+// and 12 faces but holds 8 vertices and 5 faces (and part of the 6th face)". `partial`:
+// the element after the last complete one was begun.
+std::string DeclaresButHolds(const std::string& format, const std::vector<std::string>& names,
+                             const std::vector<std::uint64_t>& declared,
+                             const std::vector<std::uint64_t>& held, bool partial) {
+  std::string said = format + " declares ";
+  std::string has = " but holds ";
+  std::string part;
+  for (std::size_t e = 0; e < names.size(); ++e) {
+    const std::string sep = e == 0 ? "" : e + 1 == names.size() ? " and " : ", ";
+    said += sep + Counted(declared[e], names[e]);
+    has += sep + Counted(held[e], names[e]);
+    if (partial && part.empty() && held[e] < declared[e]) {
+      part =
+          " (and part of the " + Ordinal(held[e] + 1) + " " + Counted(1, names[e]).substr(2) + ")";
+    }
+  }
+  return said + has + part + kTruncated;
+}
+
+// Binary STL: an 80-byte title, a 32-bit little-endian triangle count, 50 bytes a triangle.
+// `head`: at least the file's first 84 bytes, when it has them.
+std::string DescribeCutBinaryStl(const std::string& head, std::uint64_t size) {
+  constexpr std::uint64_t kHeader = 84;
+  constexpr std::uint64_t kTriangle = 50;
+  if (size < kHeader) {
+    return "binary STL ends inside its 84-byte header (an 80-byte title and the triangle "
+           "count): the file has " +
+           std::to_string(size) + " bytes" + kTruncated;
+  }
+  std::uint64_t claimed = 0;
+  for (int k = 3; k >= 0; --k) claimed = claimed << 8 | static_cast<unsigned char>(head[80 + k]);
+  const std::uint64_t needed = kHeader + kTriangle * claimed;
+  if (size >= needed) return {};
+  const std::uint64_t held = (size - kHeader) / kTriangle;
+  const std::uint64_t rest = (size - kHeader) % kTriangle;
+  std::string out = "binary STL claims " + std::to_string(claimed) + " triangles but holds " +
+                    std::to_string(held);
+  if (rest != 0) {
+    out += " and " + std::to_string(rest) + " bytes of the " + Ordinal(held + 1);
+  }
+  return out + " (" + std::to_string(size) + " bytes, where " + std::to_string(claimed) +
+         " triangles take " + std::to_string(needed) + ")" + kTruncated;
+}
+
+// ASCII STL: "solid name", then per facet "facet normal x y z outer loop", three "vertex
+// x y z", "endloop endfacet", and "endsolid". Empty when it is not cut off.
+std::string DescribeCutAsciiStl(const std::string& bytes) {
+  const std::vector<std::string> words = Words(bytes);
+  std::uint64_t facets = 0;
+  int vertices = 0;  // complete in the facet begun
+  bool in_facet = false;
+  for (std::size_t i = 0; i < words.size(); ++i) {
+    if (words[i] == "endsolid") return {};
+    if (words[i] == "facet") {
+      in_facet = true;
+      vertices = 0;
+    } else if (words[i] == "endfacet") {
+      in_facet = false;
+      ++facets;
+    } else if (words[i] == "vertex" && i + 3 < words.size() && IsNumber(words[i + 1]) &&
+               IsNumber(words[i + 2]) && IsNumber(words[i + 3])) {
+      ++vertices;
+      i += 3;
+    }
+  }
+  if (in_facet) {
+    return "ASCII STL ends inside its " + Ordinal(facets + 1) + " facet (after " +
+           std::to_string(vertices) + " of its 3 vertices), with no 'endsolid'" + kTruncated;
+  }
+  return "ASCII STL ends after " + std::to_string(facets) + " facet" + (facets == 1 ? "" : "s") +
+         " with no 'endsolid'" + kTruncated;
+}
+
+std::string DescribeCutStl(const std::string& path) {
+  // as CGAL reads it: ASCII when the first word is "solid"; but a binary file's title may
+  // start with "solid" too, and its data has NULs where ASCII STL has none
+  const std::string head = ReadBytes(path, 4096);
+  const std::vector<std::string> first = Words(head.substr(0, 64));
+  if (!first.empty() && first[0] == "solid" && head.find('\0') == std::string::npos) {
+    return DescribeCutAsciiStl(ReadBytes(path));
+  }
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(path, error);
+  return error ? std::string() : DescribeCutBinaryStl(head, size);
+}
+
+// OFF: "OFF", the vertex, face and edge counts, then a vertex a line (3 coordinates, or
+// more in the COFF/NOFF variants) and a face a line (its vertex count, the indices, maybe
+// a colour). Empty when the file is not cut off, or is not plain ASCII OFF.
+std::string DescribeCutOff(const std::string& bytes) {
+  std::vector<std::vector<std::string>> lines;  // words of each line with any, no comments
+  std::istringstream in(bytes);
+  std::string line;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> words = Words(line.substr(0, line.find('#')));
+    if (!words.empty()) lines.push_back(words);
+  }
+  if (lines.empty()) return {};
+  const std::string& keyword = lines[0][0];
+  if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0 ||
+      keyword.find_first_of("n4") != std::string::npos) {
+    return {};  // not OFF, or the n-dimensional variants
+  }
+  // the three counts follow the keyword, on its line or the next ones
+  std::vector<std::uint64_t> counts;
+  std::size_t record = 0;  // the first line after the counts
+  std::size_t word = 1;
+  for (; record < lines.size() && counts.size() < 3; ++record, word = 0) {
+    for (; word < lines[record].size() && counts.size() < 3; ++word) {
+      if (lines[record][word] == "BINARY") return {};
+      char* end = nullptr;
+      const unsigned long long n = std::strtoull(lines[record][word].c_str(), &end, 10);
+      if (*end != '\0') return {};
+      counts.push_back(n);
+    }
+  }
+  if (counts.size() < 3) {
+    return "OFF ends inside its header (the vertex, face and edge counts)" +
+           std::string(kTruncated);
+  }
+  const std::uint64_t num_vertices = counts[0], num_faces = counts[1];
+  std::uint64_t complete = 0;
+  bool partial = false;
+  for (; record < lines.size(); ++record) {
+    const auto& words = lines[record];
+    bool whole = false;
+    if (complete < num_vertices) {
+      whole = words.size() >= 3;
+    } else {
+      char* end = nullptr;
+      const unsigned long long corners = std::strtoull(words[0].c_str(), &end, 10);
+      whole = *end == '\0' && words.size() >= 1 + corners;
+    }
+    if (!whole) {
+      if (record + 1 != lines.size()) return {};  // malformed inside: not a cut
+      partial = true;
+      break;
+    }
+    ++complete;
+  }
+  if (complete >= num_vertices + num_faces) return {};
+  const std::uint64_t vertices = std::min(complete, num_vertices);
+  return DeclaresButHolds("OFF", {"vertex", "face"}, {num_vertices, num_faces},
+                          {vertices, complete - vertices}, partial);
+}
+
+// PLY: a header ("ply", "format ...", "element NAME COUNT" each followed by its
+// "property TYPE NAME" or "property list COUNT_TYPE ITEM_TYPE NAME" lines, "end_header"),
+// then the elements in order, ASCII or binary.
+struct PlyProperty {
+  int count_bytes = 0;  // a list's count type; 0 for a scalar
+  int bytes = 0;        // the scalar's (or each list item's) size
+};
+struct PlyElement {
+  std::string name;
+  std::uint64_t count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+int PlyTypeBytes(const std::string& type) {
+  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+  if (type == "int" || type == "uint" || type == "int32" || type == "uint32" || type == "float" ||
+      type == "float32")
+    return 4;
+  if (type == "double" || type == "float64") return 8;
+  return 0;
+}
+
+std::string DescribeCutPly(const std::string& bytes) {
+  std::size_t at = 0;
+  std::string format;
+  std::vector<PlyElement> elements;
+  bool header_ended = false;
+  bool first = true;
+  while (at < bytes.size()) {
+    std::size_t end = bytes.find('\n', at);
+    if (end == std::string::npos) end = bytes.size();
+    const std::vector<std::string> words = Words(bytes.substr(at, end - at));
+    // a header line that makes no sense is a malformed file, unless the file ends in it
+    const bool last = end == bytes.size();
+    at = std::min(end + 1, bytes.size());
+    if (first) {
+      if (words.empty() || words[0] != "ply") return {};
+      first = false;
+      continue;
+    }
+    if (words.empty()) continue;
+    if (words[0] == "end_header") {
+      header_ended = true;
+      break;
+    }
+    bool understood = true;
+    if (words[0] == "format" && words.size() >= 2) {
+      format = words[1];
+    } else if (words[0] == "element") {
+      char* stop = nullptr;
+      PlyElement e;
+      if (words.size() >= 3) {
+        e.name = words[1];
+        e.count = std::strtoull(words[2].c_str(), &stop, 10);
+      }
+      understood = stop != nullptr && *stop == '\0';
+      elements.push_back(e);
+    } else if (words[0] == "property" && !elements.empty()) {
+      PlyProperty p;
+      if (words.size() >= 5 && words[1] == "list") {
+        p.count_bytes = PlyTypeBytes(words[2]);
+        p.bytes = PlyTypeBytes(words[3]);
+      } else if (words.size() >= 3 && words[1] != "list") {
+        p.bytes = PlyTypeBytes(words[1]);
+      }
+      understood = p.bytes != 0 && (words[1] != "list" || p.count_bytes != 0);
+      elements.back().properties.push_back(p);
+    }
+    if (!understood && !last) return {};
+  }
+  if (first) return {};
+  if (!header_ended)
+    return "PLY ends inside its header (no 'end_header' line)" + std::string(kTruncated);
+  const bool ascii = format == "ascii";
+  const bool big_endian = format == "binary_big_endian";
+  if (!ascii && !big_endian && format != "binary_little_endian") return {};
+  std::vector<std::string> words;  // ASCII: the data's words
+  std::size_t next = 0;
+  if (ascii) {
+    words = Words(bytes.substr(at));
+    // a word that is not a number is a malformed file, not a cut one
+    if (!std::all_of(words.begin(), words.end(), IsNumber)) return {};
+  }
+  // reads one count (an ASCII word or a binary integer); false at the end of the data
+  const auto read_count = [&](int count_bytes, std::uint64_t* n) {
+    if (ascii) {
+      if (next >= words.size()) return false;
+      char* stop = nullptr;
+      *n = std::strtoull(words[next++].c_str(), &stop, 10);
+      return *stop == '\0';
+    }
+    if (bytes.size() - at < static_cast<std::size_t>(count_bytes)) return false;
+    *n = 0;
+    for (int k = 0; k < count_bytes; ++k) {
+      const int byte = big_endian ? k : count_bytes - 1 - k;
+      *n = *n << 8 | static_cast<unsigned char>(bytes[at + static_cast<std::size_t>(byte)]);
+    }
+    at += static_cast<std::size_t>(count_bytes);
+    return true;
+  };
+  const auto skip = [&](std::uint64_t items, int item_bytes) {
+    if (ascii) {
+      if (words.size() - next < items) return false;
+      next += static_cast<std::size_t>(items);
+      return true;
+    }
+    if ((bytes.size() - at) / static_cast<std::size_t>(item_bytes) < items) return false;
+    at += static_cast<std::size_t>(items) * static_cast<std::size_t>(item_bytes);
+    return true;
+  };
+  std::vector<std::string> names;
+  std::vector<std::uint64_t> declared, held;
+  bool cut = false, partial = false;
+  for (const PlyElement& e : elements) {
+    names.push_back(e.name);
+    declared.push_back(e.count);
+    held.push_back(0);
+    for (std::uint64_t i = 0; !cut && i < e.count; ++i) {
+      const std::size_t at_start = at, next_start = next;
+      for (const PlyProperty& p : e.properties) {
+        std::uint64_t items = 1;
+        if (p.count_bytes != 0 && !read_count(p.count_bytes, &items)) {
+          cut = true;
+          break;
+        }
+        if (!skip(items, p.bytes)) {
+          cut = true;
+          break;
+        }
+      }
+      if (cut) {
+        partial = ascii ? next_start < words.size() : at_start < bytes.size();
+        break;
+      }
+      ++held.back();
+    }
+  }
+  if (!cut) return {};
+  return DeclaresButHolds("PLY", names, declared, held, partial);
+}
+
+// OBJ says nothing of how much it holds: a file cut between lines cannot be told from
+// a whole one. A cut inside its last line leaves a vertex with fewer than 3 coordinates
+// or a face with fewer than 3 corners (which CGAL takes, and which become no triangle).
+std::string DescribeCutObjLine(const std::string& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const std::streamoff size = in.tellg();
+  if (size <= 0) return {};
+  const std::streamoff tail = std::min<std::streamoff>(size, 4096);
+  in.seekg(size - tail);
+  std::string text(static_cast<std::size_t>(tail), '\0');
+  in.read(text.data(), tail);
+  if (text.back() == '\n' || text.back() == '\r') return {};  // ends with a whole line
+  const std::size_t start = text.find_last_of("\r\n");
+  const std::string last = text.substr(start == std::string::npos ? 0 : start + 1);
+  const std::vector<std::string> words = Words(last);
+  if (words.empty()) return {};
+  std::size_t numbers = 0;
+  while (numbers + 1 < words.size() &&
+         IsNumber(words[numbers + 1].substr(0, words[numbers + 1].find('/')))) {
+    ++numbers;
+  }
+  if (words[0] == "v" && numbers < 3) {
+    return "OBJ ends inside a vertex: its last line '" + last + "' has " + std::to_string(numbers) +
+           " of the 3 coordinates" + kTruncated;
+  }
+  if (words[0] == "f" && numbers < 3) {
+    return "OBJ ends inside a face: its last line '" + last + "' names " + std::to_string(numbers) +
+           " corner" + (numbers == 1 ? "" : "s") + " (a face has at least 3)" + kTruncated;
+  }
+  return {};
+}
+
+// An OBJ CGAL refused: cut before its faces (vertices and no 'f' line)?
+std::string DescribeObjWithoutFaces(const std::string& bytes) {
+  std::istringstream in(bytes);
+  std::string line;
+  std::uint64_t vertices = 0;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> words = Words(line);
+    if (words.empty()) continue;
+    if (words[0] == "f") return {};
+    if (words[0] == "v") ++vertices;
+  }
+  if (vertices == 0) return {};
+  return "OBJ has " + Counted(vertices, "vertex") +
+         " ('v' lines) but no face ('f' line): a point cloud, or a file cut off before "
+         "its faces";
+}
+
+// What a file of a format that says how much it holds is missing; empty when nothing is
+// or the format cannot tell.
+std::string DescribeTruncation(const std::string& path) {
+  const std::string ext = Extension(path);
+  if (ext == "obj") {
+    const std::string line = DescribeCutObjLine(path);
+    return line.empty() ? DescribeObjWithoutFaces(ReadBytes(path)) : line;
+  }
+  if (ext == "stl") return DescribeCutStl(path);
+  if (ext == "off") return DescribeCutOff(ReadBytes(path));
+  if (ext == "ply") return DescribeCutPly(ReadBytes(path));
+  return {};
+}
+
 }  // namespace
 
 TriangleSoup ReadMeshFile(const std::string& path) {
@@ -62,6 +481,9 @@ TriangleSoup ReadMeshFile(const std::string& path) {
   if (!std::ifstream(path, std::ios::binary)) {
     throw std::runtime_error(path + ": cannot be opened (" + std::strerror(errno) + ")");
   }
+  if (std::filesystem::file_size(path, error) == 0 && !error) {
+    throw std::runtime_error(path + ": the file is empty");
+  }
   using Point = CGAL::Simple_cartesian<double>::Point_3;
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> polygons;
@@ -71,7 +493,14 @@ TriangleSoup ReadMeshFile(const std::string& path) {
       throw std::runtime_error(path + ": line " + std::to_string(line) + ": '" + token +
                                "' is not a finite number; " + kFiniteVertices);
     }
+    const std::string cut = DescribeTruncation(path);
+    if (!cut.empty()) throw std::runtime_error(path + ": " + cut);
     throw std::runtime_error(path + ": cannot read a mesh (OFF, OBJ, STL or PLY expected)");
+  }
+  // CGAL takes an OBJ cut inside its last line, dropping what was cut
+  if (Extension(path) == "obj") {
+    const std::string cut = DescribeCutObjLine(path);
+    if (!cut.empty()) throw std::runtime_error(path + ": " + cut);
   }
   TriangleSoup soup;
   soup.vertices.reserve(points.size());
@@ -94,7 +523,11 @@ TriangleSoup ReadMeshFile(const std::string& path) {
                                 static_cast<std::int32_t>(polygon[k + 1])});
     }
   }
-  if (soup.triangles.empty()) throw std::runtime_error(path + ": the mesh has no faces");
+  if (soup.triangles.empty()) {
+    // CGAL reads an STL shorter than a binary header as an empty one
+    const std::string cut = DescribeTruncation(path);
+    throw std::runtime_error(path + ": " + (cut.empty() ? "the mesh has no faces" : cut));
+  }
   soup.cad_faces.assign(soup.triangles.size(), 0);
   return soup;
 }

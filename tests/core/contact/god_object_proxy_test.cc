@@ -275,27 +275,11 @@ TEST_P(ProxyOnBox, APointLeftOnAFaceByAGoalOnItsPlaneIsNotTakenIn) {
   EXPECT_GT(proxy_->position().x(), 0.025);
 }
 
-// Appends box [lo, hi] to a soup as another piece, its CAD faces after the soup's
-// (`inward`: wound inward).
-void AppendBox(TriangleSoup* soup, const Vec3& lo, const Vec3& hi, bool inward = false) {
-  const TriangleSoup box = testing::MakeBoxSoup(lo, hi);
-  const auto base = static_cast<std::int32_t>(soup->vertices.size());
-  const std::int32_t faces = *std::max_element(soup->cad_faces.begin(), soup->cad_faces.end()) + 1;
-  soup->vertices.insert(soup->vertices.end(), box.vertices.begin(), box.vertices.end());
-  for (std::size_t t = 0; t < box.triangles.size(); ++t) {
-    const auto& c = box.triangles[t];
-    soup->triangles.push_back(
-        inward ? std::array<std::int32_t, 3>{base + c[0], base + c[2], base + c[1]}
-               : std::array<std::int32_t, 3>{base + c[0], base + c[1], base + c[2]});
-    soup->cad_faces.push_back(faces + box.cad_faces[t]);
-  }
-}
-
 // Two boxes in one soup (the second one's CAD faces 6-11; `inward`: wound inward).
 TriangleSoup MakeTwoBoxesSoup(const Vec3& lo0, const Vec3& hi0, const Vec3& lo1, const Vec3& hi1,
                               bool inward = false) {
   TriangleSoup soup = testing::MakeBoxSoup(lo0, hi0);
-  AppendBox(&soup, lo1, hi1, inward);
+  testing::AppendBoxSoup(&soup, lo1, hi1, inward);
   return soup;
 }
 
@@ -439,7 +423,7 @@ TEST_P(ProxyOnBox, PartsThatTouchOrOverlapMoveAPointInEitherOutOfBoth) {
 TEST_P(ProxyOnBox, ACavityOfAPartThatTouchesAnotherIsOutside) {
   // the hollow part (its inner shell wound inward) with a box against its +x face
   TriangleSoup soup = MakeHollowBoxSoup();
-  AppendBox(&soup, Vec3(0.05, -0.02, -0.02), Vec3(0.09, 0.02, 0.02));
+  testing::AppendBoxSoup(&soup, Vec3(0.05, -0.02, -0.02), Vec3(0.09, 0.02, 0.02));
   Make(soup);
   ASSERT_FALSE(solids_.bounds_solids);
   ASSERT_TRUE(solids_.pieces_bound_solids);

@@ -11,9 +11,14 @@
 
 namespace hapticad {
 
-// Throws std::runtime_error naming the file when it is missing, a folder, cannot be read,
-// holds no faces, or a face has a vertex that is not finite (naming the line in a text
-// file, the face in a binary one).
+// Throws std::runtime_error naming the file when it is missing, a folder, empty, cannot be
+// read, holds no faces, or a face has a vertex that is not finite (naming the line in a
+// text file, the face in a binary one). A file that ends early says what its format
+// declared and what it holds ("binary STL claims 1200 triangles but holds 37 ...", "OFF
+// declares 8 vertices and 12 faces but holds 8 vertices and 5 faces ...", "PLY ends inside
+// its header ...", "ASCII STL ends inside its 6th facet ..."). OBJ declares no counts: an
+// OBJ cut between two lines reads as a smaller mesh; one cut inside its last line (a
+// vertex or face left short) is refused, and one cut before its faces is named as such.
 TriangleSoup ReadMeshFile(const std::string& path);
 
 }  // namespace hapticad

@@ -1,0 +1,131 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// ListDevices and OpenDevice against the hidapi emulator (hid_emulator.h), on its
+// manual clock: the simulated hand is always there, and HID devices are what the test
+// plugs in (none, on a host without HaptiCAD hardware, is a case of its own).
+#include "hapticad/devices/device_catalog.h"
+
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "hid_emulator.h"
+
+namespace hapticad {
+namespace {
+
+using hidemu::FirmwareConfig;
+
+bool Contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+class Catalog : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    hidemu::Reset();
+    hidemu::UseManualClock(100.0);
+  }
+  void TearDown() override { hidemu::Reset(); }
+};
+
+TEST_F(Catalog, ListsTheSimulatedHandThenEachDeviceWithItsLimitsOrWhyNot) {
+  const int good = hidemu::AddDevice(FirmwareConfig{});
+  FirmwareConfig newer;
+  newer.path = "emu:1";
+  newer.version_min = 0x0200;
+  newer.version_max = 0x0201;
+  hidemu::AddDevice(newer);
+  const auto list = ListDevices();
+  ASSERT_EQ(list.size(), 3u);
+  EXPECT_EQ(list[0].info.kind, "sim");
+  EXPECT_EQ(list[0].info.path, "sim:hand");
+  EXPECT_TRUE(list[0].has_limits);
+  EXPECT_EQ(list[1].info.kind, "hid");
+  EXPECT_EQ(list[1].info.path, "emu:0");
+  EXPECT_TRUE(list[1].has_limits);
+  EXPECT_DOUBLE_EQ(list[1].info.limits.max_force_n, 8.0);
+  EXPECT_DOUBLE_EQ(list[1].info.limits.workspace_max_d.z(), 0.08);
+  EXPECT_EQ(list[1].protocol, "1.0-1.0");
+  EXPECT_EQ(list[1].error, "");
+  EXPECT_FALSE(list[2].has_limits);
+  EXPECT_TRUE(Contains(list[2].error, "speaks HaptiCAD HID protocol 2.0-2.1")) << list[2].error;
+  // listing changes nothing on a device (another program may be using it)
+  EXPECT_FALSE(hidemu::GetSnapshot(good).session_open);
+  EXPECT_EQ(hidemu::GetSnapshot(good).version, 0);
+}
+
+TEST_F(Catalog, WithoutHidDevicesOnlyTheSimulatedHandIsListed) {
+  for (const bool keyboard : {false, true}) {  // nothing plugged in; only a keyboard
+    if (keyboard) hidemu::AddOtherDevice("emu:kbd", 0x046d, 0xc31c, 0x0001, 0x0006, "Keyboard");
+    const auto list = ListDevices();
+    ASSERT_EQ(list.size(), 1u) << keyboard;
+    EXPECT_EQ(list[0].info.kind, "sim");
+    EXPECT_EQ(list[0].info.path, "sim:hand");
+    EXPECT_TRUE(list[0].has_limits);
+    EXPECT_GT(list[0].info.limits.max_force_n, 0.0);
+    EXPECT_EQ(list[0].protocol, "");
+    EXPECT_EQ(list[0].error, "");
+  }
+}
+
+TEST_F(Catalog, ADeviceThatCannotBeReadIsListedByItsProductOrAPlainName) {
+  // HID interfaces of the known VID:PID that do not answer the information request
+  hidemu::AddOtherDevice("emu:mute", 0x1209, 0x0001, 0x0001, 0x0006, "Prototype arm");
+  hidemu::AddOtherDevice("emu:nameless", 0x1209, 0x0001, 0x0001, 0x0006, "");
+  const auto list = ListDevices();
+  ASSERT_EQ(list.size(), 3u);
+  for (std::size_t i = 1; i < 3; ++i) {
+    EXPECT_EQ(list[i].info.kind, "hid") << i;
+    EXPECT_FALSE(list[i].has_limits) << i;
+    EXPECT_EQ(list[i].protocol, "") << i;
+    EXPECT_TRUE(Contains(list[i].error, "did not answer the HaptiCAD device information request"))
+        << list[i].error;
+    EXPECT_TRUE(Contains(list[i].error, list[i].info.path)) << list[i].error;
+  }
+  EXPECT_EQ(list[1].info.path, "emu:mute");
+  EXPECT_EQ(list[1].info.name, "Prototype arm");
+  EXPECT_EQ(list[2].info.path, "emu:nameless");
+  EXPECT_EQ(list[2].info.name, "HaptiCAD protocol device");
+}
+
+TEST_F(Catalog, SaysTheProtocolVersionsADeviceSpeaks) {
+  FirmwareConfig c;
+  c.product = "Arm";
+  c.version_min = 0x0100;
+  c.version_max = 0x0102;
+  hidemu::AddDevice(c);
+  const auto list = ListDevices();
+  ASSERT_EQ(list.size(), 2u);
+  EXPECT_EQ(list[1].protocol, "1.0-1.2");
+  EXPECT_EQ(list[1].info.name, "Arm");  // the name the device gives
+}
+
+TEST_F(Catalog, OpensWhatAListingNames) {
+  hidemu::AddDevice(FirmwareConfig{});
+  const auto list = ListDevices();
+  ASSERT_EQ(list.size(), 2u);
+  for (const DeviceListing& listing : list) {
+    const auto device = OpenDevice(listing.info.path);
+    EXPECT_EQ(device->info().kind, listing.info.kind);
+    EXPECT_EQ(device->info().path, listing.info.path);
+    EXPECT_EQ(device->info().name, listing.info.name);
+    EXPECT_DOUBLE_EQ(device->info().limits.max_force_n, listing.info.limits.max_force_n);
+  }
+  // an unknown simulated device names the one there is; a HID path that is not there
+  // says it cannot be opened
+  try {
+    OpenDevice("sim:nothing");
+    ADD_FAILURE() << "opened sim:nothing";
+  } catch (const DeviceError& e) {
+    EXPECT_EQ(std::string(e.what()), "unknown simulated device 'sim:nothing' (there is sim:hand)");
+  }
+  try {
+    OpenDevice("emu:gone");
+    ADD_FAILURE() << "opened emu:gone";
+  } catch (const DeviceError& e) {
+    EXPECT_TRUE(Contains(e.what(), "cannot open the HID device emu:gone")) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace hapticad
