@@ -12,6 +12,8 @@ undo step; a run stopped before is not kept (a half run would skew the cohort). 
 run holds answers its document cannot be closed (``holds_answers``; the Feel panel sets
 it), so no way of closing it loses them unasked.
 """
+import html
+
 import FreeCAD as App
 from PySide2 import QtCore, QtWidgets
 
@@ -223,7 +225,11 @@ class SimilarityControls(QtWidgets.QWidget):
             self.show_message(f"Not started: {exc}", error=True)
             return False
         self.slot = None
-        self.show_message("")
+        name = self.run.participant
+        before = sum(1 for record in ss.runs(self.study) if record.get("name") == name)
+        # a second sitting, or two people under one name: kept either way, but said
+        self.show_message(f"{html.escape(name)} already has {before} kept run{'s' if before != 1 else ''}: this one is "
+                          "kept beside it, under the same name" if before else "")
         self.load()
         return True
 

@@ -284,9 +284,16 @@ class SimilarityGuiTest(unittest.TestCase):
         # keeping the run is bookkeeping: the session is not told the surfaces changed
         self.assertNotIn("Surface edited", h.widget(QtWidgets.QLabel, "feelMessage").text())
 
+        # a name already kept: the run starts (a second sitting), and that is said
+        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Ada")
+        h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        self.assertIn("Ada already has 1 kept run: this one is kept beside it",
+                      h.widget(QtWidgets.QLabel, "similarityMessage").text())
+        h.widget(QtWidgets.QPushButton, "similarityStop").click()
         # a run stopped half way keeps nothing
         h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Bea")
         h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        self.assertEqual(h.widget(QtWidgets.QLabel, "similarityMessage").text(), "")
         h.widget(QtWidgets.QPushButton, "similarityFeel1").click()
         self.assertIsNotNone(ss.presented_texture(self.plate))
         h.widget(QtWidgets.QPushButton, "similarityStop").click()
