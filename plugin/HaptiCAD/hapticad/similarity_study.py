@@ -54,7 +54,10 @@ SYMBOLS = dict(zip(TEXTURE_VALUES, ("f_DC", "f_vis", "beta_h", "alpha_h", "beta_
 # what a reference brings along with those: it is presented as it is on its own surface
 REFERENCE_VALUES = (*TEXTURE_VALUES, "TexturePeriod", "TextureScale", "TextureFullRange")
 # what the stimuli take from the study's surface: runs felt with other values are not pooled
-CONTEXT_VALUES = ("TexturePeriod", "TextureScale", "TextureFullRange", "StaticFriction")
+# (property: its words and unit, to say so)
+CONTEXT_WORDS = {"TexturePeriod": ("period", " mm"), "TextureScale": ("texture scale", ""),
+                 "TextureFullRange": ("full range", " N"), "StaticFriction": ("static friction", "")}
+CONTEXT_VALUES = tuple(CONTEXT_WORDS)
 LIKENESS = "closer to A"
 EXACT_STRESS = 1e-5  # the core's OrdinalScalingOptions.exact_stress: below it the order fits exactly
 PROPERTIES = [
@@ -598,13 +601,8 @@ def same_stimuli(a, b):
 
 def comparable(record, study):
     """True when a kept run was made on the stimuli, surface and references the study
-    holds now, and is whole (runs on others are kept but not pooled)."""
-    return (not record_problems(record) and same_stimuli(record["stimuli"], stimuli(study))
-            and record.get("context") == felt_context(study))
-
-
-_CONTEXT_WORDS = {"TexturePeriod": ("period", " mm"), "TextureScale": ("texture scale", ""),
-                  "TextureFullRange": ("full range", " N"), "StaticFriction": ("static friction", "")}
+    holds now, and is whole (runs on others are kept but not pooled: why_not_pooled)."""
+    return not why_not_pooled(record, study)
 
 
 def why_not_pooled(record, study):
@@ -614,17 +612,20 @@ def why_not_pooled(record, study):
         return "incomplete or damaged"
     if not same_stimuli(record["stimuli"], stimuli(study)):
         return "on other stimuli"
-    then, now = record.get("context") or {}, felt_context(study)
+    then, now = record.get("context"), felt_context(study)
+    if then == now:
+        return ""
     if not now:
         return "on a surface the study no longer has"
+    then = then or {}
     said = []
-    for key, (word, unit) in _CONTEXT_WORDS.items():
+    for key, (word, unit) in CONTEXT_WORDS.items():
         if then.get(key) != now.get(key):
             def text(v, unit=unit):
                 return "none" if v is None else f"{v:g}{unit}" if isinstance(v, float) else f"{v}{unit}"
             said.append(f"the surface's {word} {text(then.get(key))} (now {text(now.get(key))})")
     said += [f"another reference {key}" for key in "AB" if then.get(f"Reference{key}") != now.get(f"Reference{key}")]
-    return "felt with " + ", ".join(said) if said else ""
+    return "felt with " + ", ".join(said) if said else "felt otherwise"
 
 
 def held_note(study, kept):
@@ -633,7 +634,7 @@ def held_note(study, kept):
     reasons = {}
     for record in runs(study):
         if record not in kept:
-            reason = why_not_pooled(record, study) or "of another kind"
+            reason = why_not_pooled(record, study)
             reasons[reason] = reasons.get(reason, 0) + 1
     return "; ".join(f"{n} run{'s' if n != 1 else ''} {reason}" for reason, n in reasons.items())
 

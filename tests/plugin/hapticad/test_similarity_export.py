@@ -80,7 +80,8 @@ class ExportTest(unittest.TestCase):
         ss.set_stimuli(self.study, items)
         similarity_export.write_csv(self.path, self.study)
         rows = self.read()
-        first, bob = [r for r in rows if r["participant"] == "'=HYPERLINK()"], [r for r in rows if r["participant"] == "Bob"]
+        first = [r for r in rows if r["participant"] == "'=HYPERLINK()"]
+        bob = [r for r in rows if r["participant"] == "Bob"]
         self.assertEqual((len(first), len(bob)), (8, 6))  # Bob's warm-ups were never kept
         self.assertEqual({r["position"] for r in bob}, {""})
         self.assertEqual([r["kind"] for r in bob], ["pair"] * 3 + ["class"] * 3)

@@ -199,7 +199,8 @@ class SimilarityControls(QtWidgets.QWidget):
             title, number, count = self.run.progress()
             self.trial_label.setText(
                 f"<b>{KIND_TITLES[title]} {number} of {count}</b>" + (
-                    " (feel the texture, and references A and B as often as you need, then class it)" if title == "class" else
+                    " (feel the texture, and references A and B as often as you need, then class it)"
+                    if title == "class" else
                     " (feel both textures, then rate how alike they are)") + (
                     "<br><small>The document stays open until this run ends: finish it, or Stop run "
                     "(its answers are not kept).</small>" if self.holds_answers else ""))

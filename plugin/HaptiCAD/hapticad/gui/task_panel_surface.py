@@ -543,7 +543,8 @@ class SurfaceTaskPanel:
         try:
             speeds = texture_fit.parse_speeds(self.fit_speeds.text())
         except ValueError as exc:
-            self.fit_info.setText(f"<span style='color:#b00000'>Recorded speeds: {html.escape(str(exc), quote=False)}</span>")
+            said = html.escape(str(exc), quote=False)
+            self.fit_info.setText(f"<span style='color:#b00000'>Recorded speeds: {said}</span>")
             return False
         try:
             with busy_cursor():  # reading long recordings takes seconds
