@@ -19,7 +19,9 @@ A participant's run (:class:`Run`) follows the paper's protocol:
    classed as closer to A or to B.
 
 A trial takes its answer only once its textures were felt (both of a pair, a class
-trial's own), whoever asks: the Feel panel or a script.
+trial's own), whoever asks: the Feel panel or a script. Felt means stroked: the finger
+slid over the study's faces, one period of the grating at least, while the texture was
+held out on them.
 
 While a run holds a stimulus out to feel, :func:`presented_texture` gives it and
 surface_compile renders it on the surface in place of the surface's own texture, so the
@@ -59,6 +61,12 @@ CONTEXT_WORDS = {"TexturePeriod": ("period", " mm"), "TextureScale": ("texture s
                  "TextureFullRange": ("full range", " N"), "StaticFriction": ("static friction", "")}
 CONTEXT_VALUES = tuple(CONTEXT_WORDS)
 LIKENESS = "closer to A"
+# a texture held out counts as felt once the finger slid this many of its grating's periods
+# over the face: a grating is felt by the force changing along the stroke, so one full
+# cycle of it (the paper's participants stroked freely; it gives no minimum); a grating
+# coarser than FELT_STROKE_MM once stroked that far (a stroke a fingertip makes at once)
+FELT_PERIODS = 1.0
+FELT_STROKE_MM = 10.0
 EXACT_STRESS = 1e-5  # the core's OrdinalScalingOptions.exact_stress: below it the order fits exactly
 PROPERTIES = [
     ("Surface", "App::PropertyLink", "Study", "The haptic surface whose faces the participants stroke", None, None),
@@ -383,11 +391,13 @@ class Trial:
 
 class Run:
     """One participant's run through the protocol, in the order a seeded shuffle gives.
-    ``present`` holds a texture of the current trial out on the face, and a texture held
-    out counts as felt (present only while a Feel session renders the face; when it
-    stops, ``forget_felt``). ``answer`` takes a rating (1..steps) for a pair or warm-up,
-    "A" or "B" for a class trial, once the trial's textures were felt (both of a pair,
-    the texture of a class trial: ``unfelt``); ``back`` takes the last answer back.
+    ``present`` holds a texture of the current trial out on the face (present only while
+    a Feel session renders the face; when it stops, ``forget_felt``), and ``stroked``
+    counts how far the finger slid over the face since: a texture held out is felt once
+    it was stroked over one period of its grating (``felt_after_mm``), not merely held
+    out while the hand was elsewhere. ``answer`` takes a rating (1..steps) for a pair or
+    warm-up, "A" or "B" for a class trial, once the trial's textures were felt (both of a
+    pair, the texture of a class trial: ``unfelt``); ``back`` takes the last answer back.
     Nothing is kept in the document until record_run."""
 
     def __init__(self, study, participant, seed=None):
@@ -417,6 +427,9 @@ class Run:
             self.trials += [Trial("class", i) for i in classed]
         self.answers = []
         self.felt = set()  # the slots of the current trial felt so far (1, 2, "A", "B")
+        self.held = None  # the slot held out on the face now
+        self.slid_mm = 0.0  # how far the finger slid over the face since it was held out
+        self.period_mm = 0.0  # the held texture's grating period
 
     @property
     def done(self):
@@ -460,14 +473,31 @@ class Run:
         if found:
             raise ValueError("; ".join(found))
         values = present(self.study, self.values(slot))
-        self.felt.add(slot)
+        self.held, self.slid_mm = slot, 0.0
+        self.period_mm = float(values.get("TexturePeriod", self.study.Surface.TexturePeriod))
         return values
 
+    def stroked(self, slid_mm):
+        """The finger slid ``slid_mm`` (mm) over the study's faces while the held texture
+        was on them (trace_path.slid_mm of the loop's trace); the texture counts as felt
+        once it was stroked ``felt_after_mm``."""
+        if self.held is None or self.current is None:
+            return
+        self.slid_mm += max(0.0, float(slid_mm))
+        if self.slid_mm >= self.felt_after_mm:
+            self.felt.add(self.held)
+
+    @property
+    def felt_after_mm(self):
+        """How far the held texture is stroked before it counts as felt (mm)."""
+        return min(FELT_PERIODS * self.period_mm, FELT_STROKE_MM)
+
     def present_each(self):
-        """Presents in turn every texture the current trial needs felt (a scripted
-        participant's strokes); the last stays held out."""
+        """Presents in turn every texture the current trial needs felt, each stroked over
+        what makes it felt (a scripted participant); the last stays held out."""
         for slot in self.needed():
             self.present(slot)
+            self.stroked(self.felt_after_mm)
 
     def needed(self):
         """The slots the current trial must have felt before an answer, in order: a
@@ -490,6 +520,7 @@ class Run:
         """Nothing of the current trial counts as felt any more (the Feel session
         stopped: nothing was felt since, so the trial starts over)."""
         self.felt = set()
+        self.held = None
 
     def answer(self, value):
         """Takes the current trial's answer. Raises ValueError, changing nothing, when
@@ -508,13 +539,13 @@ class Run:
         elif not (type(value) is int and 1 <= value <= self.steps):
             raise ValueError(f"rate the pair 1..{self.steps}, not {value!r}")
         self.answers.append(value)
-        self.felt = set()  # the next trial's textures are felt anew
+        self.felt, self.held = set(), None  # the next trial's textures are felt anew
         stop_presenting(self.study)  # the next trial starts with nothing held out
 
     def back(self):
         if self.answers:
             self.answers.pop()
-        self.felt = set()  # the trial taken back is felt again before it is answered
+        self.felt, self.held = set(), None  # the trial taken back is felt again before it is answered
         stop_presenting(self.study)
 
     def as_record(self):

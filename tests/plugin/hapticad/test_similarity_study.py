@@ -20,6 +20,7 @@ from hapticad import _core, similarity_study as ss
 from hapticad.document_scene import build_document_scene, recompile_surfaces
 from hapticad.feel import Stroke, run_stroke_in_servo_loop, sliding_mask
 from hapticad.surface_compile import compile_surface
+from hapticad.trace_path import slid_mm
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from host_stalls import run_without_host_stall  # noqa: E402
@@ -167,9 +168,11 @@ class StudyTest(unittest.TestCase):
         self.assertEqual((texture["TextureDC"], texture["TexturePeriod"]), (0.8, 3.0))  # B's own period
         run.present(1)
         self.assertEqual(ss.rendered_texture(self.plate)["TexturePeriod"], self.plate.TexturePeriod)
+        run.stroked(run.felt_after_mm)
         run.answer("A")
         self.assertIsNone(ss.presented_texture(self.plate))
         run.present(1)
+        run.stroked(run.felt_after_mm)
         with self.assertRaisesRegex(ValueError, "class the texture as A or B, not 4"):
             run.answer(4)  # a class trial takes A or B
         # the study's own deletion leaves nothing held out
@@ -426,8 +429,18 @@ class StudyTest(unittest.TestCase):
             run.answer(4)
         self.assertEqual(state(), before)
         self.assertEqual(before[:2], ([], set()))
-        # one of the pair felt: still refused; what is felt and held out stays
+        # held out is not felt: the finger must stroke it over one period of its grating
+        run.stroked(5.0)  # nothing held out: a stroke feels nothing
+        self.assertEqual(run.felt, set())
         run.present(2)
+        self.assertEqual((run.held, run.felt_after_mm), (2, 2.5))  # the plate's period
+        with self.assertRaisesRegex(ValueError, "feel texture 1 and texture 2 before answering"):
+            run.answer(4)
+        run.stroked(1.5)
+        run.stroked(-3.0)  # nothing is taken back by a negative length
+        self.assertEqual(run.unfelt(), [1, 2])
+        run.stroked(1.0)
+        # one of the pair felt: still refused; what is felt and held out stays
         self.assertEqual(run.unfelt(), [1])
         before = state()
         self.assertEqual(before[1], {2})
@@ -435,12 +448,15 @@ class StudyTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "feel texture 1 before answering"):
             run.answer(4)
         self.assertEqual(state(), before)
-        # both felt: taken; the next trial starts with nothing felt
+        # both felt: taken; the next trial starts with nothing felt or held
         run.present(1)
+        self.assertFalse(run.ready)
+        run.stroked(2.5)
         self.assertTrue(run.ready)
         run.answer(4)
         self.assertEqual(run.answers, [4])
-        self.assertEqual(run.felt, set())
+        self.assertEqual((run.felt, run.held), (set(), None))
+        run.stroked(10.0)  # the last trial's texture is no longer held out
         with self.assertRaisesRegex(ValueError, "feel texture 1 and texture 2"):
             run.answer(4)
         # a trial taken back is felt again before it is answered again
@@ -461,14 +477,48 @@ class StudyTest(unittest.TestCase):
             run.answer(4)
         self.assertEqual(run.needed(), [1])
         run.present("A")
+        self.assertEqual(run.felt_after_mm, 2.0)  # reference A's own period
+        run.stroked(2.0)
         run.present("B")
+        run.stroked(2.5)
+        self.assertEqual(run.felt, {"A"})  # B's grating is 3 mm
+        run.stroked(0.5)
         answered = len(run.answers)
         with self.assertRaisesRegex(ValueError, "feel the texture before answering"):
             run.answer("A")
         self.assertEqual((len(run.answers), run.felt), (answered, {"A", "B"}))
         run.present(1)
+        run.stroked(2.5)
         run.answer("A")
         self.assertEqual(run.answers[-1], "A")
+
+    def test_a_texture_is_felt_by_stroking_the_studys_face_through_the_servo_loop(self):
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=0)
+        scene = build_document_scene(self.doc)
+        plate_faces = [i for i, name in enumerate(scene.face_names) if scene.face_surface.get(name) == self.plate.Name]
+        self.assertEqual(plate_faces, [scene.face_id("Plate.Face6")])
+
+        def stroke_over(p0, p1):
+            stroke = Stroke(p0, p1, speed_mm_s=80.0, depth_mm=1.0, rate_hz=1000)
+            result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
+            anywhere = slid_mm(result.trace, range(len(scene.face_names)))
+            return slid_mm(result.trace, plate_faces), anywhere
+
+        run = ss.Run(study, "P1", seed=4)
+        run.present(1)
+        # the hand on the part's side (x = 0, not the study's face) while texture 1 is held
+        # out on the plate: it slid, but not over the study's face, so nothing is felt
+        slid, anywhere = stroke_over((0, 30, 2), (0, 38, 8))
+        self.assertEqual(slid, 0.0)
+        self.assertGreater(anywhere, 8.0)
+        self.assertEqual(run.unfelt(), [1, 2])
+        # 12 mm along the plate: slid (the approach and the retreat less), and felt
+        slid, anywhere = stroke_over((20, 10, 10), (20, 22, 10))
+        self.assertEqual(slid, anywhere)
+        self.assertGreater(slid, 10.0)
+        self.assertLess(slid, 12.5)
+        run.stroked(slid)
+        self.assertEqual(run.unfelt(), [2])
 
     def test_a_stimulus_can_come_from_a_surfaces_texture(self):
         a, _ = self.references()

@@ -4,8 +4,9 @@ the Feel panel beside the session: who they are, which texture is on the face no
 their answer.
 
 The participant presses *Texture 1* or *Texture 2* (as often as they like) to have that
-texture on the study's face at the next servo tick, strokes it, and rates how alike the
-two feel; in the classing part, *Texture*, *Reference A* and *Reference B*, then *Closer
+texture on the study's face at the next servo tick, strokes it (a texture counts as felt
+once stroked over one period of its grating: Run.stroked, fed from the loop's trace by
+``stroked``), and rates how alike the two feel; in the classing part, *Texture*, *Reference A* and *Reference B*, then *Closer
 to A* or *Closer to B*. They never see which stimulus is which. *Back* takes the last
 answer back. When the last trial is answered the run is kept in the document as one
 undo step; a run stopped before is not kept (a half run would skew the cohort). While a
@@ -18,6 +19,7 @@ import FreeCAD as App
 from PySide2 import QtCore, QtWidgets
 
 from .. import similarity_study as ss
+from .. import trace_path
 from ..proxy_state import is_alive
 from .study_observer import StudyObserver
 
@@ -28,7 +30,7 @@ class SimilarityControls(QtWidgets.QWidget):
     """One study's run controls. ``presented`` is emitted when the texture on the face
     changes (the Feel panel hands the surfaces to the running loop again).
     ``session_running``: a callable, True while a Feel session renders the face (a
-    texture is only felt then, so only then does a press count as felt)."""
+    texture is only felt then, so only then can a press be felt)."""
 
     presented = QtCore.Signal()
     changed = QtCore.Signal()
@@ -130,6 +132,20 @@ class SimilarityControls(QtWidgets.QWidget):
             self.run.forget_felt()
         self.load()
 
+    def stroked(self, trace, doc_scene):
+        """The loop's trace since the last display frame: how far the finger slid over
+        the study's faces counts toward feeling the texture held out on them."""
+        run = self.run
+        if run is None or run.held is None or not len(trace) or not is_alive(self.study):
+            return
+        surface = self.study.Surface
+        faces = [i for i, name in enumerate(doc_scene.face_names)
+                 if surface is not None and doc_scene.face_surface.get(name) == surface.Name]
+        felt = set(run.felt)
+        run.stroked(trace_path.slid_mm(trace, faces))
+        if run.felt != felt:
+            self.load()  # the answer may be given now
+
     # --- state ---------------------------------------------------------------------------
 
     @property
@@ -201,10 +217,19 @@ class SimilarityControls(QtWidgets.QWidget):
                 f"<b>{KIND_TITLES[title]} {number} of {count}</b>" + (
                     " (feel the texture, and references A and B as often as you need, then class it)"
                     if title == "class" else
-                    " (feel both textures, then rate how alike they are)") + (
+                    " (feel both textures, then rate how alike they are)") + self._stroke_hint() + (
                     "<br><small>The document stays open until this run ends: finish it, or Stop run "
                     "(its answers are not kept).</small>" if self.holds_answers else ""))
         self.shown.emit()
+
+    def _stroke_hint(self):
+        """Says to stroke the texture on the face while it does not count as felt yet."""
+        held = self.run.held
+        if held is None or held in self.run.felt:
+            return ""
+        name = {1: "texture" if self.run.current.kind == "class" else "texture 1", 2: "texture 2",
+                "A": "reference A", "B": "reference B"}[held]
+        return f"<br><small>Stroke the face to feel {name}.</small>"
 
     def _protocol(self):
         n = len(ss.stimuli(self.study))
@@ -255,7 +280,7 @@ class SimilarityControls(QtWidgets.QWidget):
         except ValueError as exc:
             self.show_message(str(exc), error=True)
             return
-        self.slot = slot  # the run counts it felt
+        self.slot = slot  # felt once stroked (stroked, from the loop's trace)
         self.show_message("")
         self.presented.emit()
         self.load()

@@ -311,6 +311,8 @@ class FeelTaskPanel:
         # a similarity run is blind: the texture on the face must not be read off the chart
         self.chart.set_hidden(BLIND_SERIES if any(c.run is not None for c in self.similarity_controls) else ())
         trace = self.session.drain()
+        for controls in self.similarity_controls:  # a texture held out is felt by stroking it
+            controls.stroked(trace, self.doc_scene)
         if len(trace):
             self.frames += 1
             self.chart.append(trace)

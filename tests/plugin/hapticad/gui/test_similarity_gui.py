@@ -131,8 +131,8 @@ class SimilarityGuiTest(unittest.TestCase):
         h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Eve")
         h.widget(QtWidgets.QPushButton, "similarityStart").click()
         controls = panel.similarity_controls[0]
-        for slot in (1, 2):
-            h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
+        self.hand_on_plate()
+        self.feel_both(controls)
         h.widget(QtWidgets.QPushButton, "similarityRate4").click()
         self.assertEqual(len(controls.run.answers), 1)
         asked = []
@@ -163,8 +163,8 @@ class SimilarityGuiTest(unittest.TestCase):
         h.widget(QtWidgets.QPushButton, "similarityStart").click()
         self.assertEqual(controls.run.seed, 20261124)  # the same trials every time
         self.assertTrue(self.doc.isClosable())  # nothing answered yet: nothing to lose
-        for slot in (1, 2):
-            h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
+        self.hand_on_plate()
+        self.feel_both(controls)
         h.widget(QtWidgets.QPushButton, "similarityRate4").click()
         self.assertIn("The document stays open until this run ends",
                       h.widget(QtWidgets.QLabel, "similarityTrial").text())
@@ -183,15 +183,13 @@ class SimilarityGuiTest(unittest.TestCase):
         self.assertEqual(len(controls.run.answers), 1)  # the run and its answer are still there
         h.widget(QtWidgets.QPushButton, "similarityBack").click()  # nothing answered again
         self.assertTrue(self.doc.isClosable())
-        h.widget(QtWidgets.QPushButton, "similarityFeel1").click()
-        h.widget(QtWidgets.QPushButton, "similarityFeel2").click()
+        self.feel_both(controls)
         h.widget(QtWidgets.QPushButton, "similarityRate3").click()
         self.assertFalse(self.doc.isClosable())
         h.widget(QtWidgets.QPushButton, "similarityStop").click()  # ended on purpose: closable
         self.assertTrue(self.doc.isClosable())
         h.widget(QtWidgets.QPushButton, "similarityStart").click()
-        h.widget(QtWidgets.QPushButton, "similarityFeel1").click()
-        h.widget(QtWidgets.QPushButton, "similarityFeel2").click()
+        self.feel_both(controls)
         h.widget(QtWidgets.QPushButton, "similarityRate5").click()
         self.assertFalse(self.doc.isClosable())
         with mock.patch.object(QtWidgets.QMessageBox, "question", return_value=QtWidgets.QMessageBox.Close):
@@ -199,6 +197,34 @@ class SimilarityGuiTest(unittest.TestCase):
         self.assertFalse(Gui.Control.activeDialog())
         self.assertTrue(self.doc.isClosable())
         self.assertEqual(study.Participants, 0)
+
+    def hand_on_plate(self):
+        """The simulated probe's hand rests on the plate, pressed in by two wheel steps."""
+        h.mouse("move", h.screen_pos(np.array([20.0, 20.0, 10.0])))
+        h.wait(0.3)
+        h.wheel(h.screen_pos(np.array([20.0, 20.0, 10.0])), 2)
+
+    def feel_both(self, controls):
+        """Texture 1, stroked until felt, then texture 2."""
+        for slot in (1, 2):
+            h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
+            self.stroke_until_felt(controls, slot)
+
+    def stroke_until_felt(self, controls, slot):
+        """The hand strokes the plate back and forth, 1.5 mm a display frame or two,
+        until the run counts the texture held out as felt (a loaded host may need more
+        than one stroke)."""
+        strokes = []
+
+        def felt():
+            k = len(strokes)
+            strokes.append(k)
+            step = k % 12 if k // 12 % 2 == 0 else 11 - k % 12
+            h.mouse("move", h.screen_pos(np.array([20.0 + 1.5 * step, 20.0, 10.0])))
+            h.wait(0.04)
+            return slot in controls.run.felt
+
+        h.wait_for(felt, f"{slot} felt by stroking the plate")
 
     def test_a_participants_run_in_the_feel_panel(self):
         study = HaptiCAD.make_similarity_study(self.doc, self.plate, ReferenceA=self.ref_a, ReferenceB=self.ref_b,
@@ -221,32 +247,25 @@ class SimilarityGuiTest(unittest.TestCase):
 
         # the hand strokes the plate while the participant switches textures: each is felt at once
         controls = panel.similarity_controls[0]
-        h.mouse("move", h.screen_pos(np.array([20.0, 20.0, 10.0])))
-        h.wait(0.3)
-        h.wheel(h.screen_pos(np.array([20.0, 20.0, 10.0])), 2)
+        self.hand_on_plate()
         for slot in (1, 2):
             h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
             trial = controls.run.current
             expected = controls.run.stimuli[trial.first if slot == 1 else trial.second]["values"]["TextureDC"]
             texture = panel.session.doc_scene.surface_properties(face).texture
             self.assertAlmostEqual(texture.params.f_dc, expected)
+            if slot == 1:  # held out under the resting hand is not felt: a grating is felt by stroking it
+                h.wait(0.3)
+                self.assertNotIn(slot, controls.run.felt)
+                self.assertFalse(rate4.isEnabled())
+            self.assertIn(f"Stroke the face to feel texture {slot}.", trial_label.text())
             chart = panel.chart
             since = chart.times[-1] if len(chart.times) else -np.inf
-            strokes = []
-
-            def felt(since=since, chart=chart, strokes=strokes):
-                # moves across the grating, back and forth, until the chart holds its force
-                # (from this texture on): a loaded host may need more than one stroke
-                k = len(strokes)
-                strokes.append(k)
-                step = k % 12 if k // 12 % 2 == 0 else 11 - k % 12
-                h.mouse("move", h.screen_pos(np.array([20.0 + 1.5 * step, 20.0, 10.0])))
-                h.wait(0.04)
-                force = chart.values["texture_force_n"][chart.times > since]
-                return len(force) > 0 and float(np.abs(force).max()) > 0.1
-
+            self.stroke_until_felt(controls, slot)
             # felt, and kept in the trace (but not drawn: below)
-            h.wait_for(felt, f"texture {slot} felt in the chart's trace")
+            force = chart.values["texture_force_n"][chart.times > since]
+            self.assertGreater(float(np.abs(force).max()), 0.1)
+            self.assertNotIn("Stroke the face", trial_label.text())
         # not drawn: the participant cannot read the texture off the chart
         self.assertEqual(panel.chart.hidden, {"texture_force_n", "friction_force_n"})
         self.assertTrue(rate4.isEnabled())
@@ -264,14 +283,14 @@ class SimilarityGuiTest(unittest.TestCase):
             if kind == "class":
                 for slot in (1, "A", "B"):
                     h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
+                    self.stroke_until_felt(controls, slot)
                 self.assertFalse(h.widget(QtWidgets.QPushButton, "similarityFeel2").isVisible())
                 # no rating scale, so no legend of its ends
                 self.assertFalse(h.widget(QtWidgets.QWidget, "similarityScaleEnds").isVisible())
                 h.widget(QtWidgets.QPushButton, "similarityClassA").click()
             else:
                 self.assertTrue(h.widget(QtWidgets.QWidget, "similarityScaleEnds").isVisible())
-                for slot in (1, 2):
-                    h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
+                self.feel_both(controls)
                 h.widget(QtWidgets.QPushButton, "similarityRate5").click()
         self.assertEqual(study.Participants, 6)
         h.wait(0.1)
@@ -318,8 +337,7 @@ class SimilarityGuiTest(unittest.TestCase):
         # run itself refuses an answer (not only the disabled buttons)
         h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Di")
         h.widget(QtWidgets.QPushButton, "similarityStart").click()
-        for slot in (1, 2):
-            h.widget(QtWidgets.QPushButton, f"similarityFeel{slot}").click()
+        self.feel_both(controls)
         self.assertTrue(h.widget(QtWidgets.QPushButton, "similarityRate4").isEnabled())
         h.widget(QtWidgets.QPushButton, "feelStop").click()
         self.assertFalse(h.widget(QtWidgets.QPushButton, "similarityRate4").isEnabled())
