@@ -15,11 +15,13 @@ import zipfile
 
 CLI = os.environ["HAPTICAD_CLI"]
 sys.path.insert(0, os.environ["HAPTICAD_MOD"])
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 
 from hapticad.freecad_env import ensure_freecad  # noqa: E402
 
 App = ensure_freecad()
 import HaptiCAD  # noqa: E402
+from partdesign_parts import make_padded_body  # noqa: E402
 
 # the module under test is the build's, not an installed copy
 assert HaptiCAD.__file__.startswith(os.environ["HAPTICAD_MOD"]), HaptiCAD.__file__
@@ -50,6 +52,19 @@ class FeelCommandTest(unittest.TestCase):
     @classmethod
     def tearDownClass(cls):
         cls.tmp.cleanup()
+
+    def test_a_partdesign_bodys_face_is_felt(self):
+        # read outside FreeCAD, PartDesign's objects used to be left out without a word:
+        # the stroke then said its start was "75 mm from the nearest surface"
+        path = os.path.join(self.tmp.name, "body.FCStd")
+        doc = App.newDocument("CliBody")
+        _, surface = make_padded_body(App, HaptiCAD, doc)
+        top = f"Body.{surface.References[0][1][0]}"
+        doc.saveAs(path)
+        App.closeDocument(doc.Name)
+        proc = run_cli("feel", path, "--stroke", "5,10,10:25,10,10", "--out", os.path.join(self.tmp.name, "body"))
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertGreater(json.loads(proc.stdout)["faces"][top]["contact_ticks"], 100)
 
     def test_stroke_across_a_tagged_face_feels_k_depth_and_mu_d(self):
         out = os.path.join(self.tmp.name, "stroke")

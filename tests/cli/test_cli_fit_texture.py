@@ -21,6 +21,7 @@ from hapticad.freecad_env import ensure_freecad  # noqa: E402
 App = ensure_freecad()
 import HaptiCAD  # noqa: E402
 from hapticad import _core  # noqa: E402
+from partdesign_parts import make_padded_body  # noqa: E402
 from texture_recordings import write_rig_csv  # noqa: E402
 
 assert HaptiCAD.__file__.startswith(os.environ["HAPTICAD_MOD"]), HaptiCAD.__file__
@@ -52,6 +53,39 @@ class FitTextureCommandTest(unittest.TestCase):
         doc.saveAs(path)
         App.closeDocument(doc.Name)
         return path
+
+    def test_a_partdesign_body_comes_through_the_apply_whole(self):
+        path = os.path.join(self.tmp.name, "body.FCStd")
+        doc = App.newDocument("CliFitBody")
+        _, surface = make_padded_body(App, HaptiCAD, doc)
+        surface.Label = "Top"
+        doc.saveAs(path)
+        App.closeDocument(doc.Name)
+        with open(path, "rb") as f:
+            saved = f.read()
+        # a FreeCAD without the PartDesign workbench leaves the Body out: refused, the file as it was
+        proc = subprocess.run([CLI, "fit-texture", self.rig, "--period", "2.5", "--speeds", "50,120",
+                               "--apply", path, "--surface", "Top"], capture_output=True, text=True, timeout=120,
+                              env={**os.environ, "HAPTICAD_FREECAD_MOD": os.path.join(self.tmp.name, "no-mods")})
+        self.assertEqual(proc.returncode, 2, proc.stdout)
+        self.assertIn("this FreeCAD could not load 2 of its objects: Body (PartDesign::Body), BodyPad (PartDesign::Pad)",
+                      proc.stderr)
+        self.assertIn("nothing was read or changed", proc.stderr)
+        with open(path, "rb") as f:
+            self.assertEqual(f.read(), saved)
+        # with it (as installed): the fit is set, and the Body and its tag are still there
+        proc = run_cli("fit-texture", self.rig, "--period", "2.5", "--speeds", "50,120",
+                       "--apply", path, "--surface", "Top")
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        doc = App.openDocument(path)
+        try:
+            self.assertEqual(sorted(o.TypeId for o in doc.Objects if o.TypeId.startswith("PartDesign")),
+                             ["PartDesign::Body", "PartDesign::Pad"])
+            surface = doc.getObjectsByLabel("Top")[0]
+            self.assertEqual([o.Name for o, _ in surface.References], ["Body"])
+            self.assertEqual(surface.Texture, "Custom")
+        finally:
+            App.closeDocument(doc.Name)
 
     def test_fits_a_recording_and_plots_it(self):
         plot = os.path.join(self.tmp.name, "fit.png")

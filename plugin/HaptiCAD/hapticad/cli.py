@@ -237,12 +237,22 @@ def _open_document(App, path):
     # absent and a surface without its references raised
     try:
         with zipfile.ZipFile(path) as archive:
-            ElementTree.fromstring(archive.read("Document.xml"))
+            xml = ElementTree.fromstring(archive.read("Document.xml"))
     except KeyError:
         raise ValueError(f"{path}: not a FreeCAD document: the archive holds no Document.xml") from None
     except (ElementTree.ParseError, zipfile.BadZipFile, zlib.error) as exc:
         raise ValueError(f"{path}: a damaged FreeCAD document: its Document.xml cannot be read ({exc})") from None
-    return App.openDocument(os.path.abspath(path))
+    doc = App.openDocument(os.path.abspath(path))
+    # FreeCAD leaves out, without a word, an object whose type no loaded workbench makes:
+    # read on, a part is missed; saved, it is lost
+    held = {o.Name for o in doc.Objects}
+    lost = [f"{o.get('name')} ({o.get('type')})" for o in xml.iterfind("./Objects/Object")
+            if o.get("type") and o.get("name") not in held]
+    if lost:
+        App.closeDocument(doc.Name)
+        raise ValueError(f"{path}: this FreeCAD could not load {len(lost)} of its objects: {', '.join(lost)} "
+                         "(a workbench it needs is missing); nothing was read or changed")
+    return doc
 
 
 def cmd_fit_texture(args):

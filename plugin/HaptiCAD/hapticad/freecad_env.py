@@ -2,13 +2,29 @@
 """Make FreeCAD importable from a plain ``/usr/bin/python3`` (the ``hapticad`` CLI).
 
 Inside FreeCAD this does nothing. Debian 12 puts FreeCAD's Python modules (FreeCAD,
-Part, Mesh, MeshPart) in /usr/lib/freecad-python3/lib; set HAPTICAD_FREECAD_LIB to
-point elsewhere.
+Part, Mesh, MeshPart) in /usr/lib/freecad-python3/lib and its workbenches in
+/usr/lib/freecad/Mod; set HAPTICAD_FREECAD_LIB and HAPTICAD_FREECAD_MOD to point
+elsewhere.
+
+Imported from there, FreeCAD looks for its workbenches beside that library folder
+(/usr/lib/freecad-python3/Mod, which Debian does not have): a document's PartDesign
+Body, Pad and Pocket were then left out without a word when it opened, and a document
+saved after that had lost them. So the workbenches' folders go on sys.path as FreeCAD's
+own start-up puts them (the folder and each workbench in it).
 """
 import os
 import sys
 
 FREECAD_LIB = os.environ.get("HAPTICAD_FREECAD_LIB", "/usr/lib/freecad-python3/lib")
+FREECAD_MOD = os.environ.get("HAPTICAD_FREECAD_MOD", "/usr/lib/freecad/Mod")
+
+
+def _workbench_folders(mod):
+    """``mod`` and each workbench folder in it, as FreeCAD's start-up adds them."""
+    if not os.path.isdir(mod):
+        return []
+    return [mod] + sorted(os.path.join(mod, name) for name in os.listdir(mod)
+                          if os.path.isdir(os.path.join(mod, name)))
 
 
 def ensure_freecad():
@@ -22,8 +38,9 @@ def ensure_freecad():
     try:
         import FreeCAD  # noqa: F401  (already importable: inside FreeCAD)
     except ImportError:
-        if FREECAD_LIB not in sys.path:
-            sys.path.append(FREECAD_LIB)
+        for folder in [FREECAD_LIB, *_workbench_folders(FREECAD_MOD)]:
+            if folder not in sys.path:
+                sys.path.append(folder)
         try:
             import FreeCAD  # noqa: F401
         except ImportError as exc:
