@@ -93,6 +93,10 @@ def refresh(doc, exclude=None):
     when there is nothing to explain)."""
     from pivy import coin
 
+    if doc.Restoring:
+        # a surface restored so far may lack its later properties (a part's Visibility
+        # comes back before them): each surface's overlay draws the legend once it is open
+        return []
     rows = entries(doc, exclude)
     for view in _views(doc):
         _remove_legends(view.getSceneGraph())

@@ -150,6 +150,16 @@ def save_view(name, background="White"):
     return path, QtGui.QImage(path)
 
 
+def report_text():
+    """What FreeCAD's report view holds: where it prints a traceback raised in a callback
+    it made (a view provider's onChanged, an observer), which reaches no excepthook."""
+    docks = [d for d in Gui.getMainWindow().findChildren(QtWidgets.QDockWidget) if d.objectName() == "Report view"]
+    edits = docks[0].findChildren(QtWidgets.QTextEdit) if docks else []
+    if not edits:
+        raise AssertionError("FreeCAD's report view is not there to read")
+    return edits[0].toPlainText()
+
+
 def widen_panel(width=440):
     """Gives the combo view (tree and task panels) room, as a user would drag it."""
     main = Gui.getMainWindow()
