@@ -186,6 +186,8 @@ class HapticSurface(SchemaState):
                 else:
                     obj.PatternCenter = centre
                 record_pattern_anchor(obj)
+            elif prop == "Pattern" and obj.Pattern == "Circular":
+                centre_circles_on_faces(obj)
             elif prop == "PatternCurve":
                 _write_curve_state(obj, curve_references.sign(obj.PatternCurve))
             elif prop == "Material" and obj.Material in materials.default_database():
@@ -540,6 +542,45 @@ def reanchor_copy(obj):
     follow_pattern_anchor(obj)
 
 
+def faces_centre_normal(obj):
+    """(centre mm, unit normal, bound box) of the faces ``obj`` tags, global: the centre
+    weighted by area, the normal the faces' normals at their centres so weighted (None
+    where they cancel, round a whole cylinder say); None when it tags no face."""
+    from .surface_compile import global_shape
+
+    faces = [global_shape(part).getElement(sub) for part, sub in active_reference_pairs(obj)]
+    if not faces:
+        return None
+    area = sum(f.Area for f in faces)
+    centre, normal, box = App.Vector(), App.Vector(), App.BoundBox()
+    for face in faces:
+        u0, u1, v0, v1 = face.ParameterRange
+        centre += face.CenterOfMass * (face.Area / area)
+        normal += face.normalAt(0.5 * (u0 + u1), 0.5 * (v0 + v1)) * face.Area
+        box.add(face.BoundBox)
+    return centre, (normal.normalize() if normal.Length > 1e-6 * area else None), box
+
+
+def centre_circles_on_faces(obj):
+    """A circular pattern chosen while its centre is still the default, the origin, away
+    from the tagged faces: the circles are put round the faces' centre, their axis along
+    the faces' normal. Left at the origin, circles 100 mm off read as straight stripes.
+    A centre the designer set (anything but the origin), or an origin on the faces, stays."""
+    if obj.PatternCenter.Length > 1e-9:
+        return
+    found = faces_centre_normal(obj)
+    if found is None:
+        return
+    centre, normal, box = found
+    box.enlarge(1e-6 * max(box.DiagonalLength, 1.0))
+    if box.isInside(App.Vector()):
+        return
+    obj.PatternCenter = centre
+    if normal is not None:
+        obj.PatternAxis = normal
+    record_pattern_anchor(obj)
+
+
 def follow_pattern_anchor(obj):
     """Moves PatternCenter and PatternAxis with the part they are anchored to."""
     centre, axis = circular_centre_axis(obj)
@@ -625,7 +666,7 @@ def _check_range(label, value, low, high):
 
 
 def make_surface(doc, references, material="ABS", roughness_category=3, pattern="None",
-                 pattern_angle_deg=0.0, pattern_center_mm=(0.0, 0.0, 0.0), static_friction=None,
+                 pattern_angle_deg=0.0, pattern_center_mm=None, static_friction=None,
                  dynamic_friction=None, stiffness_n_per_mm=None, name="HapticSurface", **properties):
     """Creates a HapticSurface on the given faces and returns it.
 
@@ -665,7 +706,8 @@ def make_surface(doc, references, material="ABS", roughness_category=3, pattern=
     obj.RoughnessCategory = roughness_category
     obj.Pattern = pattern
     obj.PatternAngle = pattern_angle_deg
-    obj.PatternCenter = App.Vector(*pattern_center_mm)
+    if pattern_center_mm is not None:  # else a circular pattern's centre is its faces' (centre_circles_on_faces)
+        obj.PatternCenter = App.Vector(*pattern_center_mm)
     if static_friction is not None:
         obj.StaticFriction = float(static_friction)
     if dynamic_friction is not None:

@@ -205,6 +205,41 @@ class MakeSurfaceTest(unittest.TestCase):
         self.assertEqual(tuple(copy.PatternCenter), (65, 120, 20))  # not moved by the original
         self.assertEqual(tuple(s.PatternCenter), (265, 20, 20))
 
+    def test_a_circular_pattern_chosen_is_centred_on_its_faces(self):
+        # a part away from the origin: circles round (0, 0, 0) crossed its face as stripes
+        self.box.Placement.Base = App.Vector(100, 0, 0)
+        self.box.Length, self.box.Width, self.box.Height = 40, 20, 10
+        self.doc.recompute()
+        top = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS")
+        top.Pattern = "Circular"  # as the task panel sets it
+        self.assertEqual(tuple(top.PatternCenter), (120, 10, 10))
+        self.assertEqual(tuple(top.PatternAxis), (0, 0, 1))
+        # a side face: round its centre, about its normal
+        side = HaptiCAD.make_surface(self.doc, [(self.box, "Face2")], material="ABS", pattern="Circular")
+        self.assertEqual(tuple(side.PatternCenter), (140, 10, 5))
+        self.assertEqual(tuple(side.PatternAxis), (1, 0, 0))
+        # two faces: weighted by area (the top 800 mm², the side 200 mm²)
+        both = HaptiCAD.make_surface(self.doc, [(self.box, "Face1")], material="ABS")
+        both.References = [(self.box, ("Face1", "Face5"))]
+        both.Pattern = "Circular"
+        expected = (App.Vector(100, 10, 5) * 200 + App.Vector(120, 10, 0) * 800) * (1 / 1000)
+        self.assertLess((both.PatternCenter - expected).Length, 1e-9)
+        # a centre the designer set stays, switched away and back
+        top.PatternCenter = App.Vector(130, 5, 10)
+        top.Pattern = "Linear"
+        top.Pattern = "Circular"
+        self.assertEqual(tuple(top.PatternCenter), (130, 5, 10))
+        # so does the origin where it lies on the faces
+        plate = self.doc.addObject("Part::Box", "Plate")
+        plate.Length, plate.Width = 40, 20
+        plate.Placement.Base = App.Vector(-20, -10, -10)  # its top face round the origin
+        self.doc.recompute()
+        on = HaptiCAD.make_surface(self.doc, [(plate, "Face6")], material="ABS", pattern="Circular",
+                                   pattern_center_mm=(0, 0, 0))
+        on.Pattern = "Linear"
+        on.Pattern = "Circular"
+        self.assertEqual(tuple(on.PatternCenter), (0, 0, 0))
+
     def test_a_face_from_another_document_is_refused(self):
         other = App.newDocument("Other")
         try:
