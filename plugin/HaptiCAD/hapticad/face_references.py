@@ -24,9 +24,11 @@ strict to loose and accepts only a *unique* candidate at the first level that ha
 
 At the two loose levels the tagged face's *rivals* decide too: the other faces of the
 part, at the last match, that level 3 could confuse with it (a second hole bored the
-same way, the other faces of a B-spline part). They must all still be there unchanged
-(else nothing tells the tagged face from one of them: broken), and they are no
-candidates. Without them, removing the tagged hole moved its tag onto the other hole
+same way, the other faces of a B-spline part). Those still there unchanged are no
+candidates. Rivals that changed too must have moved with the tagged face, one face
+now for each, told apart by area (a longer Pad lifts its top face and the floor of a
+Pocket sketched on it): else nothing tells the tagged face from one of them, and it
+is broken. Without them, removing the tagged hole moved its tag onto the other hole
 and called that "ok". So each surface keeps the signatures of its parts' faces at the
 last match (tables(); one list per part, not per reference). A document written
 before has them taken when it opens.
@@ -198,6 +200,28 @@ class Previous:
         """Old faces other than ``index`` that ``signature`` matches at ``level``."""
         return [j for j, o in enumerate(self.old) if j != index and level(signature, o, self.size)]
 
+    def moved_together(self, index, signature, moved, level, excluded):
+        """The face now (its index) the tagged old face ``index`` became when it moved
+        with rivals (``moved``: old faces that ``signature`` matches at ``level`` and
+        that are not there unchanged): found only when the faces now that match at
+        ``level`` (less ``excluded``, the unchanged rivals) are as many as the moved old
+        faces, and the tagged face's area is met once among them and by none of the
+        moved rivals. A Pad made longer lifts its top face and the floor of a Pocket
+        sketched on it alike; their areas tell them apart. Anything less clear (a face
+        come or gone, a rival of the same area, the area changed): None."""
+        now = [i for i, s in enumerate(self.signatures) if i not in excluded and level(signature, s, self.size)]
+        if len(now) != 1 + len(moved):
+            return None  # a face came or went: not a move
+
+        def same_area(area):
+            return lambda a: abs(a - area) <= RELATIVE_TOLERANCE * max(area, 1e-12)
+
+        tagged = same_area(signature["area"])
+        if any(tagged(self.old[j]["area"]) for j in moved):
+            return None  # a moved rival of the same area: either could be it
+        found = [i for i in now if tagged(self.signatures[i]["area"])]
+        return found[0] if len(found) == 1 else None
+
 
 def match_face(signature, name, signatures, size, previous=None, loose=True):
     """(face name or None, status) of the face of a shape that ``signature`` describes;
@@ -207,18 +231,25 @@ def match_face(signature, name, signatures, size, previous=None, loose=True):
     At each level, from strict to loose: if the stored name fits it is kept ("ok");
     otherwise exactly one fitting face is a re-match; two or more are ambiguous
     ("broken"); none passes to the next, looser, level. At a loose level the tagged
-    face's rivals at that level must all still be there unchanged (else nothing tells
-    it from one of them: broken), and they are no candidates. Without ``loose`` only the
-    first level is tried (a broken reference comes back only as the very face it was)."""
+    face's rivals at that level still there unchanged are no candidates, and rivals
+    that changed must have moved with it (Previous.moved_together), else nothing tells
+    it from one of them: broken. Without ``loose`` only the first level is tried (a
+    broken reference comes back only as the very face it was)."""
     index = _face_index(name)
     excluded = set()
     for level in LEVELS if loose else LEVELS[:1]:
         if level is not same_face and previous is not None and previous.old:
             now_of_old = previous.now_of_old()
             rivals = previous.rivals(index, signature, level)
-            if any(not now_of_old[j] for j in rivals):
-                return None, BROKEN
             excluded = {i for j in rivals for i in now_of_old[j]}
+            moved = [j for j in rivals if not now_of_old[j]]
+            if moved:
+                if not 0 <= index < len(previous.old):
+                    return None, BROKEN
+                found = previous.moved_together(index, signature, moved, level, excluded)
+                if found is None:
+                    return None, BROKEN
+                return f"Face{found + 1}", OK if found == index else REMATCHED
         fits = [i for i, s in enumerate(signatures) if i not in excluded and level(signature, s, size)]
         if not fits:
             continue

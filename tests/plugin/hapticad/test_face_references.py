@@ -426,6 +426,40 @@ class PartDesignBodyTest(unittest.TestCase):
         self.assertAlmostEqual(self.body.Shape.getElement(face).CenterOfMass.z, 35.0)
 
 
+    def test_a_longer_pad_keeps_the_tag_beside_a_pocket_sketched_on_its_top(self):
+        # the most common PartDesign edit: the Pocket's sketch sits on the Pad's top face,
+        # so the Pocket's floor (facing +z too) rises with the top; the tag broke
+        import Part as P
+        import Sketcher
+
+        sketch = self.body.newObject("Sketcher::SketchObject", "PocketSketch")
+        sketch.Support = (self.pad, [self.top(self.pad)])
+        sketch.MapMode = "FlatFace"
+        corners = [App.Vector(5, 5, 0), App.Vector(15, 5, 0), App.Vector(15, 15, 0), App.Vector(5, 15, 0)]
+        for i in range(4):
+            sketch.addGeometry(P.LineSegment(corners[i], corners[(i + 1) % 4]))
+        for i in range(4):
+            sketch.addConstraint(Sketcher.Constraint("Coincident", i, 2, (i + 1) % 4, 1))
+        pocket = self.body.newObject("PartDesign::Pocket", "Pocket")
+        pocket.Profile = sketch
+        pocket.Length = 3
+        self.doc.recompute()
+        self.assertTrue(pocket.isValid(), pocket.State)
+        surface = HaptiCAD.make_surface(self.doc, [(self.body, self.top(self.body))])
+        for length in (24, 20, 31):
+            self.pad.Length = length
+            self.doc.recompute()
+            (_, face, status), = HaptiCAD.reference_status(surface)
+            self.assertNotEqual(status, "broken", length)
+            top = self.body.Shape.getElement(face)
+            self.assertAlmostEqual(top.CenterOfMass.z, length)
+            self.assertAlmostEqual(top.Area, 40 * 30 - 10 * 10)  # the top, not the pocket's floor
+        # a deeper pocket: its floor moves, the top does not (found at the first level)
+        pocket.Length = 5
+        self.doc.recompute()
+        self.assertEqual(HaptiCAD.reference_status(surface)[0][2], "ok")
+
+
 class AppPartTest(unittest.TestCase):
     def test_a_box_in_a_moved_app_part_keeps_its_tag_and_scene_position(self):
         doc = App.newDocument("AppPart")
@@ -492,6 +526,20 @@ class MatchFaceUnitTest(unittest.TestCase):
         self.assertEqual(m(a, "Face1", now, 10, before(now)), (None, "broken"))
         now = [moved, self.sig(15, centre=(1, 1, 15)), b]
         self.assertEqual(m(a, "Face1", now, 10, before(now)), (None, "broken"))
+        # ... unless their areas tell them apart: both lifted, as a longer Pad lifts its
+        # top and the floor of a Pocket sketched on it
+        floor = self.sig(7, area=30.0, centre=(1, 1, 7))
+        lifted = [self.sig(12), b, self.sig(9, area=30.0, centre=(1, 1, 9))]
+        self.assertEqual(m(a, "Face1", lifted, 10, before(lifted, (a, b, floor))), ("Face1", "ok"))
+        lifted = [self.sig(9, area=30.0, centre=(1, 1, 9)), b, self.sig(12)]
+        self.assertEqual(m(a, "Face1", lifted, 10, before(lifted, (a, b, floor))), ("Face3", "rematched"))
+        # not when the tagged face's area changed too, nor when a face came or went
+        grown = [self.sig(12, area=120.0), b, self.sig(9, area=30.0, centre=(1, 1, 9))]
+        self.assertEqual(m(a, "Face1", grown, 10, before(grown, (a, b, floor))), (None, "broken"))
+        extra = [*lifted, self.sig(20, area=5.0, centre=(3, 3, 20))]
+        self.assertEqual(m(a, "Face1", extra, 10, before(extra, (a, b, floor))), (None, "broken"))
+        gone = [self.sig(12), b]
+        self.assertEqual(m(a, "Face1", gone, 10, before(gone, (a, b, floor))), (None, "broken"))
         # a unchanged is found at the first level, whatever its rivals did
         now = [a, b]
         self.assertEqual(m(a, "Face1", now, 10, before(now)), ("Face1", "ok"))
