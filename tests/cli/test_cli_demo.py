@@ -24,7 +24,10 @@ class DemoCommandTest(unittest.TestCase):
             proc = run_cli("demo", "--headless", "--out", os.path.join(tmp, "text"))
             self.assertEqual(proc.returncode, 0, proc.stderr)
             lines = proc.stdout.strip().splitlines()
-            self.assertIn("each tagged face of toothbrush.FCStd stroked by the simulated probe", lines[0])
+            # the example's copy in the output folder, which the GUI demo opens too
+            copy = os.path.join(tmp, "text", "toothbrush.FCStd")
+            self.assertIn(f"each tagged face of {copy} stroked by the simulated probe", lines[0])
+            self.assertTrue(os.path.isfile(copy))
             felt = [line for line in lines[1:] if "Ft/Fn" in line]
             self.assertGreaterEqual(len(felt), 4, proc.stdout)
             self.assertLess(len(lines), 12)  # a few lines, not the JSON

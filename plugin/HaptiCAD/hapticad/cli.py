@@ -110,7 +110,7 @@ def cmd_demo(args):
               f"{result['out_dir']}", file=sys.stderr)
         return result
     # what a designer reads: each face stroked, what it is and what it felt like
-    print(f"HaptiCAD demo: each tagged face of {os.path.basename(result['document'])} stroked by the simulated "
+    print(f"HaptiCAD demo: each tagged face of {result['document']} stroked by the simulated "
           f"probe; traces and plots in {result['out_dir']}")
     for stroke in result["strokes"]:
         if "skipped" in stroke:

@@ -1,9 +1,11 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """``hapticad demo``: open the example toothbrush and feel it.
 
-With a display, FreeCAD opens with the HaptiCAD workbench and the document. Headless,
-the simulated probe strokes every tagged face and the traces and plots are written to
-an output folder, whose location is printed.
+Both work on a copy of the example in the output folder (the shipped one stays as
+shipped; a copy saved there before is used again). With a display, FreeCAD opens with
+the HaptiCAD workbench and the copy. Headless, the simulated probe strokes every tagged
+face of the copy and the traces and plots are written to the output folder, whose
+location is printed.
 """
 import os
 import shutil
@@ -68,7 +70,10 @@ def off_ball_rows(surface, face, p0, p1):
 RATE_HZ = 5000.0  # the finest roughness (0.1 mm balls) at 50 mm/s is 500 Hz: 1 kHz would alias it
 
 
-def run_headless(out_dir, document=EXAMPLE, speed_mm_s=50.0, depth_mm=1.0, rate_hz=RATE_HZ):
+def run_headless(out_dir, document=None, speed_mm_s=50.0, depth_mm=1.0, rate_hz=RATE_HZ):
+    """Strokes every tagged face of ``document``: by default the example's copy in
+    ``out_dir`` (working_copy), the one the GUI demo opens, so what the designer changed
+    and saved there is what is stroked."""
     import FreeCAD as App
 
     from .document_scene import build_document_scene
@@ -76,6 +81,8 @@ def run_headless(out_dir, document=EXAMPLE, speed_mm_s=50.0, depth_mm=1.0, rate_
     from .feel import Stroke, feel_document
     from .surface_object import reference_pairs, surfaces_of
 
+    if document is None:
+        document, _ = working_copy(out_dir)
     doc = App.openDocument(document)
     try:
         doc_scene = build_document_scene(doc)
