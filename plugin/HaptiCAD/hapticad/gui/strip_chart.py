@@ -13,7 +13,10 @@ SERIES = (  # trace field, label, colour
     ("normal_force_n", "normal", QtGui.QColor(31, 119, 180)),
     ("friction_force_n", "friction", QtGui.QColor(214, 39, 40)),
     ("texture_force_n", "texture", QtGui.QColor(44, 160, 44)),
+    ("vibration_force_n", "vibration", QtGui.QColor(148, 103, 189)),
 )
+# drawn (and named in the legend) only while they hold a force: most parts never vibrate
+OPTIONAL = frozenset({"vibration_force_n"})
 
 
 class StripChart(QtWidgets.QWidget):
@@ -48,9 +51,19 @@ class StripChart(QtWidgets.QWidget):
         keep = self.times >= self.times[-1] - self.seconds
         self.times = self.times[keep]
         felt = felt_lateral_parts(trace)
+        # a vibration along any axis, as its size: the chart draws forces from 0 up
+        felt["vibration_force_n"] = (np.abs(np.asarray(trace["vibration_force_n"], float))
+                                     if "vibration_force_n" in trace.dtype.names else np.zeros(len(trace)))
         for field in self.values:
-            self.values[field] = np.concatenate([self.values[field], felt.get(field, np.asarray(trace[field], float))])[keep]
+            new = felt[field] if field in felt else np.asarray(trace[field], float)
+            self.values[field] = np.concatenate([self.values[field], new])[keep]
         self.update()
+
+    def drawn(self):
+        """The SERIES fields drawn now: not hidden, and an optional one only while it
+        holds a force in the window."""
+        return [field for field, _, _ in SERIES if field not in self.hidden
+                and (field not in OPTIONAL or (len(self.values[field]) and np.any(self.values[field] != 0)))]
 
     def clear(self):
         self.times = np.zeros(0)
@@ -65,14 +78,17 @@ class StripChart(QtWidgets.QWidget):
         painter.setPen(QtGui.QColor(200, 200, 200))
         painter.drawRect(rect)
         top = 1.0
-        for field in self.values:
-            if len(self.values[field]) and field not in self.hidden:
+        drawn = self.drawn()
+        for field in drawn:
+            if len(self.values[field]):
                 top = max(top, float(np.nanmax(np.abs(self.values[field]))) * 1.1)
         painter.setPen(QtGui.QColor(90, 90, 90))
         painter.drawText(QtCore.QRectF(0, rect.top() - 4, 34, 14), QtCore.Qt.AlignRight, f"{top:.1f}")
         painter.drawText(QtCore.QRectF(0, rect.bottom() - 10, 34, 14), QtCore.Qt.AlignRight, "0 N")
         x = rect.left() + 4
         for field, label, colour in SERIES:
+            if field in OPTIONAL and field not in drawn:
+                continue
             if field in self.hidden:
                 label, colour = f"{label}: hidden", QtGui.QColor(150, 150, 150)
             painter.setPen(colour)
@@ -90,8 +106,9 @@ class StripChart(QtWidgets.QWidget):
         # at most two points per pixel: decimate by taking the extremes of each column
         columns = max(int(rect.width()), 2)
         index = np.clip(((self.times - t0) / self.seconds * (columns - 1)).astype(int), 0, columns - 1)
-        for field, _, colour in SERIES:
-            if field in self.hidden:
+        # a vibration fills a band from 0 to its size: drawn first, the others stay seen on it
+        for field, _, colour in sorted(SERIES, key=lambda series: series[0] not in OPTIONAL):
+            if field not in drawn:
                 continue
             values = self.values[field]
             path = QtGui.QPainterPath()

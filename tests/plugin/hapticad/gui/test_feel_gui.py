@@ -12,7 +12,7 @@ import numpy as np
 
 import FreeCAD as App
 import FreeCADGui as Gui
-from PySide2 import QtWidgets
+from PySide2 import QtGui, QtWidgets
 
 import HaptiCAD
 from hapticad import preferences
@@ -155,6 +155,15 @@ class FeelGuiTest(unittest.TestCase):
         self.open_feel()  # at 1000 Hz (setUp's preference)
         self.assertIn("700 Hz is felt at 300 Hz instead", h.widget(QtWidgets.QLabel, "feelMessage").text())
 
+    def test_a_vibration_along_the_face_is_drawn_in_the_chart_while_touching(self):
+        HaptiCAD.make_vibration(self.doc, self.box, frequency_hz=150.0, amplitude_n=0.3, axis=(1.0, 0.0, 0.0))
+        _, chart = self.press_on_the_top()
+        vibration = np.asarray(chart.values["vibration_force_n"][-300:], float)
+        self.assertAlmostEqual(float(vibration.max()), 0.3, delta=0.03)
+        self.assertIn("vibration_force_n", chart.drawn())
+        h.widen_panel()
+        h.grab_screen("feel_vibration.png")
+
     def test_the_first_touch_lands_without_a_knock(self):
         # the hand comes from above the part's top and is lowered onto the face: landing
         # in one step it knocked at 1.45 N where it then pressed 0.27 N
@@ -257,6 +266,27 @@ class FeelGuiTest(unittest.TestCase):
         np.testing.assert_allclose(chart.values["friction_force_n"], [0.6, 0.0, 0.0])
         np.testing.assert_allclose(chart.values["texture_force_n"], [0.0, 0.9, 0.9])
         np.testing.assert_allclose(chart.values["normal_force_n"], [1.0, 2.0, 2.0])
+        # no vibration: not drawn, not in the legend (most parts never vibrate)
+        self.assertEqual(chart.drawn(), ["normal_force_n", "friction_force_n", "texture_force_n"])
+
+    def test_the_chart_draws_a_vibration_whatever_its_axis(self):
+        # a vibration along the face moves none of the other series: it showed nowhere
+        from hapticad.gui.strip_chart import StripChart
+
+        names = ("normal_force_n", "tangential_force_n", "friction_force_n", "texture_force_n", "vibration_force_n")
+        trace = np.zeros(4, dtype=[("time_s", float), ("flags", np.uint32), *((n, float) for n in names)])
+        trace["time_s"] = [0.0, 0.001, 0.002, 0.003]
+        trace["normal_force_n"] = 0.8
+        trace["vibration_force_n"] = [0.0, 0.3, 0.0, -0.3]
+        chart = StripChart()
+        chart.append(trace)
+        np.testing.assert_allclose(chart.values["vibration_force_n"], [0.0, 0.3, 0.0, 0.3])
+        self.assertIn("vibration_force_n", chart.drawn())
+        chart.resize(400, 150)
+        image = chart.grab().toImage()
+        purple = sum(1 for x in range(image.width()) for y in range(image.height())
+                     if QtGui.QColor(image.pixel(x, y)).name() == "#9467bd")
+        self.assertGreater(purple, 20)  # its legend and its trace
 
     def test_a_double_click_on_a_surface_while_feeling_says_where_to_edit_it(self):
         self.open_feel()
