@@ -299,8 +299,16 @@ class SimilarityTaskPanel(CloseOnlyPanel):
         if not rows:
             return False
 
+        names = [ss.runs(self.obj)[row].get("name", "?") for row in reversed(rows)]
+
         def remove():
             for row in rows:
                 ss.remove_run(self.obj, row)
-        return self._edit("Remove participants' runs", remove)
+        if not self._edit("Remove participants' runs", remove):
+            return False
+        # one undo step and no question, as FreeCAD deletes: said, with the way back
+        self.runs_message.setText(f"<span style='color:#006000'>Removed {html.escape(', '.join(names))}'s "
+                                  f"run{'s' if len(names) != 1 else ''}: Edit &gt; Undo brings "
+                                  f"{'them' if len(names) != 1 else 'it'} back.</span>")
+        return True
 

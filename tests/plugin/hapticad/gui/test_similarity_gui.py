@@ -397,6 +397,17 @@ class SimilarityGuiTest(unittest.TestCase):
         h.process_events()
         self.assertEqual(h.widget(QtWidgets.QComboBox, "Scaling").currentData(), "Metric")
         self.assertNotIn("ordinal", h.widget(QtWidgets.QLabel, "spaceText").text())
+        # a run removed: one undo step, said with the way back
+        table = h.widget(QtWidgets.QTableWidget, "runsTable")
+        table.selectRow(5)
+        h.widget(QtWidgets.QPushButton, "removeRun").click()
+        self.assertEqual((table.rowCount(), study.Participants), (5, 5))
+        self.assertIn("Removed Ada's run: Edit &gt; Undo brings it back",
+                      h.widget(QtWidgets.QLabel, "runsMessage").text())
+        self.assertNotIn("Ada", [r["name"] for r in ss.runs(study)])
+        self.doc.undo()
+        h.process_events()
+        self.assertEqual((table.rowCount(), study.Participants), (6, 6))
 
 
 if __name__ == "__main__":
