@@ -11,7 +11,7 @@ carries their eq. 2 values, so a row reads on its own. No GUI.
 import csv
 
 from .cohort import spreadsheet_safe
-from .similarity_study import SYMBOLS, TEXTURE_VALUES, comparable, runs
+from .similarity_study import SYMBOLS, TEXTURE_VALUES, classings_pooled, comparable, runs
 
 COLUMNS = ("participant", "recorded", "seed", "steps", "pooled", "position", "kind", "first", "second",
            "rating", "class", *(f"first_{SYMBOLS[k]}" for k in TEXTURE_VALUES),
@@ -32,7 +32,8 @@ def answer_rows(study):
         for position, kind, first, second, answer in answers:
             row = {"participant": spreadsheet_safe(str(record["name"])), "recorded": record.get("recorded", ""),
                    "seed": "" if record.get("seed") is None else record["seed"], "steps": record["steps"],
-                   "pooled": "yes" if comparable(record, study) else "no",
+                   # a classing pools only against the same references (classings_pooled)
+                   "pooled": "yes" if (classings_pooled if kind == "class" else comparable)(record, study) else "no",
                    "position": "" if position is None else position, "kind": kind,
                    "first": spreadsheet_safe(items[first]["name"]),
                    "second": spreadsheet_safe(items[second]["name"]) if second >= 0 else "",

@@ -631,32 +631,50 @@ def same_stimuli(a, b):
 
 
 def comparable(record, study):
-    """True when a kept run was made on the stimuli, surface and references the study
-    holds now, and is whole (runs on others are kept but not pooled: why_not_pooled)."""
+    """True when a kept run's ratings pool with the study as it is now: made on the
+    stimuli and surface it holds, and whole (why_not_pooled). Its classings pool only
+    when the references are the same too (classings_pooled)."""
     return not why_not_pooled(record, study)
 
 
-def why_not_pooled(record, study):
+def classings_pooled(record, study):
+    """True when a kept run's classings pool with the study as it is now: its ratings
+    do (comparable) and it classed against the references the study holds."""
+    return not why_not_pooled(record, study, references=True)
+
+
+def _reference_keys(context):
+    return {k for k in context if k.startswith("Reference")}
+
+
+def why_not_pooled(record, study, references=False):
     """Why a kept run is not pooled with the study as it is now, in words ("" when it is):
-    what of its stimuli, surface or references differs."""
+    what of its stimuli or surface differs, and with ``references`` (for its classings)
+    of its references too. The pairs are rated before any reference is felt (the
+    protocol's order), so other references, or none now, do not keep the ratings apart."""
     if record_problems(record):
         return "incomplete or damaged"
     if not same_stimuli(record["stimuli"], stimuli(study)):
         return "on other stimuli"
-    then, now = record.get("context"), felt_context(study)
+    then, now = record.get("context") or {}, felt_context(study)
+    if not references:
+        then = {k: v for k, v in then.items() if k not in _reference_keys(then)}
+        now = {k: v for k, v in now.items() if k not in _reference_keys(now)}
     if then == now:
         return ""
     if not now:
         return "on a surface the study no longer has"
-    then = then or {}
-    said = []
+    surface = []
     for key, (word, unit) in CONTEXT_WORDS.items():
         if then.get(key) != now.get(key):
             def text(v, unit=unit):
                 return "none" if v is None else f"{v:g}{unit}" if isinstance(v, float) else f"{v}{unit}"
-            said.append(f"the surface's {word} {text(then.get(key))} (now {text(now.get(key))})")
-    said += [f"another reference {key}" for key in "AB" if then.get(f"Reference{key}") != now.get(f"Reference{key}")]
-    return "felt with " + ", ".join(said) if said else "felt otherwise"
+            surface.append(f"the surface's {word} {text(then.get(key))} (now {text(now.get(key))})")
+    refs = [f"another reference {key}" if now.get(f"Reference{key}") else f"a reference {key} the study no longer has"
+            for key in "AB" if then.get(f"Reference{key}") != now.get(f"Reference{key}")]
+    said = ([f"felt with {', '.join(surface)}"] if surface else []) + (
+        [f"classed against {' and '.join(refs)}"] if refs else [])
+    return "; ".join(said) or "felt otherwise"
 
 
 def held_note(study, kept):
@@ -698,6 +716,7 @@ def analyse(study):
     (the pooled n x n matrix scaled), ``points`` (n x dims), ``stress``, ``explained``,
     ``eigenvalues``, ``vectors`` ({label: {direction, length, correlation, low, high}}),
     ``likeness`` (per stimulus, the share classed closer to A, or None), ``participants``,
+    ``classed_by`` (the runs whose classings make ``likeness``: classings_pooled),
     ``held`` (runs not pooled), ``held_note`` (why, in words), ``notes``, ``scaling`` ("metric" or "ordinal", the
     study's Scaling) and ``iterations`` (ordinal scaling's rounds). Raises ValueError
     when there is nothing to analyse."""
@@ -732,9 +751,15 @@ def analyse(study):
         vectors[SYMBOLS[key]] = _vector(space.points, q, f"low {SYMBOLS[key]}", f"high {SYMBOLS[key]}")
     likeness = [None] * n
     counts = [[0, 0] for _ in range(n)]
-    for record in kept:
+    classed = [r for r in kept if r["choices"] and classings_pooled(r, study)]
+    for record in classed:
         for i, choice in record["choices"]:
             counts[i][0 if choice == "A" else 1] += 1
+    apart = [r for r in kept if r["choices"] and r not in classed]
+    if apart:  # their ratings are in the space; their classings meant other references
+        reasons = sorted({why_not_pooled(r, study, references=True) for r in apart})
+        notes.append(f"the classings of {len(apart)} run{'s' if len(apart) != 1 else ''} are left out of the "
+                     f"likeness to the references ({'; '.join(reasons)}); their ratings are pooled")
     if any(a + b for a, b in counts):
         likeness = [a / (a + b) if a + b else None for a, b in counts]
         if None in likeness:
@@ -759,7 +784,7 @@ def analyse(study):
             "dissimilarity": d.tolist(), "points": space.points.tolist(), "stress": space.stress,
             "scaling": "ordinal" if ordinal else "metric", "iterations": space.iterations,
             "explained": space.explained, "eigenvalues": list(space.eigenvalues), "vectors": vectors,
-            "likeness": likeness, "participants": len(kept), "held": held,
+            "likeness": likeness, "participants": len(kept), "classed_by": len(classed), "held": held,
             "held_note": held_note(study, kept) if held else "", "notes": notes}
 
 

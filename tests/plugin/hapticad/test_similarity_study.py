@@ -381,14 +381,34 @@ class StudyTest(unittest.TestCase):
         self.assertIsNone(ss.presented_texture(plate))
         self.assertIsNone(compile_surface(plate, self.doc.getObject("Plate").Shape.Face6).texture)
 
-    def test_runs_felt_against_other_references_or_on_another_surface_are_not_pooled(self):
+    def test_runs_on_another_surface_are_not_pooled_and_against_other_references_only_their_ratings_are(self):
         a, b = self.references()
         study = HaptiCAD.make_similarity_study(self.doc, self.plate, ReferenceA=a, ReferenceB=b, WarmUps=0)
         ss.record_run(study, finish(ss.Run(study, "P1", seed=1)))
+        (record,) = ss.runs(study)
         self.assertEqual(len(ss.comparable_runs(study)), 1)
-        study.ReferenceA, study.ReferenceB = b, a  # swapped: "closer to A" meant the other sample
-        self.assertEqual(len(ss.comparable_runs(study)), 0)
+        self.assertTrue(ss.classings_pooled(record, study))
+        self.assertEqual(ss.analyse(study)["classed_by"], 1)
+        # swapped: "closer to A" meant the other sample. The pairs were rated before any
+        # reference was felt: the ratings still pool, the classings do not
+        study.ReferenceA, study.ReferenceB = b, a
+        self.assertEqual(len(ss.comparable_runs(study)), 1)
+        self.assertFalse(ss.classings_pooled(record, study))
+        self.assertEqual(ss.why_not_pooled(record, study, references=True),
+                         "classed against another reference A and another reference B")
+        result = ss.analyse(study)
+        self.assertEqual((result["participants"], result["classed_by"], result["likeness"]), (1, 0, [None] * 9))
+        self.assertNotIn(ss.LIKENESS, result["vectors"])
+        self.assertIn("the classings of 1 run are left out of the likeness to the references (classed against "
+                      "another reference A and another reference B); their ratings are pooled", result["notes"])
+        # the references unlinked: likewise
+        study.ReferenceA = study.ReferenceB = None
+        self.assertEqual(len(ss.comparable_runs(study)), 1)
+        self.assertEqual(ss.why_not_pooled(record, study, references=True),
+                         "classed against a reference A the study no longer has and a reference B the study "
+                         "no longer has")
         study.ReferenceA, study.ReferenceB = a, b
+        self.assertTrue(ss.classings_pooled(record, study))
         self.plate.TexturePeriod = 4.0  # the stimuli felt on another grating period
         self.assertEqual(len(ss.comparable_runs(study)), 0)
         self.plate.TexturePeriod = 2.5

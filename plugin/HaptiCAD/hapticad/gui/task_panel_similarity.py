@@ -211,8 +211,11 @@ class SimilarityTaskPanel(CloseOnlyPanel):
         self.runs_table.setRowCount(len(kept))
         for row, record in enumerate(kept):
             same = ss.comparable(record, self.obj)
+            pooled = ("other: not pooled" if not same else
+                      "these; classings against other references" if record.get("choices")
+                      and not ss.classings_pooled(record, self.obj) else "these")
             cells = (record.get("name", "?"), record.get("recorded", ""), str(len(record.get("ratings", []))),
-                     str(len(record.get("choices", []))), "these" if same else "other: not pooled")
+                     str(len(record.get("choices", []))), pooled)
             for col, text in enumerate(cells):
                 self.runs_table.setItem(row, col, QtWidgets.QTableWidgetItem(text))
         self.runs_table.resizeColumnsToContents()
