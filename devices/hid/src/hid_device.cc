@@ -6,11 +6,14 @@
 #include <time.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <cwchar>
 #include <utility>
 
+#include "hapticad/devices/hid/udev_advice.h"
 #include "hid_text.h"
 
 namespace hapticad {
@@ -42,18 +45,43 @@ struct HandleGuard {
 
 hid_device* OpenPath(const std::string& path) {
   hid::EnsureHidInit();
+  errno = 0;
   hid_device* handle = hid_open_path(path.c_str());
+  const int error = errno;  // open()'s, which hidapi keeps
   if (!handle) {
     const std::string reason = hid::ErrorText(nullptr);
     std::string message = "cannot open the HID device " + path + ": " + reason;
-    if (reason.find("ermission") != std::string::npos) {
-      message +=
-          ". Install HaptiCAD's udev rule (sudo ./packaging/setup.sh, or copy "
-          "packaging/70-hapticad.rules to /etc/udev/rules.d/) and plug the device in again";
+    if (error == EACCES || error == EPERM || reason.find("ermission") != std::string::npos) {
+      std::uint16_t vendor_id = 0, product_id = 0;
+      const bool known = hid::FindUsbIds(path, &vendor_id, &product_id);
+      message += hid::UdevAdvice(known, vendor_id, product_id);
     }
     throw DeviceError(message);
   }
   return handle;
+}
+
+// The session report's exchange on `handle`: empty if the device accepted, else why not.
+std::string ExchangeSession(hid_device* handle, const hid::SessionReport& session) {
+  std::uint8_t out[hid::kSessionReportSize];
+  hid::EncodeSession(session, out);
+  if (hid_send_feature_report(handle, out, sizeof out) < 0) {
+    return "setting the session report failed: " + hid::ErrorText(handle);
+  }
+  std::uint8_t in[256] = {hid::kSessionReportId};
+  const int n = hid_get_feature_report(handle, in, sizeof in);
+  if (n < 0) return "reading the session report back failed: " + hid::ErrorText(handle);
+  hid::SessionReport accepted;
+  if (!hid::DecodeSession(in, static_cast<std::size_t>(n), &accepted)) {
+    return "its session report (" + std::to_string(n) + " bytes) is malformed";
+  }
+  if (accepted.version == session.version &&
+      (accepted.flags & hid::kSessionOpen) == session.flags) {
+    return {};
+  }
+  return "it answered version " +
+         (accepted.version == 0 ? std::string("0") : hid::VersionString(accepted.version)) +
+         ((accepted.flags & hid::kSessionOpen) ? " with a session open" : " with no session");
 }
 
 hid::InfoReport ReadInfo(hid_device* handle, const std::string& path) {
@@ -103,9 +131,19 @@ std::unique_ptr<HidDevice> HidDevice::Open(const std::string& path, int watchdog
   }
   HandleGuard guard{OpenPath(path)};
   HidProbe probe = ProbeOpen(guard.handle, path);
+  // the writer's own handle: hidapi's per-handle error text must not be shared by threads
+  HandleGuard writer_guard{hid_open_path(path.c_str())};
+  if (!writer_guard.handle) {
+    throw DeviceError("cannot open the HID device " + path +
+                      " a second time, for its force commands: " + hid::ErrorText(nullptr));
+  }
   std::unique_ptr<HidDevice> device(new HidDevice(guard.handle, std::move(probe)));
   guard.handle = nullptr;  // the device owns it now
+  device->writer_ = std::make_unique<HidOutputWriter>(writer_guard.handle);
+  writer_guard.handle = nullptr;  // the writer owns it now
   device->watchdog_ms_ = watchdog_ms;
+  const int watchdog_in_effect = watchdog_ms > 0 ? watchdog_ms : device->report_.watchdog_ms;
+  device->command_stall_s_ = watchdog_in_effect * 1e-3;
   const std::string refusal = device->SetSession(false);
   if (!refusal.empty()) {
     const hid::InfoReport& info = device->report_;
@@ -131,6 +169,7 @@ HidDevice::HidDevice(hid_device* handle, HidProbe probe)
 
 HidDevice::~HidDevice() {
   if (session_open_) EndSession();
+  writer_.reset();  // at most HidOutputWriter::kAbandonAfterS
   hid_close(handle_);
 }
 
@@ -139,29 +178,20 @@ std::string HidDevice::SetSession(bool open) {
   session.flags = open ? hid::kSessionOpen : 0;
   session.version = version_;
   session.watchdog_ms = static_cast<std::uint16_t>(watchdog_ms_);
-  std::uint8_t out[hid::kSessionReportSize];
-  hid::EncodeSession(session, out);
-  if (hid_send_feature_report(handle_, out, sizeof out) < 0) {
-    return "setting the session report failed: " + hid::ErrorText(handle_);
-  }
-  std::uint8_t in[256] = {hid::kSessionReportId};
-  const int n = hid_get_feature_report(handle_, in, sizeof in);
-  if (n < 0) return "reading the session report back failed: " + hid::ErrorText(handle_);
-  hid::SessionReport accepted;
-  if (!hid::DecodeSession(in, static_cast<std::size_t>(n), &accepted)) {
-    return "its session report (" + std::to_string(n) + " bytes) is malformed";
-  }
-  if (accepted.version == version_ && (accepted.flags & hid::kSessionOpen) == session.flags) {
-    return {};
-  }
-  return "it answered version " +
-         (accepted.version == 0 ? std::string("0") : hid::VersionString(accepted.version)) +
-         ((accepted.flags & hid::kSessionOpen) ? " with a session open" : " with no session");
+  return ExchangeSession(handle_, session);
 }
 
 void HidDevice::BeginSession() {
   if (unplugged()) {
     throw DeviceError("the HID device " + info_.path + " was unplugged; open it again");
+  }
+  // the last session's close, or a write stuck in the kernel, must be over: a barrier
+  if (!writer_->Run([](hid_device*) {}, kEndSessionWaitS)) {
+    char waited[32];
+    std::snprintf(waited, sizeof waited, "%.1f s", writer_->busy_s());
+    throw DeviceError("the HID device " + info_.path +
+                      " is not taking commands: a write to it has waited " + waited +
+                      " in the USB stack. Unplug it, plug it in again and open it again");
   }
   // old reports say nothing about now
   for (int i = 0; i < 4096 && hid_read_timeout(handle_, buffer_, sizeof buffer_, 0) > 0; ++i) {
@@ -175,20 +205,34 @@ void HidDevice::BeginSession() {
   have_good_ = false;
   verdict_ = ReadStatus::kNoData;
   velocity_filter_.Reset();
-  failed_writes_in_a_row_ = 0;
+  last_now_s_ = clock_();
+  command_delay_s_.store(0.0, std::memory_order_relaxed);
+  writer_->BeginSession();
 }
 
 void HidDevice::EndSession() {
   if (!session_open_) return;
   session_open_ = false;
-  if (unplugged()) return;
+  writer_->EndSession();
+  const Lost lost = lost_.load(std::memory_order_acquire);
+  if (lost == Lost::kRead || lost == Lost::kWrite) return;  // gone: nothing reaches it
+  // the close goes through the writer, after the write under way: a device that stopped
+  // taking commands gets it when (if) that write returns; this thread waits a bounded time
   hid::OutputReport zero;  // ENABLE = 0, zero force
   zero.sequence = ++output_sequence_;
   zero.input_sequence = last_sequence_;
-  std::uint8_t out[hid::kOutputReportSize];
-  hid::EncodeOutput(zero, out);
-  hid_write(handle_, out, sizeof out);
-  SetSession(false);
+  HidOutputWriter::Report out;
+  hid::EncodeOutput(zero, out.data());
+  hid::SessionReport closed;
+  closed.flags = 0;
+  closed.version = version_;
+  closed.watchdog_ms = static_cast<std::uint16_t>(watchdog_ms_);
+  writer_->Run(
+      [out, closed](hid_device* handle) {
+        hid_write(handle, out.data(), out.size());
+        ExchangeSession(handle, closed);
+      },
+      kEndSessionWaitS);
 }
 
 void HidDevice::Count(std::atomic<std::uint64_t>& counter, std::uint64_t n) {
@@ -204,10 +248,29 @@ double HidDevice::MonotonicSeconds() {
 ReadStatus HidDevice::ReadState(double /*loop_time_s*/, DeviceState* state) {
   if (unplugged()) return ReadStatus::kUnplugged;
   const double now = clock_();
+  last_now_s_ = now;
+  // the force commands: written, failing, or stuck in the USB stack
+  if (writer_->failed()) {
+    MarkLost(Lost::kWrite, writer_->failure_reason());
+    return ReadStatus::kUnplugged;
+  }
+  const double command_delay_s = writer_->CommandDelayS(now);
+  command_delay_s_.store(command_delay_s, std::memory_order_relaxed);
+  if (command_delay_s >= kCommandTimeoutS) {
+    MarkLost(Lost::kCommandsStuck, nullptr);
+    return ReadStatus::kUnplugged;
+  }
   for (int i = 0; i < kMaxReadsPerTick; ++i) {
+    errno = 0;  // hidapi 0.13 leaves errno alone when poll() reports a hang-up
     const int n = hid_read_timeout(handle_, buffer_, sizeof buffer_, 0);
     if (n < 0) {
-      MarkUnplugged();
+      // a signal interrupted poll() or read(): no data this tick, not an unplug (an unplug
+      // shows as POLLHUP/POLLERR or a failed read, and comes back at the next tick)
+      if (errno == EINTR) {
+        Count(reads_interrupted_);
+        break;
+      }
+      MarkLost(Lost::kRead, hid_error(handle_));
       return ReadStatus::kUnplugged;
     }
     if (n == 0) break;
@@ -278,6 +341,12 @@ ReadStatus HidDevice::ReadState(double /*loop_time_s*/, DeviceState* state) {
       verdict_ = ReadStatus::kOk;
     }
   }
+  // commands that waited over the device's watchdog: it has dropped the force by itself;
+  // zero force here too, and a ramp-in once they flow again
+  if (command_delay_s > command_stall_s_) {
+    Count(commands_late_ticks_);
+    return ReadStatus::kDeviceFault;
+  }
   if (!have_good_) return verdict_ == ReadStatus::kOk ? ReadStatus::kNoData : verdict_;
   if (verdict_ != ReadStatus::kOk) return verdict_;
   state->time_s = device_time_s_;
@@ -295,23 +364,17 @@ void HidDevice::WriteForce(const Vec3& force_d) {
   r.sequence = ++output_sequence_;
   r.input_sequence = last_sequence_;
   for (int a = 0; a < 3; ++a) r.force_un[a] = hid::ForceToWire(force_d[a]);
-  std::uint8_t out[hid::kOutputReportSize];
-  hid::EncodeOutput(r, out);
-  Count(writes_);
-  if (hid_write(handle_, out, sizeof out) < 0) {
-    Count(writes_failed_);
-    if (++failed_writes_in_a_row_ >= 3) MarkUnplugged();
-  } else {
-    failed_writes_in_a_row_ = 0;
-  }
+  HidOutputWriter::Report out;
+  hid::EncodeOutput(r, out.data());
+  writer_->Post(out, last_now_s_);  // wait-free: the writer thread does the USB write
 }
 
-void HidDevice::MarkUnplugged() {
-  // hidapi's error text belongs to this thread's last call: keep it for DescribeFault()
-  // (any thread) before saying unplugged. Unplugged is final: written once.
-  const wchar_t* reason = hid_error(handle_);
+void HidDevice::MarkLost(Lost how, const wchar_t* reason) {
+  // hidapi's error text belongs to the handle's thread: keep it for DescribeFault() (any
+  // thread) before saying unplugged. Unplugged is final: written once.
   if (reason) std::wcsncpy(unplug_reason_, reason, kReasonLength - 1);
   unplug_reason_[kReasonLength - 1] = L'\0';
+  lost_.store(how, std::memory_order_release);
   unplugged_.store(true, std::memory_order_release);
 }
 
@@ -319,9 +382,25 @@ std::string HidDevice::DescribeFault() const {
   const HidLinkStats s = CalcLinkStats();
   const std::uint8_t status = last_status_.load(std::memory_order_relaxed);
   std::string text;
-  if (unplugged()) {
+  const double delay_ms = command_delay_s_.load(std::memory_order_relaxed) * 1e3;
+  char ms[48];
+  if (unplugged() && lost_.load(std::memory_order_acquire) == Lost::kCommandsStuck) {
+    std::snprintf(ms, sizeof ms, "%.0f ms", kCommandTimeoutS * 1e3);
+    text = std::string("it stopped taking force commands: one waited ") + ms +
+           " in the USB stack without being sent (the write to the device did not return); "
+           "its own watchdog drops the force after " +
+           std::to_string(static_cast<int>(std::lround(command_stall_s_ * 1e3))) + " ms";
+  } else if (unplugged()) {
     const std::string reason = hid::ToUtf8(unplug_reason_);
     text = "hidapi: " + (reason.empty() ? std::string("unknown error") : reason);
+    if (lost_.load(std::memory_order_acquire) == Lost::kWrite) {
+      text += " (writing force commands failed " +
+              std::to_string(HidOutputWriter::kFailuresToGiveUp) + " times in a row)";
+    }
+  } else if (delay_ms > command_stall_s_ * 1e3) {
+    std::snprintf(ms, sizeof ms, "%.0f ms", delay_ms);
+    text = std::string("force commands are not getting through: one has waited ") + ms +
+           " in the USB stack";
   } else if (status & hid::kStatusFault) {
     text = "the device reports a fault (amplifier, encoder or temperature)";
   } else if (status & hid::kStatusNotHomed) {
@@ -350,8 +429,13 @@ HidLinkStats HidDevice::CalcLinkStats() const {
   s.out_of_range = get(out_of_range_);
   s.device_faults = get(device_faults_);
   s.watchdog_reports = get(watchdog_reports_);
-  s.writes = get(writes_);
-  s.writes_failed = get(writes_failed_);
+  const HidWriterStats w = writer_->Stats();
+  s.reads_interrupted = get(reads_interrupted_);
+  s.writes = w.writes;
+  s.writes_failed = w.writes_failed;
+  s.writes_superseded = w.superseded;
+  s.commands_late_ticks = get(commands_late_ticks_);
+  s.write_max_us = w.write_max_s * 1e6;
   s.round_trip_last_us = round_trip_last_us_.load(std::memory_order_relaxed);
   s.round_trip_p50_us = round_trip_.Percentile(0.5) * 1e-3;
   s.round_trip_p99_us = round_trip_.Percentile(0.99) * 1e-3;

@@ -4,10 +4,12 @@
 #include "hapticad/devices/hid/hid_device.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -38,11 +40,13 @@ class HidOnEmulator : public ::testing::Test {
   }
   void TearDown() override { hidemu::Reset(); }
 
-  // Reads at loop time t (the emulator's clock follows), then writes `force`.
+  // Reads at loop time t (the emulator's clock follows), then writes `force` (and waits
+  // for the device's writer thread to have written it before the clock moves on).
   ReadStatus Tick(HidDevice& d, double t, DeviceState* s, const Vec3& force = Vec3::Zero()) {
     hidemu::SetTime(kPlugTime + t);
     const ReadStatus status = d.ReadState(t, s);
     d.WriteForce(force);
+    d.WaitUntilWritten();
     return status;
   }
 
@@ -161,6 +165,162 @@ TEST_F(HidOnEmulator, RefusesDevicesThatAreNotHapticOrStateImpossibleLimits) {
   } catch (const DeviceError& e) {
     EXPECT_TRUE(Contains(e.what(), "cannot open the HID device emu:nowhere")) << e.what();
   }
+}
+
+TEST_F(HidOnEmulator, APermissionErrorSaysWhichUdevRuleLetsThisDeviceIn) {
+  // HaptiCAD's rule covers the development ID; a product found by its usage page with a
+  // VID:PID of its own is told the rule line with its IDs (the rule would not match it)
+  FirmwareConfig prototype;
+  prototype.path = "emu:prototype";
+  prototype.deny_open = true;
+  const std::string listed = OpenError(prototype);
+  EXPECT_TRUE(Contains(listed,
+                       "cannot open the HID device emu:prototype: Failed to open a device with "
+                       "path 'emu:prototype': Permission denied. Install HaptiCAD's udev rule"))
+      << listed;
+  EXPECT_FALSE(Contains(listed, "70-hapticad-local")) << listed;
+  FirmwareConfig product;
+  product.path = "emu:product";
+  product.vendor_id = 0x16c0;
+  product.product_id = 0x05df;
+  product.deny_open = true;
+  const std::string own = OpenError(product);
+  EXPECT_TRUE(Contains(own, "this device is 16c0:05df")) << own;
+  EXPECT_TRUE(Contains(own, "ATTRS{idVendor}==\"16c0\", ATTRS{idProduct}==\"05df\"")) << own;
+  EXPECT_FALSE(Contains(own, "Install HaptiCAD's udev rule")) << own;
+  // a listing (Probe) says the same
+  try {
+    HidDevice::Probe("emu:product");
+    FAIL();
+  } catch (const DeviceError& e) {
+    EXPECT_EQ(std::string(e.what()), own);
+  }
+}
+
+TEST_F(HidOnEmulator, AnInterruptedReadIsNoDataForThatTickNotAnUnplug) {
+  // a signal reaching the servo thread during hidapi's poll() (EINTR) used to end the
+  // session as "unplugged"; the device is fine: that tick just has no new report
+  FirmwareConfig c;
+  c.faults.push_back(FaultWindow{Fault::kInterruptRead, 0.1, 0.1005});
+  hidemu::AddDevice(c);
+  auto d = HidDevice::Open("emu:0");
+  d->set_clock(&hidemu::Now);
+  d->BeginSession();
+  DeviceState s;
+  Tick(*d, 0.0, &s);
+  for (int i = 1; i < 200; ++i) {
+    ASSERT_EQ(Tick(*d, i * 1e-3, &s), ReadStatus::kOk) << i;
+    if (i == 100) {
+      EXPECT_NEAR(s.age_s, 0.001, 1e-9);  // the last report, a tick old
+    } else if (i == 101) {
+      EXPECT_EQ(s.age_s, 0.0);  // both reports read: none lost
+    }
+  }
+  EXPECT_FALSE(d->unplugged());
+  const HidLinkStats link = d->CalcLinkStats();
+  EXPECT_EQ(link.reads_interrupted, 1u);
+  EXPECT_EQ(link.reports_used, 199u);
+  EXPECT_EQ(d->DescribeFault(), "");
+  // a real unplug after it is still one, at once
+  hidemu::Unplug(0);
+  EXPECT_EQ(Tick(*d, 0.2, &s), ReadStatus::kUnplugged);
+  EXPECT_TRUE(Contains(d->DescribeFault(), "device disconnected")) << d->DescribeFault();
+}
+
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+TEST_F(HidOnEmulator, ACommandStuckInTheUsbStackIsAFaultThenALostDeviceAndNothingWaitsForIt) {
+  // from 0.1 s every write blocks 5 s and times out, as usbhid's does when the device
+  // stops taking output reports; the tick never waits for it
+  FirmwareConfig c;
+  c.path = "emu:stuck";
+  c.faults.push_back(FaultWindow{Fault::kSlowWrite, 0.1, 1e9, 5.0});
+  hidemu::AddDevice(c);
+  auto d = HidDevice::Open(c.path);           // device watchdog 5 ms: the stall limit
+  EXPECT_EQ(hidemu::OpenHandles(c.path), 2);  // the loop's reads, the writer's writes
+  d->set_clock(&hidemu::Now);
+  d->BeginSession();
+  DeviceState s;
+  for (int i = 0; i < 100; ++i) Tick(*d, i * 1e-3, &s, Vec3(0, 0, 1.0));
+  std::vector<ReadStatus> status(400, ReadStatus::kNoData);
+  double slowest_tick_s = 0.0;
+  for (int i = 100; i < 400; ++i) {
+    hidemu::SetTime(kPlugTime + i * 1e-3);
+    const auto start = std::chrono::steady_clock::now();
+    status[i] = d->ReadState(i * 1e-3, &s);
+    d->WriteForce(Vec3(0, 0, 1.0));
+    slowest_tick_s = std::max(slowest_tick_s, SecondsSince(start));
+    if (i == 100) {  // the writer is now stuck in the first write of the window
+      while (hidemu::BlockedWrites() == 0) std::this_thread::yield();
+    }
+  }
+  EXPECT_LT(slowest_tick_s, 0.05);  // (the blocked write would hold a synchronous tick forever)
+  for (int i = 100; i <= 103; ++i) EXPECT_EQ(status[i], ReadStatus::kOk) << i;
+  // a command over the device's 5 ms watchdog: zero force (the device has dropped it too)
+  for (int i = 107; i < 350; ++i) EXPECT_EQ(status[i], ReadStatus::kDeviceFault) << i;
+  // 250 ms: the device stopped taking commands; lost for good
+  const int lost_at = static_cast<int>(
+      std::find(status.begin(), status.end(), ReadStatus::kUnplugged) - status.begin());
+  EXPECT_GE(lost_at, 350);
+  EXPECT_LE(lost_at, 351);
+  for (int i = lost_at; i < 400; ++i) EXPECT_EQ(status[i], ReadStatus::kUnplugged) << i;
+  EXPECT_TRUE(d->unplugged());
+  const HidLinkStats link = d->CalcLinkStats();
+  EXPECT_GE(link.commands_late_ticks, 243u);
+  EXPECT_LE(link.commands_late_ticks, 245u);
+  EXPECT_EQ(hidemu::BlockedWrites(), 1);
+  EXPECT_EQ(d->DescribeFault(),
+            "it stopped taking force commands: one waited 250 ms in the USB stack without "
+            "being sent (the write to the device did not return); its own watchdog drops the "
+            "force after 5 ms");
+  // ending the session and closing the device do not wait for the stuck write
+  auto start = std::chrono::steady_clock::now();
+  d->EndSession();
+  EXPECT_LT(SecondsSince(start), HidDevice::kEndSessionWaitS + 0.1);
+  EXPECT_THROW(d->BeginSession(), DeviceError);
+  start = std::chrono::steady_clock::now();
+  d.reset();
+  EXPECT_LT(SecondsSince(start), HidOutputWriter::kAbandonAfterS + 0.1);
+  // the abandoned writer keeps its handle until its write returns (here: the device goes)
+  EXPECT_EQ(hidemu::OpenHandles(c.path), 1);
+  hidemu::Reset();
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (hidemu::OpenHandles(c.path) != 0 && std::chrono::steady_clock::now() < give_up) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  EXPECT_EQ(hidemu::OpenHandles(c.path), 0);
+}
+
+TEST_F(HidOnEmulator, ANewSessionWaitsForTheLastOnesStuckWriteOnlySoLong) {
+  FirmwareConfig c;
+  c.faults.push_back(FaultWindow{Fault::kSlowWrite, 0.1, 0.2, 5.0});
+  const int id = hidemu::AddDevice(c);
+  auto d = HidDevice::Open("emu:0");
+  d->set_clock(&hidemu::Now);
+  d->BeginSession();
+  DeviceState s;
+  for (int i = 0; i < 100; ++i) Tick(*d, i * 1e-3, &s, Vec3(0, 0, 1.0));
+  hidemu::SetTime(kPlugTime + 0.1);
+  d->ReadState(0.1, &s);
+  d->WriteForce(Vec3(0, 0, 1.0));
+  while (hidemu::BlockedWrites() == 0) std::this_thread::yield();
+  d->EndSession();  // the close waits behind the stuck write
+  EXPECT_TRUE(hidemu::GetSnapshot(id).session_open);
+  try {
+    d->BeginSession();
+    FAIL();
+  } catch (const DeviceError& e) {
+    EXPECT_TRUE(Contains(e.what(), "emu:0 is not taking commands: a write to it has waited"))
+        << e.what();
+  }
+  // the write times out at 5.1 s; then the close goes out, and a session can begin
+  hidemu::SetTime(kPlugTime + 5.2);
+  ASSERT_TRUE(d->WaitUntilWritten(5.0));
+  d->BeginSession();
+  EXPECT_TRUE(hidemu::GetSnapshot(id).session_open);
+  EXPECT_EQ(hidemu::GetSnapshot(id).outputs_timed_out, 1u);
 }
 
 TEST_F(HidOnEmulator, ReadsPositionsAndVelocityOnTheDeviceClock) {
@@ -423,6 +583,7 @@ StallRun RunAHostStall(int rate_hz, double stall_s) {
     hidemu::SetTime(kPlugTime + i * 1e-3);
     d->ReadState(i * 1e-3, &s);
     d->WriteForce(Vec3(0, 0, 0.5));
+    d->WaitUntilWritten();
   }
   run.before = d->CalcLinkStats();
   for (i = std::lround((1.0 + stall_s) * 1000); run.status.size() < 20; ++i) {
@@ -430,6 +591,7 @@ StallRun RunAHostStall(int rate_hz, double stall_s) {
     run.status.push_back(d->ReadState(i * 1e-3, &s));
     run.age_s.push_back(s.age_s);
     d->WriteForce(Vec3(0, 0, 0.5));
+    d->WaitUntilWritten();
   }
   run.after = d->CalcLinkStats();
   run.fault = d->DescribeFault();

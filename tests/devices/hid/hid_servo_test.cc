@@ -79,6 +79,7 @@ class HidServo : public ::testing::Test {
       const double t = i * 1e-3;
       hidemu::SetTime(kPlugTime + t);
       loop_->Tick(t, i == 0 ? 0.0 : 1e-3);
+      device_->WaitUntilWritten();  // the writer thread's write, before the clock moves on
       loop_->DrainTrace(&trace);
       if (trace.back().flags & kFaultUnplugged) break;  // where the servo thread would stop
     }
@@ -262,6 +263,7 @@ TEST_F(HidServo, LostCommandsTripTheDeviceWatchdogAndTheForceRampsBack) {
   for (long i = 1030; i < 1300; ++i) {  // commands get through again from 1.05 s
     hidemu::SetTime(kPlugTime + i * 1e-3);
     loop_->Tick(i * 1e-3, 1e-3);
+    device_->WaitUntilWritten();
   }
   loop_->DrainTrace(&trace);
   // ...which held the force at zero (no jolt when the device takes commands again)
@@ -278,6 +280,43 @@ TEST_F(HidServo, LostCommandsTripTheDeviceWatchdogAndTheForceRampsBack) {
   EXPECT_FALSE(device.watchdog_tripped);
   EXPECT_EQ(device.watchdog_trips, 1u);
   EXPECT_GT(device.applied_force_n.z(), 1.0);
+}
+
+TEST_F(HidServo, ACommandHeldUpForAMomentIsAFaultAndTheForceRampsBack) {
+  // one write at 1.0 s takes 20 ms (a device slow to take it): the loop goes on ticking,
+  // commands zero force once the command is over the device's 5 ms watchdog, and ramps in
+  // again when commands flow; the session goes on
+  FirmwareConfig c = PressingDevice();
+  c.faults.push_back(FaultWindow{Fault::kLateWrite, 1.0, 1.0005, 0.02});
+  Run(c, 1.0);
+  std::vector<TraceSample> trace;
+  for (long i = 1000; i < 1300; ++i) {
+    hidemu::SetTime(kPlugTime + i * 1e-3);
+    loop_->Tick(i * 1e-3, 1e-3);
+    // the write is done, or held up in the "kernel", before the clock moves on
+    while (!device_->WaitUntilWritten(0.0) && hidemu::BlockedWrites() == 0) {
+      std::this_thread::yield();
+    }
+  }
+  loop_->DrainTrace(&trace);
+  for (const auto& s : trace) {
+    if (s.time_s > 1.0065 && s.time_s < 1.0195) {
+      EXPECT_TRUE(s.flags & kFaultReported) << s.time_s;
+      EXPECT_EQ(Norm(s.force_n), 0.0) << s.time_s;
+    }
+    if (s.time_s > 1.022 && s.time_s < 1.15) {
+      EXPECT_TRUE(s.flags & kRamping) << s.time_s;
+    }
+  }
+  EXPECT_GT(trace.back().force_n[2], 1.0);
+  EXPECT_FALSE(trace.back().flags & kDeviceFault);
+  EXPECT_FALSE(device_->unplugged());
+  const HidLinkStats link = device_->CalcLinkStats();
+  // 1.005 .. 1.020 (the tick at 1.020 reads before the writer wakes), give or take the ends
+  EXPECT_GE(link.commands_late_ticks, 14u);
+  EXPECT_LE(link.commands_late_ticks, 16u);
+  EXPECT_GE(link.write_max_us, 0.0);
+  EXPECT_GT(link.writes_superseded, 10u);
 }
 
 TEST_F(HidServo, AWrongProtocolVersionNeverStartsASession) {
@@ -300,9 +339,11 @@ TEST_F(HidServo, ALateTickDoesNotMakeTheReportsAfterItLookStale) {
   // the tick scheduled at 1.000 s runs 6 ms late; the loop then skips to 1.007 s
   hidemu::SetTime(kPlugTime + 1.006);
   loop_->Tick(1.000, 0.007);
+  device_->WaitUntilWritten();
   for (long i = 1007; i < 1500; ++i) {
     hidemu::SetTime(kPlugTime + i * 1e-3);
     loop_->Tick(i * 1e-3, i == 1007 ? 0.001 : 1e-3);
+    device_->WaitUntilWritten();
   }
   std::vector<TraceSample> trace;
   loop_->DrainTrace(&trace);
@@ -333,6 +374,7 @@ TEST_F(HidServo, ATickThroughTheHidBackendDoesNotAllocate) {
   for (long i = 300; i < 900; ++i) {
     hidemu::SetTime(kPlugTime + i * 1e-3);
     loop_->Tick(i * 1e-3, 1e-3);
+    device_->WaitUntilWritten();
   }
   EXPECT_EQ(counter.count(), 0u);
   EXPECT_GT(loop_->CalcStats().faults.stale, 10u);
@@ -345,6 +387,71 @@ class HidServoRealTime : public ::testing::Test {
   void SetUp() override { hidemu::Reset(); }
   void TearDown() override { hidemu::Reset(); }
 };
+
+TEST_F(HidServoRealTime, AWriteStuckInTheKernelNeitherFreezesTheLoopNorHoldsUpItsEnd) {
+  // from 0.5 s every write blocks 5 s and times out (usbhid's USB_CTRL_SET_TIMEOUT): the
+  // loop used to freeze 5 s per write with the force unchanged and no fault, and Stop()
+  // to wait ~12 s. Now the ticks go on, zero force, and the session ends by itself.
+  FirmwareConfig c = PressingDevice();
+  c.faults.push_back(FaultWindow{Fault::kSlowWrite, 0.5, 1e9, 5.0});
+  hidemu::AddDevice(c);
+  auto device = HidDevice::Open(c.path);
+  ServoLoop loop(*device, Box());
+  const auto start = std::chrono::steady_clock::now();
+  loop.Start();
+  while (loop.running() && std::chrono::steady_clock::now() - start < std::chrono::seconds(4)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const double ended_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_FALSE(loop.running());
+  EXPECT_LT(ended_s, 0.5 + HidDevice::kCommandTimeoutS + 0.5);
+  EXPECT_EQ(loop.session_end(), SessionEnd::kUnplugged);
+  const std::string message = loop.fault_message();
+  EXPECT_TRUE(Contains(message, "it stopped taking force commands: one waited 250 ms")) << message;
+  const ServoStats stats = loop.CalcStats();
+  EXPECT_LT(stats.tick_max_us, 20000.0);  // no tick waited for USB (it was 5 s)
+  EXPECT_GT(stats.ticks, 650u);           // ticks went on through the stall
+  std::vector<TraceSample> trace;
+  loop.DrainTrace(&trace);
+  ASSERT_FALSE(trace.empty());
+  int zero_after_stall = 0;
+  for (const auto& s : trace) {
+    if (s.time_s > trace.back().time_s - 0.2) {  // well inside the stall
+      EXPECT_EQ(Norm(s.force_n), 0.0) << s.time_s;
+      ++zero_after_stall;
+    }
+  }
+  EXPECT_GT(zero_after_stall, 100);
+  auto t = std::chrono::steady_clock::now();
+  loop.Stop();
+  device.reset();
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count(), 0.5);
+}
+
+TEST_F(HidServoRealTime, StopDuringAStuckWriteReturnsWithinItsBound) {
+  FirmwareConfig c = PressingDevice();
+  c.faults.push_back(FaultWindow{Fault::kSlowWrite, 0.3, 1e9, 5.0});
+  const int id = hidemu::AddDevice(c);
+  auto device = HidDevice::Open(c.path);
+  ServoLoop loop(*device, Box());
+  loop.Start();
+  while (hidemu::BlockedWrites() == 0 && loop.running()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));  // stuck, not yet given up
+  EXPECT_TRUE(loop.running());
+  const auto t = std::chrono::steady_clock::now();
+  loop.Stop();
+  const double stop_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  EXPECT_LT(stop_s, HidDevice::kEndSessionWaitS + 0.2) << stop_s;
+  EXPECT_EQ(loop.session_end(), SessionEnd::kStopped);
+  const auto d = std::chrono::steady_clock::now();
+  device.reset();
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - d).count(),
+            HidOutputWriter::kAbandonAfterS + 0.2);
+  EXPECT_TRUE(hidemu::GetSnapshot(id).session_open);  // the close waits behind the write
+}
 
 TEST_F(HidServoRealTime, RunsAndEndsTheSessionWhenUnplugged) {
   FirmwareConfig c = PressingDevice();

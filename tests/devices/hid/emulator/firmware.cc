@@ -291,6 +291,22 @@ int Firmware::WriteReport(double now_s, const std::uint8_t* data, std::size_t le
   return static_cast<int>(length);
 }
 
+double Firmware::WriteBlockS(double now_s, bool* fails) const {
+  double param = 0.0;
+  *fails = false;
+  if (!plugged_) return 0.0;
+  if (Active(Fault::kSlowWrite, now_s - plugged_at_s_, &param)) {
+    *fails = true;
+    return param;
+  }
+  if (Active(Fault::kLateWrite, now_s - plugged_at_s_, &param)) return param;
+  return 0.0;
+}
+
+bool Firmware::ReadInterrupted(double now_s) const {
+  return plugged_ && Active(Fault::kInterruptRead, now_s - plugged_at_s_);
+}
+
 int Firmware::GetFeature(std::uint8_t* data, std::size_t length) {
   std::uint8_t d[64] = {};
   std::size_t n = 0;
@@ -363,6 +379,7 @@ Snapshot Firmware::snapshot() const {
   s.outputs_received = outputs_received_;
   s.outputs_applied = outputs_applied_;
   s.outputs_rejected = outputs_rejected_;
+  s.outputs_timed_out = outputs_timed_out_;
   s.round_trips = round_trip_.count();
   s.round_trip_last_s = round_trip_us_ * 1e-6;
   s.round_trip_p50_s = round_trip_.Percentile(0.5) * 1e-9;

@@ -34,6 +34,12 @@ class Firmware {
   int ReadReport(double now_s, std::uint8_t* data, std::size_t length);
   // An output report written by the host at `now_s`: `length` or -1 when unplugged.
   int WriteReport(double now_s, const std::uint8_t* data, std::size_t length);
+  // How long a host write begun at `now_s` blocks (kSlowWrite, kLateWrite); 0: it does
+  // not. `*fails`: whether it then fails (times out). CountTimedOut() counts one that did.
+  double WriteBlockS(double now_s, bool* fails) const;
+  void CountTimedOut() { ++outputs_timed_out_; }
+  // Whether a host read at `now_s` is interrupted (kInterruptRead).
+  bool ReadInterrupted(double now_s) const;
   // Feature reports (data[0] = report ID): bytes, or -1 for an unknown report.
   int GetFeature(std::uint8_t* data, std::size_t length);
   int SendFeature(const std::uint8_t* data, std::size_t length);
@@ -109,7 +115,8 @@ class Firmware {
   Queue<256> from_host_;  // output reports on their way to the device
 
   std::uint64_t reports_generated_ = 0, reports_read_ = 0, outputs_received_ = 0,
-                outputs_applied_ = 0, outputs_rejected_ = 0, watchdog_trips_ = 0;
+                outputs_applied_ = 0, outputs_rejected_ = 0, outputs_timed_out_ = 0,
+                watchdog_trips_ = 0;
 };
 
 }  // namespace hapticad::hidemu

@@ -12,8 +12,10 @@
 // whenever hidapi is called (the real monotonic clock, or a manual one for
 // deterministic tests), as if a USB host controller queued their reports meanwhile.
 //
-// Thread-safe (one lock, as a kernel would serialise). hid_read_timeout and hid_write
-// do not allocate (the backend's tick is allocation-counted through them).
+// Thread-safe (one lock, as a kernel would serialise; a write that blocks, kSlowWrite,
+// waits without it). A device may be opened by several handles, as hidraw allows; they
+// share its one queue of input reports. hid_read_timeout and hid_write do not allocate
+// (the backend's tick is allocation-counted through them).
 //
 // The same library built as a shared object (libhapticad_hidapi_emulator_preload.so)
 // can be LD_PRELOADed in front of libhidapi; it then creates the devices described in
@@ -43,6 +45,16 @@ enum class Fault {
   kNotHomed,     // [start, end): the NOT_HOMED status bit
   kDropOutput,   // [start, end): the host's output reports are lost
   kDuplicate,    // [start, end): every input report is sent twice
+  // [start, end): a host write blocks for `param` s (emulator clock) and then fails with
+  // ETIMEDOUT ("Connection timed out"), the report lost: what Linux usbhid does for 5 s
+  // (USB_CTRL_SET_TIMEOUT) when the device stops taking output reports
+  kSlowWrite,
+  // [start, end): a host write blocks for `param` s (emulator clock) and then succeeds: a
+  // device slow to take output reports
+  kLateWrite,
+  // [start, end): hid_read_timeout fails with errno EINTR ("Interrupted system call"), as
+  // hidapi does when a signal interrupts its poll(); the device is fine
+  kInterruptRead,
 };
 
 struct FaultWindow {
@@ -87,6 +99,9 @@ struct FirmwareConfig {
   // refuses every session request (answers SESSION = 0, version 0) although it lists
   // its versions: a faulty firmware
   bool refuse_sessions = false;
+  // hid_open_path fails with EACCES and hidapi 0.13.1's words ("Failed to open a device
+  // with path '...': Permission denied"), as without a udev rule; it is still enumerated
+  bool deny_open = false;
 };
 
 struct Snapshot {
@@ -105,7 +120,8 @@ struct Snapshot {
   std::uint64_t reports_read = 0;  // by the host
   std::uint64_t outputs_received = 0;
   std::uint64_t outputs_applied = 0;
-  std::uint64_t outputs_rejected = 0;  // malformed, bad CRC or not newer
+  std::uint64_t outputs_rejected = 0;   // malformed, bad CRC or not newer
+  std::uint64_t outputs_timed_out = 0;  // host writes that blocked and failed (kSlowWrite)
   std::uint64_t round_trips = 0;
   double round_trip_last_s = 0.0;
   double round_trip_p50_s = 0.0;
@@ -135,6 +151,14 @@ double Now();
 // How many times hid_error() was called, on any handle (hidapi's error text is not
 // thread-safe: a backend must not ask for it from another thread while it runs).
 std::uint64_t HidErrorCalls();
+
+// hidapi handles open now on the device at `path` (hid_open_path minus hid_close; a
+// handle stays counted after a Reset() until it is closed), and host writes blocked now
+// (kSlowWrite, kLateWrite) whose time to end has not come on the emulator's clock (one
+// whose time has come counts no more, even before its thread wakes up): what a test
+// waits for instead of sleeping.
+int OpenHandles(const std::string& path);
+int BlockedWrites();
 
 // Parses a device list like "path=emu:0,product=My arm;path=emu:1,version=2.0-2.1" and
 // adds the devices. Keys: path, product, version (min-max), max_force (N; the continuous

@@ -5,12 +5,15 @@
 #include <time.h>
 
 #include <atomic>
+#include <cerrno>
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <cwchar>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <sstream>
@@ -27,7 +30,9 @@ using hapticad::hidemu::FirmwareConfig;
 
 // what a hid_device* points to
 struct hid_device_ {
-  int device = -1;  // index into the registry
+  int device = -1;           // index into the registry
+  std::uint64_t resets = 0;  // the registry's Reset() count at the open: older ones are dead
+  std::string path;
   bool nonblocking = false;
   wchar_t error[256] = L"Success";
   hid_device_info* info = nullptr;  // for hid_get_device_info
@@ -43,6 +48,14 @@ struct Other {
 
 struct Registry {
   std::mutex mutex;
+  std::condition_variable clock_changed;  // a blocked write waits on it (kSlowWrite)
+  std::uint64_t resets = 0;
+  std::map<std::string, int> open_handles;  // by path
+  // the times the host writes blocked now are due (kSlowWrite, kLateWrite); fixed size:
+  // hid_write allocates nothing
+  static constexpr int kMaxBlocked = 16;
+  double blocked_until[kMaxBlocked] = {};
+  int blocked = 0;
   std::vector<std::unique_ptr<Firmware>> devices;
   std::vector<Other> others;
   bool manual_clock = false;
@@ -114,8 +127,9 @@ void ConfigureFromEnvLocked() {
 }
 
 Firmware* DeviceOf(hid_device* dev) {
-  if (!dev || dev->device < 0 || dev->device >= static_cast<int>(R().devices.size())) {
-    return nullptr;
+  if (!dev || dev->device < 0 || dev->device >= static_cast<int>(R().devices.size()) ||
+      dev->resets != R().resets) {
+    return nullptr;  // (a handle from before a Reset() never reaches a later test's device)
   }
   return R().devices[dev->device].get();
 }
@@ -126,6 +140,8 @@ constexpr const wchar_t* kGone = L"hid_read_timeout: unexpected poll error (devi
 
 void Reset() {
   std::lock_guard<std::mutex> lock(R().mutex);
+  ++R().resets;  // a write blocked on a device about to go fails at once
+  R().clock_changed.notify_all();
   R().devices.clear();
   R().others.clear();
   R().manual_clock = false;
@@ -171,11 +187,13 @@ void UseManualClock(double t_s) {
 void SetTime(double t_s) {
   std::lock_guard<std::mutex> lock(R().mutex);
   R().manual_time_s = t_s;
+  R().clock_changed.notify_all();
 }
 
 void UseRealClock() {
   std::lock_guard<std::mutex> lock(R().mutex);
   R().manual_clock = false;
+  R().clock_changed.notify_all();
 }
 
 double Now() {
@@ -186,6 +204,19 @@ double Now() {
 std::atomic<std::uint64_t> error_calls{0};
 
 std::uint64_t HidErrorCalls() { return error_calls.load(std::memory_order_relaxed); }
+
+int OpenHandles(const std::string& path) {
+  std::lock_guard<std::mutex> lock(R().mutex);
+  const auto it = R().open_handles.find(path);
+  return it == R().open_handles.end() ? 0 : it->second;
+}
+
+int BlockedWrites() {
+  std::lock_guard<std::mutex> lock(R().mutex);
+  int n = 0;
+  for (int i = 0; i < R().blocked; ++i) n += NowLocked() < R().blocked_until[i] ? 1 : 0;
+  return n;
+}
 
 void ConfigureFromSpec(const std::string& spec) {
   std::stringstream devices(spec);
@@ -316,9 +347,18 @@ HID_API_EXPORT hid_device* HID_API_CALL hid_open_path(const char* path) {
     Firmware& d = *R().devices[i];
     d.AdvanceTo(now);
     if (d.config().path == path && d.plugged()) {
+      if (d.config().deny_open) {  // no udev rule: open() fails, enumeration still lists it
+        std::swprintf(R().global_error, 256,
+                      L"Failed to open a device with path '%s': Permission denied", path);
+        errno = EACCES;
+        return nullptr;
+      }
       auto* dev = new hid_device_;
       dev->device = static_cast<int>(i);
+      dev->resets = R().resets;
+      dev->path = path;
       SetError(R().global_error, L"Success");
+      ++R().open_handles[path];
       return dev;
     }
   }
@@ -326,6 +366,8 @@ HID_API_EXPORT hid_device* HID_API_CALL hid_open_path(const char* path) {
     if (o.path == path) {  // a keyboard: opens, but speaks no HaptiCAD
       auto* dev = new hid_device_;
       dev->device = -1;
+      dev->path = path;
+      ++R().open_handles[path];
       return dev;
     }
   }
@@ -358,14 +400,45 @@ HID_API_EXPORT hid_device* HID_API_CALL hid_open(unsigned short vendor_id,
 
 int HID_API_EXPORT HID_API_CALL hid_write(hid_device* dev, const unsigned char* data,
                                           size_t length) {
-  std::lock_guard<std::mutex> lock(R().mutex);
+  std::unique_lock<std::mutex> lock(R().mutex);
   Firmware* d = DeviceOf(dev);
   if (!d) {
     SetError(dev->error, L"hid_write: the device has no output endpoint");
     return -1;
   }
-  const double now = NowLocked();
+  double now = NowLocked();
   d->AdvanceTo(now);
+  bool fails = false;
+  if (const double block_s = d->WriteBlockS(now, &fails); block_s > 0.0) {
+    // blocked in the kernel until the transfer ends; the lock is free meanwhile
+    const double until = now + block_s;
+    const std::uint64_t resets = R().resets;
+    auto& r = R();
+    const int slot = r.blocked < r.kMaxBlocked ? r.blocked++ : r.kMaxBlocked - 1;
+    r.blocked_until[slot] = until;
+    while (NowLocked() < until && R().resets == resets) {
+      if (R().manual_clock) {
+        R().clock_changed.wait(lock);
+      } else {
+        R().clock_changed.wait_for(lock, std::chrono::duration<double>(until - NowLocked()));
+      }
+    }
+    for (int i = 0; i < r.blocked; ++i) {  // forget one entry of `until`
+      if (r.blocked_until[i] == until) {
+        r.blocked_until[i] = r.blocked_until[--r.blocked];
+        break;
+      }
+    }
+    d = R().resets == resets ? DeviceOf(dev) : nullptr;
+    if (!d || fails) {  // timed out (usbhid: ETIMEDOUT), the report lost
+      if (d) d->CountTimedOut();
+      SetError(dev->error, L"Connection timed out");
+      errno = ETIMEDOUT;
+      return -1;
+    }
+    now = NowLocked();
+    d->AdvanceTo(now);
+  }
   const int n = d->WriteReport(now, data, length);
   if (n < 0) SetError(dev->error, L"hid_write: No such device");
   return n;
@@ -381,6 +454,11 @@ int HID_API_EXPORT HID_API_CALL hid_read_timeout(hid_device* dev, unsigned char*
       if (!d) return 0;  // a keyboard that says nothing
       const double now = NowLocked();
       d->AdvanceTo(now);
+      if (d->ReadInterrupted(now)) {  // hidapi: poll() returned -1, errno EINTR
+        SetError(dev->error, L"Interrupted system call");
+        errno = EINTR;
+        return -1;
+      }
       const int n = d->ReadReport(now, data, length);
       if (n < 0) SetError(dev->error, kGone);
       if (n != 0 || now >= deadline || R().manual_clock) return n;
@@ -436,6 +514,10 @@ int HID_API_EXPORT HID_API_CALL hid_get_input_report(hid_device* dev, unsigned c
 
 void HID_API_EXPORT HID_API_CALL hid_close(hid_device* dev) {
   if (!dev) return;
+  {
+    std::lock_guard<std::mutex> lock(R().mutex);
+    --R().open_handles[dev->path];
+  }
   if (dev->info) hid_free_enumeration(dev->info);
   delete dev;
 }

@@ -3,19 +3,35 @@
 // hidapi. Open() reads the device's information, negotiates the protocol version (of
 // major 1 in the device's range, nearest 1.0) and checks its limits; a session enables forces;
 // every tick ReadState() drains the input reports queued since the last tick (keeping the newest
-// valid one) and WriteForce() sends one output report.
+// valid one) and WriteForce() hands one output report to the device's writer thread
+// (HidOutputWriter, on a second hidapi handle of its own), which writes it: the tick never
+// waits on USB, where a write can block for up to 5 s.
 //
 // Per report it rejects a wrong ID, length or CRC (truncated, garbage), a sequence
 // that is not newer (duplicated, reordered), a device time that does not advance
 // (frozen), and counts sequence gaps (dropped). After a gap of 16384 reports or more
 // by the device's clock (a host stall) the 16-bit sequence may have wrapped past half:
 // the device time decides, and the first report after the gap is used. Positions outside the stated
-// workspace grown by 25 % give kOutOfRange, a FAULT, NOT_HOMED or WATCHDOG status kDeviceFault
-// (after a device watchdog trip the force must ramp in, not jump back), and never
-// reach the velocity filter. A failed read, or three failed writes in a row, is an
-// unplug: kUnplugged from then on, and DescribeFault() gives hidapi's reason (taken on
-// the servo thread when it happens: DescribeFault() never calls hidapi, whose error
-// text is not thread-safe).
+// workspace grown by 25 %, a FAULT, NOT_HOMED or WATCHDOG status give kOutOfRange or
+// kDeviceFault (after a device watchdog trip the force must ramp in, not jump back), and never
+// reach the velocity filter.
+//
+// Commands that do not get through. When a force command has waited longer than the
+// device watchdog in effect (the session's watchdog_ms, or the device's default) without
+// the writer finishing a write, the device has dropped the force by itself: ReadState()
+// says kDeviceFault (zero force, and a ramp-in once commands flow again). When one has
+// waited kCommandTimeoutS, the device is lost: kUnplugged from then on, and
+// DescribeFault() says that it stopped taking force commands. A failed read, or three
+// failed writes in a row, is an unplug too. An interrupted read (EINTR: a signal reached
+// the servo thread during hidapi's poll) is "no data this tick", not an unplug: hidapi
+// reports a real unplug as POLLHUP/POLLERR or a failed read, which are not EINTR.
+// DescribeFault() gives hidapi's reason (taken on the thread that saw it: DescribeFault()
+// never calls hidapi, whose error text is not thread-safe).
+//
+// Ending. EndSession() hands the close (zero force with ENABLE = 0, SESSION = 0) to the
+// writer and waits for it at most kEndSessionWaitS; a writer stuck in the kernel sends it
+// when its write returns. The destructor waits at most HidOutputWriter::kAbandonAfterS
+// more, then leaves the stuck writer to finish and close its handle on its own.
 //
 // Age: time since the last fresh report, plus how much later than usual that report
 // arrived (its delay over the smallest recent delay, comparing the device's clock with
@@ -27,8 +43,9 @@
 //
 // Units: SI (device frame); velocity is filtered from positions on the device's own
 // clock. ReadState()/WriteForce() are servo-tick safe: no allocation, no lock; their
-// only system calls are hidapi's reads and write. The statistics and DescribeFault()
-// may be read from any thread.
+// only system calls are hidapi's reads (hidraw's poll and read). The statistics and
+// DescribeFault() may be read from any thread. BeginSession() and EndSession() wait at most
+// kEndSessionWaitS for the writer.
 #pragma once
 
 #include <atomic>
@@ -37,6 +54,7 @@
 #include <string>
 
 #include "hapticad/devices/device.h"
+#include "hapticad/devices/hid/hid_output_writer.h"
 #include "hapticad/devices/hid/hid_protocol.h"
 #include "hapticad/devices/latency_histogram.h"
 #include "hapticad/devices/velocity_filter.h"
@@ -56,6 +74,11 @@ struct HidLinkStats {
   std::uint64_t watchdog_reports = 0;  // of those, the ones saying the device watchdog tripped
   std::uint64_t writes = 0;
   std::uint64_t writes_failed = 0;
+  // the writer thread (hid_output_writer.h: writes counts its hid_write() calls), and reads
+  std::uint64_t writes_superseded = 0;    // commands replaced by a newer one before written
+  std::uint64_t commands_late_ticks = 0;  // ticks a command had waited over the watchdog
+  double write_max_us = 0.0;              // the longest a hid_write() took
+  std::uint64_t reads_interrupted = 0;    // reads that returned EINTR: no data that tick
   // round trip as measured by the device (input sent -> answering output received)
   double round_trip_last_us = 0.0;
   double round_trip_p50_us = 0.0;
@@ -71,6 +94,12 @@ struct HidProbe {
 
 class HidDevice final : public Device {
  public:
+  // A force command waiting this long for the USB stack (the writer's hid_write has not
+  // returned) means the device stopped taking commands: it is lost, as if unplugged.
+  static constexpr double kCommandTimeoutS = 0.25;
+  // The longest EndSession() and BeginSession() wait for the writer thread.
+  static constexpr double kEndSessionWaitS = 0.1;
+
   // Reads the device information at `path` without touching any session (for
   // listings). Throws DeviceError with a sentence for the user: cannot open
   // (permissions: install the udev rule), not a HaptiCAD device, wrong protocol
@@ -88,7 +117,9 @@ class HidDevice final : public Device {
   HidDevice& operator=(const HidDevice&) = delete;
 
   const DeviceInfo& info() const override { return info_; }
-  void BeginSession() override;  // throws DeviceError if unplugged or refused
+  // Throws DeviceError if unplugged or refused, or if the writer is still stuck in a write
+  // of the last session after kEndSessionWaitS.
+  void BeginSession() override;
   ReadStatus ReadState(double loop_time_s, DeviceState* state) override;
   void WriteForce(const Vec3& force_d) override;
   void EndSession() override;
@@ -102,19 +133,29 @@ class HidDevice final : public Device {
   using Clock = double (*)();
   void set_clock(Clock clock) { clock_ = clock; }
   static double MonotonicSeconds();
+  // Control thread, for callers that step ReadState()/WriteForce() by hand (tests, tools)
+  // and need every force command given so far written before they go on: waits for the
+  // writer at most `wait_s`; true if it is done. Does not allocate.
+  bool WaitUntilWritten(double wait_s = 1.0) { return writer_->WaitUntilWritten(wait_s); }
   const hid::InfoReport& device_report() const { return report_; }
   // The version negotiated: of major 1, in the device's range, nearest 1.0.
   std::uint16_t protocol_version() const { return version_; }
   bool unplugged() const { return unplugged_.load(std::memory_order_acquire); }
 
  private:
+  // How the device was lost (DescribeFault words it).
+  enum class Lost : std::uint8_t { kNo, kRead, kWrite, kCommandsStuck };
+
   HidDevice(hid_device_* handle, HidProbe probe);
   void Count(std::atomic<std::uint64_t>& counter, std::uint64_t n = 1);
   // Sets and reads back the session report: empty if the device accepted, else why not.
   std::string SetSession(bool open);
-  void MarkUnplugged();  // servo thread
+  // Servo thread: the device is gone for `how`, hidapi's `reason` (may be null).
+  void MarkLost(Lost how, const wchar_t* reason);
 
-  hid_device_* handle_;
+  hid_device_* handle_;  // the servo thread's reads (and the control thread's features)
+  std::unique_ptr<HidOutputWriter> writer_;  // writes, on a handle of its own
+  double command_stall_s_ = 0.005;           // the device watchdog in effect
   DeviceInfo info_;
   hid::InfoReport report_;
   std::uint16_t version_;  // asked for and accepted
@@ -140,17 +181,19 @@ class HidDevice final : public Device {
   std::atomic<std::uint8_t> last_status_{0};  // of the newest report used; DescribeFault reads it
   VelocityFilter velocity_filter_{40.0};
   std::uint16_t output_sequence_ = 0;
-  int failed_writes_in_a_row_ = 0;
+  double last_now_s_ = 0.0;  // host clock at the last ReadState() (or BeginSession())
   std::uint8_t buffer_[64] = {};
 
   // hidapi's reason, taken on the servo thread before unplugged_ turns true (hid_error is
   // not thread-safe; DescribeFault reads this instead)
   static constexpr int kReasonLength = 160;
   wchar_t unplug_reason_[kReasonLength] = {};
+  std::atomic<Lost> lost_{Lost::kNo};         // written before unplugged_
+  std::atomic<double> command_delay_s_{0.0};  // the last tick's CommandDelayS()
   std::atomic<bool> unplugged_{false};
   std::atomic<std::uint64_t> reports_read_{0}, reports_used_{0}, malformed_{0}, not_newer_{0},
-      dropped_{0}, out_of_range_{0}, device_faults_{0}, watchdog_reports_{0}, writes_{0},
-      writes_failed_{0};
+      dropped_{0}, out_of_range_{0}, device_faults_{0}, watchdog_reports_{0}, reads_interrupted_{0},
+      commands_late_ticks_{0};
   std::atomic<double> round_trip_last_us_{0.0};
   LatencyHistogram round_trip_;
 };
