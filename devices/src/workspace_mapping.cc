@@ -24,10 +24,10 @@ void ValidateWorkspaceMapping(const WorkspaceMapping& m) {
 RenderLimits RenderLimitsFor(const DeviceLimits& limits, const WorkspaceMapping& mapping) {
   RenderLimits out;
   out.max_force_n = limits.max_force_n;
-  out.max_stiffness_n_per_m = limits.max_stiffness_n_per_m / mapping.scale;
-  // a damping limit the device states (else the renderer's default), scaled as stiffness
-  if (limits.max_damping_n_s_per_m > 0.0)
-    out.max_damping_n_s_per_m = limits.max_damping_n_s_per_m / mapping.scale;
+  out.max_stiffness_n_per_m = limits.max_stiffness_n_per_m;  // felt at the handle
+  // a damping limit the device states (else the renderer's default), felt as stiffness
+  if (limits.max_damping_n_s_per_m > 0.0) out.max_damping_n_s_per_m = limits.max_damping_n_s_per_m;
+  out.workspace_scale = mapping.scale;  // the renderer divides them by it in the world
   return out;
 }
 

@@ -544,7 +544,8 @@ void DefineDeviceTypes(py::module_& m) {
       .def(py::init<>())
       .def_readwrite("max_force_n", &RenderLimits::max_force_n)
       .def_readwrite("max_stiffness_n_per_m", &RenderLimits::max_stiffness_n_per_m)
-      .def_readwrite("max_damping_n_s_per_m", &RenderLimits::max_damping_n_s_per_m);
+      .def_readwrite("max_damping_n_s_per_m", &RenderLimits::max_damping_n_s_per_m)
+      .def_readwrite("workspace_scale", &RenderLimits::workspace_scale);
   m.attr("FLAG_CONTACT") = static_cast<std::uint32_t>(kContact);
   m.attr("FLAG_FORCE_CLAMPED") = static_cast<std::uint32_t>(kForceClamped);
   m.attr("FLAG_STIFFNESS_CLAMPED") = static_cast<std::uint32_t>(kStiffnessClamped);

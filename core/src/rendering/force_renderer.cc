@@ -63,6 +63,9 @@ ForceRenderer::ForceRenderer(std::shared_ptr<const HapticScene> scene,
       !std::isfinite(limits_.max_damping_n_s_per_m)) {
     throw std::invalid_argument("force renderer: device limits must be finite, > 0 (damping >= 0)");
   }
+  if (!(limits_.workspace_scale > 0.0) || !std::isfinite(limits_.workspace_scale)) {
+    throw std::invalid_argument("force renderer: the workspace scale must be finite and > 0");
+  }
   if (!(options_.edit_ramp_s >= 0.0) || !std::isfinite(options_.edit_ramp_s)) {
     throw std::invalid_argument("force renderer: the edit ramp must be finite and >= 0 s");
   }
@@ -197,14 +200,18 @@ void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
   out->flags |= kContact;
 
   const bool law = (effects & kEffectForceTravel) != 0u;
-  double k = surface.stiffness_n_per_m;
-  if (k > limits_.max_stiffness_n_per_m) {
-    k = limits_.max_stiffness_n_per_m;
+  // The face's stiffness, damping and law are felt at the handle: in the world, where the
+  // handle's travel is workspace_scale times longer, a spring k / workspace_scale
+  const double world_per_handle = limits_.workspace_scale;
+  double k_felt = surface.stiffness_n_per_m;
+  if (k_felt > limits_.max_stiffness_n_per_m) {
+    k_felt = limits_.max_stiffness_n_per_m;
     if (!law) out->flags |= kStiffnessClamped;  // a law's own slopes are clamped below
   }
+  const double k_w = k_felt / world_per_handle;
   // spring from the device to the proxy; its direction is the contact normal, or the
   // shading normal on a face
-  Vec3 spring = k * (proxy_.position() - goal_l);
+  Vec3 spring = k_w * (proxy_.position() - goal_l);
   if (options_.force_shading && scene_->mesh().has_corner_normals()) {
     const Vec3 shaded = SmoothShadingNormal();
     if (shaded.squaredNorm() > 0.0) spring = std::max(spring.dot(shaded), 0.0) * shaded;
@@ -212,12 +219,14 @@ void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
   double spring_only_n = spring.norm();
   const Vec3 normal =
       spring_only_n > 0.0 ? Vec3(spring / spring_only_n) : proxy_.constraints().plane(0).normal;
-  const double depth = spring_only_n / k;
-  // the force the face pushes back with at a depth: its law's, or stiffness x depth
+  const double depth = spring_only_n / k_w;
+  // the force the face pushes back with at a world depth: its law's at the handle's
+  // depth, or stiffness x depth
   const auto law_press = [&](double d) {
-    if (!law) return k * d;
+    if (!law) return k_w * d;
     bool clamped = false;
-    const double f = surface.force_travel->ForceClamped(d, limits_.max_stiffness_n_per_m, &clamped);
+    const double f = surface.force_travel->ForceClamped(d / world_per_handle,
+                                                        limits_.max_stiffness_n_per_m, &clamped);
     if (clamped) out->flags |= kStiffnessClamped;
     return f;
   };
@@ -230,7 +239,7 @@ void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
   if (edited && out->cad_face == pushed_face_ && options_.edit_ramp_s > 0.0) {
     const double edited_push = law_press(pushed_depth_m_);
     const double steepest =
-        law ? std::min(surface.force_travel->MaxSlope(), limits_.max_stiffness_n_per_m) : k;
+        law ? std::min(surface.force_travel->MaxSlope(), limits_.max_stiffness_n_per_m) : k_felt;
     const double most = limits_.max_stiffness_n_per_m / steepest;  // >= 1
     blend_from_ = edited_push > 0.0 ? std::min(pushed_n_ / edited_push, most) : 1.0;
     if (std::abs(blend_from_ - 1.0) < 1e-9) blend_from_ = 1.0;  // the edit left this push
@@ -246,12 +255,12 @@ void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
   pushed_depth_m_ = depth;
   pushed_n_ = spring_only_n;
   // the face's damping on the normal motion: resists, never pulls
-  double b = surface.damping_n_s_per_m;
-  if (b > limits_.max_damping_n_s_per_m) {
-    b = limits_.max_damping_n_s_per_m;
+  double b_felt = surface.damping_n_s_per_m;
+  if (b_felt > limits_.max_damping_n_s_per_m) {
+    b_felt = limits_.max_damping_n_s_per_m;
     out->flags |= kDampingClamped;
   }
-  const double damper = -b * input.velocity_w.dot(normal);
+  const double damper = -(b_felt / world_per_handle) * input.velocity_w.dot(normal);
   const double spring_n = std::max(spring_only_n + damper, 0.0);
   spring = spring_n * normal;
   const Vec3 v_t = input.velocity_w - input.velocity_w.dot(normal) * normal;
@@ -312,8 +321,8 @@ void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
     anchored_ = false;
   } else if (effects & kEffectCone) {
     const Vec3 anchor =
-        ApplyFrictionCone(surface, friction_scale, normal, normal_force / k, stripe, out);
-    const Vec3 pull = k * (anchor - proxy_.position());
+        ApplyFrictionCone(surface, friction_scale, normal, normal_force / k_w, stripe, out);
+    const Vec3 pull = k_w * (anchor - proxy_.position());
     out->friction_force_n = pull.norm();
     force += pull;
   } else {
@@ -328,6 +337,9 @@ void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
     const Vec3 shake = CalcVibrationForce(vibration, input.time_s);
     out->vibration_force_n = shake.dot(vibration.axis_w);
     force += shake;
+    // a face only pushes: the shake may take its push away, never pull the hand in
+    const double pushed = force.dot(normal);
+    if (pushed < 0.0) force -= pushed * normal;
   }
 
   const double magnitude = force.norm();

@@ -35,6 +35,7 @@ TRACE_SECONDS = 4.0  # ring capacity between two drains, at the servo rate
 class DeviceChoice:
     label: str
     path: str  # "simulated" or what opens it again (e.g. /dev/hidraw3)
+    problem: str = ""  # why it cannot be used (an unsupported protocol, say), as the core lists it
 
     @property
     def simulated(self):
@@ -42,12 +43,16 @@ class DeviceChoice:
 
 
 def device_choices():
-    """The simulated probe first, then every HID device the core finds now."""
+    """The simulated probe first, then every HID device the core finds now; one that
+    cannot be used says so in its label and ``problem`` (it used to be offered as if it
+    could, and refused only at Start)."""
     choices = [DeviceChoice("Simulated probe (mouse)", SIMULATED)]
     try:
         for info in _core.list_devices():
             if info["kind"] != "sim" and info["path"]:
-                choices.append(DeviceChoice(f"{info['name'] or 'HID device'} ({info['path']})", info["path"]))
+                problem = info.get("error") or ""
+                choices.append(DeviceChoice(f"{info['name'] or 'HID device'} ({info['path']})"
+                                            + (": unusable" if problem else ""), info["path"], problem))
     except RuntimeError:  # a device that fails to enumerate must not hide the simulated one
         pass
     return choices
@@ -244,6 +249,16 @@ class LiveSession:
         """The rate the loop kept, (ticks - 1) over its wall time (the loop computes its
         statistics for this: call it at display rate, not in a tight loop)."""
         return float(self.loop.calc_stats().achieved_rate_hz)
+
+    def vibration_notes(self, doc):
+        """What this session makes of doc's vibrations, as sentences (empty when each is
+        felt as set): what its servo rate keeps from being felt (vibration_object.rate_note)
+        and what its force limit cuts (vibration_object.force_note, with the session's
+        limit, render_limits.max_force_n)."""
+        from . import vibration_object  # FreeCAD's: only when used
+
+        return (vibration_object.rate_notes(doc, self.rate_hz)
+                + vibration_object.force_notes(doc, self.render_limits.max_force_n))
 
     def describe_face(self, cad_face):
         """"Object.FaceN: surface (material, mu_s, mu_d, roughness)" of a face, or ""."""

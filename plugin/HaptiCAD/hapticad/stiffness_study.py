@@ -217,8 +217,11 @@ def force_travel_of(surface):
 
 
 def device_note(study, max_stiffness_n_per_m):
-    """A sentence when the study's law is steeper than a device renders (it then feels
-    softer there: the renderer clamps the slope), else ""."""
+    """A sentence when the study's law is steeper than a device renders stably (it then
+    feels softer there: the renderer clamps the slope), else "". Both are felt at the
+    handle, in N per m of its travel: the renderer presses the law by the handle's depth
+    whatever the workspace scale, and ``max_stiffness_n_per_m`` is the device's own limit
+    (device_stiffness_n_per_m, LiveSession.render_limits)."""
     try:
         steepest = force_travel(study).max_slope()
     except ValueError:
@@ -228,14 +231,16 @@ def device_note(study, max_stiffness_n_per_m):
     limit = f"({max_stiffness_n_per_m * MM:.3g} N/mm)"
     if study.Model == BEAM:
         return (f"the neck's stiffness, {steepest * MM:.3g} N/mm, is more than the device renders stably "
-                f"{limit}: it is felt as {max_stiffness_n_per_m * MM:.3g} N/mm, and stiffer necks alike")
+                f"{limit}: it is felt at the handle as {max_stiffness_n_per_m * MM:.3g} N/mm, and stiffer necks alike")
     return (f"the button's steepest slope, {steepest * MM:.3g} N/mm, is more than the device renders stably "
-            f"{limit}: its forces are kept, over a travel {steepest / max_stiffness_n_per_m:.2g} x longer")
+            f"{limit}: its forces are kept, over a handle travel {steepest / max_stiffness_n_per_m:.2g} x longer")
 
 
 def force_note(study, max_force_n):
     """A sentence when a button's operating force is above the force the session renders
-    (the force limit: the force stops there and the click never comes), else ""."""
+    (the force limit: the force stops there and the click never comes), else "". Forces
+    are felt at the handle as designed, whatever the workspace scale (the mapping scales
+    travel, not force), so both are the handle's newtons."""
     if study.Model != BUTTON or float(study.OperatingForce) <= max_force_n:
         return ""
     return (f"the operating force, {float(study.OperatingForce):.3g} N, is above the force limit, "
@@ -244,11 +249,13 @@ def force_note(study, max_force_n):
 
 
 def device_stiffness_n_per_m(doc, prefs=None):
-    """The stable stiffness (N/m, in the world) a Feel session on ``doc`` renders with
-    the preferences' device and workspace mapping: the device's limit through the mapping
-    (_core.render_limits_for), as LiveSession.render_limits holds it, so a record made in
-    the study's panel keeps the stiffness and mark the Feel panel's would. The simulated
-    hand's when the preferences choose it, or a device that is not connected now."""
+    """The stable stiffness a Feel session on ``doc`` renders with the preferences' device
+    and workspace mapping, felt at the handle (N per m of its travel): the device's own
+    limit, whatever the mapping's scale (the renderer presses a study's law by the handle's
+    depth, and keeps it under this), as _core.render_limits_for gives it and
+    LiveSession.render_limits holds it, so a record made in the study's panel keeps the
+    stiffness and mark the Feel panel's would. The simulated hand's when the preferences
+    choose it, or a device that is not connected now."""
     from . import feel_session, preferences
 
     prefs = prefs or preferences.load()

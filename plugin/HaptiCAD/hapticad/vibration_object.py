@@ -16,7 +16,10 @@ from .proxy_state import SchemaState, add_type_tag
 TYPE = "HaptiCAD::HapticVibration"
 SCHEMA_VERSION = 1
 FREQUENCY_RANGE_HZ = (1.0, 1000.0)  # what a servo loop up to 10 kHz can render
-AMPLITUDE_RANGE_N = (0.0, 10.0)
+AMPLITUDE_RANGE_N = (0.0, 10.0)  # up to what a strong device renders: force_note says what a weaker one does
+# How hard a hand feeling a part presses it, N: a firm touch. The vibration rides on this
+# push, and the two together must stay within the session's force limit (force_note).
+TYPICAL_PUSH_N = 1.0
 ZERO_AXIS = "the vibration axis cannot be zero; kept +Z"
 
 
@@ -100,14 +103,26 @@ def vibrations_of(doc):
     return [o for o in doc.Objects if is_haptic_vibration(o)]
 
 
+# under this share of the servo rate a vibration's samples meet its peaks every cycle: the
+# largest sample of each cycle stays within 5 % of the amplitude up to a quarter of the
+# rate (0.955 at 250 Hz under 1 kHz), and falls to 0.82 at 300 Hz and 0.32 at 450 Hz
+EVEN_SHARE = 0.25
+
+
 def rate_note(vibration, rate_hz):
-    """What a servo loop at ``rate_hz`` makes of ``vibration``'s frequency: "" when it can
-    render it (under half the rate), else why not. At or above half the rate the force's
-    samples alias: at 1 kHz a 0.5 N vibration at 700 Hz was felt at 300 Hz, at 500 or
-    1000 Hz not at all (sampled at its zero crossings, or once a cycle)."""
+    """What a servo loop at ``rate_hz`` makes of ``vibration``'s frequency: "" when it
+    renders it evenly (under EVEN_SHARE of the rate), else what is felt. From a quarter to
+    half the rate its few samples a cycle meet its peaks in some cycles and miss them in
+    others: at 1 kHz a 450 Hz vibration's size beats at 100 Hz. At or above half the rate
+    the force's samples alias: at 1 kHz a 0.5 N vibration at 700 Hz was felt at 300 Hz, at
+    500 or 1000 Hz not at all (sampled at its zero crossings, or once a cycle)."""
     f = float(vibration.Frequency)
-    if f < 0.5 * rate_hz or not vibration.Powered:
+    if f < EVEN_SHARE * rate_hz or not vibration.Powered:
         return ""
+    if f < 0.5 * rate_hz:  # rendered, but with few samples a cycle its peaks are hit or missed
+        return (f"{vibration.Label}: {f:g} Hz gets {rate_hz / f:.2g} samples a cycle at the {rate_hz:g} Hz servo "
+                f"rate, so its size swings from cycle to cycle (a beat, not an even buzz); keep it under "
+                f"{EVEN_SHARE * rate_hz:g} Hz or raise the servo rate in Preferences")
     alias = abs(f - rate_hz * round(f / rate_hz))
     felt = (f"felt at {alias:.0f} Hz instead" if 0 < alias < 0.5 * rate_hz
             else "not felt at all")
@@ -118,6 +133,35 @@ def rate_note(vibration, rate_hz):
 def rate_notes(doc, rate_hz):
     """rate_note of every vibration of doc that a loop at ``rate_hz`` cannot render."""
     return [n for n in (rate_note(v, rate_hz) for v in vibrations_of(doc)) if n]
+
+
+def force_note(vibration, force_limit_n):
+    """What a session's force limit (``force_limit_n``, N) makes of ``vibration``: "" when
+    its amplitude on a typical push (TYPICAL_PUSH_N) stays within the limit, else what is
+    felt instead. Not a problem with the vibration: a stronger device, or a higher limit,
+    renders it. The force is cut at the limit as a whole, so the vibration's peaks are
+    flattened and, once it alone reaches the limit, it is a square wave at the limit in
+    which the part's push is no longer felt. A face only pushes: where the vibration
+    would pull the probe into the part, nothing is felt (force_renderer.h)."""
+    amplitude, limit = float(vibration.Amplitude), float(force_limit_n)
+    if not vibration.Powered or amplitude <= 0 or amplitude + TYPICAL_PUSH_N <= limit:
+        return ""
+    if amplitude >= limit:
+        felt = (f"alone it reaches the {limit:g} N force limit: it is felt as a square wave at the limit and "
+                "the part's push is lost in it")
+    else:
+        felt = (f"on a typical {TYPICAL_PUSH_N:g} N push it passes the {limit:g} N force limit, which cuts "
+                "its peaks")
+    room = limit - TYPICAL_PUSH_N
+    keep = f"keep the amplitude under {room:g} N or raise" if room > 0 else "raise"
+    return (f"{vibration.Label}: {amplitude:g} N {felt}; {keep} the force limit in HaptiCAD's Preferences "
+            "(as far as the device gives)")
+
+
+def force_notes(doc, force_limit_n):
+    """force_note of every vibration of doc that a session limited to ``force_limit_n``
+    (N) cuts."""
+    return [n for n in (force_note(v, force_limit_n) for v in vibrations_of(doc)) if n]
 
 
 def make_vibration(doc, part, frequency_hz=100.0, amplitude_n=0.3, axis=(0.0, 0.0, 1.0), powered=True,

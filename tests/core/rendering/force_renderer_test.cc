@@ -788,3 +788,126 @@ TEST_F(EditUnderTheHand, ANoughtRampStepsAtOnceAndABadOneIsRefused) {
 
 }  // namespace
 }  // namespace hapticad
+
+namespace hapticad {
+namespace {
+
+// A workspace scaled into the world (RenderLimits::workspace_scale = 2: a handle's 1 mm
+// is 2 mm of the part): what a face is given to feel is felt at the handle.
+class ScaledWorkspace : public RendererOnBox {
+ protected:
+  static constexpr double kScale = 2.0;
+  void SetUp() override {
+    RendererOnBox::SetUp();
+    limits_.workspace_scale = kScale;
+  }
+  std::shared_ptr<SurfaceTable> Top(const SurfaceProperties& top) {
+    std::vector<SurfaceProperties> faces(6, kUntaggedSurface);
+    faces[5] = top;
+    return std::make_shared<SurfaceTable>(faces);
+  }
+  // Pressed `handle_depth_m` into the top as the handle moves (kScale times that in the
+  // world), at `handle_velocity` (m/s of the handle).
+  RenderOutput PressHandle(ForceRenderer& r, double handle_depth_m,
+                           const Vec3& handle_velocity = Vec3::Zero()) {
+    return Press(r, kScale * handle_depth_m, kScale * handle_velocity);
+  }
+};
+
+TEST_F(ScaledWorkspace, AFacesStiffnessIsFeltAtTheHandleNotInTheWorld) {
+  // the top's 300 N/m: 0.3 N for the handle's 1 mm, though it went 2 mm into the part
+  ForceRenderer r(scene_, surfaces_, limits_);
+  RenderOutput out = PressHandle(r, 0.001);
+  EXPECT_FALSE(out.flags & kStiffnessClamped);
+  EXPECT_NEAR(out.normal_force_n, 300.0 * 0.001, 1e-6);  // (the proxy's offset: 3e-8 N)
+  // past the device's stable stiffness, felt at that limit at the handle, and said so
+  limits_.max_stiffness_n_per_m = 200.0;
+  ForceRenderer clamped(scene_, surfaces_, limits_);
+  out = PressHandle(clamped, 0.001);
+  EXPECT_TRUE(out.flags & kStiffnessClamped);
+  EXPECT_NEAR(out.normal_force_n, 200.0 * 0.001, 1e-6);
+  // friction is mu times that push, in newtons as at scale 1
+  out = PressHandle(r, 0.001, Vec3(0.05, 0, 0));
+  EXPECT_NEAR(out.tangential_force_n / out.normal_force_n, 1.0, 1e-9);
+}
+
+TEST_F(ScaledWorkspace, AFacesDampingIsFeltAgainstTheHandlesSpeed) {
+  SurfaceProperties top = kUntaggedSurface;
+  top.stiffness_n_per_m = 300.0;
+  top.friction.static_coefficient = 0.0;
+  top.friction.dynamic_coefficient = 0.0;
+  top.damping_n_s_per_m = 0.4;
+  ForceRenderer r(scene_, Top(top), limits_);
+  // pressing in at 0.1 m/s of the handle (0.2 m/s in the world), 1 mm deep: k d + B v
+  const RenderOutput out = PressHandle(r, 0.001, Vec3(0, 0, -0.1));
+  EXPECT_NEAR(out.normal_force_n, 300.0 * 0.001 + 0.4 * 0.1, 1e-6);
+}
+
+TEST_F(ScaledWorkspace, AForceTravelLawIsPressedByTheHandlesDepth) {
+  SurfaceProperties top = kUntaggedSurface;
+  top.force_travel = MakePushButton({});    // 1.47 N at 0.25 mm, snaps to 0.735 N
+  limits_.max_stiffness_n_per_m = 10000.0;  // steeper than the snap: nothing clamped
+  ForceRenderer r(scene_, Top(top), limits_);
+  for (const auto& [depth, force] : {std::pair{0.1e-3, 0.588},
+                                     {0.25e-3, 1.47},
+                                     {0.35e-3, 0.735},
+                                     {0.6e-3, 1.47},
+                                     {0.8e-3, 2.27}}) {
+    const RenderOutput out = PressHandle(r, depth);
+    // the proxy's offset, 1e-10 m in the world, is 5e-11 m of the handle on 7350 N/m
+    EXPECT_NEAR(out.normal_force_n, force, top.force_travel->MaxSlope() * 1e-9) << depth;
+    EXPECT_FALSE(out.flags & kStiffnessClamped) << depth;
+  }
+  // the device's 3 N/mm at the handle stretches the handle's travel, not the world's:
+  // the operating force comes at 0.25 mm x 2.45 of the handle
+  limits_.max_stiffness_n_per_m = 3000.0;
+  ForceRenderer clamped(scene_, Top(top), limits_);
+  const double stretch = top.force_travel->MaxSlope() / 3000.0;
+  const RenderOutput out = PressHandle(clamped, 0.25e-3 * stretch);
+  EXPECT_TRUE(out.flags & kStiffnessClamped);
+  EXPECT_NEAR(out.normal_force_n, 1.47, 1e-4);
+}
+
+TEST_F(ScaledWorkspace, ANonPositiveOrNonFiniteScaleIsRefused) {
+  for (const double bad : {0.0, -2.0, std::numeric_limits<double>::infinity(),
+                           std::numeric_limits<double>::quiet_NaN()}) {
+    limits_.workspace_scale = bad;
+    EXPECT_THROW(ForceRenderer(scene_, surfaces_, limits_), std::invalid_argument) << bad;
+  }
+}
+
+// The top's 500 N/m pressed 0.2 mm pushes 0.1 N; a 0.3 N vibration rides on it.
+TEST_F(EffectsOnBox, AVibrationStrongerThanThePushIsFeltAsItsHalfWaveNeverPullingIn) {
+  top_.vibration = 0;
+  for (const Vec3& axis : {Vec3(Vec3::UnitZ()), Vec3(Vec3(1, 0, 1).normalized())}) {
+    auto r = Make({Vibration{100.0, 0.3, axis, true}});
+    RenderOutput out;
+    r.Render({Vec3(0, 0, 0.06), Vec3::Zero(), 0.0}, &out);
+    double lowest = 1.0;
+    for (int i = 1; i <= 40; ++i) {  // four periods at 1 kHz
+      const double t = i * 1e-3;
+      r.Render({Vec3(0, 0, 0.0498), Vec3::Zero(), t}, &out);
+      const double shake = 0.3 * std::sin(2 * M_PI * 100.0 * t);
+      // along the normal: the push and the vibration where they push, nothing where the
+      // vibration would pull; across the face the vibration as it is
+      EXPECT_NEAR(out.normal_force_n, std::max(0.1 + shake * axis.z(), 0.0), 1e-6) << i;
+      EXPECT_GE(out.force_w.z(), 0.0) << i;
+      EXPECT_NEAR(out.force_w.x(), shake * axis.x(), 1e-9) << i;
+      lowest = std::min(lowest, out.force_w.z());
+    }
+    EXPECT_EQ(lowest, 0.0) << axis.transpose();  // the half-wave: it does let go
+  }
+  // 10 N under a 3 N force limit: cut at the limit, and still never a pull
+  limits_.max_force_n = 3.0;
+  auto r = Make({Vibration{100.0, 10.0, Vec3::UnitZ(), true}});
+  RenderOutput out;
+  r.Render({Vec3(0, 0, 0.06), Vec3::Zero(), 0.0}, &out);
+  for (int i = 1; i <= 20; ++i) {
+    r.Render({Vec3(0, 0, 0.0498), Vec3::Zero(), i * 1e-3}, &out);
+    EXPECT_GE(out.force_w.z(), 0.0) << i;
+    EXPECT_LE(out.force_w.norm(), 3.0 + 1e-12) << i;
+  }
+}
+
+}  // namespace
+}  // namespace hapticad

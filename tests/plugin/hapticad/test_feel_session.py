@@ -80,7 +80,9 @@ class FeelSessionTest(unittest.TestCase):
     def test_listed_hid_devices_follow_the_simulated_probe(self):
         # the binding lists dicts (issue 5); simulated entries are not HID choices
         listed = [{"kind": "sim", "name": "Simulated hand", "path": "sim:hand", "limits": None},
-                  {"kind": "hid", "name": "Prototype", "path": "/dev/hidraw7", "limits": None}]
+                  {"kind": "hid", "name": "Prototype", "path": "/dev/hidraw7", "limits": None, "error": None},
+                  {"kind": "hid", "name": "Old arm", "path": "/dev/hidraw8", "limits": None,
+                   "error": "speaks HaptiCAD HID protocol 2.0-2.1; this HaptiCAD speaks 1.x"}]
         saved = getattr(_core, "list_devices", None)
         _core.list_devices = lambda: listed
         try:
@@ -90,8 +92,36 @@ class FeelSessionTest(unittest.TestCase):
                 del _core.list_devices
             else:
                 _core.list_devices = saved
-        self.assertEqual([c.path for c in choices], ["simulated", "/dev/hidraw7"])
-        self.assertEqual(choices[1].label, "Prototype (/dev/hidraw7)")
+        self.assertEqual([c.path for c in choices], ["simulated", "/dev/hidraw7", "/dev/hidraw8"])
+        self.assertEqual((choices[1].label, choices[1].problem), ("Prototype (/dev/hidraw7)", ""))
+        # one that cannot be used is listed as such, with why, not offered as if it could
+        self.assertEqual(choices[2].label, "Old arm (/dev/hidraw8): unusable")
+        self.assertIn("protocol 2.0-2.1", choices[2].problem)
+
+    def test_the_sessions_notes_say_what_its_rate_and_force_limit_make_of_a_vibration(self):
+        from hapticad import vibration_object
+
+        v = HaptiCAD.make_vibration(self.doc, self.box, frequency_hz=100.0, amplitude_n=2.5)
+        scene = build_document_scene(self.doc)
+
+        def notes(force_limit_n):
+            session = feel_session.LiveSession(scene, prefs=preferences.Preferences(force_limit_n=force_limit_n))
+            try:
+                return session.vibration_notes(self.doc)
+            finally:
+                session.stop()
+
+        # 2.5 N on a firm 1 N push passes the preferences' 3 N: said, not refused
+        self.assertEqual(notes(3.0), [vibration_object.force_note(v, 3.0)])
+        self.assertIn("passes the 3 N force limit", notes(3.0)[0])
+        # the session's limit, not the preferences' alone: the simulated hand's 8.9 N under a 20 N preference
+        self.assertEqual(notes(20.0), [])
+        v.Amplitude = 10.0
+        self.assertIn("10 N alone it reaches the 8.9 N force limit", notes(20.0)[0])
+        # and what the servo rate keeps from being felt, as before
+        v.Amplitude, v.Frequency = 0.3, 700.0
+        self.assertEqual(notes(3.0), [vibration_object.rate_note(v, 1000)])
+        self.assertIn("felt at 300 Hz instead", notes(3.0)[0])
 
     @rerun_after_host_stall
     def test_the_hand_is_held_at_the_surface(self):

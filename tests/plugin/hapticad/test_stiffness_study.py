@@ -403,7 +403,8 @@ class StudyTest(unittest.TestCase):
         self.doc.recompute()
         scene = build_document_scene(self.doc)
         base = preferences.load()
-        # a device through the workspace mapping: 2 model mm per device mm halves what it renders
+        # a device through the workspace mapping (2 model mm per device mm, or fitted): what it renders is felt at
+        # the handle, as a session holds it
         for prefs in (dataclasses.replace(base, **{"device": "simulated"}),
                       dataclasses.replace(base, **{"device": "sim:hand",
                                                  "workspace_mapping": "Fixed scale", "workspace_scale": 2.0}),
@@ -419,11 +420,15 @@ class StudyTest(unittest.TestCase):
         scaled = dataclasses.replace(base, **{"device": "sim:hand", "workspace_mapping": "Fixed scale",
                                             "workspace_scale": 2.0})
         k = stiffness_study.device_stiffness_n_per_m(self.doc, scaled)
-        self.assertAlmostEqual(k, _core.simulated_hand_limits().max_stiffness_n_per_m / 2)
-        # 2 N/mm to the operating point: within the raw 3 N/mm, beyond the 1.5 rendered: marked so
+        # the scale stretches the part, not what is felt: the device's own 3 N/mm at the handle
+        self.assertAlmostEqual(k, _core.simulated_hand_limits().max_stiffness_n_per_m)
+        # 2 N/mm to the operating point: within the 3 N/mm felt at the handle whatever the scale: not marked
         record = HaptiCAD.record_preference(study, *PARTICIPANT, k)
-        self.assertEqual((record.design["DeviceStiffness"], cohort.beyond_device(record)), (k * 1e-3, True))
+        self.assertEqual((record.design["DeviceStiffness"], cohort.beyond_device(record)), (k * 1e-3, False))
         self.assertEqual(stiffness_study.device_note(study, _core.simulated_hand_limits().max_stiffness_n_per_m), "")
+        # a device of 1.5 N/mm does not hold it: marked so
+        record = HaptiCAD.record_preference(study, "Yang", "F", "41-60", 60, 1600, k / 2)
+        self.assertEqual((record.design["DeviceStiffness"], cohort.beyond_device(record)), (k / 2 * 1e-3, True))
 
     def test_a_stored_implausible_preference_is_still_summarised(self):
         # saved before the range was checked: the study still gives its statistics (the CLI, the panel)
@@ -437,6 +442,54 @@ class StudyTest(unittest.TestCase):
         self.assertEqual(cohort.statistics(held)[0]["n"], 3)
         self.assertIn("of the 3 participants", cohort.place_design(1.0, held)[1])
         self.assertIn("outside the plausible", cohort.problems(held[1])[0])
+
+    def test_a_scaled_workspace_feels_the_design_at_the_handle(self):
+        from types import SimpleNamespace
+
+        from hapticad import preferences
+
+        # seed 000's toothbrush neck, 0.556 N/mm, through a device whose workspace is scaled 1.8 x into the model
+        # (a 180 mm toothbrush fitted into a 100 mm workspace): the neck was felt as 1.0 N/mm at the handle
+        study = HaptiCAD.make_study(self.doc, self.head, YoungsModulus=1.5, BeamWidth=5, BeamThickness=4,
+                                    BeamLength=60)
+        self.doc.recompute()
+        scene = build_document_scene(self.doc)
+        limits = _core.simulated_probe_limits()  # 3 N/mm
+
+        def held_force(scale, handle_depth_m):
+            """Mean normal force while a scripted handle holds ``handle_depth_m`` below the top, live loop."""
+            mapping = _core.WorkspaceMapping()
+            mapping.scale = scale
+            mapping.offset_w = np.array([20.0, 20.0, 10.0]) * 1e-3  # the handle's origin on the top's middle
+            path = np.array([[0, 0, 0.01], [0, 0, 0.01], [0, 0, -handle_depth_m], [0, 0, -handle_depth_m]])
+
+            def run():
+                device = _core.SimulatedDevice([0.0, 0.1, 0.4, 0.8], path, limits)
+                renderer = _core.ForceRenderer(scene.scene, scene.surfaces, _core.render_limits_for(limits, mapping))
+                loop = _core.ServoLoop(device, renderer, 1000.0, trace_capacity=2000)
+                loop.set_mapping(mapping)
+                return SimpleNamespace(trace=loop.run_for(0.8))
+
+            trace = run_without_host_stall(run, _core.FLAG_FAULT_WATCHDOG).trace
+            held = trace["time_s"] > 0.6  # down at 0.4 s, the mapping's ramp-in long over
+            self.assertTrue((trace["flags"][held] & _core.FLAG_CONTACT).all())
+            return float(np.mean(trace["normal_force_n"][held]))
+
+        # pressed 1 mm at the handle (1.8 mm into the model): the design's 0.556 N, as at scale 1. The proxy rests
+        # 1e-9 of the part's size off the face (micronewtons): 1e-4 N is far inside the 0.44 N the old 1.8 x gave
+        for scale in (1.0, 1.8):
+            with self.subTest(scale=scale):
+                self.assertAlmostEqual(held_force(scale, 1e-3), study.BendingStiffness * 1.0, delta=1e-4)
+        # 8 mm: 4.44 N/mm, beyond the device: felt at its 3 N/mm at the handle, what the note and the record say
+        study.BeamThickness = 8
+        self.doc.recompute()
+        scene = build_document_scene(self.doc)
+        fitted = dataclasses.replace(preferences.load(), **{"device": "sim:hand", "workspace_mapping": "Fixed scale",
+                                                           "workspace_scale": 1.8})
+        k = stiffness_study.device_stiffness_n_per_m(self.doc, fitted)
+        self.assertAlmostEqual(k, 3000.0)
+        self.assertIn("it is felt at the handle as 3 N/mm", stiffness_study.device_note(study, k))
+        self.assertAlmostEqual(held_force(1.8, 0.5e-3), k * 0.5e-3, delta=1e-4)
 
     def test_a_live_edit_of_the_study_recompiles_the_faces_law(self):
         study = HaptiCAD.make_study(self.doc, self.head, YoungsModulus=1.5, BeamThickness=4)

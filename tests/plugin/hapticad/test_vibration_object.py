@@ -100,13 +100,79 @@ class VibrationTest(unittest.TestCase):
         self.assertIn("under 500 Hz", vibration_object.rate_note(v, 1000))
         frequency, amplitude = felt(1000)  # what the note says: 300 Hz
         self.assertAlmostEqual(frequency, 300, delta=2)
-        self.assertEqual(vibration_object.rate_note(v, 2000), "")
+        # at 2 kHz it is no longer aliased, but with 2.9 samples a cycle not even either
+        self.assertNotIn("instead", vibration_object.rate_note(v, 2000))
+        self.assertIn("700 Hz gets 2.9 samples a cycle", vibration_object.rate_note(v, 2000))
+        self.assertEqual(vibration_object.rate_note(v, 4000), "")
         v.Frequency = 1000
         self.assertIn("not felt at all", vibration_object.rate_note(v, 1000))
         self.assertLess(felt(1000)[1], 0.05)
         self.assertEqual(vibration_object.rate_notes(self.doc, 1000), [vibration_object.rate_note(v, 1000)])
         v.Powered = False
         self.assertEqual(vibration_object.rate_notes(self.doc, 1000), [])
+        v.Powered = True
+
+        def weakest_cycle_peak(rate_hz):
+            """The smallest of the largest shake in each cycle's samples, as a share of
+            the amplitude: 1 when every cycle's peak is felt."""
+            scene = build_document_scene(self.doc)
+            result = run_stroke_in_servo_loop(scene, Stroke((10, 20, 20), (40, 20, 20), 50, 1.0, rate_hz=rate_hz))
+            t = result.trace
+            sliding = (t["time_s"] > result.plan.slide_start_s) & (t["time_s"] < result.plan.slide_end_s)
+            shake = np.abs(np.asarray(t["vibration_force_n"])[sliding])
+            w = int(np.ceil(rate_hz / float(v.Frequency)))
+            return min(shake[i:i + w].max() for i in range(len(shake) - w)) / float(v.Amplitude)
+
+        # a quarter to half the rate: rendered, but its size swings from cycle to cycle
+        v.Frequency = 450
+        self.assertIn("450 Hz gets 2.2 samples a cycle at the 1000 Hz servo rate, so its size swings",
+                      vibration_object.rate_note(v, 1000))
+        self.assertIn("keep it under 250 Hz", vibration_object.rate_note(v, 1000))
+        self.assertLess(weakest_cycle_peak(1000), 0.5)
+        v.Frequency = 200  # under a quarter: even, and not said
+        self.assertEqual(vibration_object.rate_note(v, 1000), "")
+        self.assertGreater(weakest_cycle_peak(1000), 0.9)
+
+    def test_an_amplitude_beyond_the_force_limit_is_said_and_a_vibration_never_pulls_the_probe_in(self):
+        import numpy as np
+        from hapticad.feel import Stroke, run_stroke_in_servo_loop
+
+        self.razor.Length, self.razor.Width, self.razor.Height = 80, 40, 20
+        self.doc.recompute()
+        HaptiCAD.make_surface(self.doc, [(self.razor, "Face6")], FeelRoughness=False, static_friction=0.0,
+                              dynamic_friction=0.0, stiffness_n_per_mm=0.4)
+        # a phone's buzz, 0.3 N, on a touch of 0.25 mm (0.1 N): more than the push
+        v = HaptiCAD.make_vibration(self.doc, self.razor, frequency_hz=200.0, amplitude_n=0.3, axis=(0, 0, 1))
+        result = run_stroke_in_servo_loop(build_document_scene(self.doc),
+                                          Stroke((10, 20, 20), (70, 20, 20), 50, 0.25, rate_hz=1000))
+        t = result.trace
+        sliding = (t["time_s"] > result.plan.slide_start_s) & (t["time_s"] < result.plan.slide_end_s)
+        fz = np.asarray(t["force_n"])[sliding, 2]
+        # the face only pushes: the push's half-wave, from nothing (it pulled to -0.185 N) to 0.1 N and the
+        # vibration's highest sample at 1 kHz, 0.3 N sin 72 degrees
+        self.assertGreaterEqual(float(fz.min()), 0.0)
+        self.assertLess(float(fz.min()), 1e-9)
+        self.assertAlmostEqual(float(fz.max()), 0.1 + 0.3 * np.sin(np.radians(72)), delta=0.005)
+        # a firm 1 N push and 0.3 N fit under the 3 N force limit: nothing to say
+        self.assertEqual(vibration_object.force_note(v, 3.0), "")
+        # 10 N is accepted (a strong device renders it) but said: under 3 N it is a square wave at the limit
+        v.Amplitude = 10.0
+        self.assertEqual(v.Amplitude, 10.0)
+        self.assertEqual(vibration_object.validate(v), [])
+        note = vibration_object.force_note(v, 3.0)
+        self.assertIn(f"{v.Label}: 10 N alone it reaches the 3 N force limit", note)
+        self.assertIn("square wave", note)
+        self.assertIn("keep the amplitude under 2 N or raise the force limit", note)
+        # 2.5 N fits alone, not on a 1 N push: its peaks are cut
+        v.Amplitude = 2.5
+        self.assertIn("2.5 N on a typical 1 N push it passes the 3 N force limit, which cuts its peaks",
+                      vibration_object.force_note(v, 3.0))
+        self.assertEqual(vibration_object.force_note(v, 3.5), "")  # a limit that holds both
+        self.assertIn("raise the force limit", vibration_object.force_note(v, 0.5))
+        self.assertNotIn("keep the amplitude", vibration_object.force_note(v, 0.5))  # no room left under 0.5 N
+        self.assertEqual(vibration_object.force_notes(self.doc, 3.0), [vibration_object.force_note(v, 3.0)])
+        v.Powered = False
+        self.assertEqual(vibration_object.force_notes(self.doc, 3.0), [])
 
     def test_round_trip(self):
         v = HaptiCAD.make_vibration(self.doc, self.razor, frequency_hz=167.0, amplitude_n=0.25,

@@ -7,8 +7,13 @@
 // `scale` is world metres per device metre: 1.2 lets a 160 mm workspace reach across a
 // 190 mm part, and the clutch (clutch.h) moves `offset_w` to reach further still.
 // Because forces are not scaled, a world spring k_w feels like scale * k_w at the
-// handle: RenderLimitsFor() divides the device's stiffness limit by the scale so the
-// device never sees more than it can render stably.
+// handle. What a face is given to feel (its stiffness, damping, a stiffness study's
+// force-travel law) is meant at the handle, so RenderLimitsFor() hands the renderer the
+// scale with the device's own limits, and the renderer divides the face's stiffness by
+// the scale in the world (force_renderer.h): the hand feels the designer's N/mm
+// whatever the scale, and never more than the device renders stably. Forces in newtons
+// are felt as given; what belongs to the part (a grating's period, speeds across it) is
+// scaled with the part.
 //
 // Units: m, m/s, N. Servo-tick safe (plain arithmetic).
 #pragma once
@@ -40,7 +45,9 @@ struct WorkspaceMapping {
 void ValidateWorkspaceMapping(const WorkspaceMapping& mapping);
 
 // The renderer's limits for a device seen through `mapping`: the device's maximum
-// force, and its maximum stiffness divided by the scale.
+// force, stiffness and (where it states one) damping, felt at the handle as the device
+// states them, and the mapping's scale (RenderLimits::workspace_scale), by which the
+// renderer divides stiffness and damping in the world.
 RenderLimits RenderLimitsFor(const DeviceLimits& limits, const WorkspaceMapping& mapping);
 
 // The mapping (no rotation) that centres the device's workspace on the world box

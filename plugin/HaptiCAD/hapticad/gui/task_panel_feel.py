@@ -13,7 +13,7 @@ import numpy as np
 import FreeCADGui as Gui
 from PySide2 import QtCore, QtGui, QtWidgets
 
-from .. import _core, feel_session, icon, preferences, stiffness_study, vibration_object
+from .. import _core, feel_session, icon, preferences, stiffness_study
 from ..proxy_state import is_alive
 from ..similarity_study import similarity_studies_of
 from ..surface_object import hidden_part_notes, surfaces_of
@@ -129,8 +129,9 @@ class FeelTaskPanel:
         return box
 
     def device_stiffness(self):
-        """The stable stiffness (N/m, in the world) of the running session, or with none
-        running, the one a session would have (a record made then keeps its device mark)."""
+        """The stable stiffness (N per m of the handle's travel, as felt) of the running
+        session, or with none running, the one a session would have (a record made then
+        keeps its device mark)."""
         if self.session is not None:
             return self.session.render_limits.max_stiffness_n_per_m
         return stiffness_study.device_stiffness_n_per_m(self.doc)
@@ -154,6 +155,10 @@ class FeelTaskPanel:
         self.device.clear()
         for choice in feel_session.device_choices():
             self.device.addItem(choice.label, choice.path)
+            if choice.problem:  # listed, so it is not missed, but not chosen: it says why
+                item = self.device.model().item(self.device.count() - 1)
+                item.setEnabled(False)
+                item.setToolTip(choice.problem)
         index = self.device.findData(preferences.load().device)
         self.device.setCurrentIndex(max(index, 0))
 
@@ -225,11 +230,12 @@ class FeelTaskPanel:
         return True
 
     def session_notes(self):
-        """As notes: what the servo rate keeps a vibration from being felt as set, and
-        tagged parts hidden behind what is shown (a fillet made after tagging)."""
+        """As notes: what the servo rate and the force limit keep a vibration from being
+        felt as set, and tagged parts hidden behind what is shown (a fillet made after
+        tagging)."""
         # one part under two surfaces is said once
         hidden = list(dict.fromkeys(n for s in surfaces_of(self.doc) for n in hidden_part_notes(s)))
-        return "".join(_note(n) for n in vibration_object.rate_notes(self.doc, self.session.rate_hz) + hidden)
+        return "".join(_note(n) for n in self.session.vibration_notes(self.doc) + hidden)
 
     def edited(self, geometry):
         """The designer edited the document while the session runs: a surface (felt from

@@ -155,6 +155,14 @@ class FeelGuiTest(unittest.TestCase):
         self.open_feel()  # at 1000 Hz (setUp's preference)
         self.assertIn("700 Hz is felt at 300 Hz instead", h.widget(QtWidgets.QLabel, "feelMessage").text())
 
+    def test_a_vibration_beyond_the_force_limit_is_said_when_feeling_starts(self):
+        vibration = HaptiCAD.make_vibration(self.doc, self.box, frequency_hz=150.0, amplitude_n=10.0)
+        panel = self.open_feel()
+        limit = panel.session.render_limits.max_force_n
+        self.assertLess(limit, 10.0)
+        self.assertIn(f"{vibration.Label}: 10 N alone it reaches the {limit:g} N force limit",
+                      h.widget(QtWidgets.QLabel, "feelMessage").text())
+
     def test_a_vibration_along_the_face_is_drawn_in_the_chart_while_touching(self):
         HaptiCAD.make_vibration(self.doc, self.box, frequency_hz=150.0, amplitude_n=0.3, axis=(1.0, 0.0, 0.0))
         _, chart = self.press_on_the_top()

@@ -12,7 +12,9 @@
 //              agree there (one smooth CAD face); at a crease of the CAD model the
 //              plain spring acts. With roughness, k (depth + h) along the bump-tilted
 //              normal (roughness_texture.h). The face's damping B adds -B v_n along the
-//              normal (capped at the device's limit), the sum never below zero
+//              normal (capped at the device's limit), the sum never below zero. A
+//              force-travel law (a stiffness study's mechanism) pushes instead of k.
+//              Stiffness, damping and law are felt at the handle (below).
 //   lateral    one of
 //                seed 000 §2.1 friction, f_t = -mu_eq(|v_t|) F_n v_hat_t, with the
 //                face's mu (anisotropic along a pattern, scaled by roughness);
@@ -20,10 +22,27 @@
 //                until the device leaves the static cone, then slides on the dynamic
 //                one (stick-slip, which the paper's model cannot render);
 //                a viscous grating (seed 001 eq. 2) in place of Coulomb friction
-//   vibration  the touched part's, while powered
+//   vibration  the touched part's, while powered, added to the force along its axis; a
+//              face only pushes, so the force's component along the contact normal is
+//              then held at or above zero: a vibration stronger than the push is felt
+//              as the push's half-wave (the push plus the vibration where that pushes,
+//              nothing where it would pull the hand into the part), whatever it does
+//              across the face is kept
 //   total      scaled down to the device's maximum force
 // The touched face is the one whose triangle first constrained the proxy this tick.
 // A face runs only the effects it compiled into (SurfaceTable::effects).
+//
+// Felt at the handle: the device's workspace is scaled into the world by
+// RenderLimits::workspace_scale = s (world metres per handle metre, WorkspaceMapping),
+// and forces are not scaled, so a world spring k_w feels like s k_w at the handle. A
+// face's stiffness, damping and force-travel law are what the designer wants the hand to
+// feel, so they are rendered against the handle's displacement: in the world a spring of
+// k / s, a damper of B / s and the law's F(depth_w / s), each clamped at the device's
+// limits, which are felt too. Forces given in newtons (friction, mu times the push, a
+// texture's levels, a vibration's amplitude, the force limit) are the same at the handle.
+// What belongs to the part stays in the part's frame, scaled with it: a grating's or a
+// pattern's period, roughness bumps, the speeds of friction and textures (a 2 mm
+// grating under s = 2 passes under the handle every 1 mm of its travel).
 //
 // Frames and units: world frame, SI (m, m/s, N, N/m, s). Render() is servo-tick safe:
 // no allocation, no lock, no I/O. Device input that is not finite, lies over 1 km (or a
@@ -49,12 +68,21 @@
 
 namespace hapticad {
 
+// The device's limits as the hand feels them (per metre of the handle's travel), and how
+// far the world is scaled to it. RenderLimitsFor() (workspace_mapping.h) makes them for a
+// device and its mapping.
 struct RenderLimits {
   double max_force_n = 3.3;              // > 0; the full range of textures that set none
-  double max_stiffness_n_per_m = 400.0;  // > 0
-  // >= 0. Virtual damping beyond the device's own destabilises a sampled display
-  // (Colgate: b > K T / 2 + |B|); 0.5 N s/m is a desktop device's own (field notes).
+  double max_stiffness_n_per_m = 400.0;  // > 0, felt: N per m of the handle's travel
+  // >= 0, felt: N s per m of the handle's travel. Virtual damping beyond the device's
+  // own destabilises a sampled display (Colgate: b > K T / 2 + |B|); 0.5 N s/m is a
+  // desktop device's own (field notes).
   double max_damping_n_s_per_m = 0.5;
+  // > 0, finite: world metres per metre of the handle's travel, the scale of the
+  // WorkspaceMapping the device is seen through (1: the handle moves in the world's
+  // metres). A face's stiffness, damping and law are divided by it in the world, so the
+  // hand feels them as set. A mapping of another scale needs limits made for it.
+  double workspace_scale = 1.0;
 };
 
 // How the contact is computed: the shape of the proxy and whether to shade.
@@ -111,8 +139,8 @@ struct RenderOutput {
 
 class ForceRenderer {
  public:
-  // Throws std::invalid_argument for null inputs, non-positive limits, a negative or
-  // non-finite proxy radius or edit ramp.
+  // Throws std::invalid_argument for null inputs, non-positive limits or workspace scale,
+  // a negative or non-finite proxy radius or edit ramp.
   ForceRenderer(std::shared_ptr<const HapticScene> scene,
                 std::shared_ptr<const SurfaceTable> surfaces, RenderLimits limits,
                 ContactOptions options = {});
