@@ -131,6 +131,32 @@ class CohortCommandTest(unittest.TestCase):
         finally:
             App.closeDocument(doc.Name)
         self.assertIn("Neck (Bending beam): design 0.556 N/mm, 1 participant\n", run_cli("cohort", one).stdout)
+        # a group of one has no SD: "-" in text, null in JSON (it read 0, as if everyone agreed)
+        self.assertRegex(run_cli("cohort", one).stdout, r"\n  all +n 1 +mean 4.5 sd - median 4.5 ")
+        (alone,) = json.loads(run_cli("cohort", one, "--json").stdout)
+        self.assertEqual([row["sd"] for row in alone["statistics"]], [None, None, None])
+
+    def test_a_preference_above_the_force_limit_is_counted_apart_and_said(self):
+        doc = App.newDocument("CliCohortForce")
+        try:
+            box = doc.addObject("Part::Box", "Cap")
+            doc.recompute()
+            study = HaptiCAD.make_study(doc, HaptiCAD.make_surface(doc, [(box, "Face6")], material="ABS"),
+                                        model="Push button")
+            # the force limit 3 N: 4.5 N stops at 3 N and its click never comes
+            for name, force in (("Ann", 1.47), ("Bo", 2.0), ("Cy", 4.5)):
+                study.OperatingForce = force
+                HaptiCAD.record_preference(study, name, "F", "26-40", None, None, 3000.0, 3.0)
+            path = os.path.join(self.tmp.name, "force.FCStd")
+            doc.saveAs(path)
+        finally:
+            App.closeDocument(doc.Name)
+        (study,) = json.loads(run_cli("cohort", path, "--json").stdout)
+        self.assertEqual((study["participants"], study["beyond_device"], study["beyond_force_limit"]), (3, 2, 1))
+        self.assertEqual((study["statistics"][0]["n"], study["statistics"][0]["max"]), (2, 2.0))
+        self.assertIn("† 1 preference above the force limit (3 N): the force stopped there and the click was never "
+                      "felt; left out of the statistics", study["beyond_device_note"])
+        self.assertIn("† 1 preference above the force limit (3 N)", run_cli("cohort", path).stdout)
 
     def test_bad_input_is_refused(self):
         for args, message in ((("cohort", os.path.join(self.tmp.name, "none.FCStd")), "no such file"),

@@ -333,7 +333,9 @@ def cmd_cohort(args):
             result.append({"study": study.Label, "model": study.Model, "design_value": value, "unit": unit,
                            "participants": len(records), "other_unit": len(held) - len(records),
                            "other_note": stiffness_study.others_note(study),
-                           "beyond_device": sum(1 for r in records if cohort.beyond_device(r)),
+                           # starred as the panel's table marks them; † above the force limit, not counted
+                           "beyond_device": sum(1 for r in records if cohort.mark(r) == " *"),
+                           "beyond_force_limit": sum(1 for r in records if cohort.beyond_force_limit(r)),
                            "beyond_device_note": cohort.beyond_device_note(records),
                            "statistics": cohort.statistics(records),
                            "design_among_preferences": cohort.place_design(value, records)[1]})
@@ -348,7 +350,7 @@ def cmd_cohort(args):
               f", {cohort.plural(study['participants'], 'participant')}"
               + (f" ({study['other_note']})" if study["other_note"] else ""))
         for row in study["statistics"]:
-            print(f"  {row['group']:<20} n {row['n']:<3} mean {row['mean']:.3g} sd {row['sd']:.2g} "
+            print(f"  {row['group']:<20} n {row['n']:<3} mean {row['mean']:.3g} sd {cohort.format_sd(row['sd'])} "
                   f"median {row['median']:.3g} range {row['min']:.3g}-{row['max']:.3g}")
         print(f"  this design: {study['design_among_preferences']}")
         if study["beyond_device_note"]:

@@ -10,17 +10,21 @@ product stiffness can be used to dictate if a change should be made", seed 000 �
 are kept in the study object as JSON and exported and imported as CSV. No GUI.
 """
 import csv
+import io
 import math
 import os
 import re
 import statistics as stats
 import unicodedata
 from dataclasses import asdict, dataclass, field
+from datetime import datetime, timedelta
 
 NOT_GIVEN = "not given"  # a participant need not say
 GENDERS = ("F", "M", "other", NOT_GIVEN)
 AGE_BANDS = ("under 18", "18-25", "26-40", "41-60", "over 60", NOT_GIVEN)  # Table 3's bands and more
-WEIGHT_RANGE_KG = (20.0, 300.0)
+# 10 kg: a two-year-old's weight. The "under 18" band has no floor, and a child old enough
+# to press a toothbrush and say which feels right may weigh 12-15 kg (20 refused them)
+WEIGHT_RANGE_KG = (10.0, 300.0)
 HEIGHT_RANGE_MM = (500.0, 2500.0)
 # What a preference can plausibly be, per unit; beyond it a value is a typo or another
 # unit (N/m as N/mm), and near the float limit it breaks the statistics (1e308).
@@ -36,6 +40,13 @@ FORMULA_STARTS = ("=", "+", "-", "@")  # a spreadsheet runs a cell starting so a
 OPTIONAL_COLUMNS = ("weight_kg", "height_mm")  # an empty cell: not given
 CSV_COLUMNS = ("name", "gender", "age_band", "weight_kg", "height_mm", "value", "unit", "model", "design",
                "recorded")
+# the cells written as text: each guarded against a spreadsheet's formulas (spreadsheet_safe)
+TEXT_COLUMNS = ("name", "gender", "age_band", "unit", "model", "design", "recorded")
+# what read_csv takes between cells, found from the header (a European spreadsheet writes ';')
+SEPARATORS = {",": "comma", ";": "semicolon", "\t": "tab"}
+# what a participant's number outside its range may be in another unit, said where it fits:
+# Table 3 prints heights in cm under "Height(mm)"; a US form gives inches and pounds
+OTHER_UNITS = {"height": (("centimetres", 10.0), ("inches", 25.4)), "weight": (("pounds", 0.45359237),)}
 
 
 @dataclass
@@ -63,6 +74,9 @@ def problems(record):
     elif any(unicodedata.category(c) == "Cc" for c in record.name):  # a line break, tab or NUL: shown raw
         found.append(f"the name {record.name!r} holds a control character (a line break, tab or NUL): "
                      "give it on one line, of printable characters")
+    for label, text in (("model", record.model), ("time recorded", record.recorded)):  # shown raw too
+        if isinstance(text, str) and any(unicodedata.category(c) == "Cc" for c in text):
+            found.append(f"the {label} {text!r} holds a control character (a line break, tab or NUL)")
     if record.gender not in GENDERS:
         found.append(f"gender {record.gender!r} is not one of {', '.join(GENDERS)}")
     if record.age_band not in AGE_BANDS:
@@ -70,10 +84,8 @@ def problems(record):
     for label, value, (low, high), unit in (("weight", record.weight_kg, WEIGHT_RANGE_KG, "kg"),
                                             ("height", record.height_mm, HEIGHT_RANGE_MM, "mm")):
         if value is not None and not (isinstance(value, (int, float)) and low <= value <= high):
-            # Table 3 prints heights in cm under "Height(mm)": say what to give instead
-            hint = (f": in centimetres? give {value * 10:g}" if label == "height" and isinstance(value, (int, float))
-                    and low <= value * 10 <= high else "")
-            found.append(f"{label} {value} {unit} is outside {low:g}..{high:g} {unit}{hint}")
+            found.append(f"{label} {value} {unit} is outside {low:g}..{high:g} {unit}"
+                         f"{_other_unit_hint(label, value, low, high)}")
     if not (isinstance(record.value, (int, float)) and math.isfinite(record.value) and record.value > 0):
         found.append(f"the preferred value {record.value} must be a number > 0")
     elif record.unit not in PREFERENCE_RANGES:
@@ -86,16 +98,55 @@ def problems(record):
     return found
 
 
-def beyond_device(record):
-    """Whether a record was felt at the device's limit. Records imported before design
-    values were read back as numbers hold the text "0.0" or "0": not beyond."""
-    flag = record.design.get("BeyondDevice")
+def _other_unit_hint(label, value, low, high):
+    """What to give if ``value`` was meant in another unit (OTHER_UNITS) that lands it in
+    low..high: ": in centimetres? give 690, or in inches? give 1753" (69), or ""."""
+    if not isinstance(value, (int, float)) or not math.isfinite(value):
+        return ""
+    fits = [f"in {name}? give {value * factor:.0f}" for name, factor in OTHER_UNITS.get(label, ())
+            if low <= value * factor <= high]
+    return ": " + ", or ".join(fits) if fits else ""
+
+
+def _flag(record, key):
+    """A yes/no kept in a record's design. Records imported before design values were
+    read back as numbers hold the text "0.0" or "0": no."""
+    flag = record.design.get(key)
     if isinstance(flag, str):
         try:
             return float(flag) != 0.0
         except ValueError:
             return flag.strip().lower() == "true"
     return bool(flag)
+
+
+def beyond_device(record):
+    """Whether a record was felt at the device's limit (its design's BeyondDevice)."""
+    return _flag(record, "BeyondDevice")
+
+
+def beyond_force_limit(record):
+    """Whether a button's record was felt with its operating force above the session's
+    force limit (its design's BeyondForceLimit, the limit kept as ForceLimit, N): the
+    force stopped at the limit and the click never came, so what was chosen is not what
+    was felt. Such records are kept and exported, marked †, and left out of statistics
+    and place_design (counted)."""
+    return _flag(record, "BeyondForceLimit")
+
+
+def counted(records):
+    """The records statistics and place_design count: all but those beyond the force
+    limit (beyond_force_limit), whose count beyond_device_note gives instead. Left out,
+    not flagged in the figures: a button whose click never came was not felt as designed
+    at all, and its value would pull the mean towards forces nobody felt."""
+    return [r for r in records if not beyond_force_limit(r)]
+
+
+def mark(record):
+    """The mark after a record's value in a table: " †" beyond the force limit (it
+    outweighs the star: its forces were not felt as designed), " *" beyond the device's
+    stiffness, or ""."""
+    return " †" if beyond_force_limit(record) else " *" if beyond_device(record) else ""
 
 
 # what the star beside a preference means, by the unit it is in: the renderer stretches a
@@ -110,13 +161,33 @@ BEYOND_DEVICE["snap ratio"] = BEYOND_DEVICE["N"]
 
 
 def beyond_device_note(records):
-    """The footnote of the starred records (beyond_device) among ``records``, all of one
-    unit, saying what the star means there, or "" when none is starred."""
-    starred = [r for r in records if beyond_device(r)]
-    if not starred:
-        return ""
-    meaning = BEYOND_DEVICE.get(starred[0].unit, "beyond what the device renders stably")
-    return f"* {plural(len(starred), 'preference')} {meaning}; counted as recorded."
+    """The footnotes of the marked records (mark) among ``records``, all of one unit: what
+    the star means there, and how many preferences lie beyond the force limit and are
+    left out of the statistics; "" when none is marked."""
+    starred = [r for r in records if beyond_device(r) and not beyond_force_limit(r)]
+    above = [r for r in records if beyond_force_limit(r)]
+    notes = []
+    if starred:
+        meaning = BEYOND_DEVICE.get(starred[0].unit, "beyond what the device renders stably")
+        notes.append(f"* {plural(len(starred), 'preference')} {meaning}; counted as recorded.")
+    if above:
+        notes.append(f"† {plural(len(above), 'preference')} {force_limit_meaning(above)}; left out of the "
+                     "statistics (kept, and exported).")
+    return " ".join(notes)
+
+
+def force_limit_meaning(records):
+    """What the dagger means for ``records``, with the force limit(s) they kept: "above
+    the force limit (3 N): the force stopped there and the click was never felt"."""
+    limits = set()
+    for r in records:
+        try:
+            limits.add(float(r.design.get("ForceLimit")))
+        except (TypeError, ValueError):  # kept no limit: said without one
+            pass
+    shown = ", ".join(f"{limit:.3g} N" for limit in sorted(limits))
+    return (f"above the force limit{f' ({shown})' if shown else ''}: the force stopped there and the click was "
+            "never felt")
 
 
 def plural(count, noun):
@@ -149,12 +220,79 @@ def _same_number(a, b):
 def same_record(a, b):
     """Whether two records are one participant's one preference (a re-import, a row listed
     twice): every field the participant gave or was recorded with alike (name, gender, age
-    band, weight, height, the value, its unit and the time), numbers as _same_number. Two
-    people of one name and value, or one person's two sessions, are two records. The
-    design is left out: it is the study's, and the value and time already tell it."""
+    band, weight, height, the value, its unit and the time), numbers as _same_number, times
+    as same_time. Two people of one name and value, or one person's two sessions, are two
+    records. The design is left out: it is the study's, and the value and time tell it."""
     return (a.name == b.name and a.gender == b.gender and a.age_band == b.age_band and a.unit == b.unit
-            and a.recorded == b.recorded and _same_number(a.value, b.value)
-            and _same_number(a.weight_kg, b.weight_kg) and _same_number(a.height_mm, b.height_mm))
+            and _same_number(a.value, b.value) and _same_number(a.weight_kg, b.weight_kg)
+            and _same_number(a.height_mm, b.height_mm) and same_time(a.recorded, b.recorded))
+
+
+# a date as ISO writes it (2026-11-24), or day and month first as spreadsheets do
+# (24/11/2026, 11/24/26, 24.11.2026), then a time to the minute or second (15:17, 3:17 PM)
+_TIME = r"(?:(?:T|\s+)(\d{1,2}):(\d{2})(?::(\d{2})(?:[.,]\d+)?)?\s*([AaPp][Mm])?)?"
+_YEAR_FIRST = re.compile(r"(\d{4})([-/.])(\d{1,2})\2(\d{1,2})" + _TIME)
+_YEAR_LAST = re.compile(r"(\d{1,2})([-/.])(\d{1,2})\2(\d{4}|\d{2})" + _TIME)
+SECOND, MINUTE, DAY = timedelta(seconds=1), timedelta(minutes=1), timedelta(days=1)
+
+
+def recorded_times(text):
+    """The times a recorded text can be, each (datetime, precision: SECOND, MINUTE or
+    DAY), as a spreadsheet may have rewritten it: ISO ("2026-11-24T15:17:03"), "2026-11-24
+    15:17", "24/11/2026 15:17" or "11/24/26 3:17 PM" (day or month first: both, when both
+    can be), "24.11.2026" (day first). Empty when it is none of these."""
+    text = text.strip() if isinstance(text, str) else ""
+    found = []
+    match = _YEAR_FIRST.fullmatch(text)
+    if match:
+        dates = [(int(match[1]), int(match[3]), int(match[4]))]
+        clock = match.groups()[4:]
+    else:
+        match = _YEAR_LAST.fullmatch(text)
+        if not match:
+            return []
+        first, middle, year = int(match[1]), int(match[3]), int(match[4])
+        year += 2000 if len(match[4]) == 2 else 0  # a spreadsheet's "26": this century
+        dates = [(year, middle, first)]  # day first (24/11/2026, 24.11.2026)
+        if match[2] != ".":  # month first too (11/24/2026); nobody writes 11.24.2026
+            dates.append((year, first, middle))
+        clock = match.groups()[4:]
+    hour, minute, second, half = clock
+    for year, month, day in dict.fromkeys(dates):
+        try:
+            if hour is None:
+                found.append((datetime(year, month, day), DAY))
+                continue
+            h = int(hour)
+            if half:  # 12 AM is midnight, 12 PM noon
+                if not 1 <= h <= 12:
+                    continue
+                h = h % 12 + (12 if half.lower() == "pm" else 0)
+            found.append((datetime(year, month, day, h, int(minute), int(second or 0)),
+                          SECOND if second is not None else MINUTE))
+        except ValueError:  # no such day (31/02), hour or minute
+            pass
+    return found
+
+
+def same_time(a, b):
+    """Whether two recorded times are one: the same text, or the same time to the precision
+    the coarser gives (a spreadsheet's re-save shows "2026-11-24T15:17:03" as "24/11/2026
+    15:17", cut or rounded to the minute). Texts that are no time (recorded_times) must be
+    the same text."""
+    if a == b:
+        return True
+
+    def cut(time, unit):
+        return datetime.min + (time - datetime.min) // unit * unit
+
+    for ta, pa in recorded_times(a):
+        for tb, pb in recorded_times(b):
+            (fine, _), (coarse, unit) = sorted(((ta, pa), (tb, pb)), key=lambda t: t[1])
+            # shown to the minute, a time's seconds are cut or rounded: spreadsheets differ
+            if coarse in (cut(fine, unit), cut(fine + unit / 2, unit) if unit != DAY else None):
+                return True
+    return False
 
 
 def from_dict(data):
@@ -167,12 +305,15 @@ def from_dict(data):
 
 def statistics(records, by=("gender", "age_band")):
     """Rows of {group, n, mean, sd, median, min, max} of the preferred values: all
-    participants first, then each group of each field in ``by`` (in _group_order)."""
+    participants first, then each group of each field in ``by`` (in _group_order). The
+    records counted (counted: not those beyond the force limit). sd is the sample SD,
+    None for a group of one (undefined, not 0: one person does not agree with themself)."""
     def row(group, values):
         mean, sd = _mean_sd(values)
         return {"group": group, "n": len(values), "mean": mean, "sd": sd, "median": stats.median(values),
                 "min": min(values), "max": max(values)}
 
+    records = counted(records)
     if not records:
         return []
     rows = [row("all", [r.value for r in records])]
@@ -200,20 +341,26 @@ def _mean_sd(values):
     """fmean and stdev that never raise on stored values (a document saved before their
     range was checked may hold 1e308, whose sum overflows, or inf): such a cohort must still
     be shown so the record can be removed."""
+    spread = len(values) > 1  # a sample SD needs two values: one gives None, undefined
     if not all(isinstance(v, (int, float)) and math.isfinite(v) for v in values):
-        return math.nan, math.nan
+        return math.nan, math.nan if spread else None
     try:
-        return stats.fmean(values), stats.stdev(values) if len(values) > 1 else 0.0
+        return stats.fmean(values), stats.stdev(values) if spread else None
     except OverflowError:  # in units of the largest value, then back (inf if it does not fit)
         scale = max(abs(v) for v in values)
         scaled = [v / scale for v in values]
-        return stats.fmean(scaled) * scale, stats.stdev(scaled) * scale if len(values) > 1 else 0.0
+        return stats.fmean(scaled) * scale, stats.stdev(scaled) * scale if spread else None
+
+
+def format_sd(sd):
+    """An SD as text: "-" when undefined (None: a group of one)."""
+    return "-" if sd is None else f"{sd:.2g}"
 
 
 def place_design(value, records):
-    """Where a design value falls among the preferences: (fraction of participants who
-    preferred less, a sentence)."""
-    values = sorted(r.value for r in records)
+    """Where a design value falls among the preferences (counted: not those beyond the
+    force limit): (fraction of participants who preferred less, a sentence)."""
+    values = sorted(r.value for r in counted(records))
     if not values:
         return None, "no participant has recorded a preference yet"
     below = sum(v < value for v in values) / len(values)
@@ -246,72 +393,132 @@ def write_csv(path, records):
         out.writerow(CSV_COLUMNS)
         for r in records:
             d = r.as_dict()
-            d["name"] = spreadsheet_safe(d["name"])
             # repr: the shortest text that reads back as the same float
             d["design"] = ";".join(f"{k}={v!r}" if isinstance(v, float) else f"{k}={v}" for k, v in r.design.items())
+            for key in TEXT_COLUMNS:  # every text cell: a model or time imported as "=HYPERLINK(...)" too
+                d[key] = spreadsheet_safe(str(d[key]))
             for key in ("weight_kg", "height_mm"):  # not given: an empty cell
                 if d[key] is None:
                     d[key] = ""
             out.writerow([d[c] for c in CSV_COLUMNS])
 
 
-def _number_or_none(text):
-    return float(text) if (text or "").strip() else None
+# a number written with a decimal comma (1,5 or -0,25e3), read from a ';' file only: with
+# ',' separating cells, "1,500" may be thousands
+_DECIMAL_COMMA = re.compile(r"[+-]?\d*,\d+(?:[eE][+-]?\d+)?")
 
 
-def _design_value(text):
-    """A design value as write_csv wrote it, back as the number (or boolean) it was."""
-    if text in ("True", "False"):
-        return text == "True"
-    for kind in (int, float):
-        try:
-            return kind(text)
-        except ValueError:
-            pass
-    return text
+class _Numbers:
+    """Reads a file's numbers, with decimal commas when its cells are ';'-separated, and
+    remembers whether it read one (to say so)."""
+
+    def __init__(self, decimal_comma):
+        self.decimal_comma, self.read_comma = decimal_comma, False
+
+    def text(self, text):
+        text = (text or "").strip()
+        if self.decimal_comma and _DECIMAL_COMMA.fullmatch(text):
+            self.read_comma = True
+            return text.replace(",", ".")
+        return text
+
+    def number(self, text):
+        return float(self.text(text))
+
+    def number_or_none(self, text):
+        return self.number(text) if (text or "").strip() else None
+
+    def design_value(self, text):
+        """A design value as write_csv wrote it, back as the number (or boolean) it was."""
+        if text in ("True", "False"):
+            return text == "True"
+        for kind in (int, float):
+            try:
+                return kind(self.text(text))
+            except ValueError:
+                pass
+        return text
 
 
-def _unguarded(name):
-    """A name without the apostrophe write_csv put before a formula's first character."""
-    return name[1:] if name[:1] == "'" and name.lstrip("'")[:1] in FORMULA_STARTS else name
+def _unguarded(text):
+    """A text cell without the apostrophe write_csv put before a formula's first character."""
+    return text[1:] if text[:1] == "'" and text.lstrip("'")[:1] in FORMULA_STARTS else text
+
+
+def _blank(row):
+    """Whether a row's cells are all empty or spaces (",,,,," as a spreadsheet writes an
+    empty row): skipped as a blank line is."""
+    cells = [c for v in row.values() if v is not None for c in (v if isinstance(v, list) else [v])]
+    return all(not c.strip() for c in cells)
+
+
+def _separator(header_line):
+    """The separator (SEPARATORS) that splits a header line into the required columns;
+    else the one that splits it most (for the message), None when nothing is there."""
+    split = {sep: next(csv.reader([header_line], delimiter=sep), []) for sep in SEPARATORS}
+    for sep, cells in split.items():
+        if all(c in cells for c in CSV_COLUMNS[:7]):
+            return sep, True
+    return max(split, key=lambda sep: len(split[sep])), False
 
 
 def read_csv(path):
     """Records from a CSV written by write_csv (or by hand with its columns). Raises
     ValueError naming the line of a record that cannot be kept; nothing is returned then."""
+    return read_csv_as_read(path)[0]
+
+
+def read_csv_as_read(path):
+    """(records, how the file was read): read_csv's records, and "" for a comma-separated
+    file, else what it was ("semicolon-separated, with decimal commas"). The separator is
+    the header's (SEPARATORS); a ';' file may give numbers with decimal commas. Rows of
+    empty cells are skipped as blank lines are. Text cells are kept as given, without the
+    apostrophe write_csv guards a formula with (spreadsheet_safe): they are data, shown as
+    plain text and never run here; every export guards them again. Raises ValueError
+    naming the line of a record that cannot be kept; nothing is returned then."""
     name = os.path.basename(path)
     try:
         with open(path, newline="", encoding="utf-8-sig") as handle:  # a spreadsheet's BOM too
-            reader = csv.DictReader(handle)
-            rows, after = [], 1
-            for row in reader:  # each with the line it starts on (a quoted field may hold line breaks)
-                breaks = sum(len(re.findall(r"\r\n|\r|\n", v)) for v in row.values() if isinstance(v, str))
+            text = handle.read()
+        separator, found = _separator(re.split(r"\r\n|\r|\n", text, maxsplit=1)[0])
+        reader = csv.DictReader(io.StringIO(text, newline=""), delimiter=separator)
+        rows, after = [], 1
+        for row in reader:  # each with the line it starts on (a quoted field may hold line breaks)
+            breaks = sum(len(re.findall(r"\r\n|\r|\n", v)) for v in row.values() if isinstance(v, str))
+            if not _blank(row):
                 rows.append((max(after + 1, reader.line_num - breaks), row))
-                after = reader.line_num
-            header = reader.fieldnames or []
+            after = reader.line_num
+        header = reader.fieldnames or []
     except UnicodeDecodeError:
         raise ValueError(f"{name}: not UTF-8 text; save it from the spreadsheet as CSV UTF-8") from None
     except csv.Error as exc:
         raise ValueError(f"{name}: not a readable CSV file ({exc})") from None
-    missing = [c for c in CSV_COLUMNS[:7] if c not in header]
-    if missing:
-        raise ValueError(f"{name}: needs the comma-separated columns {', '.join(CSV_COLUMNS[:7])}; its header is "
-                         f"{', '.join(header) or 'empty'}")
+    if not found:
+        raise ValueError(f"{name}: needs the columns {', '.join(CSV_COLUMNS[:7])}, separated by commas, semicolons "
+                         f"or tabs; its header is {', '.join(header) or 'empty'}")
+    numbers = _Numbers(decimal_comma=separator == ";")
     records = []
     for line, row in rows:
         missing = [c for c in CSV_COLUMNS[:7] if not row.get(c) and c not in OPTIONAL_COLUMNS]
         if missing:
             raise ValueError(f"{name}, line {line}: no {', '.join(missing)}")
+        if any(c.strip() for c in row.get(None) or ()):  # the cells after would be read into the wrong columns
+            raise ValueError(f"{name}, line {line}: more cells than the header has columns (a cell holding a "
+                             f"{SEPARATORS[separator]} without quotes around it?)")
         try:
-            design = {key: _design_value(text) for key, text in
-                      (item.split("=", 1) for item in (row.get("design") or "").split(";") if "=" in item)}
-            record = Record(_unguarded(row["name"]), row["gender"], row["age_band"], _number_or_none(row["weight_kg"]),
-                            _number_or_none(row["height_mm"]), float(row["value"]), row["unit"], row.get("model", ""),
-                            design, row.get("recorded", ""))
+            design = {key: numbers.design_value(text) for key, text in
+                      (item.split("=", 1) for item in _unguarded(row.get("design") or "").split(";") if "=" in item)}
+            record = Record(_unguarded(row["name"]), _unguarded(row["gender"]), _unguarded(row["age_band"]),
+                            numbers.number_or_none(row["weight_kg"]), numbers.number_or_none(row["height_mm"]),
+                            numbers.number(row["value"]), _unguarded(row["unit"]), _unguarded(row.get("model") or ""),
+                            design, _unguarded(row.get("recorded") or ""))
         except ValueError:
             raise ValueError(f"{name}, line {line}: weight, height and value must be numbers") from None
         wrong = problems(record)
         if wrong:
             raise ValueError(f"{name}, line {line}: {'; '.join(wrong)}")
         records.append(record)
-    return records
+    how = "" if separator == "," else f"{SEPARATORS[separator]}-separated"
+    if numbers.read_comma:
+        how += ", with decimal commas"
+    return records, how

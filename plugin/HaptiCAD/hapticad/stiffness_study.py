@@ -66,7 +66,9 @@ PROPERTIES = [
      "of another unit (what the slider moved before, or the other model) too, which the panel does not compare",
      0, None),
 ]
-HIDDEN_STATE = [("Cohort", "The participants' records (JSON)")]
+HIDDEN_STATE = [("Cohort", "The participants' records (JSON)"),
+                ("AdjustRanges", "The slider's range over each parameter it moved before (JSON), given back when "
+                 "it moves that one again")]
 # what a slider can move, per model: property -> (label, unit, default range)
 ADJUSTABLE = {
     BEAM: {"BeamThickness": ("thickness h", "mm", (2.0, 8.0)), "BeamWidth": ("width b", "mm", (2.0, 12.0)),
@@ -134,7 +136,7 @@ class StiffnessStudy(SchemaState):
             before = getattr(self, "_adjust_before", None)
             self._adjust_before = None
             if obj.Adjust != before:
-                reset_adjust_range(obj)
+                switch_adjust_range(obj, before)
         if prop in ("YoungsModulus", "BeamWidth", "BeamThickness", "BeamLength"):
             _update_stiffness(obj)
 
@@ -160,6 +162,42 @@ def reset_adjust_range(study):
             if (study.AdjustMin, study.AdjustMax) != (low, high):
                 study.AdjustMin, study.AdjustMax = low, high
             return
+
+
+def remembered_ranges(study):
+    """{parameter: (low, high)} the slider had over each parameter it moved before."""
+    try:
+        data = json.loads(getattr(study, "AdjustRanges", "") or "{}")
+    except ValueError:  # edited by hand: the defaults serve
+        return {}
+    kept = {}
+    for name, pair in (data.items() if isinstance(data, dict) else ()):
+        try:
+            low, high = (float(v) for v in pair)
+        except (TypeError, ValueError):
+            continue
+        if name in ALL_ADJUSTABLE and math.isfinite(low) and math.isfinite(high):
+            kept[name] = (low, high)
+    return kept
+
+
+def switch_adjust_range(study, before):
+    """The slider now moves ``study.Adjust``, not ``before``: the range it had over
+    ``before`` is kept (AdjustRanges), and the new parameter's is the one it had last,
+    else its default (reset_adjust_range). Switching away and back lost a range of one's
+    own (3-5 mm) to the default (2-8)."""
+    ranges = remembered_ranges(study)
+    if before in ALL_ADJUSTABLE:
+        ranges[before] = (float(study.AdjustMin), float(study.AdjustMax))
+        kept = json.dumps({name: list(pair) for name, pair in ranges.items()})
+        if study.AdjustRanges != kept:
+            study.AdjustRanges = kept
+    if study.Adjust in ranges:
+        low, high = ranges[study.Adjust]
+        if (study.AdjustMin, study.AdjustMax) != (low, high):
+            study.AdjustMin, study.AdjustMax = low, high
+    else:
+        reset_adjust_range(study)
 
 
 def _update_stiffness(obj):
@@ -343,8 +381,14 @@ def law_problems(study):
 
 def validate(study):
     """Problems with a study's current values, as sentences (empty when fine): its law's
-    (law_problems), and its slider's."""
-    found = law_problems(study)
+    (law_problems), its slider's (slider_problems), and a design the slider cannot reach
+    (outside_slider)."""
+    return [*law_problems(study), *slider_problems(study), *filter(None, [outside_slider(study)])]
+
+
+def slider_problems(study):
+    """What keeps the slider from working, as sentences: record_preference refuses then."""
+    found = []
     if study.Adjust not in ADJUSTABLE[study.Model]:
         found.append(f"the slider moves {study.Adjust}, which the {study.Model.lower()} model does not use")
     elif not study.AdjustMin < study.AdjustMax:
@@ -356,6 +400,38 @@ def validate(study):
             found.append(f"the slider's range {study.AdjustMin:g}..{study.AdjustMax:g} leaves {low:g}..{high:g}, "
                          f"what {study.Adjust} allows")
     return found
+
+
+def outside_slider(study):
+    """A sentence when the parameter the slider moves is set outside the slider's range (h
+    8 mm with a range of 3-5: set in the Mechanism box, the property editor or a script),
+    else "": a participant could not have chosen it, and the slider, pinned at its end,
+    jumps back into the range when touched. Said, not refused: a researcher may record a
+    design set by hand (Table 3's 4.5 N/mm needs h 8.03 mm, past the default 2-8)."""
+    if study.Adjust not in ADJUSTABLE[study.Model] or not study.AdjustMin < study.AdjustMax:
+        return ""  # slider_problems says what is wrong
+    value = float(getattr(study, study.Adjust))
+    slack = 1e-9 * (study.AdjustMax - study.AdjustMin)  # the slider's own end, low + (high - low) * 200/200
+    if study.AdjustMin - slack <= value <= study.AdjustMax + slack:
+        return ""
+    label, unit = adjust_info(study)
+    unit = f" {unit}" if unit else ""
+    return (f"the {label}, {value:g}{unit}, is outside the slider's range {study.AdjustMin:g}..{study.AdjustMax:g}"
+            f"{unit}: move the slider, or widen its range")
+
+
+def range_note(study, max_force_n):
+    """A sentence when the slider moves a button's operating force past the force limit
+    (``max_force_n``, N: force_note's), else "": there the force stops and the click is
+    never felt, so a preference chosen there is marked (cohort.beyond_force_limit)."""
+    if study.Model != BUTTON or study.Adjust != "OperatingForce" or not max_force_n:
+        return ""
+    low, high = float(study.AdjustMin), float(study.AdjustMax)
+    if high <= max_force_n:
+        return ""
+    if low >= max_force_n:
+        return f"the whole range is above {max_force_n:.3g} N, the force limit: the click is never felt"
+    return f"past {max_force_n:.3g} N, the force limit, the click is never felt (the slider goes to {high:g} N)"
 
 
 def records(study):
@@ -385,11 +461,15 @@ def comparable_indices(study):
     return [i for i, r in enumerate(records(study)) if r.unit == unit]
 
 
-def record_preference(study, name, gender, age_band, weight_kg, height_mm, device_max_stiffness_n_per_m=None):
+def record_preference(study, name, gender, age_band, weight_kg, height_mm, device_max_stiffness_n_per_m=None,
+                      force_limit_n=None):
     """Keeps a participant's preference for the design as it is now. With the device's
-    stable stiffness, a design beyond it is marked (the participant felt less than it).
-    Raises ValueError, keeping nothing, if the record or the study is not valid."""
-    wrong = validate(study)
+    stable stiffness, a design beyond it is marked (the participant felt less than it);
+    with the session's force limit (N), a button whose operating force is above it is
+    marked (its click was never felt: cohort.beyond_force_limit), and the limit kept.
+    Raises ValueError, keeping nothing, if the record or the study is not valid (a design
+    outside the slider's range is not refused: outside_slider)."""
+    wrong = law_problems(study) + slider_problems(study)
     if wrong:
         raise ValueError(f"{study.Label}: {'; '.join(wrong)}")
     value, unit = design_value(study)
@@ -397,6 +477,9 @@ def record_preference(study, name, gender, age_band, weight_kg, height_mm, devic
     if device_max_stiffness_n_per_m:
         kept["DeviceStiffness"] = device_max_stiffness_n_per_m * MM  # N/mm
         kept["BeyondDevice"] = float(bool(device_note(study, device_max_stiffness_n_per_m)))
+    if force_limit_n:  # as the stiffness limit is kept: what the session rendered at most
+        kept["ForceLimit"] = float(force_limit_n)  # N
+        kept["BeyondForceLimit"] = float(bool(force_note(study, force_limit_n)))
     given = [None if v is None else float(v) for v in (weight_kg, height_mm)]  # None: not given
     record = cohort.Record(name.strip(), gender, age_band, *given, float(value), unit,
                            study.Model, kept, datetime.now().isoformat(timespec="seconds"))
@@ -443,15 +526,30 @@ def others_note(study):
             f"{UNIT_SOURCES[unit][0]}; the study's Participants ({len(held)}) counts every record")
 
 
+class Imported(tuple):
+    """What import_records did: the tuple (added, already held, repeated in the file), and
+    ``retimed``, how many of the held were recognised by their time to the precision the
+    file gives it (a spreadsheet's re-save rewrites "2026-11-24T15:17:03" as "2026-11-24
+    15:17"), and ``read_as``, how the file was read ("" for commas, else "semicolon-
+    separated, with decimal commas": cohort.read_csv_as_read)."""
+
+    def __new__(cls, added, held, repeated, retimed=0, read_as=""):
+        made = super().__new__(cls, (added, held, repeated))
+        made.retimed, made.read_as = retimed, read_as
+        return made
+
+
 def import_records(study, path):
     """Adds the records of a cohort CSV that the study does not hold yet (cohort.same_record:
-    every field alike), each once; returns (added, already held, repeated in the file).
-    Records in a unit the study does not compare now are kept as its own are (others_note):
-    those its model records (a button's operating force or snap ratio) or that it holds
-    already (made before its model changed), so its own export comes back whole. Raises
-    ValueError, adding none, on a bad line or on records of a unit this study neither
-    records nor holds (a beam's cohort into a button study)."""
-    read = cohort.read_csv(path)
+    every field alike, the time to the precision the file gives), each once; returns
+    Imported: (added, already held, repeated in the file), with how many held were
+    recognised by a rewritten time and how the file was read. Records in a unit the study
+    does not compare now are kept as its own are (others_note): those its model records
+    (a button's operating force or snap ratio) or that it holds already (made before its
+    model changed), so its own export comes back whole. Raises ValueError, adding none, on
+    a bad line or on records of a unit this study neither records nor holds (a beam's
+    cohort into a button study)."""
+    read, read_as = cohort.read_csv_as_read(path)
     held = records(study)
     _, unit = design_value(study)
     known = {u for u, (_, model) in UNIT_SOURCES.items() if model == study.Model} | {r.unit for r in held}
@@ -462,22 +560,25 @@ def import_records(study, path):
         raise ValueError(f"{path}: {len(other)} record(s) are in {other[0].unit}{of}, this study's preferences "
                          f"in {unit}")
 
-    def key(r):  # same_record compares within these (numbers with a tolerance)
-        return r.name, r.recorded, r.unit
+    def key(r):  # same_record compares within these (numbers with a tolerance, times to a precision)
+        return r.name, r.unit
 
     held_by_key, seen_by_key = {}, {}
     for r in held:
         held_by_key.setdefault(key(r), []).append(r)
-    added, repeated = [], 0
+    added, repeated, retimed = [], 0, 0
     for r in read:
         seen = seen_by_key.setdefault(key(r), [])
+        same = [h for h in held_by_key.get(key(r), ()) if cohort.same_record(r, h)]
         if any(cohort.same_record(r, s) for s in seen):  # a row listed twice (a merged file): one
             repeated += 1
-        elif not any(cohort.same_record(r, h) for h in held_by_key.get(key(r), ())):
+        elif not same:
             added.append(r)
+        elif all(h.recorded != r.recorded for h in same):  # held, its time as a spreadsheet rewrote it
+            retimed += 1
         seen.append(r)
     _write_records(study, [*held, *added])
-    return len(added), len(read) - len(added) - repeated, repeated
+    return Imported(len(added), len(read) - len(added) - repeated, repeated, retimed, read_as)
 
 
 # the unit each constrained property is in (its tooltip's), for what is typed into it

@@ -1,8 +1,11 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Cohort records and statistics, on seed 000's Table 3."""
+import csv
 import os
+import re
 import tempfile
 import unittest
+from dataclasses import replace as dataclass_replace
 
 from hapticad import cohort
 
@@ -22,7 +25,8 @@ class CohortTest(unittest.TestCase):
         self.assertEqual(rows["all"]["median"], 3.5)
         self.assertAlmostEqual(rows["gender M"]["mean"], 4.0)
         self.assertAlmostEqual(rows["gender M"]["sd"], 0.70711, places=5)
-        self.assertEqual((rows["gender F"]["n"], rows["gender F"]["sd"]), (1, 0.0))
+        # a group of one has no sample SD: undefined (None), not 0 (which reads as "all agree")
+        self.assertEqual((rows["gender F"]["n"], rows["gender F"]["sd"]), (1, None))
         self.assertAlmostEqual(rows["age band 26-40"]["mean"], 4.0)
         self.assertEqual(rows["age band 41-60"]["max"], 3.5)
         self.assertEqual(list(rows)[:3], ["all", "gender F", "gender M"])
@@ -79,12 +83,14 @@ class CohortTest(unittest.TestCase):
             cohort.write_csv(formula, [cohort.Record("=1+1", "F", "18-25", 58, 1620, 0.9, "N/mm", "Bending beam")])
             # the guard is the export's, not the name's: it comes back off (a re-import matches the name held)
             self.assertEqual(cohort.read_csv(formula)[0].name, "=1+1")
-            semicolons = os.path.join(tmp, "semicolons.csv")
-            with open(semicolons, "w") as handle:
-                handle.write(text.replace(",", ";"))
+            # a separator that is none of comma, semicolon and tab: said, with the columns wanted
+            pipes = os.path.join(tmp, "pipes.csv")
+            with open(pipes, "w") as handle:
+                handle.write(text.replace(",", "|"))
             with self.assertRaises(ValueError) as caught:
-                cohort.read_csv(semicolons)
-            self.assertIn("semicolons.csv: needs the comma-separated columns name, gender", str(caught.exception))
+                cohort.read_csv(pipes)
+            self.assertIn("pipes.csv: needs the columns name, gender, age_band, weight_kg, height_mm, value, unit, "
+                          "separated by commas, semicolons or tabs", str(caught.exception))
             with open(path, "a") as handle:
                 handle.write("Bo,M,26-40,heavy,1800,2.0,N/mm,Bending beam,,\n")
             with self.assertRaises(ValueError) as caught:
@@ -221,6 +227,165 @@ class CohortTest(unittest.TestCase):
                          ("1 participant", "2 participants"))
         self.assertEqual((cohort.format_value(0.5, "snap ratio"), cohort.format_value(0.5556, "N/mm")),
                          ("snap ratio 0.5", "0.556 N/mm"))
+
+    def test_preferences_above_the_force_limit_are_marked_and_left_out_of_the_statistics(self):
+        def button(name, force, above, limit=3.0):
+            return cohort.Record(name, "F", "18-25", None, None, force, "N", "Push button",
+                                 {"BeyondDevice": 1.0, "ForceLimit": limit, "BeyondForceLimit": float(above)})
+
+        kept = [button("Ann", 1.5, False), button("Bo", 2.5, False), button("Cy", 3.48, True),
+                button("Di", 4.5, True, 2.5)]
+        self.assertEqual([cohort.mark(r) for r in kept], [" *", " *", " †", " †"])  # † outweighs the star
+        rows = {r["group"]: r for r in cohort.statistics(kept)}
+        self.assertEqual((rows["all"]["n"], rows["all"]["max"]), (2, 2.5))  # the clicks never felt are not counted
+        self.assertAlmostEqual(rows["all"]["mean"], 2.0)
+        self.assertIn("of the 2 participants", cohort.place_design(3.0, kept)[1])
+        self.assertEqual(cohort.beyond_device_note(kept),
+                         "* 2 preferences steeper than the device renders stably, its forces felt as designed over a "
+                         "longer travel; counted as recorded. † 2 preferences above the force limit (2.5 N, 3 N): "
+                         "the force stopped there and the click was never felt; left out of the statistics (kept, "
+                         "and exported).")
+        # none counted: no statistics, and the note still says why
+        self.assertEqual(cohort.statistics(kept[2:]), [])
+        self.assertTrue(cohort.beyond_device_note(kept[2:]).startswith("† 2 preferences above the force limit"))
+        # the flag read back from a CSV (a number) and from a record imported as text
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "button.csv")
+            cohort.write_csv(path, kept)
+            self.assertEqual([cohort.beyond_force_limit(r) for r in cohort.read_csv(path)], [False, False, True, True])
+        self.assertFalse(cohort.beyond_force_limit(button("Ed", 1.0, False)))
+        self.assertTrue(cohort.beyond_force_limit(cohort.Record("Ed", "F", "18-25", None, None, 4.0, "N", "",
+                                                                {"BeyondForceLimit": "1.0"})))
+
+    def test_a_group_of_one_has_no_sd_said_as_a_dash(self):
+        rows = cohort.statistics(TABLE_3[:1])
+        self.assertEqual([r["sd"] for r in rows], [None, None, None])
+        self.assertEqual((cohort.format_sd(None), cohort.format_sd(0.57735)), ("-", "0.58"))
+        # the overflow path too: a stored 1e308 alone
+        (alone,) = cohort.statistics([cohort.Record("Zed", "M", "18-25", 70, 1700, 1e308, "N/mm", "")], by=())
+        self.assertIsNone(alone["sd"])
+        self.assertAlmostEqual(cohort.statistics(TABLE_3, by=())[0]["sd"], 0.57735, places=5)
+
+    def test_a_time_rewritten_by_a_spreadsheet_is_the_same_time_to_the_precision_it_gives(self):
+        kept = cohort.Record("Wang", "M", "26-40", 70, 1750, 3.5, "N/mm", "Bending beam", {}, "2026-11-24T15:17:03")
+        for shown in ("2026-11-24 15:17", "2026-11-24T15:17:03", "2026-11-24 15:17:03", "24/11/2026 15:17",
+                      "11/24/2026 15:17", "11/24/26 3:17 PM", "24.11.2026 15:17", "2026/11/24 15:17", "24/11/2026",
+                      " 2026-11-24 15:17 "):
+            with self.subTest(shown=shown):
+                self.assertTrue(cohort.same_record(kept, dataclass_replace(kept, recorded=shown)))
+        # shown rounded to the minute: 15:17:43 as 15:18
+        late = dataclass_replace(kept, recorded="2026-11-24T15:17:43")
+        self.assertTrue(cohort.same_record(late, dataclass_replace(kept, recorded="2026-11-24 15:18")))
+        for other in ("2026-11-24 15:19", "2026-11-24 15:16", "2026-11-24T15:17:04", "25/11/2026", "2026-11-24 3:17 AM",
+                      "24.11.2026 15:18", "", "yesterday"):
+            with self.subTest(other=other):
+                self.assertFalse(cohort.same_record(kept, dataclass_replace(kept, recorded=other)))
+        # the time agreeing is not enough: every other field still tells two records apart
+        self.assertFalse(cohort.same_record(kept, dataclass_replace(kept, recorded="2026-11-24 15:17", value=3.6)))
+        # text that is no time is compared as text
+        self.assertTrue(cohort.same_record(dataclass_replace(kept, recorded="session 2"),
+                                           dataclass_replace(kept, recorded="session 2")))
+        # 05/06: May or June, both read; 24.11: day first only
+        self.assertEqual({t.month for t, _ in cohort.recorded_times("05/06/2026 10:00")}, {5, 6})
+        self.assertEqual([t.month for t, _ in cohort.recorded_times("05.06.2026")], [6])
+        self.assertEqual(cohort.recorded_times("31/02/2026"), [])
+
+    def test_rows_of_empty_cells_are_skipped_as_blank_lines_are(self):
+        header = ",".join(cohort.CSV_COLUMNS) + "\r\n"
+        ann = "Ann,F,18-25,58,1620,0.9,N/mm,Bending beam,,2026-11-24 15:17\r\n"
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "blank.csv")
+            with open(path, "w", newline="", encoding="utf-8-sig") as handle:
+                handle.write(header + ann + ",,,,,,,,,\r\n" + "\r\n" + "  \r\n" + ann.replace("Ann", "Bo"))
+            self.assertEqual([r.name for r in cohort.read_csv(path)], ["Ann", "Bo"])
+            # a bad line after them is still named by its own line
+            with open(path, "a", newline="") as handle:
+                handle.write("Cy,F,18-25,58,1620,0.9,N/mm,Bending beam,,\r\n,,,,,,,,,\r\nDi,X,18-25,,,0.9,N/mm,,,\r\n")
+            with self.assertRaises(ValueError) as caught:
+                cohort.read_csv(path)
+            self.assertIn("blank.csv, line 9: gender 'X'", str(caught.exception))
+            # a row with some cells given is not blank: what it lacks is said
+            with open(path, "w", newline="") as handle:
+                handle.write(header + ann + ",,,,,0.9,,,,\r\n")
+            with self.assertRaises(ValueError) as caught:
+                cohort.read_csv(path)
+            self.assertIn("blank.csv, line 3: no name, gender, age_band, unit", str(caught.exception))
+
+    def test_semicolon_and_tab_files_are_read_and_said_with_their_decimal_commas(self):
+        people = [cohort.Record("Smith, John", "M", "26-40", 70.5, 1700, 0.5555555555555556, "N/mm", "Bending beam",
+                                {"BeamThickness": 4.5, "BendingStiffness": 0.5555555555555556}, "2026-11-24T15:17:03"),
+                  cohort.Record("Zhang", "F", "26-40", None, 1650, 3.5, "N/mm", "Bending beam", {}, "")]
+        with tempfile.TemporaryDirectory() as tmp:
+            comma = os.path.join(tmp, "comma.csv")
+            cohort.write_csv(comma, people)
+            with open(comma, newline="") as handle:
+                rows = list(csv.reader(handle))
+            self.assertEqual(cohort.read_csv_as_read(comma), (people, ""))
+            for separator, said, decimal in ((";", "semicolon-separated", "."),
+                                             (";", "semicolon-separated, with decimal commas", ","),
+                                             ("\t", "tab-separated", ".")):
+                with self.subTest(separator=separator, decimal=decimal):
+                    path = os.path.join(tmp, "other.csv")
+                    with open(path, "w", newline="", encoding="utf-8-sig") as handle:  # as Excel saves it
+                        out = csv.writer(handle, delimiter=separator, lineterminator="\r\n")
+                        out.writerow(rows[0])
+                        for row in rows[1:]:  # a European spreadsheet's numbers, the design's too
+                            out.writerow([re.sub(r"(?<=\d)\.(?=\d)", decimal, cell) for cell in row])
+                    self.assertEqual(cohort.read_csv_as_read(path), (people, said))
+            # a decimal comma in a comma file may be thousands: refused, naming the line
+            with open(comma, "a", newline="") as handle:
+                handle.write('Bo,M,26-40,"70,5",1700,"1,5",N/mm,Bending beam,,\r\n')
+            with self.assertRaises(ValueError) as caught:
+                cohort.read_csv(comma)
+            self.assertIn("comma.csv, line 4: weight, height and value must be numbers", str(caught.exception))
+            # a ';' inside an unquoted cell shifts the cells after it: refused, not read into the wrong columns
+            path = os.path.join(tmp, "shifted.csv")
+            with open(path, "w", newline="") as handle:
+                handle.write(";".join(cohort.CSV_COLUMNS) + "\nAnn;F;18-25;;;0,9;N/mm;Bending beam;"
+                                                            "BeamThickness=4,5;BendingStiffness=0,9;2026-01-01\n")
+            with self.assertRaises(ValueError) as caught:
+                cohort.read_csv(path)
+            self.assertIn("shifted.csv, line 2: more cells than the header has columns (a cell holding a semicolon "
+                          "without quotes around it?)", str(caught.exception))
+
+    def test_heights_in_inches_and_weights_in_pounds_say_what_to_give(self):
+        def found(weight, height):
+            return " | ".join(cohort.problems(cohort.Record("Ann", "F", "under 18", weight, height, 1.0, "N/mm", "")))
+
+        # 69: a 69 cm child or a 69 in (1753 mm) adult: both said
+        self.assertIn("height 69 mm is outside 500..2500 mm: in centimetres? give 690, or in inches? give 1753",
+                      found(None, 69))
+        self.assertIn("height 40 mm is outside 500..2500 mm: in inches? give 1016", found(None, 40))  # 40 cm is not
+        self.assertNotIn("inches", found(None, 170))  # 170 in is 4318 mm
+        self.assertIn("weight 350 kg is outside 10..300 kg: in pounds? give 159", found(350, None))
+        self.assertNotIn("pounds", found(5, None))  # 5 lb is 2.3 kg
+        self.assertNotIn("pounds", found(900, None))  # 408 kg
+        # a child of the "under 18" band: 15 kg and 1100 mm are kept
+        self.assertEqual(found(15, 1100), "")
+        self.assertEqual(found(10, 500), "")
+        self.assertIn("weight 9.5 kg is outside 10..300 kg", found(9.5, None))
+
+    def test_every_text_cell_is_guarded_on_export_and_comes_back_as_given(self):
+        odd = cohort.Record("=1+1", "F", "18-25", None, None, 1.0, "N/mm", '=HYPERLINK("http://x","y")',
+                            {"-cmd": "=2+3", "BeamThickness": 4.0}, "@SUM(A1)")
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "odd.csv")
+            cohort.write_csv(path, [odd])
+            with open(path, newline="") as handle:
+                header, row = list(csv.reader(handle))
+            for column in cohort.TEXT_COLUMNS:  # no cell a spreadsheet would run
+                with self.subTest(column=column):
+                    self.assertNotIn(row[header.index(column)][:1], cohort.FORMULA_STARTS)
+            self.assertEqual(row[header.index("model")], "\'=HYPERLINK(\"http://x\",\"y\")")
+            (back,) = cohort.read_csv(path)  # stored as given: data, shown as plain text
+            self.assertEqual(back, odd)
+            cohort.write_csv(path, [back])  # and again: no apostrophe piles up
+            self.assertEqual(cohort.read_csv(path), [odd])
+        # a control character in the model or the time is refused, as in the name
+        for field, text in (("model", "Bending\nbeam"), ("recorded", "2026-01-01\x00")):
+            with self.subTest(field=field):
+                self.assertIn("holds a control character", " ".join(cohort.problems(dataclass_replace(odd, **{
+                    field: text}))))
 
 
 if __name__ == "__main__":

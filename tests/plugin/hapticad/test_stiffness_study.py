@@ -5,6 +5,7 @@ import csv
 import dataclasses
 import json
 import os
+import re
 import sys
 import tempfile
 import unittest
@@ -499,6 +500,145 @@ class StudyTest(unittest.TestCase):
         study.BeamLength = 30  # 1/L^3: 8 x
         scene = recompile_surfaces(self.doc, scene)
         self.assertAlmostEqual(scene.surface_properties(face).force_travel.max_slope(), 8 * 555.6, delta=1)
+
+    def test_a_preference_above_the_force_limit_keeps_the_limit_and_is_left_out_of_the_statistics(self):
+        # the preferences' 3 N: a 3.48 N button stops at 3 N and its click never comes
+        study = HaptiCAD.make_study(self.doc, self.head, model="Push button")
+        for name, force in (("Ann", 1.5), ("Bo", 2.5), ("Cy", 3.48)):
+            study.OperatingForce = force
+            HaptiCAD.record_preference(study, name, "F", "26-40", None, None, 3000.0, 3.0)
+        ann, bo, cy = stiffness_study.records(study)
+        # the limit kept, as the stiffness limit is
+        self.assertEqual((cy.design["ForceLimit"], cy.design["BeyondForceLimit"]), (3.0, 1.0))
+        self.assertEqual((ann.design["ForceLimit"], ann.design["BeyondForceLimit"]), (3.0, 0.0))
+        self.assertEqual([cohort.mark(r) for r in (ann, bo, cy)], [" *", " *", " †"])
+        held = stiffness_study.comparable_records(study)
+        self.assertEqual(cohort.statistics(held)[0]["n"], 2)
+        self.assertIn("† 1 preference above the force limit (3 N): the force stopped there and the click was never "
+                      "felt; left out of the statistics", cohort.beyond_device_note(held))
+        self.assertIn("* 2 preferences steeper than the device", cohort.beyond_device_note(held))
+        self.assertEqual(study.Participants, 3)  # kept all the same
+        # without a force limit given (a script), nothing is claimed either way
+        self.assertNotIn("ForceLimit", HaptiCAD.record_preference(study, "Di", "F", "26-40", None, None).design)
+        # a neck keeps the limit too; its force is the hand's press, never beyond it
+        study.Model = "Bending beam"
+        neck = HaptiCAD.record_preference(study, "Ed", "M", "26-40", None, None, 3000.0, 0.5)
+        self.assertEqual((neck.design["ForceLimit"], cohort.beyond_force_limit(neck)), (0.5, False))
+
+    def test_the_sliders_range_says_when_it_runs_past_the_force_limit(self):
+        study = HaptiCAD.make_study(self.doc, self.head, model="Push button")  # 0.5-5 N
+        self.assertEqual(stiffness_study.range_note(study, 3.0),
+                         "past 3 N, the force limit, the click is never felt (the slider goes to 5 N)")
+        self.assertEqual(stiffness_study.range_note(study, 5.0), "")
+        self.assertEqual(stiffness_study.range_note(study, None), "")  # no limit known: nothing claimed
+        study.AdjustMin, study.AdjustMax = 3.5, 4.5
+        self.assertEqual(stiffness_study.range_note(study, 3.0),
+                         "the whole range is above 3 N, the force limit: the click is never felt")
+        study.Adjust = "SnapRatio"  # its range is no force
+        self.assertEqual(stiffness_study.range_note(study, 0.1), "")
+        study.Model = "Bending beam"
+        self.assertEqual(stiffness_study.range_note(study, 0.1), "")
+
+    def test_switching_what_the_slider_moves_and_back_keeps_a_range_of_ones_own(self):
+        self.doc.UndoMode = 1
+        study = HaptiCAD.make_study(self.doc, self.head)
+        study.AdjustMin, study.AdjustMax = 3.0, 5.0  # narrowed mid-study
+        study.Adjust = "BeamLength"
+        self.assertEqual((study.AdjustMin, study.AdjustMax), (30.0, 120.0))  # never narrowed: its default
+        study.AdjustMin = 40.0
+        study.Adjust = "BeamThickness"
+        self.assertEqual((study.AdjustMin, study.AdjustMax), (3.0, 5.0))  # not reset to 2-8
+        study.Adjust = "BeamLength"
+        self.assertEqual((study.AdjustMin, study.AdjustMax), (40.0, 120.0))
+        study.Model = "Push button"  # another model and back: the same
+        self.assertEqual((study.Adjust, study.AdjustMin, study.AdjustMax), ("OperatingForce", 0.5, 5.0))
+        study.Model = "Bending beam"
+        self.assertEqual((study.Adjust, study.AdjustMin, study.AdjustMax), ("BeamThickness", 3.0, 5.0))
+        # an undo of a switch brings back the range with what the slider moved, and the ones kept
+        self.doc.openTransaction("slider")
+        study.Adjust = "YoungsModulus"
+        self.doc.commitTransaction()
+        self.assertEqual((study.AdjustMin, study.AdjustMax), (0.5, 5.0))
+        self.doc.undo()
+        self.assertEqual((study.Adjust, study.AdjustMin, study.AdjustMax), ("BeamThickness", 3.0, 5.0))
+        with tempfile.TemporaryDirectory() as tmp:  # and a reopened document remembers them
+            path, name = os.path.join(tmp, "ranges.FCStd"), study.Name
+            self.doc.saveAs(path)
+            App.closeDocument(self.doc.Name)
+            self.doc = App.openDocument(path)
+            study = self.doc.getObject(name)
+            study.Adjust = "BeamLength"
+            self.assertEqual((study.AdjustMin, study.AdjustMax), (40.0, 120.0))
+        # kept ranges edited into nonsense: the defaults serve
+        study.AdjustRanges = "{not json"
+        study.Adjust = "BeamWidth"
+        self.assertEqual((study.AdjustMin, study.AdjustMax), (2.0, 12.0))
+
+    def test_a_design_outside_the_sliders_range_is_said_and_still_recorded(self):
+        study = HaptiCAD.make_study(self.doc, self.head)
+        study.AdjustMin, study.AdjustMax = 3.0, 5.0
+        self.assertEqual(stiffness_study.validate(study), [])
+        study.BeamThickness = 8.0  # the Mechanism box, the property editor, a script
+        self.assertIn("the thickness h, 8 mm, is outside the slider's range 3..5 mm: move the slider, or widen its "
+                      "range", stiffness_study.validate(study))
+        self.assertEqual(stiffness_study.law_problems(study), [])  # still felt
+        # a researcher's design set by hand is recorded (Table 3's 4.5 N/mm needs h 8.03, past 2-8)
+        HaptiCAD.record_preference(study, *PARTICIPANT)
+        self.assertEqual(study.Participants, 1)
+        # the slider's own ends are inside, whatever the float sum gives (0.3 + (0.9 - 0.3) is 0.9000000000000001)
+        study.Model = "Push button"
+        study.Adjust = "SnapRatio"
+        study.AdjustMin, study.AdjustMax = 0.3, 0.9
+        for position in (0, 200):
+            study.SnapRatio = study.AdjustMin + (study.AdjustMax - study.AdjustMin) * position / 200
+            self.assertEqual(stiffness_study.validate(study), [])
+        self.assertGreater(study.SnapRatio, 0.9)
+        study.SnapRatio = 0.95
+        self.assertIn("the snap ratio, 0.95, is outside the slider's range 0.3..0.9",
+                      stiffness_study.validate(study)[0])
+
+    def test_a_spreadsheets_resave_of_the_export_adds_nobody_and_says_how_it_was_known(self):
+        study = HaptiCAD.make_study(self.doc, self.head)
+        for i, h in enumerate((3.0, 4.1, 5.3)):
+            study.BeamThickness = h
+            HaptiCAD.record_preference(study, f"P{i}", "F", "18-25", 60.7, 1650)
+        with tempfile.TemporaryDirectory() as tmp:
+            exported = os.path.join(tmp, "cohort.csv")
+            cohort.write_csv(exported, stiffness_study.records(study))
+            with open(exported, newline="") as handle:
+                rows = list(csv.DictReader(handle))
+            # as LibreOffice or Excel saves it back: a BOM, CRLF, the time to the minute, an empty row
+            sheet = os.path.join(tmp, "sheet.csv")
+            with open(sheet, "w", newline="", encoding="utf-8-sig") as handle:
+                out = csv.DictWriter(handle, fieldnames=list(rows[0]), lineterminator="\r\n")
+                out.writeheader()
+                for r in rows:
+                    out.writerow(dict(r, recorded=r["recorded"].replace("T", " ")[:16]))
+                handle.write(",,,,,,,,,\r\n")
+            result = stiffness_study.import_records(study, sheet)
+            self.assertEqual(result, (0, 3, 0))
+            self.assertEqual((result.retimed, result.read_as), (3, ""))
+            self.assertEqual(study.Participants, 3)
+            # European: ';' and decimal commas, the time day first
+            european = os.path.join(tmp, "european.csv")
+            with open(european, "w", newline="", encoding="utf-8-sig") as handle:
+                out = csv.DictWriter(handle, fieldnames=list(rows[0]), delimiter=";", lineterminator="\r\n")
+                out.writeheader()
+                for r in rows:
+                    day, clock = r["recorded"].split("T")
+                    out.writerow(dict(r, value=r["value"].replace(".", ","), weight_kg="60,7",
+                                      recorded=".".join(reversed(day.split("-"))) + " " + clock[:5]))
+            result = stiffness_study.import_records(study, european)
+            self.assertEqual((result, result.retimed, result.read_as),
+                             ((0, 3, 0), 3, "semicolon-separated, with decimal commas"))
+            # the same file two minutes off (neither cut nor rounded from the time kept) is another session: added
+            with open(sheet, newline="", encoding="utf-8-sig") as handle:
+                text = handle.read()
+            later = os.path.join(tmp, "later.csv")
+            with open(later, "w", newline="") as handle:
+                handle.write(re.sub(r":(\d\d)\r\n", lambda m: f":{(int(m[1]) + 2) % 60:02d}\r\n", text))
+            self.assertEqual(stiffness_study.import_records(study, later), (3, 0, 0))
+            self.assertEqual(study.Participants, 6)
 
 
 if __name__ == "__main__":

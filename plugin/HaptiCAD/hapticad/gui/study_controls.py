@@ -76,15 +76,19 @@ class StudyControls(QtWidgets.QWidget):
     study changed through these controls or any other way. ``device_stiffness``: a
     callable giving the device's stable stiffness (N/m), to say when a design is beyond
     it and to keep that with each record; ``force_limit``: one giving the largest force
-    rendered (N), to say when a button's click lies above it."""
+    rendered (N), to say when a button's click lies above it and to keep that with each
+    record. ``show_cohort``: say where the design lies among the other participants'
+    preferences; off by default, for the participant's view (the Feel panel), where it
+    would anchor their choice; the study's own panel, the researcher's, turns it on."""
 
     changed = QtCore.Signal()
 
-    def __init__(self, study, device_stiffness=None, parent=None, force_limit=None):
+    def __init__(self, study, device_stiffness=None, parent=None, force_limit=None, show_cohort=False):
         super().__init__(parent)
         self.study = study
         self.device_stiffness = device_stiffness or (lambda: None)
         self.force_limit = force_limit or (lambda: None)
+        self.show_cohort = show_cohort
         self._loading = False
         self._dragging = False
         layout = QtWidgets.QVBoxLayout(self)
@@ -170,24 +174,30 @@ class StudyControls(QtWidgets.QWidget):
             self.slider.setEnabled(high > low and bound is None)
             if high > low:
                 self.slider.setValue(round((current - low) / (high - low) * SLIDER_STEPS))
-            self.slider_label.setText(f"Slide to change the {label}: {low:g}-{high:g} {unit}".rstrip())
+            force_limit = self.force_limit()
+            past = stiffness_study.range_note(self.study, force_limit)  # where the click stops being felt
+            self.slider_label.setText(f"Slide to change the {label}: {low:g}-{high:g} {unit}".rstrip()
+                                      + (f"<br><span style='color:#a06000'>{past[0].upper() + past[1:]}.</span>"
+                                         if past else ""))
             low_end, high_end = stiffness_study.slider_ends(self.study)
             self.lower_end.setText(low_end)
             self.harder.setText(high_end)
             value, value_unit = stiffness_study.design_value(self.study)
-            placed = cohort.place_design(value, stiffness_study.comparable_records(self.study))[1]
+            placed = ""
+            if self.show_cohort:  # the others' preferences: the researcher's to see, not the participant's
+                placed = cohort.place_design(value, stiffness_study.comparable_records(self.study))[1]
+                placed = f" {placed[0].upper() + placed[1:]}."
             problems = stiffness_study.law_problems(self.study)
             limit = self.device_stiffness()
             note = stiffness_study.device_note(self.study, limit) if limit else ""
-            force_limit = self.force_limit()
             note = "; ".join(n for n in (note, stiffness_study.force_note(self.study, force_limit)
-                                         if force_limit else "") if n)
+                                         if force_limit else "", stiffness_study.outside_slider(self.study)) if n)
             recorded = f"<b>{cohort.format_value(value, value_unit)}</b>"
             # a neck's thickness gives its stiffness; a button's slider moves the value recorded itself
             moved = (f"{label} {current:.3g} {unit}".rstrip() + f" → {recorded}" if self.study.Model ==
                      stiffness_study.BEAM else recorded)
             self.value_label.setText(
-                f"{moved}. {placed[0].upper() + placed[1:]}."
+                f"{moved}.{placed}"
                 + (f"<br><span style='color:#a06000'>Note: {note}.</span>" if note else "")
                 + (f"<br><span style='color:#a06000'>The {label} is set by the expression {bound}: clear "
                    "it to move the slider.</span>" if bound else "")
@@ -237,14 +247,19 @@ class StudyControls(QtWidgets.QWidget):
         try:
             record = stiffness_study.record_preference(self.study, self.name.text(), self.gender.currentText(),
                                                        self.age.currentText(), _given(self.weight),
-                                                       _given(self.height), self.device_stiffness())
+                                                       _given(self.height), self.device_stiffness(),
+                                                       self.force_limit())
         except ValueError as exc:
             doc.abortTransaction()
             self.show_message(f"Not recorded: {exc}", error=True)
             return None
         doc.commitTransaction()
-        beyond = (f" Marked *: {cohort.BEYOND_DEVICE.get(record.unit, 'beyond what the device renders')}."
-                  if cohort.beyond_device(record) else "")
+        if cohort.beyond_force_limit(record):  # its forces were not felt as designed: the star's note would not hold
+            beyond = f" Marked †: {cohort.force_limit_meaning([record])}; left out of the statistics."
+        elif cohort.beyond_device(record):
+            beyond = f" Marked *: {cohort.BEYOND_DEVICE.get(record.unit, 'beyond what the device renders')}."
+        else:
+            beyond = ""
         again = (f"<br><span style='color:#a06000'>Note: {escape(record.name)} was recorded before "
                  f"({earlier} time{'s' if earlier != 1 else ''}): each record counts as a participant in the "
                  "statistics; remove one if it was a slip.</span>" if earlier else "")

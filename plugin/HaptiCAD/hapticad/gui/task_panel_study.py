@@ -177,6 +177,9 @@ class StudyTaskPanel(CloseOnlyPanel):
         self.table.setHorizontalHeaderLabels(TABLE_COLUMNS)
         self.table.setEditTriggers(QtWidgets.QAbstractItemView.NoEditTriggers)
         self.table.setSelectionBehavior(QtWidgets.QAbstractItemView.SelectRows)
+        # each column as wide as its text, the last stretched: at 100 px each the six overran
+        # the Combo View and the height hid behind a scroll bar
+        self.table.horizontalHeader().setSectionResizeMode(QtWidgets.QHeaderView.ResizeToContents)
         self.table.horizontalHeader().setStretchLastSection(True)
         self.table.setMinimumHeight(140)
         layout.addWidget(self.table)
@@ -253,8 +256,9 @@ class StudyTaskPanel(CloseOnlyPanel):
             if self.controls is not None:
                 self.controls.setParent(None)
                 self.controls.deleteLater()
+            # the researcher's panel: the design among the cohort's preferences shown (not in Feel's)
             self.controls = StudyControls(obj, lambda: self.device_k,
-                                          force_limit=lambda: preferences.load().force_limit_n)
+                                          force_limit=lambda: preferences.load().force_limit_n, show_cohort=True)
             self.controls.changed.connect(self.load)
             self.controls_holder.addWidget(self.controls)
             let_narrow(self.controls)
@@ -274,15 +278,17 @@ class StudyTaskPanel(CloseOnlyPanel):
         others = len(stiffness_study.records(self.obj)) - len(records)
         self.table.setRowCount(len(records))
         for row, r in enumerate(records):
-            beyond = " *" if cohort.beyond_device(r) else ""  # felt at the device's limit
+            beyond = cohort.mark(r)  # * felt at the device's limit, † its click never felt
             wrong = "; ".join(cohort.problems(r))  # saved before its range was checked
+            tip = "; ".join(t for t in (wrong, cohort.force_limit_meaning([r]) + ": not counted in the statistics"
+                                        if cohort.beyond_force_limit(r) else "") if t)
             for column, text in enumerate((r.name, f"{r.value:.3g} {r.unit}{beyond}{' ⚠' if wrong else ''}", r.gender,
                                            r.age_band, *("-" if v is None else f"{v:g}" for v in (r.weight_kg,
                                                                                                   r.height_mm)))):
                 item = QtWidgets.QTableWidgetItem(text)
-                item.setToolTip(wrong)
+                item.setToolTip(tip)
                 self.table.setItem(row, column, item)
-        rows = cohort.statistics(records)
+        rows = cohort.statistics(records)  # not those beyond the force limit (cohort.counted)
         aside = f"<br>{escape(stiffness_study.others_note(self.obj), quote=False)}." if others else ""
         starred = cohort.beyond_device_note(records)  # what the star means for this unit
         if starred:
@@ -296,12 +302,14 @@ class StudyTaskPanel(CloseOnlyPanel):
             self.notice = None  # said of a cohort that has changed since (an undo, a record)
         notice = self.notice[0] + "<br>" if self.notice else ""
         if not rows:
-            self.stats.setText(notice + "No participant yet: each records what feels right with the slider above."
+            self.stats.setText(notice + ("No preference counted yet." if records else
+                                         "No participant yet: each records what feels right with the slider above.")
                                + aside)
             return
+        # the spread labelled as the sample SD (a bare ± reads as a range or an error); a group of one has none
         lines = [f"{s['group']}: n 1, {cohort.format_value(s['mean'], records[0].unit)}" if s["n"] == 1 else  # one
-                 f"{s['group']}: n {s['n']}, mean {s['mean']:.3g} ± {s['sd']:.2g}, median {s['median']:.3g} "
-                 f"({s['min']:.3g}-{s['max']:.3g}) {records[0].unit}" for s in rows]
+                 f"{s['group']}: n {s['n']}, mean {s['mean']:.3g} (SD {cohort.format_sd(s['sd'])}), median "
+                 f"{s['median']:.3g}, range {s['min']:.3g}-{s['max']:.3g} {records[0].unit}" for s in rows]
         value, _ = stiffness_study.design_value(self.obj)
         lines.append("This design: " + cohort.place_design(value, records)[1])
         self.stats.setText(notice + "<br>".join(lines) + aside)
@@ -370,18 +378,23 @@ class StudyTaskPanel(CloseOnlyPanel):
     def import_from(self, path):
         self.doc.openTransaction("Import participants")
         try:
-            added, held, repeated = stiffness_study.import_records(self.obj, path)
+            result = stiffness_study.import_records(self.obj, path)
         except (ValueError, OSError) as exc:
             self.doc.abortTransaction()
             self.say(f"<span style='color:#b00000'>Nothing imported: {escape(str(exc))}</span>")
             return 0
+        added, held, repeated = result
         if added:
             self.doc.commitTransaction()
         else:
             self.doc.abortTransaction()
+        # a spreadsheet's re-save: which records were known by a time it rewrote, and how the file was read
+        retimed = (f" ({result.retimed} of them known by their time to the precision the file gives it, as a "
+                   "spreadsheet rewrites it)" if result.retimed else "")
         self.say(f"Imported {added} participant{'s' if added != 1 else ''}"
-                 + (f"; {held} already held were left out" if held else "")
+                 + (f"; {held} already held were left out{retimed}" if held else "")
                  + (f"; {repeated} listed again in the file {'was' if repeated == 1 else 'were'} taken once"
-                    if repeated else "") + ".")
+                    if repeated else "") + "."
+                 + (f" Read as {escape(result.read_as)}." if result.read_as else ""))
         return added
 

@@ -338,26 +338,30 @@ class StudyGuiTest(unittest.TestCase):
         h.widget(QtWidgets.QLineEdit, "participantName").setText("Steven")
         weight = h.widget(QtWidgets.QDoubleSpinBox, "participantWeight")
         height = h.widget(QtWidgets.QDoubleSpinBox, "participantHeight")
-        type_into(weight, "15", finish="leave")  # a child's weight, below the range
+        type_into(weight, "5", finish="leave")  # below the range (a 2-year-old's 10 kg)
         type_into(height, "170", finish="leave")  # Table 3's height, in cm
         # leaving the field keeps what was typed: it used to read "not given", and the record lost it unsaid
-        self.assertEqual((weight.text(), height.text()), ("15.0 kg", "170 mm"))
+        self.assertEqual((weight.text(), height.text()), ("5.0 kg", "170 mm"))
         h.widget(QtWidgets.QPushButton, "recordPreference").click()
         message = h.widget(QtWidgets.QLabel, "studyMessage").text()
-        self.assertIn("Not recorded: weight 15.0 kg is outside 20..300 kg; height 170.0 mm is outside 500..2500 mm: "
+        self.assertIn("Not recorded: weight 5.0 kg is outside 10..300 kg; height 170.0 mm is outside 500..2500 mm: "
                       "in centimetres? give 1700", message)
         self.assertEqual(study.Participants, 0)
-        self.assertEqual((weight.text(), height.text()), ("15.0 kg", "170 mm"))  # still there to correct
-        type_into(weight, "25", finish="leave")
+        self.assertEqual((weight.text(), height.text()), ("5.0 kg", "170 mm"))  # still there to correct
+        type_into(weight, "15", finish="leave")  # a child's weight: kept (20 kg was the floor)
+        type_into(height, "69", finish="leave")  # 69 in
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        self.assertIn("height 69.0 mm is outside 500..2500 mm: in centimetres? give 690, or in inches? give 1753",
+                      h.widget(QtWidgets.QLabel, "studyMessage").text())
         type_into(height, "1700", finish="leave")
         h.widget(QtWidgets.QPushButton, "recordPreference").click()
         (steven,) = stiffness_study.records(study)
-        self.assertEqual((steven.weight_kg, steven.height_mm), (25.0, 1700.0))
+        self.assertEqual((steven.weight_kg, steven.height_mm), (15.0, 1700.0))
         # the form is blank again; a step up from "not given" starts at the plausible range, a step down returns
         weight.stepBy(1)
-        self.assertEqual(weight.text(), "20.0 kg")
+        self.assertEqual(weight.text(), "10.0 kg")
         weight.stepBy(1)
-        self.assertEqual(weight.text(), "21.0 kg")
+        self.assertEqual(weight.text(), "11.0 kg")
         weight.stepBy(-1)
         weight.stepBy(-1)
         self.assertEqual(weight.text(), "not given")
@@ -465,6 +469,122 @@ class StudyGuiTest(unittest.TestCase):
         h.process_events()
         self.assertNotIn("above the force limit", h.widget(QtWidgets.QLabel, "studyValue").text())
 
+    def test_the_feel_panel_keeps_the_other_participants_preferences_from_the_participant(self):
+        # where the design lies among the others' choices anchors the next one: the researcher's panel shows it,
+        # the participant's (Feel) does not
+        study = HaptiCAD.make_study(self.doc, self.surface)
+        for name, thickness in (("Ann", 3.0), ("Bo", 5.0), ("Cy", 6.0), ("Di", 7.0)):
+            study.BeamThickness = thickness
+            HaptiCAD.record_preference(study, name, "F", "26-40", None, None)
+        study.BeamThickness = 4.0
+        self.doc.recompute()
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        self.assertTrue(h.widget(QtWidgets.QPushButton, "feelStop").isEnabled())
+
+        def shown():
+            return " ".join(w.text() for w in Gui.getMainWindow().findChildren(QtWidgets.QLabel) if w.isVisible())
+
+        self.assertIn("0.556 N/mm", h.widget(QtWidgets.QLabel, "studyValue").text())  # their own design, said
+        for moved in (None, 110):  # h 5.3 mm, 1.29 N/mm: the others chose 0.234, 1.09, 1.88 and 2.98
+            if moved is not None:
+                h.widget(QtWidgets.QSlider, "studySlider").setValue(moved)
+                h.process_events()
+            for other in ("preferred less", "middle half", "preferences", "0.234", "1.09", "1.88", "2.98"):
+                self.assertNotIn(other, shown())
+        fill_participant("Ed")
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        self.assertIn("Recorded Ed", h.widget(QtWidgets.QLabel, "studyMessage").text())
+        self.assertNotIn("preferred less", shown())
+        h.widen_panel(560)
+        h.grab_screen("feel_panel_no_cohort.png")
+        h.widget(QtWidgets.QPushButton, "feelStop").click()
+        h.press_task_button("Close")
+        Gui.ActiveDocument.setEdit(study.Name)  # the study's own panel: the researcher's
+        h.process_events()
+        self.assertIn("of the 5 participants preferred less", h.widget(QtWidgets.QLabel, "studyValue").text())
+        self.assertIn("This design:", h.widget(QtWidgets.QLabel, "cohortStats").text())
+
+    def test_a_preference_above_the_force_limit_is_marked_and_left_out_of_the_statistics(self):
+        preferences.update(force_limit_n=3.0)
+        study = self.open_study()
+        h.widget(QtWidgets.QComboBox, "Model").setCurrentText("Push button")
+        h.process_events()
+        # the slider's 0.5-5 N runs past the 3 N limit: said by its range
+        self.assertIn("Past 3 N, the force limit, the click is never felt (the slider goes to 5 N)",
+                      h.widget(QtWidgets.QLabel, "studySliderLabel").text())
+        slider = h.widget(QtWidgets.QSlider, "studySlider")
+        for name, position in (("Ann", 40), ("Bo", 60), ("Cy", 160)):  # 1.4, 1.85 and 4.1 N
+            slider.setValue(position)
+            fill_participant(name)
+            h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        self.assertIn("Recorded Cy: 4.1 N (3 participants). Marked †: above the force limit (3 N): the force stopped "
+                      "there and the click was never felt; left out of the statistics.",
+                      h.widget(QtWidgets.QLabel, "studyMessage").text())
+        cy = stiffness_study.records(study)[-1]
+        self.assertEqual((cy.design["ForceLimit"], cy.design["BeyondForceLimit"]), (3.0, 1.0))
+        table = h.widget(QtWidgets.QTableWidget, "cohortTable")
+        self.assertEqual([table.item(r, 1).text() for r in range(3)], ["1.4 N *", "1.85 N *", "4.1 N †"])
+        self.assertIn("not counted in the statistics", table.item(2, 1).toolTip())
+        stats = h.widget(QtWidgets.QLabel, "cohortStats").text()
+        self.assertIn("all: n 2, mean 1.62 (SD 0.32), median 1.62, range 1.4-1.85 N", stats)  # Cy's 4.1 left out
+        self.assertNotIn("±", stats)
+        self.assertIn("† 1 preference above the force limit (3 N): the force stopped there and the click was never "
+                      "felt; left out of the statistics", stats)
+        self.assertIn("* 2 preferences steeper than the device", stats)
+        self.assertIn("of the 2 participants preferred less", stats)
+        h.widen_panel(560)
+        _scroll_panel_to_end()
+        h.grab_screen("study_force_limit.png")
+
+    def test_the_cohort_table_shows_every_column_and_a_spreadsheets_resave_adds_nobody(self):
+        study = self.open_study()
+        slider = h.widget(QtWidgets.QSlider, "studySlider")
+        for name, gender, age, weight, height, position in (("Steven", "M", "26-40", 70, 1700, 200),
+                                                            ("Smith, John", "M", "41-60", 85, 1800, 120),
+                                                            ("Chloé Ünal", "F", "over 60", 0, 1600, 80),
+                                                            ("Kid7", "F", "under 18", 15, 1100, 40)):
+            slider.setValue(position)
+            fill_participant(name, gender, age, weight, height)
+            h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        self.assertEqual(study.Participants, 4)
+        h.widen_panel(560)
+        table = h.widget(QtWidgets.QTableWidget, "cohortTable")
+        h.process_events()
+        # the Height column whole in the table's view: nothing behind a scroll bar
+        self.assertLessEqual(table.columnViewportPosition(5) + table.columnWidth(5), table.viewport().width())
+        self.assertEqual(table.horizontalScrollBar().maximum(), 0)
+        stats = h.widget(QtWidgets.QLabel, "cohortStats").text()
+        self.assertIn("gender F: n 2, mean", stats)
+        self.assertIn("(SD ", stats)
+        self.assertNotIn("±", stats)
+        self.assertIn("age band under 18: n 1, ", stats)  # one: its value, no SD
+        # the export as a spreadsheet saves it back: a BOM, CRLF, the time to the minute, a row of empty cells
+        import csv
+
+        panel = _open_panel()
+        path = os.path.join(self.tmp.name, "cohort.csv")
+        self.assertTrue(panel.export_to(path))
+        with open(path, newline="", encoding="utf-8") as handle:
+            rows = list(csv.reader(handle))
+        when = rows[0].index("recorded")
+        saved = os.path.join(self.tmp.name, "resaved.csv")
+        with open(saved, "w", newline="", encoding="utf-8-sig") as handle:
+            out = csv.writer(handle, delimiter=";", lineterminator="\r\n")
+            out.writerow(rows[0])
+            for row in rows[1:]:
+                row[when] = row[when].replace("T", " ")[:16]
+                out.writerow(row)
+            handle.write(";;;;;;;;;\r\n")
+        self.assertEqual(panel.import_from(saved), 0)
+        h.process_events()
+        self.assertIn("Imported 0 participants; 4 already held were left out (4 of them known by their time to the "
+                      "precision the file gives it, as a spreadsheet rewrites it). Read as semicolon-separated.",
+                      h.widget(QtWidgets.QLabel, "cohortStats").text())
+        self.assertEqual(study.Participants, 4)
+        _scroll_panel_to_end()
+        h.grab_screen("study_table_whole.png")
+
     def test_undoing_the_studys_creation_with_its_panel_open_leaves_no_traceback(self):
         self.open_study()
         type_into(h.widget(QtWidgets.QDoubleSpinBox, "BeamLength"), "7 cm", finish=None)  # left as it closes
@@ -479,6 +599,14 @@ class StudyGuiTest(unittest.TestCase):
         self.assertEqual(HaptiCAD.studies_of(self.doc), [])
         self.assertFalse(Gui.Control.activeDialog())
         self.assertEqual([e for e in errors if "study" in e or "already deleted" in e], [])
+
+
+def _scroll_panel_to_end():
+    """The task panel scrolled to its end (the cohort box), for a screenshot."""
+    for area in Gui.getMainWindow().findChildren(QtWidgets.QScrollArea):
+        if area.isVisible():
+            area.verticalScrollBar().setValue(area.verticalScrollBar().maximum())
+    h.process_events()
 
 
 def _open_panel():
