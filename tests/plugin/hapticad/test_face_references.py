@@ -353,21 +353,9 @@ def HaptiCAD_state(surface):
 
 class PartDesignBodyTest(unittest.TestCase):
     def setUp(self):
-        import Part  # noqa: F401
-        import Sketcher
-
         self.doc = App.newDocument("BodyTest")
         self.body = self.doc.addObject("PartDesign::Body", "Body")
-        sketch = self.body.newObject("Sketcher::SketchObject", "Sketch")
-        sketch.Support = (self.doc.getObject("XY_Plane"), [""])
-        sketch.MapMode = "FlatFace"
-        import Part as P
-
-        corners = [App.Vector(0, 0, 0), App.Vector(40, 0, 0), App.Vector(40, 30, 0), App.Vector(0, 30, 0)]
-        for i in range(4):
-            sketch.addGeometry(P.LineSegment(corners[i], corners[(i + 1) % 4]))
-        for i in range(4):
-            sketch.addConstraint(Sketcher.Constraint("Coincident", i, 2, (i + 1) % 4, 1))
+        sketch = self.rectangle("Sketch", (self.doc.getObject("XY_Plane"), [""]), 0, 0, 40, 30)
         self.pad = self.body.newObject("PartDesign::Pad", "Pad")
         self.pad.Profile = sketch
         self.pad.Length = 20
@@ -375,6 +363,21 @@ class PartDesignBodyTest(unittest.TestCase):
 
     def tearDown(self):
         App.closeDocument(self.doc.Name)
+
+    def rectangle(self, name, support, x0, y0, x1, y1):
+        """A closed rectangle sketch in the Body, mapped flat on ``support``."""
+        import Part
+        import Sketcher
+
+        sketch = self.body.newObject("Sketcher::SketchObject", name)
+        sketch.Support = support
+        sketch.MapMode = "FlatFace"
+        corners = [App.Vector(x0, y0, 0), App.Vector(x1, y0, 0), App.Vector(x1, y1, 0), App.Vector(x0, y1, 0)]
+        for i in range(4):
+            sketch.addGeometry(Part.LineSegment(corners[i], corners[(i + 1) % 4]))
+        for i in range(4):
+            sketch.addConstraint(Sketcher.Constraint("Coincident", i, 2, (i + 1) % 4, 1))
+        return sketch
 
     def top(self, obj):
         (name,) = faces_where(obj.Shape, "Plane", lambda c: abs(c.z - 20) < 1e-6)
@@ -429,17 +432,7 @@ class PartDesignBodyTest(unittest.TestCase):
     def test_a_longer_pad_keeps_the_tag_beside_a_pocket_sketched_on_its_top(self):
         # the most common PartDesign edit: the Pocket's sketch sits on the Pad's top face,
         # so the Pocket's floor (facing +z too) rises with the top; the tag broke
-        import Part as P
-        import Sketcher
-
-        sketch = self.body.newObject("Sketcher::SketchObject", "PocketSketch")
-        sketch.Support = (self.pad, [self.top(self.pad)])
-        sketch.MapMode = "FlatFace"
-        corners = [App.Vector(5, 5, 0), App.Vector(15, 5, 0), App.Vector(15, 15, 0), App.Vector(5, 15, 0)]
-        for i in range(4):
-            sketch.addGeometry(P.LineSegment(corners[i], corners[(i + 1) % 4]))
-        for i in range(4):
-            sketch.addConstraint(Sketcher.Constraint("Coincident", i, 2, (i + 1) % 4, 1))
+        sketch = self.rectangle("PocketSketch", (self.pad, [self.top(self.pad)]), 5, 5, 15, 15)
         pocket = self.body.newObject("PartDesign::Pocket", "Pocket")
         pocket.Profile = sketch
         pocket.Length = 3
