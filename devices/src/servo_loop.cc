@@ -384,7 +384,12 @@ void ServoLoop::FinishSession(SessionEnd end, double loop_time_s) {
   std::snprintf(when, sizeof when, "%.3f s", fault_time_s_ >= 0.0 ? fault_time_s_ : loop_time_s);
   const std::string detail = device_.DescribeFault();
   std::string message;
-  if (end == SessionEnd::kUnplugged) {
+  if (end == SessionEnd::kUnplugged && device_.stopped_answering()) {
+    message = "The session ended: " + who + " was lost at " + when +
+              " and the force was zeroed in that tick" +
+              (detail.empty() ? std::string() : " (" + detail + ")") +
+              ". Unplug it, plug it back in and start again; your document is unchanged.";
+  } else if (end == SessionEnd::kUnplugged) {
     message = "The session ended: " + who + " was unplugged at " + when +
               " and the force was zeroed in that tick" +
               (detail.empty() ? std::string() : " (" + detail + ")") +

@@ -409,6 +409,10 @@ TEST_F(HidServoRealTime, AWriteStuckInTheKernelNeitherFreezesTheLoopNorHoldsUpIt
   EXPECT_EQ(loop.session_end(), SessionEnd::kUnplugged);
   const std::string message = loop.fault_message();
   EXPECT_TRUE(Contains(message, "it stopped taking force commands: one waited 250 ms")) << message;
+  // still attached: "lost", not "unplugged", and replugging is what frees it
+  EXPECT_TRUE(Contains(message, "(emu:0) was lost at ")) << message;
+  EXPECT_FALSE(Contains(message, "unplugged at")) << message;
+  EXPECT_TRUE(Contains(message, "Unplug it, plug it back in and start again")) << message;
   const ServoStats stats = loop.CalcStats();
   EXPECT_LT(stats.tick_max_us, 20000.0);  // no tick waited for USB (it was 5 s)
   EXPECT_GT(stats.ticks, 650u);           // ticks went on through the stall

@@ -90,6 +90,10 @@ class Device {
   // A sentence for the user about the last fault (why it was unplugged, what was
   // wrong); empty when there was none. Allocates: call it off the servo tick.
   virtual std::string DescribeFault() const { return {}; }
+
+  // True when a kUnplugged read means the device is still attached but stopped taking
+  // commands (the session ends the same way; the words for the user differ). Off the tick.
+  virtual bool stopped_answering() const { return false; }
 };
 
 }  // namespace hapticad

@@ -124,6 +124,9 @@ class HidDevice final : public Device {
   void WriteForce(const Vec3& force_d) override;
   void EndSession() override;
   std::string DescribeFault() const override;
+  bool stopped_answering() const override {
+    return unplugged() && lost_.load(std::memory_order_acquire) == Lost::kCommandsStuck;
+  }
 
   // The link statistics so far: reads the counters and computes two percentiles from the
   // round-trip histogram (up to two scans of its 1184 bins each).
