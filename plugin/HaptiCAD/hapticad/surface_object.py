@@ -20,7 +20,8 @@ TYPE = "HaptiCAD::HapticSurface"
 # 3: ReferenceState (face signatures and re-match status per reference)
 # 4: ReferenceShapes, PatternCurveState, PatternAnchor, TextureScale (all added, and
 #    signed from the shapes as saved, when an older document opens)
-SCHEMA_VERSION = 4
+# 5: DeletedParts (added empty when an older document opens): names a deleted part
+SCHEMA_VERSION = 5
 PATTERNS = ["None", "Linear", "Circular", "Curve"]
 FRICTION_MODELS = ["Velocity (seed 000)", "Friction cone (stick-slip)"]
 INTERPOLATIONS = ["Linear (seed 000 eq. 3)", "Friction ellipse"]
@@ -115,6 +116,7 @@ HIDDEN_STATE = [
     ("ReferenceShapes", "Signatures of the tagged parts' faces at the last match (JSON)"),
     ("PatternAnchor", "The circular pattern's centre and axis in the first tagged part's frame (JSON)"),
     ("PatternCurveState", "The pattern curve's named edges: signatures and re-match status (JSON)"),
+    ("DeletedParts", "The parts whose faces left References since a face was last added, name and label (JSON)"),
 ]
 ENUMERATIONS = {
     "Pattern": PATTERNS,
@@ -167,12 +169,18 @@ class HapticSurface(SchemaState):
         if current:
             obj.Material = current
 
+    def onBeforeChange(self, obj, prop):
+        # deleting a part empties its links before it goes: its label is only known here
+        if prop == "References" and not is_restoring(obj):
+            self._pairs_before = [(o.Name, sub, o.Label) for o, sub in reference_pairs(obj)]
+
     def onChanged(self, obj, prop):
         if is_restoring(obj) or getattr(self, "_applying", False):
             return
         self._applying = True
         try:
             if prop == "References":
+                record_deleted_parts(obj, getattr(self, "_pairs_before", []))
                 sync_reference_state(obj)
                 # the first tagged part may be another one now: the centre stays where it is
                 follow_pattern_anchor(obj)
@@ -247,7 +255,11 @@ def validate(obj, compile_faces=True):
     ``compile_faces`` each tagged face is also compiled for the core, whose own checks
     (surface_compile, _core.validate_surface_properties) then speak here too."""
     problems = []
-    if not obj.References:
+    deleted = deleted_parts(obj)
+    if not obj.References and deleted:
+        problems.append(f"no faces: {_and_list(deleted)}, whose faces it tagged, "
+                        f"{'was' if len(deleted) == 1 else 'were'} deleted; undo the deletion or pick other faces")
+    elif not obj.References:
         problems.append("no faces: pick at least one face")
     not_faces = [f"{o.Label}.{sub}" if sub else f"{o.Label} (the whole object)"
                  for o, sub in reference_pairs(obj) if not sub.startswith("Face")]
@@ -356,6 +368,42 @@ def moves_with(obj, objects):
     """True when a change of ``obj``'s shape or placement moves one of ``objects``: it is
     one, or it holds one (a Body, an App::Part)."""
     return any(obj is o or obj in o.InListRecursive for o in objects if o is not None)
+
+
+def _and_list(words):
+    return words[0] if len(words) == 1 else f"{', '.join(words[:-1])} and {words[-1]}"
+
+
+def deleted_parts(obj):
+    """Labels of the parts whose faces left this surface's References and which are no
+    longer in the document: deleted (a part's links are emptied before it goes, so the
+    deletion is only seen afterwards). Cleared once a face is added."""
+    try:
+        left = json.loads(obj.DeletedParts) if getattr(obj, "DeletedParts", "") else []
+    except ValueError:
+        left = []
+    if not isinstance(left, list):
+        return []
+    return sorted({str(e.get("label")) for e in left
+                   if isinstance(e, dict) and obj.Document.getObject(str(e.get("name"))) is None})
+
+
+def record_deleted_parts(obj, pairs_before):
+    """After References changed from ``pairs_before`` ([(name, face, label), ...]): keeps
+    the parts whose faces left (deleted_parts tells which of them were deleted); forgets
+    them once any face is added."""
+    now = {(o.Name, sub) for o, sub in reference_pairs(obj)}
+    try:
+        kept = json.loads(obj.DeletedParts) if obj.DeletedParts and now <= {p[:2] for p in pairs_before} else []
+    except ValueError:
+        kept = []
+    left = [e for e in kept if isinstance(e, dict)]
+    for name, face, label in pairs_before:
+        if (name, face) not in now and {"name": name, "label": label} not in left:
+            left.append({"name": name, "label": label})
+    text = json.dumps(left) if left else ""
+    if text != obj.DeletedParts:
+        obj.DeletedParts = text
 
 
 def read_reference_state(obj):

@@ -180,6 +180,61 @@ class MakeSurfaceTest(unittest.TestCase):
                                                 f"{self.box.Label}'s shape, not what is shown; tag the faces of "
                                                 f"Refined instead"])
 
+    def test_a_deleted_part_is_named_until_faces_are_picked_again(self):
+        # deleting a part empties the surface's links before the part goes; it used to
+        # say "no faces: pick at least one face", as if nothing had ever been tagged
+        cyl = self.doc.addObject("Part::Cylinder", "Cylinder")
+        cyl.Label = "Grip"
+        self.box.Label = "Handle"
+        self.doc.recompute()
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6"), (self.box, "Face2"), (cyl, "Face1")])
+        self.doc.recompute()
+        s.References = [(self.box, ("Face6",)), (cyl, ("Face1",))]  # a face removed: no part went
+        self.assertEqual(surface_object.deleted_parts(s), [])
+        self.doc.openTransaction("delete")
+        self.doc.removeObject("Cylinder")
+        self.doc.commitTransaction()
+        self.doc.recompute()
+        self.assertEqual(surface_object.deleted_parts(s), ["Grip"])
+        self.assertEqual(surface_object.validate(s, compile_faces=False), [])  # Face6 still feels
+        self.doc.removeObject("Box")
+        self.doc.recompute()
+        self.assertEqual(surface_object.validate(s), [
+            "no faces: Grip and Handle, whose faces it tagged, were deleted; undo the deletion or pick "
+            "other faces"])
+        # kept through save and reopen
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "deleted.FCStd")
+            self.doc.saveCopy(path)
+            reopened = App.openDocument(path)
+            try:
+                self.assertIn("Grip and Handle", surface_object.validate(reopened.getObject(s.Name))[0])
+            finally:
+                App.closeDocument(reopened.Name)
+        # faces picked again: the note goes
+        other = self.doc.addObject("Part::Box", "Other")
+        self.doc.recompute()
+        s.References = [(other, ("Face1",))]
+        self.doc.recompute()
+        self.assertEqual(surface_object.deleted_parts(s), [])
+        self.assertEqual(surface_object.validate(s), [])
+        s.References = []
+        self.assertEqual(surface_object.validate(s), ["no faces: pick at least one face"])
+
+    def test_undoing_a_part_deletion_brings_its_faces_back_and_no_note(self):
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])
+        self.doc.UndoMode = 1
+        self.doc.recompute()
+        self.doc.openTransaction("delete")
+        self.doc.removeObject("Box")
+        self.doc.commitTransaction()
+        self.assertEqual(surface_object.deleted_parts(s), ["Box"])
+        self.doc.undo()
+        self.doc.recompute()
+        self.assertEqual([(o.Name, f) for o, f in HaptiCAD.reference_pairs(s)], [("Box", "Face6")])
+        self.assertEqual(surface_object.deleted_parts(s), [])
+        self.assertEqual(surface_object.validate(s), [])
+
     def test_a_circular_pattern_copied_with_its_part_is_centred_on_the_copy(self):
         # Edit > Duplicate selection with the part: the copy's circles stayed on the
         # original part's hole and moved with the original
@@ -331,6 +386,8 @@ class MigrationTest(unittest.TestCase):
                                                         "DynamicFriction", "Stiffness"):
                     self.assertEqual(getattr(grip, name), default, name)
             self.assertEqual(grip.Texture, "None")
+            self.assertEqual(grip.DeletedParts, "")
+            self.assertEqual(surface_object.deleted_parts(grip), [])
             self.assertNotIn("Touched", grip.State)
         finally:
             App.closeDocument(doc.Name)
