@@ -260,7 +260,9 @@ void DefineForceTravel(py::module_& m) {
             return l.ForceClamped(x_m, max_slope, nullptr);
           },
           py::arg("x_m"), py::arg("max_slope"))
-      .def("max_slope", &ForceTravel::MaxSlope);
+      .def_readwrite("ends_on_stop", &ForceTravel::ends_on_stop)
+      .def("max_slope", &ForceTravel::MaxSlope)
+      .def("stretch_slope", &ForceTravel::StretchSlope);
   m.def("validate_force_travel", &ValidateForceTravel, py::arg("law"));
   m.def("make_linear_force_travel", &MakeLinearForceTravel, py::arg("stiffness_n_per_m"));
   m.def("cantilever_stiffness", &CantileverStiffness, py::arg("youngs_modulus_pa"),

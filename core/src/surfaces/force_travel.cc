@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// HOT PATH: ForceTravel::ForceClamped and MaxSlope run on the servo tick.
+// HOT PATH: ForceTravel::ForceClamped, MaxSlope and StretchSlope run on the servo tick.
 #include "hapticad/core/surfaces/force_travel.h"
 
 #include <algorithm>
@@ -14,18 +14,42 @@ void Require(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument(what);
 }
 
+// N/m: the steepest of the law's first `segments` segments, rising or falling.
+double SteepestOf(const ForceTravel& law, int segments) {
+  double x0 = 0.0;
+  double f0 = 0.0;
+  double steepest = 0.0;
+  for (int i = 0; i < segments; ++i) {
+    steepest = std::max(steepest, std::abs(law.force_n[i] - f0) / (law.travel_m[i] - x0));
+    x0 = law.travel_m[i];
+    f0 = law.force_n[i];
+  }
+  return steepest;
+}
+
 }  // namespace
 
 double ForceTravel::ForceClamped(double x_m, double max_slope, bool* clamped) const {
   if (!(x_m > 0.0) || points <= 0) return 0.0;
+  double stretch = 1.0;  // law travel per handle travel
   if (max_slope > 0.0) {
-    const double steepest = MaxSlope();
+    const double steepest = StretchSlope();
     if (steepest > max_slope) {
       // stretch the travel, keep the forces: the operating force and the snap ratio stay
-      x_m *= max_slope / steepest;
+      stretch = max_slope / steepest;
       if (clamped != nullptr) *clamped = true;
     }
   }
+  const int b = points - 2;  // where a stop starts
+  if (ends_on_stop && b >= 0 && x_m * stretch > travel_m[b]) {
+    double k = (force_n[b + 1] - force_n[b]) / (travel_m[b + 1] - travel_m[b]);
+    if (max_slope > 0.0 && k > max_slope) {
+      k = max_slope;
+      if (clamped != nullptr) *clamped = true;
+    }
+    return force_n[b] + k * (x_m - travel_m[b] / stretch);
+  }
+  x_m *= stretch;
   double x0 = 0.0;
   double f0 = 0.0;
   for (int i = 0; i < points; ++i) {
@@ -39,16 +63,10 @@ double ForceTravel::ForceClamped(double x_m, double max_slope, bool* clamped) co
   return 0.0;
 }
 
-double ForceTravel::MaxSlope() const {
-  double x0 = 0.0;
-  double f0 = 0.0;
-  double steepest = 0.0;
-  for (int i = 0; i < points; ++i) {
-    steepest = std::max(steepest, std::abs(force_n[i] - f0) / (travel_m[i] - x0));
-    x0 = travel_m[i];
-    f0 = force_n[i];
-  }
-  return steepest;
+double ForceTravel::MaxSlope() const { return SteepestOf(*this, points); }
+
+double ForceTravel::StretchSlope() const {
+  return SteepestOf(*this, ends_on_stop ? points - 1 : points);
 }
 
 void ValidateForceTravel(const ForceTravel& law) {
@@ -63,6 +81,8 @@ void ValidateForceTravel(const ForceTravel& law) {
     Require(law.force_n[i] >= 0.0, at + "force must be >= 0");
     previous = law.travel_m[i];
   }
+  Require(!law.ends_on_stop || law.points >= 2,
+          "force-travel law: a stop needs a point before it (where the mechanism ends)");
   const int last = law.points - 1;
   const double before = last > 0 ? law.force_n[last - 1] : 0.0;
   Require(law.force_n[last] > before,
@@ -106,6 +126,7 @@ ForceTravel MakePushButton(const PushButtonParams& p) {
   Require(positive(p.bottom_stiffness_n_per_m), "push button: bottom stiffness must be > 0 N/m");
   ForceTravel law;
   law.points = 4;
+  law.ends_on_stop = true;
   const double bottom = p.total_travel_m;
   law.travel_m = {p.pretravel_m, p.pretravel_m + p.snap_travel_m, bottom, bottom + 1e-3};
   law.force_n = {p.operating_force_n, p.operating_force_n * (1.0 - p.snap_ratio),

@@ -10,8 +10,9 @@ head, a button's top) and models the mechanism behind them:
   k = 3 E I / L^3, I = b h^3 / 12 (field notes: PP, 5 x 4 mm over 60 mm, 0.56 N/mm).
   The head gives k; the plastic's own give is far stiffer and left out.
 * Push button: a tactile switch that rises to its operating force at the pretravel,
-  snaps down by the snap ratio, and bottoms out on the housing with the surface's own
-  stiffness.
+  snaps down by the snap ratio, and bottoms out on its housing (HousingStiffness), felt
+  as stiff as it is up to the device's stiffness; a device softer than the click
+  stretches the click's travel, never for the housing (force_travel.h).
 
 While a study holds, its law replaces the surface's contact stiffness in the Feel
 session (surface_compile), so a slider moving one design parameter (``Adjust``, between
@@ -31,7 +32,9 @@ from . import _core, cohort, materials
 from .proxy_state import SchemaState, add_hidden_state, add_properties, add_type_tag, is_restoring
 
 TYPE = "HaptiCAD::StiffnessStudy"
-SCHEMA_VERSION = 1
+# 2: HousingStiffness (the button bottomed out on the surface's stiffness before: an
+#    older document's buttons get a plastic housing's 50 N/mm)
+SCHEMA_VERSION = 2
 MM = 1e-3
 BEAM, BUTTON = "Bending beam", "Push button"
 MODELS = [BEAM, BUTTON]
@@ -58,6 +61,9 @@ PROPERTIES = [
      (0.01, 20.0, 0.05)),
     ("TotalTravel", "App::PropertyFloatConstraint", "Button", "Travel where the button bottoms out, mm", 0.6,
      (0.02, 50.0, 0.1)),
+    ("HousingStiffness", "App::PropertyFloatConstraint", "Button",
+     "Stiffness of the housing the button bottoms out on, N/mm (felt up to the device's stiffness)", 50.0,
+     (0.05, 1e4, 1.0)),
     ("Adjust", "App::PropertyEnumeration", "Customise", "The design parameter the Feel panel's slider moves",
      None, None),
     ("AdjustMin", "App::PropertyFloat", "Customise", "The slider's low end, in the parameter's unit", 2.0, None),
@@ -240,8 +246,7 @@ def force_travel(study):
     params.snap_ratio = study.SnapRatio
     params.snap_travel_m = study.SnapTravel * MM
     params.total_travel_m = study.TotalTravel * MM
-    if study.Surface is not None:  # the button bottoms out on its housing: the face's own stiffness
-        params.bottom_stiffness_n_per_m = study.Surface.Stiffness / MM
+    params.bottom_stiffness_n_per_m = study.HousingStiffness / MM
     return _core.make_push_button(params)
 
 
@@ -261,7 +266,7 @@ def device_note(study, max_stiffness_n_per_m):
     whatever the workspace scale, and ``max_stiffness_n_per_m`` is the device's own limit
     (device_stiffness_n_per_m, LiveSession.render_limits)."""
     try:
-        steepest = force_travel(study).max_slope()
+        steepest = force_travel(study).stretch_slope()  # the click: no stretch is made for the housing
     except ValueError:
         return ""
     if steepest <= max_stiffness_n_per_m:
@@ -362,7 +367,7 @@ def material_override(study):
 def design(study):
     """The study's model parameters now, by property name."""
     names = (["YoungsModulus", "BeamWidth", "BeamThickness", "BeamLength", "BendingStiffness"] if study.Model == BEAM
-             else ["OperatingForce", "Pretravel", "SnapRatio", "SnapTravel", "TotalTravel"])
+             else ["OperatingForce", "Pretravel", "SnapRatio", "SnapTravel", "TotalTravel", "HousingStiffness"])
     return {name: float(getattr(study, name)) for name in names}
 
 
@@ -583,7 +588,7 @@ def import_records(study, path):
 
 # the unit each constrained property is in (its tooltip's), for what is typed into it
 UNITS = {"YoungsModulus": "GPa", "BeamWidth": "mm", "BeamThickness": "mm", "BeamLength": "mm", "OperatingForce": "N",
-         "Pretravel": "mm", "SnapRatio": "", "SnapTravel": "mm", "TotalTravel": "mm"}
+         "Pretravel": "mm", "SnapRatio": "", "SnapTravel": "mm", "TotalTravel": "mm", "HousingStiffness": "N/mm"}
 # gram- and kilogram-force, as switch datasheets give operating forces (Omron B3F: 100 gf)
 _FORCE_UNITS = ((re.compile(r"(?<![A-Za-z])kgf\b"), "*9.80665 N"), (re.compile(r"(?<![A-Za-z])gf\b"), "*9.80665 mN"))
 

@@ -122,8 +122,10 @@ TEST_F(RendererOnBox, FiniteButAbsurdInputGivesZeroForceAndAFaultNotNaN) {
 
 TEST_F(RendererOnBox, AForceTravelLawReplacesStiffnessTimesDepth) {
   std::vector<SurfaceProperties> faces(6, kUntaggedSurface);
-  faces[5].force_travel = MakePushButton({});  // 1.47 N at 0.25 mm, snaps to 0.735 N
-  limits_.max_stiffness_n_per_m = 10000.0;     // steeper than the snap: nothing clamped
+  PushButtonParams button;                   // 1.47 N at 0.25 mm, snaps to 0.735 N
+  button.bottom_stiffness_n_per_m = 4000.0;  // a housing the device renders as it is
+  faces[5].force_travel = MakePushButton(button);
+  limits_.max_stiffness_n_per_m = 10000.0;  // steeper than the snap: nothing clamped
   ForceRenderer r(scene_, std::make_shared<SurfaceTable>(faces), limits_);
   for (const auto& [depth, force] : {std::pair{0.1e-3, 0.588},
                                      {0.25e-3, 1.47},
@@ -145,7 +147,7 @@ TEST_F(RendererOnBox, AForceTravelLawIsClampedToTheDeviceAndMakesNoEnergyThrough
   ForceRenderer r(scene_, std::make_shared<SurfaceTable>(faces), limits_);
   EXPECT_TRUE(Press(r, 0.1e-3).flags & kStiffnessClamped);
   // stretched 2.45 x: the operating force 1.47 N comes at 0.61 mm instead of 0.25
-  const double stretch = faces[5].force_travel->MaxSlope() / 3000.0;
+  const double stretch = faces[5].force_travel->StretchSlope() / 3000.0;
   EXPECT_NEAR(Press(r, 0.25e-3 * stretch).normal_force_n, 1.47, 1e-4);
   // press through the snap to 0.8 mm and back at 1 kHz; the device damps as Colgate's
   // bound asks of the steepest slope rendered (b = K T / 2): the sampled law never
@@ -845,7 +847,9 @@ TEST_F(ScaledWorkspace, AFacesDampingIsFeltAgainstTheHandlesSpeed) {
 
 TEST_F(ScaledWorkspace, AForceTravelLawIsPressedByTheHandlesDepth) {
   SurfaceProperties top = kUntaggedSurface;
-  top.force_travel = MakePushButton({});    // 1.47 N at 0.25 mm, snaps to 0.735 N
+  PushButtonParams button;                   // 1.47 N at 0.25 mm, snaps to 0.735 N
+  button.bottom_stiffness_n_per_m = 4000.0;  // a housing the device renders as it is
+  top.force_travel = MakePushButton(button);
   limits_.max_stiffness_n_per_m = 10000.0;  // steeper than the snap: nothing clamped
   ForceRenderer r(scene_, Top(top), limits_);
   for (const auto& [depth, force] : {std::pair{0.1e-3, 0.588},
@@ -862,7 +866,7 @@ TEST_F(ScaledWorkspace, AForceTravelLawIsPressedByTheHandlesDepth) {
   // the operating force comes at 0.25 mm x 2.45 of the handle
   limits_.max_stiffness_n_per_m = 3000.0;
   ForceRenderer clamped(scene_, Top(top), limits_);
-  const double stretch = top.force_travel->MaxSlope() / 3000.0;
+  const double stretch = top.force_travel->StretchSlope() / 3000.0;
   const RenderOutput out = PressHandle(clamped, 0.25e-3 * stretch);
   EXPECT_TRUE(out.flags & kStiffnessClamped);
   EXPECT_NEAR(out.normal_force_n, 1.47, 1e-4);

@@ -27,17 +27,50 @@ TEST(ForceTravelTest, APushButtonRisesSnapsRisesAndBottomsOut) {
   EXPECT_NEAR(law.Force(0.25e-3), 1.47, 1e-12);   // the operating point
   EXPECT_NEAR(law.Force(0.35e-3), 0.735, 1e-12);  // after the snap
   EXPECT_NEAR(law.Force(0.6e-3), 1.47, 1e-12);    // bottomed out
-  EXPECT_NEAR(law.Force(0.8e-3), 1.47 + 4000.0 * 0.2e-3, 1e-12);
+  EXPECT_NEAR(law.Force(0.8e-3), 1.47 + p.bottom_stiffness_n_per_m * 0.2e-3, 1e-9);
   // the snap ratio as the field notes define it
   const double snap = (law.Force(0.25e-3) - law.Force(0.35e-3)) / law.Force(0.25e-3);
   EXPECT_NEAR(snap, 0.5, 1e-12);
-  EXPECT_NEAR(law.MaxSlope(), 0.735 / 0.1e-3, 1e-6);  // the snap is the steepest
+  EXPECT_NEAR(law.StretchSlope(), 0.735 / 0.1e-3, 1e-6);  // the snap is the mechanism's steepest
+  EXPECT_NEAR(law.MaxSlope(), p.bottom_stiffness_n_per_m, 1e-6);  // the housing, steeper still
+}
+
+TEST(ForceTravelTest,
+     AButtonBottomsOutOnItsHousingAsStiffAsTheDeviceRendersWithoutStretchingTheClick) {
+  // the housing (50 N/mm) is far stiffer than a device renders; the click (7.35 N/mm at
+  // the snap) a little. The click is stretched for the snap alone, and the housing is
+  // felt from where the stretched click ends at the device's stiffness. Before, the
+  // housing set the stretch: the operating point at 4.2 mm of handle travel, not 0.6.
+  const ForceTravel law = MakePushButton({});
+  const double limit = 3000.0;            // the simulated probe's stable stiffness
+  const double stretch = 7350.0 / limit;  // handle travel per law travel
+  bool clamped = false;
+  EXPECT_NEAR(law.ForceClamped(0.25e-3 * stretch, limit, &clamped), 1.47, 1e-9);
+  EXPECT_TRUE(clamped);
+  EXPECT_NEAR(law.ForceClamped(0.35e-3 * stretch, limit, nullptr), 0.735, 1e-9);
+  const double bottom = 0.6e-3 * stretch;  // where the stretched click ends
+  EXPECT_NEAR(law.ForceClamped(bottom, limit, nullptr), 1.47, 1e-9);
+  for (double past : {1e-6, 0.1e-3, 0.5e-3}) {
+    EXPECT_NEAR(law.ForceClamped(bottom + past, limit, nullptr), 1.47 + limit * past, 1e-9) << past;
+  }
+  // a device stiffer than the click renders the click as it is and the housing at its limit
+  EXPECT_NEAR(law.ForceClamped(0.25e-3, 20000.0, nullptr), 1.47, 1e-12);
+  EXPECT_NEAR(law.ForceClamped(0.7e-3, 20000.0, nullptr), 1.47 + 20000.0 * 0.1e-3, 1e-9);
+  clamped = false;
+  EXPECT_NEAR(law.ForceClamped(0.3e-3, 20000.0, &clamped), law.Force(0.3e-3), 1e-12);
+  EXPECT_FALSE(clamped);  // the click itself is untouched
+  // a housing softer than the device is felt as it is
+  PushButtonParams soft;
+  soft.bottom_stiffness_n_per_m = 1000.0;
+  const ForceTravel mushy = MakePushButton(soft);
+  EXPECT_NEAR(mushy.ForceClamped(0.6e-3 * stretch + 0.2e-3, limit, nullptr), 1.47 + 1000.0 * 0.2e-3,
+              1e-9);
 }
 
 TEST(ForceTravelTest, ADeviceTooSoftForTheLawFeelsItsForcesOverALongerTravel) {
   const ForceTravel law = MakePushButton({});    // steepest: the snap, 7350 N/m
   for (double limit : {400.0, 700.0, 3000.0}) {  // Touch, Omni, the simulated probe
-    const double stretch = law.MaxSlope() / limit;
+    const double stretch = law.StretchSlope() / limit;
     double previous = 0.0;
     double peak = 0.0;
     for (int i = 1; i <= 20000; ++i) {
@@ -105,6 +138,10 @@ TEST(ForceTravelTest, BadLawsAndButtonsAreRefusedWithAReason) {
   law = MakePushButton({});
   law.force_n[3] = law.force_n[2];  // gives way for good past the bottom
   EXPECT_NE(message([&] { ValidateForceTravel(law); }).find("the last segment must rise"),
+            std::string::npos);
+  law = MakeLinearForceTravel(500.0);
+  law.ends_on_stop = true;
+  EXPECT_NE(message([&] { ValidateForceTravel(law); }).find("a stop needs a point before it"),
             std::string::npos);
   PushButtonParams p;
   p.snap_ratio = 1.0;

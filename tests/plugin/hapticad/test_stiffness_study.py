@@ -84,7 +84,7 @@ class StudyTest(unittest.TestCase):
         study.BeamMaterial = "PP"  # choosing a material again sets its modulus
         self.assertEqual(stiffness_study.material_override(study), "")
 
-    def test_a_push_button_snaps_and_bottoms_out_on_the_faces_stiffness(self):
+    def test_a_push_button_snaps_and_bottoms_out_on_its_housing(self):
         # slopes the simulated probe renders (2 N/mm, under its 3): 0.8 N at 0.4 mm, halved by 0.6 mm
         study = HaptiCAD.make_study(self.doc, self.head, model="Push button", OperatingForce=0.8, Pretravel=0.4,
                                     SnapRatio=0.5, SnapTravel=0.2, TotalTravel=1.0)
@@ -93,7 +93,9 @@ class StudyTest(unittest.TestCase):
         law = scene.surface_properties(scene.face_id("Head.Face6")).force_travel
         self.assertAlmostEqual(law.force(0.4e-3), 0.8)
         self.assertAlmostEqual(law.force(0.6e-3), 0.4)
-        self.assertAlmostEqual(law.force(1.0e-3 + 1e-4) - law.force(1.0e-3), self.head.Stiffness * 1e3 * 1e-4)
+        # the housing, 50 N/mm, not the face's material (0.8 N/mm: after the click, mush)
+        self.assertAlmostEqual(law.force(1.0e-3 + 1e-4) - law.force(1.0e-3), 50.0 * 1e3 * 1e-4)
+        self.assertAlmostEqual(law.stretch_slope(), 2000.0)  # what a soft device stretches: the click
         # on the way down to 1.5 mm, the probe felt the operating force, then the snap
         stroke = Stroke((20, 20, 10), (20.01, 20, 10), speed_mm_s=5.0, depth_mm=1.5)
         result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
@@ -103,8 +105,14 @@ class StudyTest(unittest.TestCase):
         self.assertGreater(snap, 0, "the force never dropped")
         self.assertAlmostEqual(highest[snap], 0.8, delta=0.03)  # the operating force, then the drop
         self.assertLess(fn[snap:].min(), 0.45)
-        self.assertAlmostEqual(fn[-1], 0.8 + 0.8 * 0.5, delta=0.03)  # bottomed out, 0.5 mm on 0.8 N/mm
-        self.assertEqual(stiffness_study.device_note(study, 3000.0), "")
+        # bottomed out: 0.5 mm on the housing, at the probe's 3 N/mm (its stable stiffness)
+        self.assertAlmostEqual(fn[-1], 0.8 + 3.0 * 0.5, delta=0.03)
+        self.assertEqual(stiffness_study.device_note(study, 3000.0), "")  # the housing stretches nothing
+        study.HousingStiffness = 0.8  # a soft housing is felt as soft as it is
+        scene = build_document_scene(self.doc)
+        result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
+        self.assertAlmostEqual(result.trace["normal_force_n"][result.trace["time_s"] < result.plan.slide_start_s][-1],
+                               0.8 + 0.8 * 0.5, delta=0.03)
         study.OperatingForce = 1.47  # Omron B3F's: 5.9 N/mm to the operating point
         self.assertIn("the button's steepest slope", stiffness_study.device_note(study, 3000.0))
 

@@ -21,6 +21,7 @@ from .task_panel_base import CloseOnlyPanel
 LABELS = {"YoungsModulus": "Young's modulus E", "BeamWidth": "Width b", "BeamThickness": "Thickness h",
           "BeamLength": "Length L", "OperatingForce": "Operating force", "Pretravel": "Pretravel",
           "SnapRatio": "Snap ratio", "SnapTravel": "Snap travel", "TotalTravel": "Total travel",
+          "HousingStiffness": "Housing stiffness",
           "BeamMaterial": "Material"}
 TABLE_COLUMNS = ("Participant", "Preferred", "Gender", "Age", "Weight (kg)", "Height (mm)")  # what counts, first
 
@@ -246,7 +247,7 @@ class StudyTaskPanel(CloseOnlyPanel):
         law = (f"Bending stiffness k = 3EI/L³ = <b>{obj.BendingStiffness:.3g} N/mm</b>" if obj.Model ==
                stiffness_study.BEAM else f"Operating force <b>{obj.OperatingForce:.3g} N</b> at "
                f"{obj.Pretravel:g} mm, returning at {obj.OperatingForce * (1 - obj.SnapRatio):.3g} N; bottoms "
-               f"out at {obj.TotalTravel:g} mm on the surface's stiffness")
+               f"out at {obj.TotalTravel:g} mm on its housing, {obj.HousingStiffness:g} N/mm")
         note = "; ".join(n for n in (stiffness_study.device_note(obj, self.device_k),
                                      stiffness_study.force_note(obj, preferences.load().force_limit_n)) if n)
         override = stiffness_study.material_override(obj)  # the combo still names the material
