@@ -133,35 +133,37 @@ std::vector<std::pair<std::size_t, std::size_t>> FindRuns(const std::vector<doub
   return runs;
 }
 
-// The resisting force (-sign x the force along +x) averaged in N bins of width dx from
-// x0, empty bins interpolated linearly between their filled neighbours (held at the
-// ends). False if fewer than 2 bins filled.
+// The resisting force (-sign x the force along +x) at N points dx apart, the first
+// half a step past x0, interpolated linearly between the samples in position order (held
+// past the ends), as seed 001 §III resamples. Averaging the samples in bins instead is a
+// box filter: with many samples a bin it bent the background's decay (alpha_b read 0.64
+// for 0.5), and by how many samples a bin held, so alpha_b seemed to change with speed.
+// False if fewer than 2 distinct positions.
 bool ResampleInSpace(const TextureRecording& r, const std::vector<double>& force, double sign,
                      std::size_t first, std::size_t last, double x0, double dx, std::size_t bins,
                      std::vector<double>& out) {
-  std::vector<double> sum(bins, 0.0);
-  std::vector<int> count(bins, 0);
-  for (std::size_t i = first; i <= last; ++i) {
-    const double k = std::floor((r.position_m[i] - x0) / dx);
-    if (k < 0 || k >= static_cast<double>(bins)) continue;
-    sum[static_cast<std::size_t>(k)] -= sign * force[i];  // the force resisting the motion
-    ++count[static_cast<std::size_t>(k)];
-  }
-  std::vector<std::size_t> filled;
-  for (std::size_t k = 0; k < bins; ++k) {
-    if (count[k] > 0) filled.push_back(k);
-  }
-  if (filled.size() < 2) return false;
+  std::vector<std::pair<double, double>> samples;  // (position, resisting force)
+  samples.reserve(last - first + 1);
+  for (std::size_t i = first; i <= last; ++i)
+    samples.emplace_back(r.position_m[i], -sign * force[i]);
+  // in position order (noise or an encoder's steps may not be monotonic); equal positions
+  // keep their time order, and an interpolation never spans two of them
+  std::stable_sort(samples.begin(), samples.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  if (!(samples.back().first > samples.front().first)) return false;
   out.assign(bins, 0.0);
-  for (std::size_t k : filled) out[k] = sum[k] / count[k];
-  for (std::size_t k = 0; k < filled.front(); ++k) out[k] = out[filled.front()];
-  for (std::size_t k = filled.back() + 1; k < bins; ++k) out[k] = out[filled.back()];
-  for (std::size_t f = 0; f + 1 < filled.size(); ++f) {
-    const std::size_t a = filled[f];
-    const std::size_t b = filled[f + 1];
-    for (std::size_t k = a + 1; k < b; ++k) {
-      const double s = static_cast<double>(k - a) / static_cast<double>(b - a);
-      out[k] = (1 - s) * out[a] + s * out[b];
+  std::size_t j = 0;  // the last sample at or before x
+  for (std::size_t k = 0; k < bins; ++k) {
+    const double x = x0 + (static_cast<double>(k) + 0.5) * dx;
+    while (j + 1 < samples.size() && samples[j + 1].first <= x) ++j;
+    if (x <= samples.front().first) {
+      out[k] = samples.front().second;
+    } else if (j + 1 == samples.size()) {
+      out[k] = samples.back().second;
+    } else {
+      const auto& [xa, fa] = samples[j];
+      const auto& [xb, fb] = samples[j + 1];
+      out[k] = fa + (fb - fa) * (x - xa) / (xb - xa);
     }
   }
   return true;

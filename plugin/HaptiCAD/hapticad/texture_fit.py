@@ -164,12 +164,13 @@ def fit_files(paths, period_mm, speeds_mm_s=PAPER_SPEEDS_MM_S, tolerance_percent
     except ValueError as exc:  # the core counts recordings and samples; the designer knows files and lines
         raise ValueError(re.sub(r"recording (\d+): (.*?)sample (\d+)|recording (\d+):",
                                 lambda m: _where(recordings, paths, m), str(exc))) from None
-    backwards = [s for s in fit.speeds if fit.dc_n.intercept + fit.dc_n.slope * s.speed_mps < 0]
+    # each speed's own mean resisting force (the line's slope is per 400 mm/s, not per m/s)
+    backwards = [s for s in fit.speeds if s.dc_n < 0]
     if fit.speeds and len(backwards) == len(fit.speeds):
         s = fit.speeds[0]
         raise ValueError(
             f"the lateral force runs with the motion, not against it (the friction level comes out at "
-            f"{fit.dc_n.intercept + fit.dc_n.slope * s.speed_mps:.3g} N at {s.speed_mps / MM:.0f} mm/s): the fit "
+            f"{s.dc_n:.3g} N at {s.speed_mps / MM:.0f} mm/s): the fit "
             f"needs the force resisting the finger, as eq. 2 gives it; change the sign of lateral_force_n")
     notes = []
     if fit.speeds_without_sections_mps:
@@ -244,8 +245,19 @@ def dominant_period_m(fit):
         if high <= low:
             continue
         k = low + int(np.argmax(amplitude[low:high + 1]))
-        periods.append(fit.period_m * s.periods / k)
+        periods.append(fit.period_m * s.periods / _refined_peak(amplitude, k))
     return float(np.median(periods)) if periods else None
+
+
+def _refined_peak(amplitude, k):
+    """Bin k of a Hann-windowed spectrum's peak refined between its neighbours: the
+    parabola through the three log amplitudes (a peak between two bins read 2.47 or
+    2.55 mm for 2.5)."""
+    if not 0 < k < len(amplitude) - 1 or min(amplitude[k - 1:k + 2]) <= 0:
+        return float(k)
+    a, b, c = np.log(amplitude[k - 1:k + 2])
+    bend = a - 2 * b + c
+    return float(k) + (0.5 * (a - c) / bend if bend < 0 else 0.0)
 
 
 def eq2_newtons(fit):

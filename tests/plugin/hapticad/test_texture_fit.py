@@ -197,6 +197,14 @@ class RigRecordingTest(unittest.TestCase):
             texture_fit.fit_files([self.path("along.csv")], 2.5, (50, 120))
         self.assertIn("runs with the motion", str(caught.exception))
         self.assertIn("change the sign of lateral_force_n", str(caught.exception))
+        # the level said is the one at that speed: 0.4 + 0.2 x 50/400 levels of 2 N
+        self.assertIn("comes out at -0.85 N at 50 mm/s", str(caught.exception))
+        # a force that aids the finger at 50 mm/s but resists at 270 is fitted (a negative
+        # viscosity's), not taken for a sign slip: the line's slope is per 400 mm/s, and
+        # reading it per m/s had it aid at every speed
+        write_rig_csv(self.path("cross.csv"), speeds_mm_s=(50.0, 120.0, 270.0), f_dc=-0.2, f_vis=0.45)
+        crossing = texture_fit.fit_files([self.path("cross.csv")], 2.5, (50, 120, 270))
+        self.assertEqual([round(s.dc_n, 2) for s in crossing.fit.speeds], [-0.29, -0.13, 0.21])
 
     def test_unreadable_recordings_are_refused_by_name_and_line(self):
         with open(self.path("columns.csv"), "w") as f:
@@ -233,10 +241,14 @@ class RigRecordingTest(unittest.TestCase):
 
     def test_a_wrong_period_is_said_and_not_set(self):
         write_rig_csv(self.path("grating.csv"))
+        # a rig's force sensor has noise (here 5 mN); the harmonic fit's own checks read
+        # it at the wrong period's harmonics (noise-free, they read the Hann window's
+        # leakage of the true peak, a clean i^-3: only the strongest ripple tells, below)
+        write_rig_csv(self.path("noisy.csv"), noise_n=0.005)
         near = texture_fit.fit_files([self.path("grating.csv")], 2.55, (50, 120))  # 2 % off
         self.assertTrue(any("show a grating period of 2.5 mm" in n for n in near.notes), near.notes)
         self.assertAlmostEqual(texture_fit.levels(near.fit, 2.0)["TextureAlpha"], 2.5, delta=0.05)
-        wrong = texture_fit.fit_files([self.path("grating.csv")], 5.0, (50, 120))  # the designer's slip
+        wrong = texture_fit.fit_files([self.path("noisy.csv")], 5.0, (50, 120))  # the designer's slip
         crooked = [n for n in wrong.notes if "do not follow a power law" in n]
         self.assertEqual(len(crooked), 1, wrong.notes)  # one sentence, both speeds in it
         self.assertRegex(crooked[0], r"at 50 mm/s \(r\^2 [-\d.]+\), 120 mm/s")
@@ -260,6 +272,11 @@ class RigRecordingTest(unittest.TestCase):
             self.assertEqual(surface.Texture, "None")
             self.assertTrue(any("every 2.5 mm, not every 5 mm" in n for n in wrong.notes), wrong.notes)
             self.assertFalse(any("looks wrong" in n for n in near.notes), near.notes)
+            clean = texture_fit.fit_files([self.path("grating.csv")], 5.0, (50, 120))
+            with self.assertRaises(ValueError) as caught:
+                texture_fit.apply_to_surface(surface, clean)
+            self.assertIn("ripple most strongly every 2.5 mm, not every 5 mm", str(caught.exception))
+            self.assertEqual(surface.Texture, "None")
         finally:
             App.closeDocument(doc.Name)
 

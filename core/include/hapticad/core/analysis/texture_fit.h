@@ -9,9 +9,9 @@
 //     (2.5 % in the paper) of one of the target speeds and the direction does not
 //     change. Turnarounds and other non-steady parts fall outside every run; half a
 //     window is dropped at each end; runs shorter than `min_periods` periods are dropped.
-//  3. Each section is resampled in space (the force averaged in bins of
-//     period / samples_per_period, empty bins interpolated linearly), trimmed to a whole
-//     number P of periods, detrended (its mean kept) and Hann-windowed, and its spatial
+//  3. Each section is resampled in space (the force interpolated linearly between the
+//     samples at steps of period / samples_per_period), trimmed to a whole number P of
+//     periods, detrended (its mean kept) and Hann-windowed, and its spatial
 //     FFT taken. Harmonic i of the grating falls in bin i P. Each bin's amplitude is
 //     divided by the (discrete) filter's gain at its frequency in time, f v (so the filter removes
 //     a rig's resonance without bending the harmonics' decay: the paper's 1000 Hz
