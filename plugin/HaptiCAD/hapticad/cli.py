@@ -73,7 +73,7 @@ _answers_csv_file = _output_file("CSV", "answers.csv")
 
 def cmd_feel(args):
     App = ensure_freecad()
-    from . import accuracy, preferences, vibration_object
+    from . import accuracy, preferences, surface_object, vibration_object
     from .document_scene import build_document_scene
     from .feel import Stroke, feel_document
 
@@ -82,7 +82,7 @@ def cmd_feel(args):
         doc_scene = build_document_scene(doc, accuracy.preset(args.accuracy or preferences.load().accuracy))
         if not doc_scene.watertight:
             print(f"hapticad feel: the scene is not closed: {doc_scene.repair}", file=sys.stderr)
-        for note in vibration_object.rate_notes(doc, args.rate):
+        for note in vibration_object.rate_notes(doc, args.rate) + surface_object.rate_notes(doc, args.rate):
             print(f"hapticad feel: {note}", file=sys.stderr)
         p0, p1 = args.stroke
         stroke = Stroke(p0, p1, args.speed, args.depth, args.rate)

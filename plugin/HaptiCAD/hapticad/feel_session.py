@@ -260,6 +260,13 @@ class LiveSession:
         return (vibration_object.rate_notes(doc, self.rate_hz)
                 + vibration_object.force_notes(doc, self.render_limits.max_force_n))
 
+    def roughness_notes(self, doc):
+        """The roughness grids of doc's surfaces this session's servo rate cannot follow
+        at a brisk stroke (surface_object.rate_note), as sentences."""
+        from . import surface_object  # FreeCAD's: only when used
+
+        return surface_object.rate_notes(doc, self.rate_hz)
+
     def describe_face(self, cad_face):
         """"Object.FaceN: surface (material, mu_s, mu_d, roughness)" of a face, or ""."""
         if cad_face is None or cad_face < 0 or cad_face >= len(self.doc_scene.face_names):

@@ -469,6 +469,37 @@ def reference_status(surface):
             for o, sub in reference_pairs(surface)]
 
 
+# seed 001's fastest stroke (§III: 50 to 270 mm/s); a grid a servo rate cannot follow
+# that fast is said
+FASTEST_STROKE_MM_S = 270.0
+
+
+def rate_note(surface, rate_hz):
+    """What a servo loop at ``rate_hz`` makes of ``surface``'s roughness grid: "" when a
+    stroke at FASTEST_STROKE_MM_S samples each ball of it at least twice, else up to what
+    speed it is felt as it is. Faster, the grid's v / g Hz passes half the rate and is felt
+    as a coarser ripple than the part has (category 1 at 1 kHz and 120 mm/s: 200 Hz, not
+    1200)."""
+    from . import _core
+
+    if not surface.FeelRoughness or (surface.RoughnessHeight <= 0 and surface.RoughnessFrictionModulation <= 0):
+        return ""
+    category = int(surface.RoughnessCategory)
+    grid_mm = _core.roughness_category(category).grid_size_mm
+    fastest = grid_mm * float(rate_hz) / 2
+    if fastest >= FASTEST_STROKE_MM_S:
+        return ""
+    return (f"{surface.Label}: roughness category {category}'s {grid_mm:g} mm grid is felt as it is up to "
+            f"{fastest:.0f} mm/s at the {float(rate_hz):g} Hz servo rate; stroked faster it is felt as a coarser "
+            "ripple than the part has. Stroke slower, or raise the servo rate in Preferences (5-10 kHz for the "
+            "finest categories)")
+
+
+def rate_notes(doc, rate_hz):
+    """rate_note of every surface of doc whose grid a loop at ``rate_hz`` cannot follow."""
+    return [n for n in (rate_note(s, rate_hz) for s in surfaces_of(doc)) if n]
+
+
 def hidden_part_notes(surface):
     """A sentence for each part the surface tags that is hidden, naming what uses it: a
     Part Fillet or Cut made after tagging hides the tagged shape, and Feel renders that

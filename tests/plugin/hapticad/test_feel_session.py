@@ -123,6 +123,19 @@ class FeelSessionTest(unittest.TestCase):
         self.assertEqual(notes(3.0), [vibration_object.rate_note(v, 1000)])
         self.assertIn("felt at 300 Hz instead", notes(3.0)[0])
 
+    def test_the_sessions_notes_say_which_roughness_grids_its_rate_cannot_follow(self):
+        from hapticad import surface_object
+
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face5")], material="ABS", roughness_category=1)
+        self.assertIn("up to 50 mm/s", surface_object.rate_note(s, 1000))  # the Steel top's category 3 is fine
+        scene = build_document_scene(self.doc)
+        for rate, expected in ((1000, [surface_object.rate_note(s, 1000)]), (8000, [])):
+            session = feel_session.LiveSession(scene, prefs=preferences.Preferences(servo_rate_hz=rate))
+            try:
+                self.assertEqual(session.roughness_notes(self.doc), expected, rate)
+            finally:
+                session.stop()
+
     @rerun_after_host_stall
     def test_the_hand_is_held_at_the_surface(self):
         prefs = preferences.Preferences(servo_rate_hz=1000, force_limit_n=3.0)

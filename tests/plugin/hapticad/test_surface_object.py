@@ -235,6 +235,26 @@ class MakeSurfaceTest(unittest.TestCase):
         self.assertEqual(surface_object.deleted_parts(s), [])
         self.assertEqual(surface_object.validate(s), [])
 
+    def test_a_grid_the_servo_rate_cannot_follow_says_up_to_what_speed_it_is_felt(self):
+        # category 1's 0.1 mm grid at 1 kHz and 120 mm/s is 1.2 kHz, past half the rate:
+        # the probe felt a 200 Hz ripple, and nothing said so
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS", roughness_category=1)
+        s.Label = "Lid"
+        note = surface_object.rate_note(s, 1000)
+        self.assertIn("Lid: roughness category 1's 0.1 mm grid is felt as it is up to 50 mm/s at the 1000 Hz "
+                      "servo rate", note)
+        self.assertIn("raise the servo rate in Preferences", note)
+        self.assertEqual(surface_object.rate_notes(self.doc, 1000), [note])
+        s.RoughnessCategory = 2
+        self.assertIn("up to 150 mm/s", surface_object.rate_note(s, 1000))
+        self.assertEqual(surface_object.rate_note(s, 2000), "")  # 300 mm/s: past the paper's fastest stroke
+        s.RoughnessCategory = 3
+        self.assertEqual(surface_object.rate_note(s, 1000), "")
+        s.RoughnessCategory = 1
+        self.assertEqual(surface_object.rate_note(s, 10000), "")
+        s.FeelRoughness = False  # nothing rendered: nothing to say
+        self.assertEqual(surface_object.rate_note(s, 1000), "")
+
     def test_a_circular_pattern_copied_with_its_part_is_centred_on_the_copy(self):
         # Edit > Duplicate selection with the part: the copy's circles stayed on the
         # original part's hole and moved with the original

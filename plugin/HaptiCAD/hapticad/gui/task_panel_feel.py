@@ -231,11 +231,12 @@ class FeelTaskPanel:
 
     def session_notes(self):
         """As notes: what the servo rate and the force limit keep a vibration from being
-        felt as set, and tagged parts hidden behind what is shown (a fillet made after
+        felt as set, the roughness grids the servo rate cannot follow, and tagged parts hidden behind what is shown (a fillet made after
         tagging)."""
         # one part under two surfaces is said once
         hidden = list(dict.fromkeys(n for s in surfaces_of(self.doc) for n in hidden_part_notes(s)))
-        return "".join(_note(n) for n in self.session.vibration_notes(self.doc) + hidden)
+        return "".join(_note(n) for n in self.session.vibration_notes(self.doc)
+                       + self.session.roughness_notes(self.doc) + hidden)
 
     def edited(self, geometry):
         """The designer edited the document while the session runs: a surface (felt from
