@@ -474,30 +474,47 @@ def reference_status(surface):
 FASTEST_STROKE_MM_S = 270.0
 
 
+def _grid_beyond_rate(surface, rate_hz):
+    """(category, grid mm, fastest stroke felt as it is in mm/s) of a surface's roughness
+    grid that a loop at ``rate_hz`` cannot follow at FASTEST_STROKE_MM_S, else None."""
+    from . import _core
+
+    if not surface.FeelRoughness or (surface.RoughnessHeight <= 0 and surface.RoughnessFrictionModulation <= 0):
+        return None
+    category = int(surface.RoughnessCategory)
+    grid_mm = _core.roughness_category(category).grid_size_mm
+    fastest = grid_mm * float(rate_hz) / 2
+    return (category, grid_mm, fastest) if fastest < FASTEST_STROKE_MM_S else None
+
+
+_RAISE_RATE = ("Stroke slower, or raise the servo rate in Preferences (5-10 kHz for the finest "
+               "categories)")
+
+
 def rate_note(surface, rate_hz):
     """What a servo loop at ``rate_hz`` makes of ``surface``'s roughness grid: "" when a
     stroke at FASTEST_STROKE_MM_S samples each ball of it at least twice, else up to what
     speed it is felt as it is. Faster, the grid's v / g Hz passes half the rate and is felt
     as a coarser ripple than the part has (category 1 at 1 kHz and 120 mm/s: 200 Hz, not
     1200)."""
-    from . import _core
-
-    if not surface.FeelRoughness or (surface.RoughnessHeight <= 0 and surface.RoughnessFrictionModulation <= 0):
+    beyond = _grid_beyond_rate(surface, rate_hz)
+    if beyond is None:
         return ""
-    category = int(surface.RoughnessCategory)
-    grid_mm = _core.roughness_category(category).grid_size_mm
-    fastest = grid_mm * float(rate_hz) / 2
-    if fastest >= FASTEST_STROKE_MM_S:
-        return ""
+    category, grid_mm, fastest = beyond
     return (f"{surface.Label}: roughness category {category}'s {grid_mm:g} mm grid is felt as it is up to "
             f"{fastest:.0f} mm/s at the {float(rate_hz):g} Hz servo rate; stroked faster it is felt as a coarser "
-            "ripple than the part has. Stroke slower, or raise the servo rate in Preferences (5-10 kHz for the "
-            "finest categories)")
+            f"ripple than the part has. {_RAISE_RATE}")
 
 
 def rate_notes(doc, rate_hz):
-    """rate_note of every surface of doc whose grid a loop at ``rate_hz`` cannot follow."""
-    return [n for n in (rate_note(s, rate_hz) for s in surfaces_of(doc)) if n]
+    """What a loop at ``rate_hz`` makes of doc's roughness grids: rate_note for one
+    surface it cannot follow, one sentence naming them all for more."""
+    beyond = [(s, b) for s in surfaces_of(doc) for b in [_grid_beyond_rate(s, rate_hz)] if b]
+    if len(beyond) <= 1:
+        return [rate_note(s, rate_hz) for s, _ in beyond]
+    each = ", ".join(f"{s.Label} (category {c}, {g:g} mm) up to {v:.0f} mm/s" for s, (c, g, v) in beyond)
+    return [f"At the {float(rate_hz):g} Hz servo rate these roughness grids are felt as they are only when "
+            f"stroked slowly: {each}; faster, they are felt as a coarser ripple than the part has. {_RAISE_RATE}"]
 
 
 def hidden_part_notes(surface):

@@ -254,6 +254,13 @@ class MakeSurfaceTest(unittest.TestCase):
         self.assertEqual(surface_object.rate_note(s, 10000), "")
         s.FeelRoughness = False  # nothing rendered: nothing to say
         self.assertEqual(surface_object.rate_note(s, 1000), "")
+        # two grids: one sentence naming both, in the tree's order
+        s.FeelRoughness = True
+        other = HaptiCAD.make_surface(self.doc, [(self.box, "Face1")], material="ABS", roughness_category=2)
+        other.Label = "Grip"
+        self.assertEqual(len(surface_object.rate_notes(self.doc, 1000)), 1)
+        self.assertIn("Lid (category 1, 0.1 mm) up to 50 mm/s, Grip (category 2, 0.3 mm) up to 150 mm/s",
+                      surface_object.rate_notes(self.doc, 1000)[0])
 
     def test_a_circular_pattern_copied_with_its_part_is_centred_on_the_copy(self):
         # Edit > Duplicate selection with the part: the copy's circles stayed on the
