@@ -222,6 +222,7 @@ class HapticSurface(SchemaState):
             # written before the parts' faces were kept: take them now, while the shapes
             # are the ones the references were matched on
             _write_reference_shapes(obj)
+        rekey_copy(obj)
         if not obj.PatternAnchor:
             record_pattern_anchor(obj)  # written before the centre moved with its part
         else:
@@ -618,6 +619,31 @@ def circular_centre_axis(obj):
     placement = _global_placement(part)
     return (placement.multVec(App.Vector(*state["centre"])),
             placement.Rotation.multVec(App.Vector(*state["axis"])))
+
+
+def rekey_copy(obj):
+    """A surface copied with its parts (Edit > Duplicate selection, or pasted into a
+    document that already has a part of that name) tags the copies, Cut001, while its
+    face signatures still name the originals, Cut: read by name, they were missing, and
+    the next edit re-signed the copy's face from the already renumbered shape, moving the
+    tag to a side face as "ok". Each reference's entry is in References' order, so the
+    copies' names are read from there and put on the signatures."""
+    pairs = reference_pairs(obj)
+    entries = read_reference_state(obj)
+    if len(entries) != len(pairs):
+        return
+    renamed = {}
+    for entry, (part, face) in zip(entries, pairs):
+        if entry.get("face") != face or renamed.setdefault(entry.get("object"), part.Name) != part.Name:
+            return  # not these references' signatures: leave them to be signed afresh
+    renamed = {old: new for old, new in renamed.items() if old != new}
+    if not renamed:
+        return
+    _write_reference_state(obj, [dict(e, object=renamed.get(e["object"], e["object"])) for e in entries])
+    tables = _read_reference_shapes(obj)
+    text = json.dumps({renamed.get(name, name): table for name, table in tables.items()}, sort_keys=True)
+    if text != obj.ReferenceShapes:
+        obj.ReferenceShapes = text
 
 
 def reanchor_copy(obj):

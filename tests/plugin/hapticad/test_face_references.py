@@ -129,6 +129,33 @@ class BoxMinusCylinderTest(unittest.TestCase):
         self.doc.recompute()
         self.assertEqual([s for _, _, s in HaptiCAD.reference_status(surface)].count("broken"), 0)
 
+    def test_a_copy_made_with_its_part_follows_the_copys_top_face(self):
+        # Duplicate selection, and a paste into a document that has a "Cut" already: the
+        # copy tags Cut001 while its signatures named Cut. It moved to a side face, "ok".
+        surface = HaptiCAD.make_surface(self.doc, [(self.cut, self.top())], material="Steel")
+        self.doc.recompute()
+        other = App.newDocument("PasteTarget")
+        try:
+            other.addObject("Part::Box", "Cut")  # the name the copy would have had
+            other.recompute()
+            for doc in (self.doc, other):
+                with self.subTest(doc=doc.Name):
+                    copy = doc.copyObject(surface, True)
+                    doc.recompute()
+                    (part, face), = HaptiCAD.reference_pairs(copy)
+                    self.assertNotEqual(part.Name, "Cut")
+                    self.assertEqual(HaptiCAD.reference_status(copy), [(part.Name, face, "ok")])
+                    tool = part.Tool
+                    tool.Placement.Base = App.Vector(40, 30, -5)  # the copy's cylinder cuts its corner
+                    doc.recompute()
+                    (part, face), = HaptiCAD.reference_pairs(copy)
+                    tagged = part.Shape.getElement(face)
+                    normal = tagged.normalAt(*tagged.Surface.parameter(tagged.CenterOfMass))
+                    self.assertAlmostEqual(normal.z, 1.0, places=9)  # the top, not a side face
+                    self.assertEqual(HaptiCAD.reference_status(copy), [(part.Name, face, "rematched")])
+        finally:
+            App.closeDocument(other.Name)
+
     def test_status_survives_save_and_reopen(self):
         top = self.top()
         surface = HaptiCAD.make_surface(self.doc, [(self.cut, top)])
