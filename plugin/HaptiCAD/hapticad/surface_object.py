@@ -266,6 +266,7 @@ def validate(obj, compile_faces=True):
                  for o, sub in reference_pairs(obj) if not sub.startswith("Face")]
     if not_faces:
         problems.append(f"{', '.join(not_faces)}: not a face; a surface tags faces only")
+    problems += list(dict.fromkeys(r for r in (untaggable(o) for o, _ in reference_pairs(obj)) if r))
     broken = [f"{name}.{face}" for name, face, status in reference_status(obj)
               if status == face_references.BROKEN and face.startswith("Face")]
     if broken:
@@ -743,6 +744,19 @@ def _has_subshape(obj, sub):
         return False
 
 
+def untaggable(obj):
+    """Why the faces of ``obj`` cannot be tagged, as a sentence; "" when they can. A
+    surface tags a placed part's own faces: an App::Link shows another object's shape,
+    placed by the link, which the scene does not follow."""
+    if obj.isDerivedFrom("App::GeoFeature") and not obj.isDerivedFrom("App::Link"):
+        return ""
+    linked = obj.getLinkedObject(True) if hasattr(obj, "getLinkedObject") else None
+    if linked is not None and linked is not obj:
+        return (f"{obj.Label} is a link to {linked.Label}: a link's faces cannot be tagged yet; tag "
+                f"{linked.Label}'s faces")
+    return f"{obj.Label} is not a placed part: its faces cannot be tagged"
+
+
 def _normalise_references(doc, references):
     """Checks [(obj, "FaceN"), ...] and groups it as PropertyLinkSubList wants."""
     if not references:
@@ -762,6 +776,8 @@ def _normalise_references(doc, references):
             raise ValueError(f"make_surface: {obj.Name} belongs to document {obj.Document.Name}")
         if not hasattr(obj, "Shape"):
             raise ValueError(f"make_surface: {obj.Name} has no shape")
+        if untaggable(obj):
+            raise ValueError(f"make_surface: {untaggable(obj)}")
         if not (isinstance(sub, str) and sub.startswith("Face") and _has_subshape(obj, sub)):
             raise ValueError(f"make_surface: {obj.Name} has no face {sub!r}")
         # a PartDesign feature's face is the Body's, as the panel and the command take it

@@ -5,7 +5,7 @@ import FreeCAD as App
 import FreeCADGui as Gui
 
 from .. import icon
-from ..surface_object import is_haptic_surface, surface_tagging
+from ..surface_object import is_haptic_surface, surface_tagging, untaggable
 from .selection import selected_faces
 
 NAME = "HaptiCAD_Surface"
@@ -29,6 +29,12 @@ class CommandHapticSurface:
         return App.ActiveDocument is not None and _no_dialog() and bool(selected_faces())
 
     def Activated(self):
+        refused = list(dict.fromkeys(r for r in (untaggable(o) for o, _ in selected_faces()) if r))
+        if refused:  # before any transaction: nothing is made, nothing to undo
+            from PySide2 import QtWidgets
+
+            QtWidgets.QMessageBox.warning(Gui.getMainWindow(), "Haptic surface", "\n".join(refused))
+            return
         faces = []
         for obj, sub in selected_faces():
             other = surface_tagging(obj, sub)

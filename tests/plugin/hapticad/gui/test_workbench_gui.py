@@ -87,6 +87,30 @@ class WorkbenchGuiTest(unittest.TestCase):
         self.doc.undo()
         self.assertEqual(HaptiCAD.surfaces_of(self.doc), [])
 
+    def test_a_links_face_is_refused_with_a_sentence_and_nothing_is_made(self):
+        # the toolbar button is enabled on an App::Link's face: it made a surface that
+        # failed every recompute (a traceback, 44 drawing errors) and left its transaction open
+        from unittest import mock
+
+        link = self.doc.addObject("App::Link", "Link")
+        link.setLink(self.box)
+        link.Label = "BoxLink"
+        self.doc.recompute()
+        Gui.Selection.addSelection(link, "Face6")
+        before = h.report_text()
+        with mock.patch.object(QtWidgets.QMessageBox, "warning") as warned:
+            Gui.runCommand("HaptiCAD_Surface")
+        self.assertEqual(warned.call_count, 1)
+        self.assertIn("BoxLink is a link to Box", warned.call_args[0][2])
+        self.assertIn("tag Box's faces", warned.call_args[0][2])
+        self.assertFalse(Gui.Control.activeDialog())
+        self.assertEqual(HaptiCAD.surfaces_of(self.doc), [])
+        self.assertFalse(self.doc.HasPendingTransaction)
+        self.assertNotIn("Traceback", h.report_text()[len(before):])
+        # a script is told the same
+        with self.assertRaisesRegex(ValueError, "BoxLink is a link to Box"):
+            HaptiCAD.make_surface(self.doc, [(link, "Face6")])
+
     def test_every_panel_fits_freecads_combo_view_as_it_opens(self):
         # FreeCAD's Combo View opens about 250 px wide and its task panels do not scroll
         # sideways: a wider panel hides its right side (OK, Stop, messages). Every panel,
