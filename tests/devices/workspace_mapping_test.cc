@@ -113,7 +113,7 @@ TEST(WorkspaceMapping, AFaceIsFeltAtItsStiffnessAtTheHandleWhateverTheScale) {
   law.force_travel = MakeLinearForceTravel(556.0);
   SurfaceProperties button = kUntaggedSurface;
   button.force_travel = MakePushButton({});  // 1.47 N at 0.25 mm, 5.9 N/mm: stretched 2.45x
-  const double button_travel_m = 0.25e-3 * button.force_travel->MaxSlope() / 3000.0;
+  const double button_travel_m = 0.25e-3 * button.force_travel->StretchSlope() / 3000.0;
   SurfaceProperties stiff = kUntaggedSurface;
   stiff.stiffness_n_per_m = 5000.0;
   const struct {
