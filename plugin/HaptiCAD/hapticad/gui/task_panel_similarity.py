@@ -158,6 +158,8 @@ class SimilarityTaskPanel(CloseOnlyPanel):
     def load(self):
         from ..proxy_state import is_alive
 
+        if getattr(self, "_left", False) or not self.form:
+            return  # closed (an undone study closes its panel; a load was still due)
         if not is_alive(self.obj):
             for box in self.form:
                 box.setEnabled(False)
