@@ -17,6 +17,7 @@ Labels are ASCII: Coin's text nodes do not take every Unicode character.
 """
 import colorsys
 import math
+import zlib
 from dataclasses import dataclass
 
 import numpy as np
@@ -53,7 +54,32 @@ def material_colour(name):
             return MATERIAL_COLOURS[i]
         hue = (i * 0.618034) % 1.0  # golden-ratio hues beyond the table
         return colorsys.hsv_to_rgb(hue, 0.65, 0.85)
-    return (0.6, 0.6, 0.6)
+    # a material not in the database (a document from elsewhere): a hue of its own, not a
+    # grey next to the table's
+    hue = (zlib.crc32(str(name).encode()) % 1000) / 1000.0
+    return colorsys.hsv_to_rgb(hue, 0.45, 0.75)
+
+
+# friction edited off the material's listed values shades its colour: darker for more,
+# lighter for less, by up to this share at twice (or half) the listed mu, and at least a
+# quarter of it, so an edit is seen next to the material as listed
+EDITED_SHADE = 0.45
+
+
+def friction_shade(surface):
+    """-1..1: how far a surface's friction is edited from its material's listed values
+    (log2 of the ratio, the dynamic mu's, else the static's, clipped, and at least 0.25
+    when edited at all); 0 when as listed or the material is not in the database."""
+    database = materials.default_database()
+    if surface.Material not in database:
+        return 0.0
+    listed = database.get(surface.Material)
+    for value, base in ((surface.DynamicFriction, listed.dynamic_friction),
+                        (surface.StaticFriction, listed.static_friction)):
+        if base > 0 and value > 0 and abs(value - base) > 1e-9 * base:
+            step = min(1.0, abs(math.log2(value / base)))
+            return math.copysign(max(0.25, step), value - base)
+    return 0.0
 
 
 def roughness_colour(category):
@@ -63,7 +89,11 @@ def roughness_colour(category):
 def surface_colour(surface, colour_by):
     if colour_by == "Roughness":
         return roughness_colour(surface.RoughnessCategory)
-    return material_colour(surface.Material)
+    rgb = material_colour(surface.Material)
+    shade = friction_shade(surface) * EDITED_SHADE
+    if shade > 0:
+        return tuple(c * (1 - shade) for c in rgb)
+    return tuple(c + (1 - c) * -shade for c in rgb)
 
 
 def roughness_label(category):
@@ -71,7 +101,9 @@ def roughness_label(category):
 
 
 def material_label(surface):
-    return f"{surface.Material}: mu_s {surface.StaticFriction:.2f}, mu_d {surface.DynamicFriction:.2f}"
+    shade = friction_shade(surface)
+    edited = "" if shade == 0 else f" (edited: {'more' if shade > 0 else 'less'} friction than listed)"
+    return f"{surface.Material}: mu_s {surface.StaticFriction:.2f}, mu_d {surface.DynamicFriction:.2f}{edited}"
 
 
 def draws_stripes(surface):

@@ -64,6 +64,29 @@ class OverlayGeometryTest(unittest.TestCase):
         (face,) = overlay.overlay_faces(s, "Roughness")
         self.assertEqual(face.colour, overlay.ROUGHNESS_COLOURS[6])
 
+    def test_friction_edited_off_the_material_shades_its_colour_and_says_so(self):
+        # PP at mu_s 0.90 and PP as listed had one swatch: two feels, one colour
+        listed = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="PP")
+        grippy = HaptiCAD.make_surface(self.doc, [(self.box, "Face1")], material="PP")
+        slick = HaptiCAD.make_surface(self.doc, [(self.box, "Face2")], material="PP")
+        grippy.StaticFriction, grippy.DynamicFriction = 0.90, 0.80
+        slick.DynamicFriction = 0.38  # a touch under the listed 0.40: still shaded visibly
+        pp = overlay.material_colour("PP")
+        self.assertEqual(overlay.surface_colour(listed, "Material"), pp)
+        darker, lighter = overlay.surface_colour(grippy, "Material"), overlay.surface_colour(slick, "Material")
+        self.assertLess(sum(darker), sum(pp) - 0.3)  # twice the listed mu_d: the full 45 % darker
+        self.assertGreater(sum(lighter), sum(pp) + 0.1)
+        rows = overlay.legend_entries([listed, grippy, slick], "Material")
+        self.assertEqual(len({rgb for rgb, _ in rows}), 3)
+        self.assertEqual([label.endswith("(edited: more friction than listed)") for _, label in rows],
+                         [False, True, False])
+        self.assertIn("(edited: less friction than listed)", rows[2][1])
+        (face,) = overlay.overlay_faces(grippy, "Material")
+        self.assertEqual(face.colour, darker)  # the faces are drawn as the legend says
+        # a material missing from the database is not a grey beside the table's own grey
+        self.assertNotEqual(overlay.material_colour("Birch ply"), (0.6, 0.6, 0.6))
+        self.assertGreater(max(overlay.material_colour("Birch ply")) - min(overlay.material_colour("Birch ply")), 0.2)
+
     def test_legend_has_one_entry_per_colour_and_the_stripe_key(self):
         a = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="Steel", pattern="Linear")
         b = HaptiCAD.make_surface(self.doc, [(self.box, "Face1")], material="Steel")
