@@ -8,6 +8,8 @@ study's run, which is blind), the face under the probe with its
 properties, and the loop rate. With the simulated probe the mouse steers it over the
 part and the wheel or the slider sets how hard it presses.
 """
+import html
+
 import numpy as np
 
 import FreeCADGui as Gui
@@ -182,7 +184,8 @@ class FeelTaskPanel:
 
     def show_message(self, text, error=False):
         colour = "#b00000" if error else "#303030"
-        self.message.setText(f"<span style='color:{colour}'>{text}</span>" if text else "")
+        # plain text with labels in it ("Lid <rev B>"): escaped, not read as markup
+        self.message.setText(f"<span style='color:{colour}'>{html.escape(text, quote=False)}</span>" if text else "")
 
     # --- session -----------------------------------------------------------------------
 

@@ -686,18 +686,23 @@ class SurfaceTaskPanel:
     def show_problems(self, problems):
         self.problems = problems
         if problems:
-            self.status.setText("<span style='color:#b00000'>⚠ " + "<br>⚠ ".join(problems) + "</span>")
+            # escaped: a label such as "Lid <rev B>" is text, not markup
+            self.status.setText("<span style='color:#b00000'>⚠ "
+                                + "<br>⚠ ".join(html.escape(p, quote=False) for p in problems) + "</span>")
         else:
             n = len(surface_object.reference_pairs(self.obj))
             notes = surface_object.hidden_part_notes(self.obj) + surface_compile.friction_notes(self.obj)
             notes += surface_compile.texture_notes(self.obj) + surface_compile.curve_notes(self.obj)
             notes += similarity_study.unpooling_notes(self.doc, self.pooled_at_open)
+            rate_hz = preferences.load().servo_rate_hz  # the servo rate Feel will run at
+            notes += [n for n in [surface_object.rate_note(self.obj, rate_hz)] if n]
             vib = self.vibration()
-            if vib is not None:  # the servo rate Feel will run at, from the preferences
-                notes += [n for n in [vibration_object.rate_note(vib, preferences.load().servo_rate_hz)] if n]
+            if vib is not None:
+                notes += [n for n in [vibration_object.rate_note(vib, rate_hz)] if n]
             self.status.setText(f"<span style='color:#006000'>✓ {n} face{'s' if n != 1 else ''} tagged"
                                 f"{': click more to add them' if self.mode == 'faces' else ''}</span>"
-                                + "".join(f"<br><span style='color:#a06000'>Note: {note}.</span>" for note in notes))
+                                + "".join(f"<br><span style='color:#a06000'>Note: {html.escape(note, quote=False)}.</span>"
+                                          for note in notes))
 
     # --- FreeCAD's task dialog -----------------------------------------------------------
 

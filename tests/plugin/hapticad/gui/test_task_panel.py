@@ -304,6 +304,24 @@ class TaskPanelTest(unittest.TestCase):
         h.press_task_button("OK")
         self.assertEqual(HaptiCAD.reference_pairs(first), [(self.box, "Face6")])
 
+    def test_labels_with_angle_brackets_are_shown_as_typed(self):
+        # "Lid <rev B>" lost "<rev B>": the panel read the label as markup
+        from PySide2 import QtGui
+
+        self.box.Label = "Lid <rev B>"
+        first = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])
+        first.Label = "Top <A&B>"
+        Gui.Selection.addSelection(self.box, "Face1")
+        Gui.runCommand("HaptiCAD_Surface")
+        h.process_events()
+        (surface,) = [s for s in HaptiCAD.surfaces_of(self.doc) if s is not first]
+        surface.References = [(self.box, ("Face1", "Face6"))]  # a clash, as a script makes it
+        h.widget(QtWidgets.QDoubleSpinBox, "StaticFriction").setValue(0.7)  # a live check
+        h.process_events()
+        shown = QtGui.QTextDocument()
+        shown.setHtml(h.widget(QtWidgets.QLabel, "status").text())
+        self.assertIn("Lid <rev B>.Face6 is also tagged by Top <A&B>", shown.toPlainText())
+
     def test_a_circular_centre_is_edited_where_its_moved_app_part_took_it(self):
         container = self.doc.addObject("App::Part", "Assembly")
         container.addObject(self.box)
