@@ -21,7 +21,7 @@ import MeshPart
 from . import _core
 from . import accuracy as accuracy_presets
 from .surface_compile import compile_surface, compile_vibration, global_shape  # noqa: F401 (re-exported)
-from .surface_object import active_reference_pairs, surfaces_of
+from .surface_object import active_reference_pairs, deleted_parts, surfaces_of
 from .vibration_object import vibrations_of
 
 MM = 1e-3  # metres per FreeCAD length unit
@@ -203,6 +203,20 @@ def recompile_surfaces(doc, doc_scene):
     )
 
 
+def _nothing_tagged(doc):
+    """Why no face of doc can be felt though it has surfaces: their parts were deleted,
+    they tag no face, or every face reference broke."""
+    surfaces = surfaces_of(doc)
+    if any(s.References for s in surfaces):
+        return f"document {doc.Label}: every tagged face reference is broken; pick the faces again"
+    deleted = sorted({label for s in surfaces for label in deleted_parts(s)})
+    if deleted:
+        return (f"document {doc.Label}: the tagged part{'s' if len(deleted) > 1 else ''} "
+                f"{', '.join(deleted)} {'were' if len(deleted) > 1 else 'was'} deleted; undo the deletion or tag "
+                "the faces of another part")
+    return f"document {doc.Label}: no surface tags a face; pick faces for one"
+
+
 def build_document_scene(doc, accuracy=None):
     """The haptic scene of every HapticSurface and HapticVibration in ``doc``, at the
     given accuracy.Accuracy (the default preset when None). Raises ValueError when there
@@ -211,7 +225,7 @@ def build_document_scene(doc, accuracy=None):
     accuracy = accuracy or accuracy_presets.preset()
     tagged, vibrating, objects = _tagging(doc)
     if not objects:
-        raise ValueError(f"document {doc.Label}: every tagged face reference is broken; pick the faces again")
+        raise ValueError(_nothing_tagged(doc))
 
     all_vertices, all_triangles, all_faces, all_normals, face_names = [], [], [], [], []
     shapes = {}

@@ -128,6 +128,12 @@ class DocumentSceneTest(unittest.TestCase):
             build_document_scene(self.doc)
         self.assertIn("Part.Face1 is tagged by both", str(caught.exception))
         self.assertTrue(a.isValid())
+        # the tagged part deleted: said, not "every tagged face reference is broken"
+        label = self.part.Label
+        self.doc.removeObject(self.part.Name)
+        with self.assertRaises(ValueError) as caught:
+            build_document_scene(self.doc)
+        self.assertIn(f"the tagged part {label} was deleted; undo the deletion", str(caught.exception))
 
     def test_the_faces_tessellations_are_stitched_into_a_closed_surface(self):
         # a box with a hole and a sphere: the repair welds every face to its neighbours
