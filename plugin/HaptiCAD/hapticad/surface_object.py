@@ -180,6 +180,9 @@ class HapticSurface(SchemaState):
         self._applying = True
         try:
             if prop == "References":
+                pairs = reference_pairs(obj)
+                if len(set((o.Name, f) for o, f in pairs)) != len(pairs):
+                    obj.References = link_sub_list(pairs)  # a face listed twice is tagged once
                 record_deleted_parts(obj, getattr(self, "_pairs_before", []))
                 sync_reference_state(obj)
                 # the first tagged part may be another one now: the centre stays where it is
@@ -267,8 +270,14 @@ def validate(obj, compile_faces=True):
     if not_faces:
         problems.append(f"{', '.join(not_faces)}: not a face; a surface tags faces only")
     problems += list(dict.fromkeys(r for r in (untaggable(o) for o, _ in reference_pairs(obj)) if r))
-    broken = [f"{name}.{face}" for name, face, status in reference_status(obj)
-              if status == face_references.BROKEN and face.startswith("Face")]
+    # a face the part never had (a script's typo) is not one the model lost
+    signed = {(e["object"], e["face"]) for e in read_reference_state(obj) if e.get("signature") is not None}
+    never = [f"{o.Label}.{sub}" for o, sub in reference_pairs(obj)
+             if sub.startswith("Face") and not _has_subshape(o, sub) and (o.Name, sub) not in signed]
+    if never:
+        problems.append(f"no such face: {', '.join(never)}; pick a face the part has")
+    broken = [f"{name}.{face}" for (name, face, status), (o, _) in zip(reference_status(obj), reference_pairs(obj))
+              if status == face_references.BROKEN and face.startswith("Face") and f"{o.Label}.{face}" not in never]
     if broken:
         problems.append(f"broken face reference(s) {', '.join(broken)}: the model changed and the face "
                         "cannot be found unambiguously; pick it again")

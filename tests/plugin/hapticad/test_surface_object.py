@@ -149,6 +149,14 @@ class MakeSurfaceTest(unittest.TestCase):
         s.References = [(self.box, ("Face6", "Edge1"))]  # was: "the model changed"
         self.doc.recompute()
         self.assertEqual(surface_object.validate(s), ["Box.Edge1: not a face; a surface tags faces only"])
+        s.References = [(self.box, ("Face6", "Face99"))]  # was: "the model changed" too
+        self.doc.recompute()
+        self.assertEqual(surface_object.validate(s), ["no such face: Box.Face99; pick a face the part has"])
+        # a face listed twice is tagged once (both were marked broken: the surface tagged nothing)
+        s.References = [(self.box, ("Face6", "Face6"))]
+        self.doc.recompute()
+        self.assertEqual(HaptiCAD.reference_status(s), [("Box", "Face6", "ok")])
+        self.assertEqual(surface_object.validate(s), [])
 
     def test_a_face_tagged_by_another_surface_is_refused_or_reported(self):
         first = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="Steel")
