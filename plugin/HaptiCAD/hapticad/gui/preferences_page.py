@@ -60,6 +60,12 @@ class PreferencesPage:
         self.scale.setDecimals(3)
         self.scale.setSuffix(" model mm / device mm")
         form.addRow("Scale", self.scale)
+        # why the two above are greyed, when they are: said, not left to guess
+        self.mapping_hint = QtWidgets.QLabel()
+        self.mapping_hint.setObjectName("workspaceHint")
+        self.mapping_hint.setWordWrap(True)
+        self.mapping_hint.setStyleSheet("color: #606060")
+        form.addRow(self.mapping_hint)
         self.mapping.currentTextChanged.connect(lambda _text: self._enable_mapping())
         self.device.currentIndexChanged.connect(lambda _index: self._enable_mapping())
         layout.addWidget(device_box)
@@ -112,6 +118,15 @@ class PreferencesPage:
         hardware = (self.device.currentData() or preferences.SIMULATED_DEVICE) != preferences.SIMULATED_DEVICE
         self.mapping.setEnabled(hardware)
         self.scale.setEnabled(hardware and self.mapping.currentText() == "Fixed scale")
+        if not hardware:
+            hint = ("The simulated probe moves in the part's own space: the workspace mapping and scale are a "
+                    "haptic device's, kept for when you choose one.")
+        elif not self.scale.isEnabled():
+            hint = "Fit part sets the scale itself, so the part fills the device's workspace."
+        else:
+            hint = ""
+        self.mapping_hint.setText(hint)
+        self.mapping_hint.setVisible(bool(hint))
 
     def values(self):
         return preferences.Preferences(

@@ -39,6 +39,8 @@ class PreferencesPageTest(unittest.TestCase):
                 scale.setValue(0.5)
                 # the simulated probe moves in the part's own space: no mapping to set for it
                 seen["mapping enabled"] = (mapping.isEnabled(), scale.isEnabled())
+                hint = dialog.findChild(QtWidgets.QLabel, "workspaceHint")
+                seen["hint"] = (hint.isVisible(), hint.text())
                 h.grab_screen("preferences_page.png")
                 buttons = dialog.findChild(QtWidgets.QDialogButtonBox)
                 buttons.button(QtWidgets.QDialogButtonBox.Ok).click()
@@ -55,6 +57,9 @@ class PreferencesPageTest(unittest.TestCase):
                          (1500, "Fixed scale", 0.5))
         self.assertEqual(prefs.force_limit_n, 2.5)  # untouched values stay
         self.assertEqual(seen["mapping enabled"], (False, False))
+        # greyed, and why is said (it was not: the fields looked broken)
+        self.assertTrue(seen["hint"][0])
+        self.assertIn("The simulated probe moves in the part's own space", seen["hint"][1])
 
 
 if __name__ == "__main__":
