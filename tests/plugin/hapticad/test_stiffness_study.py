@@ -129,6 +129,19 @@ class StudyTest(unittest.TestCase):
         study.Model = "Bending beam"  # a neck's force is the hand's press, not the design's
         self.assertEqual(stiffness_study.force_note(study, 0.1), "")
 
+    def test_a_button_heavier_than_a_one_finger_trigger_should_be_says_so(self):
+        # seed 000 §1: under 2 kg for one finger, 4 kg for two; the field notes: 2 lb likely
+        study = HaptiCAD.make_study(self.doc, self.head, model="Push button", OperatingForce=4.9)  # B3F's heaviest
+        self.assertEqual(stiffness_study.ergonomic_note(study), "")
+        study.OperatingForce = 12.0
+        note = stiffness_study.ergonomic_note(study)
+        self.assertIn("12 N, is above the widely cited one-finger trigger limit of 2 lb (8.9 N)", note)
+        self.assertIn("under seed 000's 2 kg (19.6 N)", note)
+        study.OperatingForce = 45.0
+        self.assertIn("above even the 4 kg (39.2 N)", stiffness_study.ergonomic_note(study))
+        study.Model = "Bending beam"  # a neck is not a trigger
+        self.assertEqual(stiffness_study.ergonomic_note(study), "")
+
     def test_a_study_that_cannot_hold_says_why_and_the_face_keeps_its_stiffness(self):
         study = HaptiCAD.make_study(self.doc, self.head, model="Push button")
         study.TotalTravel = 0.3  # less than pretravel and snap

@@ -249,7 +249,8 @@ class StudyTaskPanel(CloseOnlyPanel):
                f"{obj.Pretravel:g} mm, returning at {obj.OperatingForce * (1 - obj.SnapRatio):.3g} N; bottoms "
                f"out at {obj.TotalTravel:g} mm on its housing, {obj.HousingStiffness:g} N/mm")
         note = "; ".join(n for n in (stiffness_study.device_note(obj, self.device_k),
-                                     stiffness_study.force_note(obj, preferences.load().force_limit_n)) if n)
+                                     stiffness_study.force_note(obj, preferences.load().force_limit_n),
+                                     stiffness_study.ergonomic_note(obj)) if n)
         override = stiffness_study.material_override(obj)  # the combo still names the material
         self.law_label.setText(law + (f"<br>Modulus edited: {override}." if override else "")
                                + (f"<br><span style='color:#a06000'>Note: {note}.</span>" if note else ""))
