@@ -215,6 +215,7 @@ class SurfaceTaskPanel:
         """Fit the texture to force recordings (seed 001 §III) at the grating period above."""
         self.fit_speeds = QtWidgets.QLineEdit(", ".join(f"{s:g}" for s in texture_fit.PAPER_SPEEDS_MM_S))
         self.fit_speeds.setObjectName("fitSpeeds")
+        self.fit_speeds.setCursorPosition(0)  # a narrow panel shows "50, 80, ...", not "0, 80, ..."
         self.fit_speeds.setToolTip("The scanning speeds the recordings hold, mm/s: sections within 2.5 % of "
                                    "one of them are fitted")
         form.addRow(QtWidgets.QLabel("Recorded speeds"), self.fit_speeds)

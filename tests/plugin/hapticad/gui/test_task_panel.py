@@ -230,6 +230,8 @@ class TaskPanelTest(unittest.TestCase):
         # no texture yet: the fit to recordings is offered, and the period it reads is shown
         self.assertEqual(surface.Texture, "None")
         self.assertTrue(h.widget(QtWidgets.QPushButton, "fitTexture").isVisibleTo(Gui.getMainWindow()))
+        # the speeds read from their start in a narrow panel ("0, 80, 120" hid the 5 of 50)
+        self.assertEqual(h.widget(QtWidgets.QLineEdit, "fitSpeeds").cursorPosition(), 0)
         self.assertTrue(h.widget(QtWidgets.QDoubleSpinBox, "TexturePeriod").isVisibleTo(Gui.getMainWindow()))
         self.assertFalse(h.widget(QtWidgets.QDoubleSpinBox, "TextureDC").isVisibleTo(Gui.getMainWindow()))
         h.press_task_button("Cancel")
