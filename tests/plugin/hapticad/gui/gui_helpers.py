@@ -1,8 +1,11 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Helpers for GUI tests: synthetic mouse events in the 3D view, the task panel's
 widgets and buttons, screenshots and pixel measures. Used inside FreeCAD's GUI."""
+import contextlib
 import os
+import sys
 import time
+import traceback
 
 import FreeCAD as App
 import FreeCADGui as Gui
@@ -148,6 +151,19 @@ def save_view(name, background="White"):
     width, height = view.getSize()
     view.saveImage(path, width, height, background)
     return path, QtGui.QImage(path)
+
+
+@contextlib.contextmanager
+def uncaught_errors():
+    """The tracebacks Qt's callbacks (a timer, a signal) raise while the block runs, as
+    texts: they reach sys.excepthook, not the test."""
+    errors = []
+    hook = sys.excepthook
+    sys.excepthook = lambda *info: errors.append("".join(traceback.format_exception(*info)))
+    try:
+        yield errors
+    finally:
+        sys.excepthook = hook
 
 
 def report_text():

@@ -84,21 +84,14 @@ class SimilarityGuiTest(unittest.TestCase):
     def test_undoing_the_studys_creation_with_its_panel_open_leaves_no_traceback(self):
         # the panel's load ran a turn later on a closed panel: "for box in self.form:
         # TypeError: 'NoneType' object is not iterable"
-        import traceback
-
         Gui.Selection.addSelection(self.plate)
         Gui.runCommand("HaptiCAD_SimilarityStudy")
         h.process_events()
         self.assertTrue(Gui.Control.activeDialog())
         before = h.report_text()
-        errors = []
-        hook = sys.excepthook
-        sys.excepthook = lambda *info: errors.append("".join(traceback.format_exception(*info)))
-        try:
+        with h.uncaught_errors() as errors:
             Gui.runCommand("Std_Undo")
             h.wait(0.5)
-        finally:
-            sys.excepthook = hook
         self.assertEqual(HaptiCAD.similarity_studies_of(self.doc), [])
         self.assertFalse(Gui.Control.activeDialog())
         self.assertEqual(errors, [])

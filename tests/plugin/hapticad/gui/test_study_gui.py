@@ -7,7 +7,6 @@ panel. Run by gui_test_runner.py."""
 import os
 import sys
 import tempfile
-import traceback
 import unittest
 
 import numpy as np
@@ -588,14 +587,9 @@ class StudyGuiTest(unittest.TestCase):
     def test_undoing_the_studys_creation_with_its_panel_open_leaves_no_traceback(self):
         self.open_study()
         type_into(h.widget(QtWidgets.QDoubleSpinBox, "BeamLength"), "7 cm", finish=None)  # left as it closes
-        errors = []
-        hook = sys.excepthook
-        sys.excepthook = lambda *info: errors.append("".join(traceback.format_exception(*info)))
-        try:
+        with h.uncaught_errors() as errors:
             Gui.runCommand("Std_Undo")
             h.wait(0.5)
-        finally:
-            sys.excepthook = hook
         self.assertEqual(HaptiCAD.studies_of(self.doc), [])
         self.assertFalse(Gui.Control.activeDialog())
         self.assertEqual([e for e in errors if "study" in e or "already deleted" in e], [])
