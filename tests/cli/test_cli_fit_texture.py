@@ -116,6 +116,28 @@ class FitTextureCommandTest(unittest.TestCase):
         finally:
             App.closeDocument(doc.Name)
 
+    def test_the_saved_document_keeps_what_freecads_gui_shows(self):
+        # saved without the GUI, the toothbrush opened in FreeCAD with every part hidden
+        # and grey: GuiDocument.xml and the colour arrays it names were dropped
+        import shutil
+        import zipfile
+
+        example = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "resources", "examples",
+                               "toothbrush.FCStd")
+        path = os.path.join(self.tmp.name, "toothbrush.FCStd")
+        shutil.copyfile(example, path)
+        with zipfile.ZipFile(path) as archive:
+            gui = {n: archive.read(n) for n in archive.namelist() if n != "Document.xml" and not n.endswith(".brp")}
+        self.assertIn("GuiDocument.xml", gui)
+        proc = run_cli("fit-texture", self.rig, "--period", "2.5", "--speeds", "50,120", "--apply", path,
+                       "--surface", "ThumbGrip")
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        with zipfile.ZipFile(path) as archive:
+            self.assertIsNone(archive.testzip())
+            for name, data in gui.items():
+                self.assertEqual(archive.read(name), data, name)
+            self.assertIn('value="Custom"', archive.read("Document.xml").decode())  # and the fit is in it
+
     def test_bad_input_is_refused_and_the_document_is_left_alone(self):
         path = self.make_document("untouched.FCStd")
         before = os.path.getmtime(path)

@@ -255,6 +255,24 @@ def _open_document(App, path):
     return doc
 
 
+def _save_keeping_views(doc):
+    """Saves doc in its file as FreeCAD without its GUI does, then puts back what only the
+    GUI writes (GuiDocument.xml: every object's visibility and colours, the colour arrays it
+    names, the thumbnail), as the file held it: saved without them, the document opened in
+    FreeCAD with every part hidden and grey."""
+    path = doc.FileName
+    with zipfile.ZipFile(path) as archive:
+        before = {info.filename: archive.read(info) for info in archive.infolist()}
+    doc.save()
+    with zipfile.ZipFile(path) as archive:
+        written = set(archive.namelist())
+    kept = {name: data for name, data in before.items() if name not in written}
+    if kept:
+        with zipfile.ZipFile(path, "a", zipfile.ZIP_DEFLATED) as archive:
+            for name, data in kept.items():
+                archive.writestr(name, data)
+
+
 def cmd_fit_texture(args):
     from . import texture_fit
 
@@ -289,7 +307,7 @@ def cmd_fit_texture(args):
             if problems:
                 raise ValueError(f"{surface.Label}: the fitted texture is not valid: {'; '.join(problems)}; "
                                  "the document was not saved")
-            doc.save()
+            _save_keeping_views(doc)
             result["applied"] = {"document": os.path.abspath(args.apply), "surface": surface.Label,
                                  **{name: getattr(surface, name) for name in
                                     (*texture_fit.FIELDS, "TexturePeriod", "TextureFullRange", "TextureScale")},
