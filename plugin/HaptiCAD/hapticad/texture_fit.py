@@ -164,14 +164,25 @@ def fit_files(paths, period_mm, speeds_mm_s=PAPER_SPEEDS_MM_S, tolerance_percent
     except ValueError as exc:  # the core counts recordings and samples; the designer knows files and lines
         raise ValueError(re.sub(r"recording (\d+): (.*?)sample (\d+)|recording (\d+):",
                                 lambda m: _where(recordings, paths, m), str(exc))) from None
-    # each speed's own mean resisting force (the line's slope is per 400 mm/s, not per m/s)
-    backwards = [s for s in fit.speeds if s.dc_n < 0]
-    if fit.speeds and len(backwards) == len(fit.speeds):
-        s = fit.speeds[0]
+    # a grating's friction resists the finger at every speed: a section whose mean force
+    # runs with the motion is a sign slip in its file (one trial logged the other way round
+    # was fitted into a viscosity of -2 N per 400 mm/s and set)
+    backwards = {}
+    for section in fit.sections:
+        if section.dc_n < 0:
+            backwards.setdefault(section.recording, []).append(section)
+    if backwards:
+        said = []
+        for index, sections in backwards.items():
+            at = {}
+            for section in sections:
+                at.setdefault(round(section.target_speed_mps / MM), []).append(section.dc_n)
+            speeds = ", ".join(f"{np.mean(v):.3g} N at {k} mm/s" for k, v in sorted(at.items()))
+            said.append(f"{os.path.basename(paths[index])} ({speeds})")
         raise ValueError(
-            f"the lateral force runs with the motion, not against it (the friction level comes out at "
-            f"{s.dc_n:.3g} N at {s.speed_mps / MM:.0f} mm/s): the fit "
-            f"needs the force resisting the finger, as eq. 2 gives it; change the sign of lateral_force_n")
+            f"the lateral force runs with the motion, not against it, in {'; '.join(said)}: the fit needs the "
+            "force resisting the finger, as eq. 2 gives it; change the sign of lateral_force_n in "
+            f"{'that file' if len(backwards) == 1 else 'those files'}")
     notes = []
     if fit.speeds_without_sections_mps:
         missing = ", ".join(f"{s / MM:g}" for s in fit.speeds_without_sections_mps)

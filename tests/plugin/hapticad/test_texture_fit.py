@@ -197,14 +197,22 @@ class RigRecordingTest(unittest.TestCase):
             texture_fit.fit_files([self.path("along.csv")], 2.5, (50, 120))
         self.assertIn("runs with the motion", str(caught.exception))
         self.assertIn("change the sign of lateral_force_n", str(caught.exception))
-        # the level said is the one at that speed: 0.4 + 0.2 x 50/400 levels of 2 N
-        self.assertIn("comes out at -0.85 N at 50 mm/s", str(caught.exception))
-        # a force that aids the finger at 50 mm/s but resists at 270 is fitted (a negative
-        # viscosity's), not taken for a sign slip: the line's slope is per 400 mm/s, and
-        # reading it per m/s had it aid at every speed
-        write_rig_csv(self.path("cross.csv"), speeds_mm_s=(50.0, 120.0, 270.0), f_dc=-0.2, f_vis=0.45)
-        crossing = texture_fit.fit_files([self.path("cross.csv")], 2.5, (50, 120, 270))
-        self.assertEqual([round(s.dc_n, 2) for s in crossing.fit.speeds], [-0.29, -0.13, 0.21])
+        # the level said is the one at each speed: 0.4 + 0.2 x v/400 levels of 2 N
+        self.assertIn("in along.csv (-0.85 N at 50 mm/s, -0.92 N at 120 mm/s)", str(caught.exception))
+        # one trial of two logged the other way round: named, not fitted into a viscosity
+        # of -2 N per 400 mm/s and set
+        write_rig_csv(self.path("slow.csv"), speeds_mm_s=(50.0,))
+        write_rig_csv(self.path("fast.csv"), speeds_mm_s=(120.0,))
+        with open(self.path("fast.csv")) as f:
+            rows = [line.rstrip("\n").split(",") for line in f]
+        with open(self.path("fast.csv"), "w") as f:
+            f.write(",".join(rows[0]) + "\n")
+            f.writelines(f"{t},{x},{-float(force):.6f}\n" for t, x, force in rows[1:])
+        with self.assertRaises(ValueError) as caught:
+            texture_fit.fit_files([self.path("slow.csv"), self.path("fast.csv")], 2.5, (50, 120))
+        self.assertIn("runs with the motion, not against it, in fast.csv (-0.92 N at 120 mm/s)", str(caught.exception))
+        self.assertNotIn("slow.csv", str(caught.exception))
+        self.assertIn("change the sign of lateral_force_n in that file", str(caught.exception))
 
     def test_unreadable_recordings_are_refused_by_name_and_line(self):
         with open(self.path("columns.csv"), "w") as f:
