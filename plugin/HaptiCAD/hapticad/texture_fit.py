@@ -222,12 +222,11 @@ def _quality_notes(fit, options):
     if wrong:
         notes.append(wrong)
         return notes  # the period found near the given one means nothing then
-    found = [s.period_found_m for s in fit.sections]
-    if found:
-        median = float(np.median(found))
-        if abs(median - fit.period_m) > 0.01 * fit.period_m:
-            notes.append(f"the recordings show a grating period of {median / MM:.4g} mm, not the "
-                         f"{fit.period_m / MM:g} mm given: the harmonics were read at the period found")
+    found = period_found_m(fit)
+    if found != fit.period_m:
+        notes.append(f"the recordings show a grating period of {found / MM:.4g} mm, not the "
+                     f"{fit.period_m / MM:g} mm given: the harmonics were read at the period found, "
+                     "and it is the period set")
     return notes
 
 
@@ -297,6 +296,14 @@ def trough_force_n(fit, samples=256):
     return min((_core.viscous_texture_level(params, x, s.speed_mps) for s in fit.speeds for x in xs), default=0.0)
 
 
+def period_found_m(fit):
+    """The grating's period the sections show (the median of each one's fundamental) when
+    it is more than 1 % off the period given, else the period given (m)."""
+    found = [s.period_found_m for s in fit.sections]
+    median = float(np.median(found)) if found else fit.period_m
+    return median if abs(median - fit.period_m) > 0.01 * fit.period_m else fit.period_m
+
+
 def levels(fit, full_range_n):
     """The surface properties eq. 2 needs to render the fit with ``full_range_n`` N as level 1."""
     if not (math.isfinite(full_range_n) and full_range_n > 0):
@@ -308,7 +315,8 @@ def levels(fit, full_range_n):
         "TextureBetaViscosity": fit.beta_h_n.slope / full_range_n,
         "TextureAlpha": fit.alpha_h.intercept,
         "TextureAlphaViscosity": fit.alpha_h.slope,
-        "TexturePeriod": fit.period_m / MM,
+        # the harmonics were read at the period the recordings show: rendered at it too
+        "TexturePeriod": period_found_m(fit) / MM,
     }
 
 

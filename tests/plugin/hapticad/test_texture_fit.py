@@ -256,6 +256,9 @@ class RigRecordingTest(unittest.TestCase):
         near = texture_fit.fit_files([self.path("grating.csv")], 2.55, (50, 120))  # 2 % off
         self.assertTrue(any("show a grating period of 2.5 mm" in n for n in near.notes), near.notes)
         self.assertAlmostEqual(texture_fit.levels(near.fit, 2.0)["TextureAlpha"], 2.5, delta=0.05)
+        # and set at the period found, where the harmonics were read (it set the 2.55 given)
+        self.assertAlmostEqual(texture_fit.levels(near.fit, 2.0)["TexturePeriod"], 2.5, delta=0.005)
+        self.assertTrue(any("it is the period set" in n for n in near.notes), near.notes)
         wrong = texture_fit.fit_files([self.path("noisy.csv")], 5.0, (50, 120))  # the designer's slip
         crooked = [n for n in wrong.notes if "do not follow a power law" in n]
         self.assertEqual(len(crooked), 1, wrong.notes)  # one sentence, both speeds in it
