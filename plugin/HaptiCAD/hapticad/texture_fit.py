@@ -14,6 +14,7 @@ Recordings are CSV files with a header, in one of two forms:
   along the direction the proxy travelled most, force on the device along it.
 """
 import csv
+import io
 import math
 import os
 import re
@@ -62,7 +63,10 @@ SPEED_MAX_MM_S = 1e4  # 10 m/s: no finger or rig scans a texture faster
 
 def parse_speeds(text):
     """The scanning speeds in ``text``, mm/s: numbers separated by commas or semicolons
-    (blanks ignored), each > 0 and below SPEED_MAX_MM_S. ValueError saying so otherwise."""
+    (blanks ignored), each > 0 and below SPEED_MAX_MM_S; with semicolons, a comma between
+    digits is a decimal comma ("50;80;120,5"). ValueError saying so otherwise."""
+    if ";" in text:
+        text = re.sub(r"(?<=\d),(?=\d)", ".", text)
     try:
         values = [float(v) for v in text.replace(";", ",").split(",") if v.strip()]
     except ValueError:
@@ -73,14 +77,25 @@ def parse_speeds(text):
     return values
 
 
+def _column_name(text):
+    """A header cell as a column name: "Time (s)" and "time_s" are one, so are
+    "Lateral force [N]" and "lateral_force_n"."""
+    name = re.sub(r"\s*[(\[]\s*([^)\]]*?)\s*[)\]]\s*$", r"_\1", text.strip()).lower()
+    return re.sub(r"[\s-]+", "_", name)
+
+
 def _read_columns(path):
     name = os.path.basename(path)
     try:
         with open(path, newline="", encoding="utf-8-sig") as handle:  # a spreadsheet's BOM too
-            header = [h.strip() for h in next(csv.reader([handle.readline()]), [])]
+            first = handle.readline()
     except (UnicodeDecodeError, csv.Error):
         raise ValueError(f"{name}: not a text CSV file") from None
-    if not header:
+    # a spreadsheet's export: commas, or semicolons or tabs with decimal commas
+    headers = {sep: [_column_name(h) for h in next(csv.reader([first], delimiter=sep), [])] for sep in ",;\t"}
+    separator = next((sep for sep, header in headers.items() if set(RIG_COLUMNS) <= set(header)), ",")
+    header = headers[separator]
+    if not any(header):
         raise ValueError(f"{name}: empty file")
     if set(TRACE_COLUMNS) <= set(header):
         kind, wanted = "trace", TRACE_COLUMNS
@@ -88,32 +103,37 @@ def _read_columns(path):
         kind = "rig"
         wanted = RIG_COLUMNS + (("normal_force_n",) if "normal_force_n" in header else ())
     else:
-        raise ValueError(f"{name}: needs the columns {', '.join(RIG_COLUMNS)} (a rig's recording) or "
-                         "a HaptiCAD trace.csv; its header is " + ", ".join(header))
+        raise ValueError(f"{name}: needs the columns {', '.join(RIG_COLUMNS)} (a rig's recording; \"Time (s)\" "
+                         "reads as time_s) or a HaptiCAD trace.csv; its header is " + first.strip())
     index = [header.index(c) for c in wanted]
+    source = path
+    if separator != ",":
+        with open(path, encoding="utf-8-sig") as handle:
+            source = io.StringIO(handle.read().replace(",", "."))  # decimal commas
     try:  # numpy's C reader: a rig's 20 s at 125 kHz in half a second
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # "input contained no data": the fit says so, by file
-            table = np.loadtxt(path, delimiter=",", skiprows=1, usecols=index, ndmin=2, dtype=float)
+            table = np.loadtxt(source, delimiter=separator, skiprows=1, usecols=index, ndmin=2, dtype=float)
     except (ValueError, UnicodeDecodeError):
-        table = _read_rows(path, name, wanted, index)  # slow, and says which line is wrong
+        table = _read_rows(path, name, wanted, index, separator)  # slow, and says which line is wrong
     return kind, {c: table[:, k] for k, c in enumerate(wanted)}
 
 
-def _read_rows(path, name, wanted, index):
+def _read_rows(path, name, wanted, index, separator=","):
     try:
         with open(path, newline="", encoding="utf-8-sig") as handle:
-            rows = list(csv.reader(handle))[1:]
+            rows = list(csv.reader(handle, delimiter=separator))[1:]
     except (UnicodeDecodeError, csv.Error) as exc:
         raise ValueError(f"{name}: not a readable CSV file ({exc})") from None
     table = np.empty((len(rows), len(wanted)))
     kept = 0
     for line, row in enumerate(rows, start=2):
-        if not row:
+        if not any(cell.strip() for cell in row):  # a spreadsheet's rows of empty cells
             continue
         for k, (c, i) in enumerate(zip(wanted, index)):
             try:
-                table[kept, k] = float(row[i])
+                cell = row[i].strip()
+                table[kept, k] = float(cell.replace(",", ".") if separator != "," else cell)
             except (ValueError, IndexError):
                 raise ValueError(f"{name}, line {line}: {c} is not a number") from None
         kept += 1

@@ -151,6 +151,7 @@ class RoundTripTest(unittest.TestCase):
 class SpeedsTest(unittest.TestCase):
     def test_speeds_are_read_with_commas_or_semicolons_and_bad_ones_refused(self):
         self.assertEqual(texture_fit.parse_speeds("50, 80;120,"), [50.0, 80.0, 120.0])
+        self.assertEqual(texture_fit.parse_speeds("50;80;120,5"), [50.0, 80.0, 120.5])  # was 120 and 5
         self.assertEqual(texture_fit.parse_speeds(" 2.5e2 "), [250.0])
         for text in ("", " , ", "fast", "50, -80", "0", "nan", "inf", "50,20000"):
             with self.subTest(text=text), self.assertRaises(ValueError) as caught:
@@ -236,6 +237,27 @@ class RigRecordingTest(unittest.TestCase):
                 with self.assertRaises((ValueError, OSError)) as caught:
                     texture_fit.fit_files([self.path(name)], 2.5)
                 self.assertIn(message, str(caught.exception))
+
+    def test_a_spreadsheets_export_reads_as_the_rigs_own_csv(self):
+        # semicolons or tabs with decimal commas, "Time (s)" headers, a trailing row of
+        # empty cells: each was refused, the header quoted back with the names plainly in it
+        write_rig_csv(self.path("plain.csv"))
+        with open(self.path("plain.csv")) as f:
+            header, *rows = f.read().splitlines()
+        plain = texture_fit.fit_files([self.path("plain.csv")], 2.5, (50, 120)).fit
+        for name, separator, titles in (("semi.csv", ";", "Time (s);Position (mm);Lateral force (N)"),
+                                         ("tabs.tsv", "\t", "time_s\tPOSITION_MM\tlateral_force_n"),
+                                         ("trailing.csv", ",", header)):
+            with self.subTest(name=name):
+                comma = separator != ","
+                with open(self.path(name), "w") as f:
+                    f.write(titles + "\n")
+                    f.writelines((row.replace(",", separator).replace(".", ",") if comma else row) + "\n"
+                                 for row in rows)
+                    f.write(separator * 2 + "\n" + separator * 2 + "\n")  # rows of empty cells
+                fit = texture_fit.fit_files([self.path(name)], 2.5, (50, 120)).fit
+                self.assertAlmostEqual(fit.dc_n.intercept, plain.dc_n.intercept, places=6)
+                self.assertAlmostEqual(fit.alpha_h.intercept, plain.alpha_h.intercept, places=6)
 
     def test_the_normal_force_is_the_press_while_stroking_not_while_idle(self):
         write_rig_csv(self.path("pressed.csv"), normal_force_n=0.8)

@@ -552,7 +552,8 @@ class SurfaceTaskPanel:
                 report = texture_fit.fit_files(paths, float(self.obj.TexturePeriod), speeds)
                 notes = texture_fit.apply_to_surface(self.obj, report)
         except (ValueError, OSError) as exc:
-            self.fit_info.setText(f"<span style='color:#b00000'>Not fitted, nothing changed: {exc}</span>")
+            said = html.escape(str(exc), quote=False)  # a header such as "force <N>" is text
+            self.fit_info.setText(f"<span style='color:#b00000'>Not fitted, nothing changed: {said}</span>")
             return False
         self.load()
         fit = report.fit
@@ -560,8 +561,9 @@ class SurfaceTaskPanel:
         self.fit_info.setText(
             f"Fitted to {len(fit.sections)} sections at {done} mm/s from {len(paths)} recording"
             f"{'s' if len(paths) != 1 else ''} (period λ {self.obj.TexturePeriod:g} mm): f_DC + v f_vis = "
-            f"{fit.dc_n.intercept:.3f} + {fit.dc_n.slope:.3f} v N, β_h {fit.beta_h_n.intercept:.3f} N, "
-            f"α_h {fit.alpha_h.intercept:.2f} (v per 400 mm/s)." + "".join(f"<br>{n}" for n in notes))
+            f"{fit.dc_n.intercept:.3f} {'-' if fit.dc_n.slope < 0 else '+'} {abs(fit.dc_n.slope):.3f} v N, "
+            f"β_h {fit.beta_h_n.intercept:.3f} N, α_h {fit.alpha_h.intercept:.2f} (v per 400 mm/s)."
+            + "".join(f"<br>{html.escape(n, quote=False)}" for n in notes))
         return True
 
     def use_selected_curve(self):

@@ -10,7 +10,7 @@ import unittest
 
 import FreeCAD as App
 import FreeCADGui as Gui
-from PySide2 import QtCore, QtWidgets
+from PySide2 import QtCore, QtGui, QtWidgets
 
 import HaptiCAD
 from hapticad import materials
@@ -160,7 +160,7 @@ class TaskPanelTest(unittest.TestCase):
         rig, bad = os.path.join(folder, "rig.csv"), os.path.join(folder, "bad.csv")
         write_rig_csv(_core, rig, speeds_mm_s=(50.0, 120.0), f_dc=0.4, f_vis=0.2, full_range_n=2.0)
         with open(bad, "w") as handle:
-            handle.write("t,x,f\n0,0,0\n")
+            handle.write("t,x,force <N>\n0,0,0\n")  # its header is said back as written, not read as markup
         chosen = []
         cursors = []
         fit_files = texture_fit.fit_files
@@ -183,6 +183,9 @@ class TaskPanelTest(unittest.TestCase):
             h.widget(QtWidgets.QPushButton, "fitTexture").click()
             self.assertIn("Not fitted, nothing changed", info.text())
             self.assertIn("needs the columns time_s, position_mm, lateral_force_n", info.text())
+            shown = QtGui.QTextDocument()
+            shown.setHtml(info.text())
+            self.assertIn("its header is t,x,force <N>", shown.toPlainText())
             self.assertEqual(surface.Texture, "None")
             self.assertIsNone(QtWidgets.QApplication.overrideCursor())  # an error left no wait cursor behind
             # the fit holds the GUI thread: the wait cursor shows while it runs, and goes after
@@ -308,8 +311,6 @@ class TaskPanelTest(unittest.TestCase):
 
     def test_labels_with_angle_brackets_are_shown_as_typed(self):
         # "Lid <rev B>" lost "<rev B>": the panel read the label as markup
-        from PySide2 import QtGui
-
         self.box.Label = "Lid <rev B>"
         first = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])
         first.Label = "Top <A&B>"
