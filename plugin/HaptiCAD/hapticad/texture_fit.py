@@ -57,6 +57,38 @@ class FitReport:
                   for s in self.fit.sections if self.recordings[s.recording].normal_n is not None]
         return float(np.mean(np.concatenate(values))) if values else None
 
+    def normal_force_by_speed_n(self):
+        """{target speed mm/s: mean normal force over its sections' samples, N}, when recorded."""
+        by_speed = {}
+        for s in self.fit.sections:
+            normal = self.recordings[s.recording].normal_n
+            if normal is not None:
+                by_speed.setdefault(round(s.target_speed_mps / MM), []).append(
+                    normal[s.first_sample:s.last_sample + 1])
+        return {speed: float(np.mean(np.concatenate(v))) for speed, v in sorted(by_speed.items())}
+
+
+# the press may wander this much between speeds before it is said (seed 001 strokes at
+# one press: a force that grows with the press would read as a viscosity)
+PRESS_DRIFT = 0.1
+
+
+def press_note(report):
+    """A sentence when the recorded normal force differs between the speeds by more than
+    PRESS_DRIFT of its mean, else "": friction that grows with the press then reads as
+    viscosity (f_vis), which the fit cannot tell apart."""
+    by_speed = report.normal_force_by_speed_n()
+    if len(by_speed) < 2:
+        return ""
+    values = list(by_speed.values())
+    mean = float(np.mean(values))
+    if mean <= 0 or (max(values) - min(values)) <= PRESS_DRIFT * mean:
+        return ""
+    each = ", ".join(f"{n:.2f} N at {v} mm/s" for v, n in by_speed.items())
+    return (f"the finger pressed differently at different speeds ({each}): seed 001 strokes at one press, and "
+            "friction that grows with the press reads as viscosity (f_vis) here; record at an even press, or "
+            "compare the speeds' force over their press")
+
 
 SPEED_MAX_MM_S = 1e4  # 10 m/s: no finger or rig scans a texture faster
 
@@ -209,8 +241,14 @@ def fit_files(paths, period_mm, speeds_mm_s=PAPER_SPEEDS_MM_S, tolerance_percent
         notes.append(f"no section at {missing} mm/s: those speeds are not in the fit")
     if len(fit.speeds) == 1:
         notes.append("one speed only: the viscous terms (f_vis, beta_vis, alpha_vis) are 0")
+    unused = [os.path.basename(p) for i, p in enumerate(paths) if not any(s.recording == i for s in fit.sections)]
+    if unused:
+        notes.append(f"{', '.join(unused)} gave no section (no stroke held within {options.speed_tolerance:.1%} of a "
+                     f"speed for {options.min_periods} periods): not in the fit")
     notes += _quality_notes(fit, options)
-    return FitReport(fit, recordings, options, notes)
+    report = FitReport(fit, recordings, options, notes)
+    notes += [n for n in [press_note(report)] if n]
+    return report
 
 
 def _where(recordings, paths, match):
@@ -406,7 +444,9 @@ def summary(report):
     """The fit as JSON-able data: per speed and the eq. 2 lines (N, per 400 mm/s)."""
     fit = report.fit
     return {
-        "recordings": [{"path": r.path, "kind": r.kind, "samples": r.data.samples} for r in report.recordings],
+        "recordings": [{"path": r.path, "kind": r.kind, "samples": r.data.samples,
+                        "sections": sum(1 for sec in fit.sections if sec.recording == i)}
+                       for i, r in enumerate(report.recordings)],
         "normal_force_n": report.normal_force_n,
         "period_mm": fit.period_m / MM,
         "sections": len(fit.sections),
@@ -417,6 +457,7 @@ def summary(report):
             "samples_per_period": s.samples_per_period,
             "dc_n": s.dc_n,
             "dc_sd_n": s.dc_sd_n,
+            "normal_force_n": report.normal_force_by_speed_n().get(round(s.target_speed_mps / MM)),
             "harmonic_beta_n": s.harmonic.beta,
             "harmonic_alpha": s.harmonic.alpha,
             "harmonic_r2": s.harmonic.r_squared,

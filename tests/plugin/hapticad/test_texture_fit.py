@@ -238,6 +238,26 @@ class RigRecordingTest(unittest.TestCase):
                     texture_fit.fit_files([self.path(name)], 2.5)
                 self.assertIn(message, str(caught.exception))
 
+    def test_a_press_that_changes_with_speed_is_said(self):
+        # pressed 0.8 N at 50 mm/s and 1.2 N at 120: a friction that grows with the press
+        # fits as a viscosity, and nothing said the press was not even
+        write_rig_csv(self.path("even.csv"), normal_force_n=0.8)
+        self.assertFalse(any("pressed differently" in n for n in
+                             texture_fit.fit_files([self.path("even.csv")], 2.5, (50, 120)).notes))
+        write_rig_csv(self.path("slow.csv"), speeds_mm_s=(50.0,), normal_force_n=0.8)
+        write_rig_csv(self.path("fast.csv"), speeds_mm_s=(120.0,), normal_force_n=1.2)
+        report = texture_fit.fit_files([self.path("slow.csv"), self.path("fast.csv")], 2.5, (50, 120))
+        self.assertEqual({k: round(v, 3) for k, v in report.normal_force_by_speed_n().items()}, {50: 0.8, 120: 1.2})
+        self.assertTrue(any("pressed differently at different speeds (0.80 N at 50 mm/s, 1.20 N at 120 mm/s)" in n
+                            for n in report.notes), report.notes)
+        summary = texture_fit.summary(report)
+        self.assertEqual([round(s["normal_force_n"], 3) for s in summary["speeds"]], [0.8, 1.2])
+        self.assertEqual([r["sections"] for r in summary["recordings"]], [2, 2])
+        # a recording that adds nothing is said, not passed over
+        write_rig_csv(self.path("other.csv"), speeds_mm_s=(200.0,))
+        report = texture_fit.fit_files([self.path("slow.csv"), self.path("other.csv")], 2.5, (50, 120))
+        self.assertTrue(any(n.startswith("other.csv gave no section") for n in report.notes), report.notes)
+
     def test_a_spreadsheets_export_reads_as_the_rigs_own_csv(self):
         # semicolons or tabs with decimal commas, "Time (s)" headers, a trailing row of
         # empty cells: each was refused, the header quoted back with the names plainly in it
