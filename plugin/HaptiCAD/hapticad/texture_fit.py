@@ -272,11 +272,14 @@ def _quality_notes(fit, options):
             notes.append(f"at {s.speed_mps / MM:.0f} mm/s the recording has {s.samples_per_period:.1f} samples a "
                          f"period (fewer than {wanted}): interpolating between them lowers the higher harmonics "
                          f"and bends alpha_h; record at {rate:.0f} Hz or more")
+    wrong = wrong_period(fit)
     crooked = [s for s in fit.speeds if s.harmonic.r_squared < 0.9]
     if crooked:  # one sentence for every speed it happens at
         at = ", ".join(f"{s.speed_mps / MM:.0f} mm/s (r^2 {s.harmonic.r_squared:.2f})" for s in crooked)
-        notes.append(f"at {at} the harmonics do not follow a power law: is the grating's period right?")
-    wrong = wrong_period(fit)
+        # the recordings' strongest ripple at the period given: the period is not the cause
+        why = ("is the grating's period right?" if wrong else
+               "alpha_h is loosely fitted there (its higher harmonics near the noise; the period is right)")
+        notes.append(f"at {at} the harmonics do not follow a power law: {why}")
     if wrong:
         notes.append(wrong)
         return notes  # the period found near the given one means nothing then

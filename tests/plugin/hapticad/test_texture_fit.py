@@ -238,6 +238,16 @@ class RigRecordingTest(unittest.TestCase):
                     texture_fit.fit_files([self.path(name)], 2.5)
                 self.assertIn(message, str(caught.exception))
 
+    def test_a_loose_harmonic_fit_at_the_right_period_does_not_blame_the_period(self):
+        # sensor noise of 0.4 N over a grating of 2.5 mm given as 2.5 mm: it asked "is the
+        # grating's period right?" though its own search found 2.5 mm
+        write_rig_csv(self.path("noisy.csv"), noise_n=0.4)
+        report = texture_fit.fit_files([self.path("noisy.csv")], 2.5, (50, 120))
+        loose = [n for n in report.notes if "do not follow a power law" in n]
+        self.assertEqual(len(loose), 1, report.notes)
+        self.assertIn("the period is right", loose[0])
+        self.assertNotIn("period right?", loose[0])
+
     def test_a_press_that_changes_with_speed_is_said(self):
         # pressed 0.8 N at 50 mm/s and 1.2 N at 120: a friction that grows with the press
         # fits as a viscosity, and nothing said the press was not even
