@@ -823,7 +823,10 @@ void DefineTextureFit(py::module_& m) {
       .def_readonly("background", &SpeedFit::background);
   py::class_<SpeedLine>(m, "SpeedLine")
       .def_readonly("intercept", &SpeedLine::intercept)
-      .def_readonly("slope", &SpeedLine::slope);
+      .def_readonly("slope", &SpeedLine::slope)
+      .def_property_readonly("intercept_se",
+                             [](const SpeedLine& l) { return NanToNone(l.intercept_se); })
+      .def_property_readonly("slope_se", [](const SpeedLine& l) { return NanToNone(l.slope_se); });
   py::class_<TextureFit>(m, "TextureFit")
       .def_readonly("period_m", &TextureFit::period_m)
       .def_readonly("sections", &TextureFit::sections)

@@ -247,6 +247,16 @@ SpeedLine FitLine(const std::vector<double>& v, const std::vector<double>& y) {
   }
   line.slope = svv > 0 ? svy / svv : 0.0;
   line.intercept = my - line.slope * mv;
+  if (v.size() >= 3 && svv > 0) {
+    double residual = 0;
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      const double e = y[k] - line.intercept - line.slope * v[k];
+      residual += e * e;
+    }
+    const double variance = residual / (n - 2);
+    line.slope_se = std::sqrt(variance / svv);
+    line.intercept_se = std::sqrt(variance * (1.0 / n + mv * mv / svv));
+  }
   return line;
 }
 

@@ -247,7 +247,7 @@ def fit_files(paths, period_mm, speeds_mm_s=PAPER_SPEEDS_MM_S, tolerance_percent
                      f"speed for {options.min_periods} periods): not in the fit")
     notes += _quality_notes(fit, options)
     report = FitReport(fit, recordings, options, notes)
-    notes += [n for n in [press_note(report)] if n]
+    notes += [n for n in [press_note(report), slope_notes(fit)] if n]
     return report
 
 
@@ -260,6 +260,35 @@ def _where(recordings, paths, match):
     if index < len(recordings) and recordings[index].kind == "rig":
         return f"{name}: {what}line {sample + 1}"
     return f"{name}: {what}contact row {sample}"
+
+
+# two-sided 95 % Student t for n - 2 degrees of freedom (a line through n speeds)
+_T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262, 10: 2.228}
+
+
+def _slope_interval(line, speeds):
+    """(low, high) of a line's slope at 95 %, or None with fewer than 3 speeds."""
+    if line.slope_se is None or speeds < 3:
+        return None
+    half = _T95.get(speeds - 2, 1.96) * line.slope_se
+    return (line.slope - half, line.slope + half)
+
+
+def slope_notes(fit):
+    """A sentence naming the speed terms (f_vis, beta_vis, alpha_vis) whose 95 % interval
+    holds 0: within the noise of the speeds' values, so not shown to change with speed
+    (seed 001 found no significant speed dependence in the harmonics and set such terms
+    to 0); they are set as fitted, and the sentence says how loose they are."""
+    loose = []
+    for name, line, unit in (("f_vis", fit.dc_n, " N"), ("beta_vis", fit.beta_h_n, " N"),
+                             ("alpha_vis", fit.alpha_h, "")):
+        interval = _slope_interval(line, len(fit.speeds))
+        if interval is not None and interval[0] <= 0 <= interval[1]:
+            loose.append(f"{name} {line.slope:.3g}{unit} (95 %: {interval[0]:.3g} to {interval[1]:.3g})")
+    if not loose:
+        return ""
+    return (f"not shown to change with speed over these {len(fit.speeds)} speeds: {', '.join(loose)} per 400 mm/s; "
+            "seed 001 set such terms to 0; they are set as fitted: set them to 0 on the surface to follow the paper")
 
 
 def _quality_notes(fit, options):
@@ -478,6 +507,12 @@ def summary(report):
             "alpha_h": fit.alpha_h.intercept,
             "alpha_vis_per_400mm_s": fit.alpha_h.slope,
         },
+        # each line's standard errors (null with fewer than 3 speeds) and its slope's 95 %
+        # interval, as the paper weighed whether a term changes with speed
+        "eq2_standard_errors": {
+            name: {"intercept": line.intercept_se, "slope": line.slope_se,
+                   "slope_95": _slope_interval(line, len(fit.speeds))}
+            for name, line in (("dc_n", fit.dc_n), ("beta_h_n", fit.beta_h_n), ("alpha_h", fit.alpha_h))},
         "peak_force_n": peak_force_n(fit),
         "notes": list(report.notes),
     }

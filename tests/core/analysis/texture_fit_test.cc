@@ -185,6 +185,43 @@ TEST(TextureFitTest, TheBackgroundsDecayReadsTheSameAtEverySpeed) {
   }
 }
 
+TEST(TextureFitTest, EachLineThroughTheSpeedsCarriesItsStandardErrors) {
+  // the paper judged whether a term changes with speed; a slope with no error to weigh
+  // it against cannot be judged (alpha_vis -0.81 from noise alone was set as found)
+  ViscousTextureParams truth;
+  truth.f_dc = 0.4;
+  truth.f_vis = 0.2;
+  const TextureFitOptions options = Unfiltered();
+  const TextureFit fit =
+      FitTexture({MakeRecording(truth, options.speeds_mps, 20000, nullptr, 0.05)}, options);
+  ASSERT_EQ(fit.speeds.size(), 5u);
+  // ordinary least squares by hand, through the per-speed alpha_h
+  double mv = 0, my = 0;
+  for (const SpeedFit& s : fit.speeds) {
+    mv += s.speed_mps / kViscousSpeedUnitMps / 5;
+    my += s.harmonic.alpha / 5;
+  }
+  double svv = 0, ssr = 0;
+  for (const SpeedFit& s : fit.speeds) {
+    const double v = s.speed_mps / kViscousSpeedUnitMps;
+    svv += (v - mv) * (v - mv);
+  }
+  for (const SpeedFit& s : fit.speeds) {
+    const double v = s.speed_mps / kViscousSpeedUnitMps;
+    const double e = s.harmonic.alpha - fit.alpha_h.intercept - fit.alpha_h.slope * v;
+    ssr += e * e;
+  }
+  EXPECT_NEAR(fit.alpha_h.slope_se, std::sqrt(ssr / 3 / svv), 1e-12);
+  EXPECT_NEAR(fit.alpha_h.intercept_se, std::sqrt(ssr / 3 * (0.2 + mv * mv / svv)), 1e-12);
+  EXPECT_GT(fit.alpha_h.slope_se, 0.0);
+  EXPECT_TRUE(std::isfinite(fit.dc_n.slope_se));
+  // two speeds: a line through them leaves no residual to estimate an error from
+  TextureFitOptions two = Unfiltered();
+  two.speeds_mps = {0.05, 0.12};
+  const TextureFit pair = FitTexture({MakeRecording(truth, two.speeds_mps, 20000)}, two);
+  EXPECT_TRUE(std::isnan(pair.dc_n.slope_se));
+}
+
 TEST(TextureFitTest, ToleratesSensorNoiseAndAJitteredClock) {
   ViscousTextureParams truth;
   truth.f_dc = 0.4;

@@ -248,6 +248,26 @@ class RigRecordingTest(unittest.TestCase):
         self.assertIn("the period is right", loose[0])
         self.assertNotIn("period right?", loose[0])
 
+    def test_speed_terms_within_their_noise_are_said_with_their_interval(self):
+        # a texture whose harmonics do not change with speed, under 50 mN of sensor noise:
+        # alpha_vis came out -0.11 and was set with nothing to weigh it against
+        write_rig_csv(self.path("five.csv"), speeds_mm_s=(50, 80, 120, 180, 270), noise_n=0.05)
+        report = texture_fit.fit_files([self.path("five.csv")], 2.5)
+        loose = [n for n in report.notes if n.startswith("not shown to change with speed over these 5 speeds")]
+        self.assertEqual(len(loose), 1, report.notes)
+        self.assertIn("alpha_vis", loose[0])
+        self.assertNotIn("f_vis", loose[0])  # 0.2 levels per 400 mm/s, well outside its noise
+        errors = texture_fit.summary(report)["eq2_standard_errors"]
+        low, high = errors["alpha_h"]["slope_95"]
+        self.assertLess(low, 0.0)
+        self.assertGreater(high, 0.0)
+        self.assertGreater(errors["dc_n"]["slope_95"][0], 0.0)
+        # two speeds leave no residual: no error, no note
+        write_rig_csv(self.path("two.csv"), noise_n=0.05)
+        two = texture_fit.fit_files([self.path("two.csv")], 2.5, (50, 120))
+        self.assertIsNone(texture_fit.summary(two)["eq2_standard_errors"]["alpha_h"]["slope"])
+        self.assertFalse(any("not shown to change" in n for n in two.notes))
+
     def test_a_press_that_changes_with_speed_is_said(self):
         # pressed 0.8 N at 50 mm/s and 1.2 N at 120: a friction that grows with the press
         # fits as a viscosity, and nothing said the press was not even

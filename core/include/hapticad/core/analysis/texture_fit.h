@@ -40,6 +40,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -107,10 +108,14 @@ struct SpeedFit {
   PowerFit background;            // B(f) = beta f^-alpha, f in fundamentals, beta in N
 };
 
-// A straight line y = intercept + slope v, v in units of 400 mm/s.
+// A straight line y = intercept + slope v, v in units of 400 mm/s, least squares through
+// the per-speed values, with the standard errors of its two coefficients (from the
+// residuals: NaN with fewer than 3 speeds, where a line leaves none).
 struct SpeedLine {
   double intercept = 0;
   double slope = 0;
+  double intercept_se = std::numeric_limits<double>::quiet_NaN();
+  double slope_se = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct TextureFit {
