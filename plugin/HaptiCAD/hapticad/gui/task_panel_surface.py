@@ -40,7 +40,7 @@ UNITS = {
 LABELS = {
     "StaticFriction": "Static friction μs", "DynamicFriction": "Dynamic friction μd",
     "RoughnessCategory": "Category", "FeelRoughness": "Feel the roughness grid",
-    "PatternAngle": "Angle", "PatternCenter": "Centre", "PatternAxis": "Axis",
+    "PatternAngle": "Angle", "PatternCenter": "Centre (mm)", "PatternAxis": "Axis",
     "PatternCurve": "Curve", "AcrossFriction": "Across / along", "BackwardFriction": "Backward / forward",
     "TextureDC": "f_DC", "TextureViscosity": "f_vis", "TextureBeta": "β_h", "TextureAlpha": "α_h",
     "TextureBetaViscosity": "β_vis", "TextureAlphaViscosity": "α_vis", "TexturePeriod": "Period λ",
