@@ -196,9 +196,23 @@ void HidDevice::BeginSession() {
   // old reports say nothing about now
   for (int i = 0; i < 4096 && hid_read_timeout(handle_, buffer_, sizeof buffer_, 0) > 0; ++i) {
   }
-  const std::string refusal = SetSession(true);
-  if (!refusal.empty()) {
-    throw DeviceError("the HID device " + info_.path + " did not open a session: " + refusal);
+  // the session request goes through the writer's handle, this thread waiting a bounded
+  // time: a device that does not answer held it 5 s per request in usbhid (Start froze)
+  hid::SessionReport session;
+  session.flags = hid::kSessionOpen;
+  session.version = version_;
+  session.watchdog_ms = static_cast<std::uint16_t>(watchdog_ms_);
+  auto refusal = std::make_shared<std::string>();  // the job owns what it uses
+  if (!writer_->Run([session, refusal](hid_device* h) { *refusal = ExchangeSession(h, session); },
+                    kBeginSessionWaitS)) {
+    char waited[32];
+    std::snprintf(waited, sizeof waited, "%.1f s", kBeginSessionWaitS);
+    throw DeviceError("the HID device " + info_.path +
+                      " did not answer the request to open a session within " + waited +
+                      ". Unplug it, plug it in again and open it again");
+  }
+  if (!refusal->empty()) {
+    throw DeviceError("the HID device " + info_.path + " did not open a session: " + *refusal);
   }
   session_open_ = true;
   have_report_ = false;

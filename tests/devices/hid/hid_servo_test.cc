@@ -388,6 +388,29 @@ class HidServoRealTime : public ::testing::Test {
   void TearDown() override { hidemu::Reset(); }
 };
 
+TEST_F(HidServoRealTime, ADeviceThatDoesNotAnswerTheSessionRequestIsRefusedWithinItsBound) {
+  // from 0.3 s every feature-report request blocks 5 s and times out: BeginSession (the
+  // Feel panel's Start) used to wait there on the calling thread, the GUI frozen 5 s
+  FirmwareConfig c = PressingDevice();
+  c.faults.push_back(FaultWindow{Fault::kSlowFeature, 0.3, 1e9, 5.0});
+  hidemu::AddDevice(c);
+  auto device = HidDevice::Open(c.path);  // before the window: it answers
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    device->BeginSession();
+    FAIL() << "a session opened on a device that did not answer";
+  } catch (const DeviceError& e) {
+    EXPECT_TRUE(Contains(e.what(), "did not answer the request to open a session within 1.0 s"))
+        << e.what();
+    EXPECT_TRUE(Contains(e.what(), "Unplug it, plug it in again")) << e.what();
+  }
+  const double waited =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(waited, HidDevice::kBeginSessionWaitS + 0.5);
+  EXPECT_GE(waited, HidDevice::kBeginSessionWaitS - 0.05);
+}
+
 TEST_F(HidServoRealTime, AWriteStuckInTheKernelNeitherFreezesTheLoopNorHoldsUpItsEnd) {
   // from 0.5 s every write blocks 5 s and times out (usbhid's USB_CTRL_SET_TIMEOUT): the
   // loop used to freeze 5 s per write with the force unchanged and no fault, and Stop()

@@ -303,6 +303,11 @@ double Firmware::WriteBlockS(double now_s, bool* fails) const {
   return 0.0;
 }
 
+double Firmware::FeatureBlockS(double now_s) const {
+  double param = 0.0;
+  return plugged_ && Active(Fault::kSlowFeature, now_s - plugged_at_s_, &param) ? param : 0.0;
+}
+
 bool Firmware::ReadInterrupted(double now_s) const {
   return plugged_ && Active(Fault::kInterruptRead, now_s - plugged_at_s_);
 }

@@ -55,6 +55,10 @@ enum class Fault {
   // [start, end): hid_read_timeout fails with errno EINTR ("Interrupted system call"), as
   // hidapi does when a signal interrupts its poll(); the device is fine
   kInterruptRead,
+  // [start, end): a host feature-report request (send or get) blocks for `param` s
+  // (emulator clock) and then fails with ETIMEDOUT: a control transfer the device never
+  // answers, which usbhid gives up on after 5 s
+  kSlowFeature,
 };
 
 struct FaultWindow {

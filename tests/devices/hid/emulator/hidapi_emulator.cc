@@ -398,6 +398,41 @@ HID_API_EXPORT hid_device* HID_API_CALL hid_open(unsigned short vendor_id,
   return hid_open_path(path.c_str());
 }
 
+// Blocked in the kernel until `until` (emulator clock), the lock free meanwhile; the
+// device afterwards, or null if the emulator was reset.
+static Firmware* BlockLocked(std::unique_lock<std::mutex>& lock, hid_device* dev, double until) {
+  const std::uint64_t resets = R().resets;
+  auto& r = R();
+  const int slot = r.blocked < r.kMaxBlocked ? r.blocked++ : r.kMaxBlocked - 1;
+  r.blocked_until[slot] = until;
+  while (NowLocked() < until && R().resets == resets) {
+    if (R().manual_clock) {
+      R().clock_changed.wait(lock);
+    } else {
+      R().clock_changed.wait_for(lock, std::chrono::duration<double>(until - NowLocked()));
+    }
+  }
+  for (int i = 0; i < r.blocked; ++i) {  // forget one entry of `until`
+    if (r.blocked_until[i] == until) {
+      r.blocked_until[i] = r.blocked_until[--r.blocked];
+      break;
+    }
+  }
+  return R().resets == resets ? DeviceOf(dev) : nullptr;
+}
+
+// A feature-report request the device does not answer (kSlowFeature): true, with the
+// error set, after blocking as usbhid would.
+static bool FeatureTimedOut(std::unique_lock<std::mutex>& lock, hid_device* dev, Firmware* d,
+                            double now) {
+  const double block_s = d->FeatureBlockS(now);
+  if (block_s <= 0.0) return false;
+  BlockLocked(lock, dev, now + block_s);
+  SetError(dev->error, L"Connection timed out");
+  errno = ETIMEDOUT;
+  return true;
+}
+
 int HID_API_EXPORT HID_API_CALL hid_write(hid_device* dev, const unsigned char* data,
                                           size_t length) {
   std::unique_lock<std::mutex> lock(R().mutex);
@@ -410,26 +445,7 @@ int HID_API_EXPORT HID_API_CALL hid_write(hid_device* dev, const unsigned char* 
   d->AdvanceTo(now);
   bool fails = false;
   if (const double block_s = d->WriteBlockS(now, &fails); block_s > 0.0) {
-    // blocked in the kernel until the transfer ends; the lock is free meanwhile
-    const double until = now + block_s;
-    const std::uint64_t resets = R().resets;
-    auto& r = R();
-    const int slot = r.blocked < r.kMaxBlocked ? r.blocked++ : r.kMaxBlocked - 1;
-    r.blocked_until[slot] = until;
-    while (NowLocked() < until && R().resets == resets) {
-      if (R().manual_clock) {
-        R().clock_changed.wait(lock);
-      } else {
-        R().clock_changed.wait_for(lock, std::chrono::duration<double>(until - NowLocked()));
-      }
-    }
-    for (int i = 0; i < r.blocked; ++i) {  // forget one entry of `until`
-      if (r.blocked_until[i] == until) {
-        r.blocked_until[i] = r.blocked_until[--r.blocked];
-        break;
-      }
-    }
-    d = R().resets == resets ? DeviceOf(dev) : nullptr;
+    d = BlockLocked(lock, dev, now + block_s);
     if (!d || fails) {  // timed out (usbhid: ETIMEDOUT), the report lost
       if (d) d->CountTimedOut();
       SetError(dev->error, L"Connection timed out");
@@ -478,7 +494,7 @@ int HID_API_EXPORT HID_API_CALL hid_set_nonblocking(hid_device* dev, int nonbloc
 
 int HID_API_EXPORT HID_API_CALL hid_send_feature_report(hid_device* dev, const unsigned char* data,
                                                         size_t length) {
-  std::lock_guard<std::mutex> lock(R().mutex);
+  std::unique_lock<std::mutex> lock(R().mutex);
   Firmware* d = DeviceOf(dev);
   if (!d || !d->plugged()) {
     SetError(dev->error,
@@ -486,6 +502,7 @@ int HID_API_EXPORT HID_API_CALL hid_send_feature_report(hid_device* dev, const u
     return -1;
   }
   d->AdvanceTo(NowLocked());
+  if (FeatureTimedOut(lock, dev, d, NowLocked())) return -1;
   const int n = d->SendFeature(data, length);
   if (n < 0) SetError(dev->error, L"ioctl (SFEATURE): Broken pipe");
   return n;
@@ -493,7 +510,7 @@ int HID_API_EXPORT HID_API_CALL hid_send_feature_report(hid_device* dev, const u
 
 int HID_API_EXPORT HID_API_CALL hid_get_feature_report(hid_device* dev, unsigned char* data,
                                                        size_t length) {
-  std::lock_guard<std::mutex> lock(R().mutex);
+  std::unique_lock<std::mutex> lock(R().mutex);
   Firmware* d = DeviceOf(dev);
   if (!d || !d->plugged()) {
     SetError(dev->error,
@@ -501,6 +518,7 @@ int HID_API_EXPORT HID_API_CALL hid_get_feature_report(hid_device* dev, unsigned
     return -1;
   }
   d->AdvanceTo(NowLocked());
+  if (FeatureTimedOut(lock, dev, d, NowLocked())) return -1;
   const int n = d->GetFeature(data, length);
   if (n < 0) SetError(dev->error, L"ioctl (GFEATURE): Broken pipe");
   return n;

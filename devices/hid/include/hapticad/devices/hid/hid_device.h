@@ -45,7 +45,9 @@
 // clock. ReadState()/WriteForce() are servo-tick safe: no allocation, no lock; their
 // only system calls are hidapi's reads (hidraw's poll and read). The statistics and
 // DescribeFault() may be read from any thread. BeginSession() and EndSession() wait at most
-// kEndSessionWaitS for the writer.
+// kEndSessionWaitS for the writer; BeginSession() sends its session request through the
+// writer and waits at most kBeginSessionWaitS for the answer. Open() still asks on the
+// calling thread.
 #pragma once
 
 #include <atomic>
@@ -99,6 +101,9 @@ class HidDevice final : public Device {
   static constexpr double kCommandTimeoutS = 0.25;
   // The longest EndSession() and BeginSession() wait for the writer thread.
   static constexpr double kEndSessionWaitS = 0.1;
+  // How long BeginSession() waits for the device to answer its session request (a
+  // feature-report exchange: milliseconds when the device answers).
+  static constexpr double kBeginSessionWaitS = 1.0;
 
   // Reads the device information at `path` without touching any session (for
   // listings). Throws DeviceError with a sentence for the user: cannot open
