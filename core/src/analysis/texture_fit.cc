@@ -456,8 +456,16 @@ TextureFit FitTexture(const std::vector<TextureRecording>& recordings,
         << options.speed_tolerance * 100 << " % of " << SpeedList(targets)
         << " mm/s in one direction over " << options.min_periods << " periods ("
         << Mm(options.min_periods * lambda) << " mm) of the grating";
-    if (seen_max > 0)
+    if (seen_max > 0) {
       why << "; its speeds range from " << seen_min * 1e3 << " to " << seen_max * 1e3 << " mm/s";
+      // a thousand times off: metres for millimetres, or milliseconds for seconds
+      if (seen_max * 100 < targets.front()) {
+        why << ", a thousand times slower than those asked: is position_mm in metres, or time_s "
+               "in milliseconds?";
+      } else if (seen_max > 100 * targets.back()) {
+        why << ", far faster than those asked: is position_mm in micrometres?";
+      }
+    }
     Fail(why.str());
   }
   fit.dc_n = FitLine(speed_units, dcs);

@@ -255,6 +255,24 @@ TEST(TextureFitTest, KeepsOnlySectionsWithinTheSpeedTolerance) {
   }
 }
 
+TEST(TextureFitTest, ARecordingInMetresOrMillisecondsIsSaidToBeSo) {
+  // positions logged in metres read as a thousand times too slow: the message gave the
+  // range (0 to 0.27 mm/s) and left the reader to guess why
+  const ViscousTextureParams truth;
+  TextureRecording r = MakeRecording(truth, {0.05, 0.12}, 20000);
+  for (double& x : r.position_m) x *= 1e-3;
+  TextureFitOptions options = Unfiltered();
+  options.speeds_mps = {0.05, 0.12};
+  try {
+    FitTexture({r}, options);
+    FAIL() << "fitted a recording a thousand times too slow";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("is position_mm in metres, or time_s in milliseconds?"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(TextureFitTest, ReportsSpeedsTheRecordingNeverHeld) {
   const ViscousTextureParams truth;
   TextureFitOptions options = Unfiltered();
