@@ -326,8 +326,6 @@ class SurfaceTaskPanel:
         # a surface may span faces of several parts: each part vibrates (or not) on its own
         self.vibration_part = QtWidgets.QComboBox()
         self.vibration_part.setObjectName("vibrationPart")
-        self.vibration_part.setToolTip("The part whose vibration is shown below: one of the parts this "
-                                       "surface's faces belong to")
         self.vibration_part.currentIndexChanged.connect(lambda _i: None if self._loading else self.load())
         form.addRow("Part", self.vibration_part)
         form.addRow(self.vibrates)
@@ -488,6 +486,11 @@ class SurfaceTaskPanel:
             combo.addItem("tag a face first", "")
         combo.setCurrentIndex(max(combo.findData(part.Name if part is not None else ""), 0))
         combo.setEnabled(combo.count() > 1)
+        # greyed: why, where the pointer asks
+        combo.setToolTip("The part whose vibration is shown below: one of the parts this surface's faces belong "
+                         "to" if combo.count() > 1 else
+                         f"This surface's faces are all on {part.Label}: the vibration below is {part.Label}'s"
+                         if part is not None else "Tag a face first: a vibration belongs to a part")
         combo.blockSignals(False)
         vib = self.vibration()
         self.vibrates.setEnabled(part is not None)

@@ -94,6 +94,12 @@ class TaskPanelTest(unittest.TestCase):
         self.assertEqual(HaptiCAD.surfaces_of(self.doc), [])
         self.assertEqual(HaptiCAD.vibrations_of(self.doc), [])
 
+    def test_the_vibrations_part_box_greyed_for_one_part_says_why(self):
+        self.open_new_surface()
+        part = h.widget(QtWidgets.QComboBox, "vibrationPart")
+        self.assertFalse(part.isEnabled())
+        self.assertEqual(part.toolTip(), "This surface's faces are all on Box: the vibration below is Box's")
+
     def test_a_surface_on_two_parts_sets_each_parts_vibration(self):
         lid = self.doc.addObject("Part::Box", "Lid")
         lid.Placement.Base = App.Vector(0, 0, 30)
