@@ -1,21 +1,27 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """PNG of a texture fit: the spectra with their power fits per speed (seed 001 Fig. 4)
-and the fitted values against speed with eq. 2's lines (Figs. 5 and 6)."""
-import matplotlib
+and the fitted values against speed with eq. 2's lines (Figs. 5 and 6).
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+Drawn on a bare matplotlib Figure with the Agg canvas, without pyplot: inside FreeCAD's
+GUI (the surface panel's "Plot the fit") pyplot's backend is not ours to switch."""
+import numpy as np
+from matplotlib import cm
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
 
-from . import _core  # noqa: E402
+from . import _core
 
 MM = 1e-3
 
 
 def plot_fit(path, report, title=""):
+    """Writes the fit's PNG to ``path``; returns the Figure drawn (for a caller that looks
+    at it; nothing else holds it)."""
     fit = report.fit
-    colours = plt.cm.viridis(np.linspace(0, 0.9, max(len(fit.speeds), 1)))
-    fig, axes = plt.subplots(2, 2, figsize=(10, 7.5), constrained_layout=True)
+    colours = cm.viridis(np.linspace(0, 0.9, max(len(fit.speeds), 1)))
+    fig = Figure(figsize=(10, 7.5), constrained_layout=True)
+    FigureCanvasAgg(fig)
+    axes = fig.subplots(2, 2)
     spectra, dc, beta, alpha = axes.ravel()
     for colour, s in zip(colours, fit.speeds):
         label = f"{s.speed_mps / MM:.0f} mm/s ({s.sections})"
@@ -59,4 +65,4 @@ def plot_fit(path, report, title=""):
     fig.suptitle(title or f"texture fit: grating {fit.period_m / MM:g} mm, {len(fit.sections)} sections, "
                  f"{len(report.recordings)} recording(s)", fontsize=10)
     fig.savefig(path, dpi=110)
-    plt.close(fig)
+    return fig

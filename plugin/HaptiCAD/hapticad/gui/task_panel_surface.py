@@ -226,6 +226,15 @@ class SurfaceTaskPanel:
                           "to them (seed 001 §III)")
         button.clicked.connect(self.choose_recordings)
         form.addRow(button)
+        # the spectra and the lines through the speeds, as `hapticad fit-texture --plot` draws them
+        self.fit_plot = QtWidgets.QPushButton("Plot the fit…")
+        self.fit_plot.setObjectName("fitPlot")
+        self.fit_plot.setToolTip("Save a picture of the last fit: each speed's spectrum with its harmonics and "
+                                 "background, and f_DC, beta_h, alpha_h against speed (seed 001 Fig. 6)")
+        self.fit_plot.setEnabled(False)
+        self.fit_plot.clicked.connect(self.choose_plot)
+        self.fit_report = None
+        form.addRow(self.fit_plot)
         self.fit_info = QtWidgets.QLabel()
         self.fit_info.setObjectName("fitInfo")
         self.fit_info.setWordWrap(True)
@@ -541,6 +550,26 @@ class SurfaceTaskPanel:
         if paths:
             self.fit_recordings(paths)
 
+    def choose_plot(self):
+        path, _ = QtWidgets.QFileDialog.getSaveFileName(None, "Save the fit's plot", "texture_fit.png",
+                                                        "PNG pictures (*.png)")
+        if path:
+            self.save_plot(path)
+
+    def save_plot(self, path):
+        """Draws the last fit into ``path`` (PNG) and says where, or why not."""
+        from ..texture_fit_plot import plot_fit
+
+        try:
+            with busy_cursor():
+                plot_fit(path, self.fit_report)
+        except (OSError, ValueError) as exc:
+            said = html.escape(str(exc), quote=False)
+            self.fit_info.setText(self.fit_info.text() + f"<br><span style='color:#b00000'>Not plotted: {said}</span>")
+            return False
+        self.fit_info.setText(self.fit_info.text() + f"<br>Plot saved to {html.escape(path, quote=False)}")
+        return True
+
     def fit_recordings(self, paths):
         """Fits the texture to the CSV files in ``paths`` and sets it; on an error nothing changes
         and the panel says why."""
@@ -559,6 +588,8 @@ class SurfaceTaskPanel:
             self.fit_info.setText(f"<span style='color:#b00000'>Not fitted, nothing changed: {said}</span>")
             return False
         self.load()
+        self.fit_report = report
+        self.fit_plot.setEnabled(True)
         fit = report.fit
         done = ", ".join(f"{s.speed_mps * 1e3:.0f}" for s in fit.speeds)
         self.fit_info.setText(

@@ -7,6 +7,7 @@ import os
 import sys
 import tempfile
 import unittest
+from unittest import mock
 
 import FreeCAD as App
 import FreeCADGui as Gui
@@ -179,6 +180,7 @@ class TaskPanelTest(unittest.TestCase):
         QtWidgets.QFileDialog.getOpenFileNames = staticmethod(lambda *a, **k: (chosen, "CSV recordings (*.csv)"))
         try:
             info = h.widget(QtWidgets.QLabel, "fitInfo")
+            self.assertFalse(h.widget(QtWidgets.QPushButton, "fitPlot").isEnabled())  # nothing fitted yet
             h.widget(QtWidgets.QLineEdit, "fitSpeeds").setText("50, fast")
             chosen[:] = [rig]
             h.widget(QtWidgets.QPushButton, "fitTexture").click()
@@ -204,6 +206,15 @@ class TaskPanelTest(unittest.TestCase):
         self.assertEqual(cursors, [QtCore.Qt.WaitCursor])
         self.assertIsNone(QtWidgets.QApplication.overrideCursor())
         self.assertIn("Fitted to 4 sections at 50, 120 mm/s", info.text())
+        # the fit's plot, as the CLI's --plot draws it, from the panel
+        plot = h.widget(QtWidgets.QPushButton, "fitPlot")
+        self.assertTrue(plot.isEnabled())
+        picture = os.path.join(folder, "fit.png")
+        with mock.patch.object(QtWidgets.QFileDialog, "getSaveFileName", return_value=(picture, "PNG pictures (*.png)")):
+            plot.click()
+        with open(picture, "rb") as handle:
+            self.assertEqual(handle.read(8), b"\x89PNG\r\n\x1a\n")
+        self.assertIn(f"Plot saved to {picture}", info.text())
         self.assertEqual(surface.Texture, "Custom")
         self.assertEqual(h.widget(QtWidgets.QComboBox, "Texture").currentText(), "Custom")
         # the recorded newtons, whatever level 1 became
