@@ -52,9 +52,13 @@ def plot_fit(path, report, title=""):
             (alpha, [s.harmonic.alpha for s in fit.speeds], fit.alpha_h, "harmonic decay: alpha_h + v alpha_vis",
              "alpha_h")):
         ax.plot(v, values, "o", color="black", label="per speed")
-        ax.plot(line_v, line.intercept + line.slope * line_v / unit, color="tab:red",
-                label=f"{line.intercept:.4g} + {line.slope:.4g} v/(400 mm/s)")
-        ax.set_ylim(bottom=0)  # a flat line reads flat, not as noise blown up
+        drawn = line.intercept + line.slope * line_v / unit
+        ax.plot(line_v, drawn, color="tab:red",
+                label=f"{line.intercept:.4g} {'-' if line.slope < 0 else '+'} {abs(line.slope):.3g} v/(400 mm/s)")
+        # from 0, so a flat line reads flat, not as noise blown up; a fifth above the
+        # highest value, so neither the points nor the legend sit on the edge
+        top = max(max(values), float(drawn.max()))
+        ax.set_ylim(0, top * 1.25 if top > 0 else 1.0)
         ax.set_title(name, fontsize=9)
         ax.set_xlabel("scanning speed (mm/s)")
         ax.set_ylabel(ylabel)

@@ -104,12 +104,15 @@ class TextureFitPlotTest(unittest.TestCase):
             (dots,) = [x for x in ax.lines if x.get_label() == "per speed"]
             np.testing.assert_allclose(dots.get_xdata(), speeds, err_msg=title)
             np.testing.assert_allclose(dots.get_ydata(), values, err_msg=title)
-            (drawn,) = [x for x in ax.lines if x.get_label().startswith(f"{line.intercept:.4g} + ")]
+            sign = "-" if line.slope < 0 else "+"  # "0.25 - 4.4e-05 v", not "0.25 + -4.366e-05 v"
+            (drawn,) = [x for x in ax.lines
+                        if x.get_label() == f"{line.intercept:.4g} {sign} {abs(line.slope):.3g} v/(400 mm/s)"]
             x, y = drawn.get_data()
             self.assertEqual(x[0], 0.0)
             self.assertGreater(x[-1], speeds.max())  # past the fastest speed
             np.testing.assert_allclose(y, line.intercept + line.slope * x / UNIT_MM_S, err_msg=title)
             self.assertEqual(ax.get_ylim()[0], 0.0, title)
+            self.assertGreater(ax.get_ylim()[1], 1.2 * max(values), title)  # points and legend off the edge
         # the rig's grating: f_DC 0.4 + f_vis 0.2 of 2 N, so the DC line reads 0.8 N + 0.4 N per 400 mm/s
         self.assertAlmostEqual(fit.dc_n.intercept, 0.8, delta=0.02)
         self.assertAlmostEqual(fit.dc_n.slope, 0.4, delta=0.02)
