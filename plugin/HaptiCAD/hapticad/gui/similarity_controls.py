@@ -12,8 +12,14 @@ answer back. When the last trial is answered the run is kept in the document as 
 undo step; a run stopped before is not kept (a half run would skew the cohort). While a
 run holds answers its document cannot be closed (``holds_answers``; the Feel panel sets
 it), so no way of closing it loses them unasked.
+
+A change to the study during a run (a stimulus, the surface's friction, a reference)
+pauses it, its answers held: undoing the change lets it go on, Stop run ends it. An Undo
+that takes back a run kept earlier is said at once, and the next run kept asks whether
+to keep the one taken back too (keeping clears Redo, which would lose it for good).
 """
 import html
+import json
 
 import FreeCAD as App
 from PySide2 import QtCore, QtWidgets
@@ -42,6 +48,8 @@ class SimilarityControls(QtWidgets.QWidget):
         self.session_running = session_running or (lambda: True)
         self.run = None
         self.slot = None  # what is on the face now: 1, 2, "A", "B" or None
+        self.paused = ""  # why the run is paused: the study changed under it ("" when not)
+        self.kept_here = []  # the runs these controls kept: an Undo may take them back
         layout = QtWidgets.QVBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
         row = QtWidgets.QHBoxLayout()
@@ -113,16 +121,55 @@ class SimilarityControls(QtWidgets.QWidget):
 
     def external_change(self):
         """The study, its surface or a reference changed by any way (an undo, the
-        property editor): a run whose textures are no longer the study's stops."""
-        if self.run is not None and (not is_alive(self.study) or ss.validate(self.study)
-                                     or self.run.stimuli != ss.stimuli(self.study)
-                                     or self.run.context != ss.felt_context(self.study)):
+        property editor): a run whose textures are no longer the study's pauses, its
+        answers held, and goes on when they are again; a run kept here and taken back by
+        an Undo is said."""
+        if self.run is not None and not is_alive(self.study):
             self.run = None
             self.slot = None
-            self.release()
-            self.presented.emit()
-            self.show_message("The study changed during the run: the run was stopped, nothing kept.", error=True)
+            self.show_message("The study was deleted during the run: nothing kept.", error=True)
+        elif self.run is not None:
+            why = self._changed_since_start()
+            if why and not self.paused:
+                self.paused = why
+                self.slot = None
+                self.release()
+                self.presented.emit()
+                self.show_message(f"The study changed during the run ({why}): the run is paused, its "
+                                  f"{len(self.run.answers)} answers held. Undo the change to go on, or Stop run.",
+                                  error=True)
+            elif not why and self.paused:
+                self.paused = ""
+                self.show_message("The study is as the run began: the run goes on.")
+        taken = self.taken_back()
+        if taken and taken != getattr(self, "_taken_said", None):
+            self.show_message(f"Undo took back {html.escape(self._names(taken), quote=False)} kept run: Redo brings it back. "
+                              "The next run kept asks whether to keep it too.", error=True)
+        self._taken_said = taken
         self.load()
+
+    def _changed_since_start(self):
+        """What of the study differs from when the run began, or ""."""
+        found = ss.validate(self.study)
+        if found:
+            return "; ".join(found)
+        if self.run.stimuli != ss.stimuli(self.study):
+            return "its stimuli"
+        if self.run.context != ss.felt_context(self.study):
+            return "the surface or a reference"
+        return ""
+
+    def taken_back(self):
+        """The runs kept here that an Undo took back (Redo would bring them back)."""
+        if not is_alive(self.study) or "Keep a similarity run" not in self.study.Document.RedoNames:
+            return []
+        stored = ss.runs(self.study)
+        return [record for record in self.kept_here if record not in stored]
+
+    @staticmethod
+    def _names(records):
+        """ "Ada's" or "Ada's, Bea's" (plain text)."""
+        return ", ".join(f"{r['name']}'s" for r in records)
 
     def session_stopped(self):
         """The Feel session stopped: nothing is felt, so the trial starts over."""
@@ -183,7 +230,7 @@ class SimilarityControls(QtWidgets.QWidget):
             self.shown.emit()
             return
         running = self.run is not None
-        trial = self.run.current if running else None
+        trial = self.run.current if running and not self.paused else None
         self.name.setEnabled(not running)
         self.start_button.setEnabled(not running)
         self.stop_button.setEnabled(running)
@@ -196,7 +243,7 @@ class SimilarityControls(QtWidgets.QWidget):
             button.setChecked(self.slot == slot)
         self.feel_buttons[1].setText("Texture" if kind == "class" else "Texture 1")
         # an answer once both textures of a pair (or the texture of a class trial) were felt
-        ready = running and self.run.ready
+        ready = running and not self.paused and self.run.ready
         for button in self.rating_buttons:
             button.setVisible(kind != "class")
             button.setEnabled(ready and kind != "class")
@@ -204,7 +251,7 @@ class SimilarityControls(QtWidgets.QWidget):
         for button in self.class_buttons.values():
             button.setVisible(kind == "class")
             button.setEnabled(ready and kind == "class")
-        self.back_button.setEnabled(running and bool(self.run.answers))
+        self.back_button.setEnabled(running and not self.paused and bool(self.run.answers))
         if not running:
             found = ss.validate(self.study)
             self.trial_label.setText(
@@ -213,6 +260,11 @@ class SimilarityControls(QtWidgets.QWidget):
             self.start_button.setEnabled(not found)
         else:
             title, number, count = self.run.progress()
+            if self.paused:
+                self.trial_label.setText(f"<b>Paused at {KIND_TITLES[title]} {number} of {count}</b>: the study "
+                                         "changed; undo the change to go on")
+                self.shown.emit()
+                return
             self.trial_label.setText(
                 f"<b>{KIND_TITLES[title]} {number} of {count}</b>" + (
                     " (feel the texture, and references A and B as often as you need, then class it)"
@@ -251,6 +303,7 @@ class SimilarityControls(QtWidgets.QWidget):
             self.show_message(f"Not started: {exc}", error=True)
             return False
         self.slot = None
+        self.paused = ""
         name = self.run.participant
         before = sum(1 for record in ss.runs(self.study) if record.get("name") == name)
         # a second sitting, or two people under one name: kept either way, but said
@@ -262,6 +315,7 @@ class SimilarityControls(QtWidgets.QWidget):
     def stop(self):
         self.run = None
         self.slot = None
+        self.paused = ""
         ss.stop_presenting(self.study)
         self.presented.emit()
         self.show_message("Run stopped; nothing kept.")
@@ -308,16 +362,28 @@ class SimilarityControls(QtWidgets.QWidget):
             self.load()
 
     def keep(self):
-        """Keeps the finished run in the document, one undo step."""
+        """Keeps the finished run in the document, one undo step; with it, if asked, the
+        runs kept here that an Undo took back (keeping clears Redo: they would be lost)."""
         doc = self.study.Document
+        taken = self.taken_back()
+        if taken and QtWidgets.QMessageBox.question(
+                self, "Keep a similarity run",
+                f"Undo took back {self._names(taken)} kept run, which Redo would bring "
+                "back. Keeping this run clears Redo.\n\nKeep the run taken back too?",
+                QtWidgets.QMessageBox.Yes | QtWidgets.QMessageBox.No,
+                QtWidgets.QMessageBox.Yes) != QtWidgets.QMessageBox.Yes:
+            taken = []
         doc.openTransaction("Keep a similarity run")
         try:
+            for earlier in taken:
+                ss.record_run(self.study, earlier)
             record = ss.record_run(self.study, self.run)
         except ValueError as exc:
             doc.abortTransaction()
             self.show_message(f"Not kept: {exc}", error=True)
             return None
         doc.commitTransaction()
+        self.kept_here.append(json.loads(json.dumps(record)))  # as stored: compared with the stored runs
         self.run = None
         self.name.clear()
         self.show_message(f"Kept {record['name']}'s run: {len(record['ratings'])} pairs"

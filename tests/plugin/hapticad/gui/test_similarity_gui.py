@@ -214,6 +214,74 @@ class SimilarityGuiTest(unittest.TestCase):
         self.assertTrue(self.doc.isClosable())
         self.assertEqual(study.Participants, 0)
 
+    def answer_in_code(self, controls, count=None):
+        """Answers the run's trials through the controls (4, or A), each texture counted
+        as felt without strokes: for the keeping and pausing around the answers."""
+        answered = 0
+        while controls.run is not None and controls.run.current is not None and answered != count:
+            controls.run.present_each()
+            controls.answer("A" if controls.run.current.kind == "class" else 4)
+            answered += 1
+
+    def test_an_undo_that_takes_back_a_kept_run_is_said_and_the_next_keep_asks(self):
+        # one Undo during Bea's run took Ada's kept run back without a word, and keeping
+        # Bea's run cleared Redo: Ada's 38 answers were gone for good
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=2)
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        controls = task_panel_feel.active_panel().similarity_controls[0]
+        message = h.widget(QtWidgets.QLabel, "similarityMessage")
+        for name in ("Ada", "Bea"):
+            h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText(name)
+            h.widget(QtWidgets.QPushButton, "similarityStart").click()
+            self.answer_in_code(controls, None if name == "Ada" else 5)
+        self.assertEqual(study.Participants, 1)
+        Gui.runCommand("Std_Undo")
+        h.process_events()
+        self.assertEqual(study.Participants, 0)
+        self.assertIn("Undo took back Ada's kept run: Redo brings it back", message.text())
+        self.assertEqual(len(controls.run.answers), 5)  # Bea's run goes on
+        with mock.patch.object(QtWidgets.QMessageBox, "question", return_value=QtWidgets.QMessageBox.Yes) as asked:
+            self.answer_in_code(controls)
+        self.assertIn("Undo took back Ada's kept run", asked.call_args[0][2])
+        self.assertEqual([r["name"] for r in ss.runs(study)], ["Ada", "Bea"])
+        # taken back on purpose: answered No, only the new run is kept
+        Gui.runCommand("Std_Undo")
+        h.process_events()
+        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Cy")
+        h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        with mock.patch.object(QtWidgets.QMessageBox, "question", return_value=QtWidgets.QMessageBox.No):
+            self.answer_in_code(controls)
+        self.assertEqual([r["name"] for r in ss.runs(study)], ["Cy"])
+
+    def test_an_edit_during_a_run_pauses_it_and_undoing_the_edit_goes_on(self):
+        # a friction edit at trial 60 threw the run's answers away, and undoing it did not
+        # bring them back
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=2)
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        controls = task_panel_feel.active_panel().similarity_controls[0]
+        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Dee")
+        h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        self.answer_in_code(controls, 3)
+        self.doc.openTransaction("friction")
+        self.plate.StaticFriction = 0.61
+        self.doc.commitTransaction()
+        h.process_events()
+        self.assertEqual(len(controls.run.answers), 3)  # held, not thrown away
+        self.assertIn("the run is paused, its 3 answers held", h.widget(QtWidgets.QLabel, "similarityMessage").text())
+        self.assertIn("Paused at Pair", h.widget(QtWidgets.QLabel, "similarityTrial").text())
+        controls.run.present_each()
+        h.process_events()
+        self.assertFalse(h.widget(QtWidgets.QPushButton, "similarityRate4").isEnabled())  # no answer while paused
+        self.assertFalse(h.widget(QtWidgets.QPushButton, "similarityFeel1").isEnabled())
+        self.doc.undo()
+        h.process_events()
+        self.assertEqual(controls.paused, "")
+        self.assertIn("the run goes on", h.widget(QtWidgets.QLabel, "similarityMessage").text())
+        self.answer_in_code(controls)
+        self.assertEqual(study.Participants, 1)
+
     def hand_on_plate(self):
         """The simulated probe's hand rests on the plate, pressed in by two wheel steps."""
         h.mouse("move", h.screen_pos(np.array([20.0, 20.0, 10.0])))
@@ -334,7 +402,8 @@ class SimilarityGuiTest(unittest.TestCase):
         h.widget(QtWidgets.QPushButton, "similarityStop").click()
         self.assertIsNone(ss.presented_texture(self.plate))
         self.assertEqual(study.Participants, 6)
-        # the study edited during a run (the property editor, an undo): the run stops, nothing kept
+        # the study edited during a run (the property editor, an undo): the run pauses, its
+        # answers held and nothing on the face; undoing the edit lets it go on
         h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Cy")
         h.widget(QtWidgets.QPushButton, "similarityStart").click()
         h.widget(QtWidgets.QPushButton, "similarityFeel1").click()
@@ -343,12 +412,17 @@ class SimilarityGuiTest(unittest.TestCase):
         ss.set_stimuli(study, ss.stimuli(study)[:5])
         self.doc.commitTransaction()
         h.process_events()
-        self.assertIsNone(controls.run)
+        self.assertIsNotNone(controls.run)
         self.assertIsNone(ss.presented_texture(self.plate))
-        self.assertIn("The study changed during the run", h.widget(QtWidgets.QLabel, "similarityMessage").text())
+        self.assertIn("The study changed during the run (its stimuli): the run is paused",
+                      h.widget(QtWidgets.QLabel, "similarityMessage").text())
+        self.assertFalse(h.widget(QtWidgets.QPushButton, "similarityFeel1").isEnabled())
         self.doc.undo()
         h.process_events()
         self.assertEqual(len(ss.stimuli(study)), 9)
+        self.assertEqual(controls.paused, "")
+        self.assertTrue(h.widget(QtWidgets.QPushButton, "similarityFeel1").isEnabled())
+        h.widget(QtWidgets.QPushButton, "similarityStop").click()
         # the session stopped after both textures were felt: the trial starts over, and the
         # run itself refuses an answer (not only the disabled buttons)
         h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Di")
