@@ -2,7 +2,7 @@
 """A similarity study's answers as CSV, one row per answer, for statistics elsewhere.
 
 Every kept run is written, pooled or not (the ``pooled`` column says which the analysis
-uses). A run kept since the trial order is recorded gives every answer in the order it
+uses: a warm-up never, it only sets the scale). A run kept since the trial order is recorded gives every answer in the order it
 was given, warm-ups included, each pair in the order its textures were offered
 (``position`` 1, 2, ...); an older run gives its pairs and classings without an order
 (``position`` empty, the pair's lower stimulus first). Each row names its stimuli and
@@ -32,8 +32,10 @@ def answer_rows(study):
         for position, kind, first, second, answer in answers:
             row = {"participant": spreadsheet_safe(str(record["name"])), "recorded": record.get("recorded", ""),
                    "seed": "" if record.get("seed") is None else record["seed"], "steps": record["steps"],
-                   # a classing pools only against the same references (classings_pooled)
-                   "pooled": "yes" if (classings_pooled if kind == "class" else comparable)(record, study) else "no",
+                   # a classing pools only against the same references (classings_pooled); a
+                   # warm-up is never analysed
+                   "pooled": "yes" if kind != "warm-up" and (classings_pooled if kind == "class" else comparable)(
+                       record, study) else "no",
                    "position": "" if position is None else position, "kind": kind,
                    "first": spreadsheet_safe(items[first]["name"]),
                    "second": spreadsheet_safe(items[second]["name"]) if second >= 0 else "",
