@@ -389,6 +389,30 @@ class Trial:
     second: int = -1  # stimulus index (pairs), -1 for a class trial
 
 
+def warm_up_pairs(rng, n, count):
+    """``count`` warm-up pairs of n stimuli (seed 001 §IV: they "provide context" for the
+    ratings), in random order: first pairs that together hold every stimulus (a shuffled
+    order paired off), then the other pairs; a pair twice only when count exceeds them all.
+    Drawn with repeats, 435 of 500 runs repeated a pair and 200 left a stimulus unfelt."""
+    pairs = list(itertools.combinations(range(n), 2))
+    if not pairs or count <= 0:
+        return []
+    order = list(range(n))
+    rng.shuffle(order)
+    covering = [tuple(sorted(order[k:k + 2])) for k in range(0, n - 1, 2)]
+    if n % 2:
+        covering.append(tuple(sorted((order[-1], rng.choice(order[:-1])))))
+    rest = [p for p in pairs if p not in covering]
+    rng.shuffle(rest)
+    chosen = (covering + rest)[:count]
+    while len(chosen) < count:  # more warm-ups than pairs
+        again = pairs[:]
+        rng.shuffle(again)
+        chosen += again[:count - len(chosen)]
+    rng.shuffle(chosen)
+    return chosen
+
+
 class Run:
     """One participant's run through the protocol, in the order a seeded shuffle gives.
     ``present`` holds a texture of the current trial out on the face (present only while
@@ -416,7 +440,7 @@ class Run:
         rng = random.Random(self.seed)
         n = len(self.stimuli)
         pairs = list(itertools.combinations(range(n), 2))
-        warm = [rng.choice(pairs) for _ in range(int(study.WarmUps))]
+        warm = warm_up_pairs(rng, n, int(study.WarmUps))
         kept = pairs[:]
         rng.shuffle(kept)
         self.trials = [Trial("warm-up", *(p if rng.random() < 0.5 else p[::-1])) for p in warm]

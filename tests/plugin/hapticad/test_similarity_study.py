@@ -249,30 +249,59 @@ class StudyTest(unittest.TestCase):
         self.assertEqual(result["likeness"][names.index("f_DC 0.325 f_vis -0.2")], 1.0)
         self.assertEqual(result["likeness"][names.index("f_DC 0.675 f_vis +0.2")], 0.0)
 
+    def test_warm_ups_hold_every_stimulus_and_no_pair_twice(self):
+        # drawn with repeats, 435 of 500 runs repeated a warm-up pair and 200 left a
+        # stimulus unfelt before the rated pairs: the paper's warm-ups give context
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate)  # nine stimuli, twelve warm-ups
+        for seed in range(500):
+            warm = [tuple(sorted((t.first, t.second))) for t in ss.Run(study, "P", seed=seed).trials
+                    if t.kind == "warm-up"]
+            self.assertEqual(len(warm), 12)
+            self.assertEqual(len(set(warm)), 12, seed)
+            self.assertEqual({i for pair in warm for i in pair}, set(range(9)), seed)
+        firsts = [ss.Run(study, "P", seed=seed).trials[0] for seed in range(200)]
+        self.assertGreater(len({(t.first, t.second) for t in firsts}), 30)  # still random, both orders
+        # more warm-ups than pairs: every pair, then every pair again, and so on
+        seven = ss.warm_up_pairs(random.Random(1), 3, 7)
+        self.assertEqual(sorted({p: seven.count(p) for p in seven}.values()), [2, 2, 3])
+
     def test_ordinal_scaling_keeps_what_a_scale_used_unevenly_hides_from_the_metric_one(self):
-        study = HaptiCAD.make_similarity_study(self.doc, self.plate)
-        self.assertEqual(study.Scaling, "Metric")  # the default, as before this choice
         # ten participants who call anything past half the largest difference "nothing
-        # alike": the metric space reads those ties as distance and loses viscosity
+        # alike": the metric space reads those ties as distance and loses viscosity. Over
+        # six cohorts (one cohort alone is luck: its ordinal f_vis correlation ranged
+        # 0.22-0.79 between cohorts, 0.24-0.76 before the warm-ups covered every stimulus)
         saturating = lambda x: min(1.0, 2.0 * x)  # noqa: E731
+        metric_vis, ordinal_dc, ordinal_vis, weighs = [], [], [], []
+        for cohort in range(6):
+            study = HaptiCAD.make_similarity_study(self.doc, self.plate)
+            self.assertEqual(study.Scaling, "Metric")  # the default, as before this choice
+            for p in range(10):
+                k = 10 * cohort + p
+                ss.record_run(study, finish(ss.Run(study, f"P{p}", seed=k), weights=(1.0, 0.5), seed=100 + k,
+                                            warp=saturating))
+            metric = ss.analyse(study)
+            self.assertEqual(metric["scaling"], "metric")
+            self.assertGreater(metric["stress"], 0.3)
+            metric_vis.append(metric["vectors"]["f_vis"]["correlation"])
+            study.Scaling = "Ordinal"
+            ordinal = ss.analyse(study)
+            self.assertEqual((ordinal["scaling"], ordinal["participants"]), ("ordinal", 10))
+            self.assertGreater(ordinal["iterations"], 1)
+            self.assertLess(ordinal["stress"], 0.2)
+            dc, vis = ordinal["vectors"]["f_DC"], ordinal["vectors"]["f_vis"]
+            ordinal_dc.append(dc["correlation"])
+            ordinal_vis.append(vis["correlation"])
+            weighs.append(dc["length"] > vis["length"])  # friction weighs more (2x, blurred by the ties)
+            self.doc.removeObject(study.Name)
+        self.assertLess(max(metric_vis), 0.3)
+        self.assertGreater(np.mean(ordinal_dc), 0.9)
+        self.assertGreater(np.mean(ordinal_vis), np.mean(metric_vis) + 0.3)  # what the metric space lost
+        self.assertTrue(all(weighs), weighs)
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, Scaling="Ordinal")
         for p in range(10):
             ss.record_run(study, finish(ss.Run(study, f"P{p}", seed=p), weights=(1.0, 0.5), seed=100 + p,
                                         warp=saturating))
-        metric = ss.analyse(study)
-        self.assertEqual(metric["scaling"], "metric")
-        self.assertLess(metric["vectors"]["f_vis"]["correlation"], 0.3)
-        self.assertGreater(metric["stress"], 0.3)
-        study.Scaling = "Ordinal"
-        ordinal = ss.analyse(study)
-        self.assertEqual((ordinal["scaling"], ordinal["participants"]), ("ordinal", 10))
-        self.assertGreater(ordinal["iterations"], 1)
-        dc, vis = ordinal["vectors"]["f_DC"], ordinal["vectors"]["f_vis"]
-        self.assertGreater(dc["correlation"], 0.9)
-        self.assertGreater(vis["correlation"], 0.6)
-        self.assertGreater(dc["length"] / vis["length"], 1.0)  # friction still weighs more (2x, blurred by the ties)
-        self.assertLess(dc["length"] / vis["length"], 3.0)
-        self.assertLess(ordinal["stress"], 0.2)
-        text = ss.describe(study, ordinal)
+        text = ss.describe(study, ss.analyse(study))
         self.assertIn("ordinal scaling, Kruskal's stress-1", text)
         # too few stimuli for their order alone to hold three dimensions: said
         study.Dimensions = 3
