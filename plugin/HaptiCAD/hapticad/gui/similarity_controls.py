@@ -305,10 +305,16 @@ class SimilarityControls(QtWidgets.QWidget):
         self.slot = None
         self.paused = ""
         name = self.run.participant
-        before = sum(1 for record in ss.runs(self.study) if record.get("name") == name)
+        # "ada" after "Ada" is most likely the same person: said as the same name
+        spelled = [str(r.get("name", "")) for r in ss.runs(self.study)
+                   if str(r.get("name", "")).casefold() == name.casefold()]
+        before = len(spelled)
+        other = next((n for n in spelled if n != name), None)
         # a second sitting, or two people under one name: kept either way, but said
         self.show_message(f"{html.escape(name)} already has {before} kept run{'s' if before != 1 else ''}: this one is "
-                          "kept beside it, under the same name" if before else "")
+                          "kept beside it, under the same name" + (
+                              f" (kept as {html.escape(other)} before: write it one way)" if other else "")
+                          if before else "")
         self.load()
         return True
 

@@ -393,6 +393,11 @@ class SimilarityGuiTest(unittest.TestCase):
         self.assertIn("Ada already has 1 kept run: this one is kept beside it",
                       h.widget(QtWidgets.QLabel, "similarityMessage").text())
         h.widget(QtWidgets.QPushButton, "similarityStop").click()
+        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("ada ")  # the same, typed otherwise
+        h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        self.assertIn("ada already has 1 kept run: this one is kept beside it, under the same name (kept as Ada before",
+                      h.widget(QtWidgets.QLabel, "similarityMessage").text())
+        h.widget(QtWidgets.QPushButton, "similarityStop").click()
         # a run stopped half way keeps nothing
         h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Bea")
         h.widget(QtWidgets.QPushButton, "similarityStart").click()
