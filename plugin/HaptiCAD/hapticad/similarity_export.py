@@ -13,7 +13,7 @@ import csv
 from .cohort import spreadsheet_safe
 from .similarity_study import SYMBOLS, TEXTURE_VALUES, classings_pooled, comparable, runs
 
-COLUMNS = ("participant", "recorded", "seed", "steps", "pooled", "position", "kind", "first", "second",
+COLUMNS = ("participant", "started", "recorded", "device", "servo_rate_hz", "seed", "steps", "pooled", "position", "kind", "first", "second",
            "rating", "class", *(f"first_{SYMBOLS[k]}" for k in TEXTURE_VALUES),
            *(f"second_{SYMBOLS[k]}" for k in TEXTURE_VALUES))
 
@@ -31,6 +31,8 @@ def answer_rows(study):
                        + [(None, "class", i, -1, choice) for i, choice in record["choices"]])
         for position, kind, first, second, answer in answers:
             row = {"participant": spreadsheet_safe(str(record["name"])), "recorded": record.get("recorded", ""),
+                   "started": record.get("started", ""), "device": spreadsheet_safe(str(record.get("device", ""))),
+                   "servo_rate_hz": record.get("servo_rate_hz", ""),
                    "seed": "" if record.get("seed") is None else record["seed"], "steps": record["steps"],
                    # a classing pools only against the same references (classings_pooled); a
                    # warm-up is never analysed

@@ -433,6 +433,8 @@ class Run:
         self.study = study
         self.participant = str(participant).strip()
         self.seed = random.SystemRandom().randrange(2**31) if seed is None else int(seed)
+        self.started = datetime.now().isoformat(timespec="seconds")
+        self.felt_with = {}  # what rendered it: {"device": name, "servo_rate_hz": rate}, kept with it
         self.stimuli = stimuli(study)
         self.steps = int(study.RatingSteps)
         self.has_references = len(references(study)) == 2
@@ -583,8 +585,8 @@ class Run:
         # every answer in the order given, warm-ups included, each pair in the order felt:
         # for order effects (the ratings above are what the analysis reads)
         sequence = [[t.kind, t.first, t.second, a] for t, a in zip(self.trials, self.answers)]
-        return {"name": self.participant, "recorded": datetime.now().isoformat(timespec="seconds"),
-                "seed": self.seed, "steps": self.steps, "stimuli": self.stimuli, "ratings": ratings,
+        return {"name": self.participant, "started": self.started,
+                "recorded": datetime.now().isoformat(timespec="seconds"), **self.felt_with, "seed": self.seed, "steps": self.steps, "stimuli": self.stimuli, "ratings": ratings,
                 "choices": choices, "trials": sequence, "context": self.context}
 
 

@@ -66,6 +66,7 @@ class ExportTest(unittest.TestCase):
             self.assertEqual(float(row["first_f_vis"]), values[row["first"]]["TextureViscosity"])
             self.assertEqual(row["second_f_DC"] == "", row["kind"] == "class")
         self.assertEqual((rows[0]["participant"], rows[0]["steps"], rows[0]["seed"]), ("Ada", "7", "3"))
+        self.assertTrue(rows[0]["started"] and rows[0]["started"] <= rows[0]["recorded"])  # when it began
         # a warm-up is never analysed: "yes" had a statistician filtering on it mix them in
         self.assertEqual({(r["kind"], r["pooled"]) for r in rows},
                          {("warm-up", "no"), ("pair", "yes"), ("class", "yes")})

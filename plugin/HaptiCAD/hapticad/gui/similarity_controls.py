@@ -42,10 +42,13 @@ class SimilarityControls(QtWidgets.QWidget):
     changed = QtCore.Signal()
     shown = QtCore.Signal()  # after every change of the run's state
 
-    def __init__(self, study, session_running=None, parent=None):
+    def __init__(self, study, session_running=None, parent=None, session_info=None):
         super().__init__(parent)
         self.study = study
         self.session_running = session_running or (lambda: True)
+        # what renders the run ({"device": name, "servo_rate_hz": rate}), kept with it: a
+        # practice run on the mouse-driven probe is told from one on a device
+        self.session_info = session_info or dict
         self.run = None
         self.slot = None  # what is on the face now: 1, 2, "A", "B" or None
         self.paused = ""  # why the run is paused: the study changed under it ("" when not)
@@ -379,6 +382,7 @@ class SimilarityControls(QtWidgets.QWidget):
                 QtWidgets.QMessageBox.Yes | QtWidgets.QMessageBox.No,
                 QtWidgets.QMessageBox.Yes) != QtWidgets.QMessageBox.Yes:
             taken = []
+        self.run.felt_with = dict(self.session_info())
         doc.openTransaction("Keep a similarity run")
         try:
             for earlier in taken:

@@ -60,7 +60,7 @@ class FeelTaskPanel:
         self.study_controls = [StudyControls(study, self.device_stiffness, force_limit=self.force_limit)
                                for study in studies_of(doc)]
         # a similarity study's runs: the participant picks the texture on the face and answers (seed 001 §IV)
-        self.similarity_controls = [SimilarityControls(study, self.session_running)
+        self.similarity_controls = [SimilarityControls(study, self.session_running, session_info=self.session_info)
                                     for study in similarity_studies_of(doc)]
         for controls in self.similarity_controls:
             controls.presented.connect(self.presented)
@@ -342,6 +342,12 @@ class FeelTaskPanel:
 
     def session_running(self):
         return self.session is not None and self.session.running
+
+    def session_info(self):
+        """What renders now: the device's name and the servo rate (empty without a session)."""
+        if self.session is None:
+            return {}
+        return {"device": str(self.session.device.info.name), "servo_rate_hz": float(self.session.rate_hz)}
 
     def stop(self):
         if self.session is not None:

@@ -236,6 +236,10 @@ class SimilarityGuiTest(unittest.TestCase):
             h.widget(QtWidgets.QPushButton, "similarityStart").click()
             self.answer_in_code(controls, None if name == "Ada" else 5)
         self.assertEqual(study.Participants, 1)
+        # what rendered it is kept with it: a practice run on the mouse is told from a device's
+        (ada,) = ss.runs(study)
+        self.assertEqual((ada["device"], ada["servo_rate_hz"]), ("Simulated hand", 1000.0))
+        self.assertLessEqual(ada["started"], ada["recorded"])
         Gui.runCommand("Std_Undo")
         h.process_events()
         self.assertEqual(study.Participants, 0)
