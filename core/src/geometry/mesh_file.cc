@@ -468,6 +468,83 @@ std::string DescribeTruncation(const std::string& path) {
   return {};
 }
 
+// The first face of an OBJ or OFF that names a vertex the file does not have (CGAL
+// refuses most such files without saying why, and lets an OBJ index one past the last
+// vertex through): "line L: face F names vertex V, but the file has N vertices"; empty
+// when there is none or the format is another.
+std::string DescribeBadIndex(const std::string& path) {
+  const std::string ext = Extension(path);
+  std::istringstream in(ReadBytes(path));
+  std::string line;
+  std::uint64_t number = 0;
+  std::uint64_t face = 0;
+  const auto bad = [&](const std::string& index, std::int64_t vertices) {
+    return "line " + std::to_string(number) + ": face " + std::to_string(face) + " names vertex " +
+           index + ", but the file has " +
+           Counted(static_cast<std::uint64_t>(std::max<std::int64_t>(vertices, 0)), "vertex") +
+           (ext == "obj" ? " before it (OBJ counts from 1; -1 is the last)"
+                         : " (OFF counts from 0)");
+  };
+  if (ext == "obj") {
+    std::int64_t vertices = 0;
+    while (std::getline(in, line)) {
+      ++number;
+      const std::vector<std::string> words = Words(line);
+      if (words.empty()) continue;
+      if (words[0] == "v") ++vertices;
+      if (words[0] != "f") continue;
+      ++face;
+      for (std::size_t k = 1; k < words.size(); ++k) {
+        const std::string index = words[k].substr(0, words[k].find('/'));
+        char* end = nullptr;
+        const long long i = std::strtoll(index.c_str(), &end, 10);
+        if (*end != '\0') return {};  // not a number: not this kind of fault
+        const long long resolved = i < 0 ? vertices + i + 1 : i;
+        if (i == 0 || resolved < 1 || resolved > vertices) return bad(index, vertices);
+      }
+    }
+    return {};
+  }
+  if (ext != "off") return {};
+  std::vector<std::pair<std::uint64_t, std::vector<std::string>>> lines;  // number, words
+  while (std::getline(in, line)) {
+    ++number;
+    std::vector<std::string> words = Words(line.substr(0, line.find('#')));
+    if (!words.empty()) lines.emplace_back(number, std::move(words));
+  }
+  if (lines.empty()) return {};
+  const std::string& keyword = lines[0].second[0];
+  if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0 ||
+      keyword.find_first_of("n4") != std::string::npos) {
+    return {};
+  }
+  std::vector<std::uint64_t> counts;  // after the keyword, on its line or the next ones
+  std::size_t record = 0;
+  for (std::size_t word = 1; record < lines.size() && counts.size() < 3; ++record, word = 0) {
+    for (; word < lines[record].second.size() && counts.size() < 3; ++word) {
+      char* end = nullptr;
+      counts.push_back(std::strtoull(lines[record].second[word].c_str(), &end, 10));
+      if (*end != '\0') return {};
+    }
+  }
+  if (counts.size() < 3) return {};
+  const std::uint64_t vertices = counts[0];
+  for (std::size_t r = record + vertices; r < lines.size(); ++r) {
+    const auto& [at, words] = lines[r];
+    number = at;
+    ++face;
+    const unsigned long long corners = std::strtoull(words[0].c_str(), nullptr, 10);
+    for (std::size_t k = 1; k < words.size() && k <= corners; ++k) {
+      char* end = nullptr;
+      const unsigned long long i = std::strtoull(words[k].c_str(), &end, 10);
+      if (*end != '\0' || words[k][0] == '-' || i >= vertices) {
+        return bad(words[k], static_cast<std::int64_t>(vertices));
+      }
+    }
+  }
+  return {};
+}
+
 }  // namespace
 
 TriangleSoup ReadMeshFile(const std::string& path) {
@@ -495,7 +572,22 @@ TriangleSoup ReadMeshFile(const std::string& path) {
     }
     const std::string cut = DescribeTruncation(path);
     if (!cut.empty()) throw std::runtime_error(path + ": " + cut);
+    const std::string index = DescribeBadIndex(path);
+    if (!index.empty()) throw std::runtime_error(path + ": " + index);
     throw std::runtime_error(path + ": cannot read a mesh (OFF, OBJ, STL or PLY expected)");
+  }
+  for (std::size_t f = 0; f < polygons.size(); ++f) {
+    for (const std::size_t v : polygons[f]) {
+      if (v >= points.size()) {  // CGAL let it through (an OBJ index one past the last)
+        const std::string index = DescribeBadIndex(path);
+        throw std::runtime_error(
+            path + ": " +
+            (index.empty()
+                 ? "face " + std::to_string(f + 1) + " names vertex " + std::to_string(v) +
+                       " (counting from 0), but the file has " + Counted(points.size(), "vertex")
+                 : index));
+      }
+    }
   }
   // CGAL takes an OBJ cut inside its last line, dropping what was cut
   if (Extension(path) == "obj") {

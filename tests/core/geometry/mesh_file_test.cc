@@ -214,6 +214,32 @@ TEST_F(MeshFile, SaysWhyAFileCannotBeUsed) {
   EXPECT_EQ(ErrorFor("cube.3mf", CubeOff()), "cannot read a mesh (OFF, OBJ, STL or PLY expected)");
 }
 
+TEST_F(MeshFile, AFaceNamingAVertexTheFileDoesNotHaveIsSaidWhere) {
+  // "cannot read a mesh" blamed the format; an OBJ index one past the last vertex got
+  // through CGAL to the repair
+  const std::string off = "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
+  EXPECT_EQ(ErrorFor("past.off", off),
+            "line 7: face 2 names vertex 3, but the file has 3 vertices (OFF counts from 0)");
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
+  EXPECT_EQ(ErrorFor("past.obj", obj),
+            "line 5: face 2 names vertex 4, but the file has 3 vertices before it (OBJ counts "
+            "from 1; -1 is the last)");
+  EXPECT_EQ(ErrorFor("far.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -7\n"),
+            "line 4: face 1 names vertex -7, but the file has 3 vertices before it (OBJ counts "
+            "from 1; -1 is the last)");
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 9\n";
+  const std::string said = ErrorFor("past.ply", ply);
+  EXPECT_NE(said.find("names vertex 9"), std::string::npos) << said;
+  EXPECT_NE(said.find("3 vertices"), std::string::npos) << said;
+  // a good file is read as before
+  EXPECT_EQ(
+      ReadMeshFile(Write("fine.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -1\n")).triangles.size(),
+      1u);
+}
+
 TEST_F(MeshFile, ABinaryStlCutShortSaysHowManyTrianglesItHolds) {
   // the header claims 1200 triangles, the file holds 37 (the cube's 12, over and over)
   std::string claims = CubeBinaryStl(1200);
