@@ -209,11 +209,15 @@ TEST(ContactExtremes, AZeroThicknessSheetAt2MetresPerSecondIsNeverPoppedThrough)
   for (double radius : {0.0, 0.0005}) ExpectNoPopThrough(sheet, 0.0, radius);
 }
 
-// The god-object in a concave corner is the projection onto a convex set: the force
-// k (proxy - device) can change by at most k times the device's step.
-void ExpectLipschitzInCorner(const TriangleSoup& soup, const Vec3& corner_w, int planes) {
+// The god-object in a concave corner is the projection onto a convex set (for a sphere
+// of radius r, the corner's walls moved in by r): the force k (proxy - device) can
+// change by at most k times the device's step.
+void ExpectLipschitzInCorner(const TriangleSoup& soup, const Vec3& corner_w, int planes,
+                             double radius = 0.0) {
   const auto scene = HapticScene::Build(soup, 1e-3);
-  ForceRenderer r(scene, Frictionless(*scene), Unclamped());
+  ContactOptions options;
+  options.proxy_radius_m = radius;
+  ForceRenderer r(scene, Frictionless(*scene), Unclamped(), options);
   std::mt19937 rng(planes);
   std::normal_distribution<double> step(0.0, 0.0002);
   RenderOutput out;
@@ -229,13 +233,13 @@ void ExpectLipschitzInCorner(const TriangleSoup& soup, const Vec3& corner_w, int
     r.Render({device, Vec3::Zero(), k * 1e-3}, &out);
     // outside: no coordinate of the proxy below the corner's walls
     for (int axis = 0; axis < planes; ++axis) {
-      ASSERT_GE(out.proxy_w[2 - axis], corner_w[2 - axis] - 1e-12) << k;
+      ASSERT_GE(out.proxy_w[2 - axis], corner_w[2 - axis] + radius - 1e-12) << k;
     }
     ASSERT_LE((out.force_w - previous_force).norm(),
               kK * (device - previous_device).norm() * (1 + 1e-9) + 1e-9)
         << "tick " << k;
-    if (out.proxy_w.z() < corner_w.z() + 1e-6 && planes > 1 &&
-        out.proxy_w.y() < corner_w.y() + 1e-6)
+    if (out.proxy_w.z() < corner_w.z() + radius + 1e-6 && planes > 1 &&
+        out.proxy_w.y() < corner_w.y() + radius + 1e-6)
       ++bound;
     previous_force = out.force_w;
     previous_device = device;
@@ -259,9 +263,11 @@ TEST(ContactExtremes, ConcaveTwoAndThreePlaneCornersKeepTheProxyOutAndTheForceCo
   }
   ASSERT_EQ(room.triangles.size(), 10u);
   const Vec3 corner(-0.02, -0.02, -0.02);
-  ExpectLipschitzInCorner(room, Vec3(0.0, 0.0, -0.02), 1);
-  ExpectLipschitzInCorner(room, Vec3(0.0, -0.02, -0.02), 2);
-  ExpectLipschitzInCorner(room, corner, 3);
+  for (double radius : {0.0, 0.001}) {  // the point and the 1 mm sphere
+    ExpectLipschitzInCorner(room, Vec3(0.0, 0.0, -0.02), 1, radius);
+    ExpectLipschitzInCorner(room, Vec3(0.0, -0.02, -0.02), 2, radius);
+    ExpectLipschitzInCorner(room, corner, 3, radius);
+  }
 }
 
 TEST(ContactExtremes, SlidingOverConvexEdgesAndVerticesStaysOutsideAndContinuous) {
