@@ -26,6 +26,15 @@ from texture_recordings import write_rig_csv as _write_rig_csv  # noqa: E402
 def write_rig_csv(path, **kwargs):
     _write_rig_csv(_core, path, **kwargs)
 
+
+def flip_force(path):
+    """A rig's CSV rewritten with its lateral force's sign flipped: logged with the motion."""
+    with open(path) as f:
+        rows = [line.rstrip("\n").split(",") for line in f]
+    with open(path, "w") as f:
+        f.write(",".join(rows[0]) + "\n")
+        f.writelines(f"{t},{x},{-float(force):.6f}\n" for t, x, force in rows[1:])
+
 TRUTH = {"TextureDC": 0.4, "TextureViscosity": 0.2, "TextureBeta": 0.1, "TextureAlpha": 2.0}
 FULL_RANGE_N = 2.0
 SPEEDS = (50.0, 120.0, 270.0)
@@ -189,11 +198,7 @@ class RigRecordingTest(unittest.TestCase):
         # a rig that logs the lateral force with the motion's sign: the fit came out at
         # f_DC -0.8 N and was set, rendering nothing, with a note saying it was felt
         write_rig_csv(self.path("along.csv"))
-        with open(self.path("along.csv")) as f:
-            rows = [line.rstrip("\n").split(",") for line in f]
-        with open(self.path("along.csv"), "w") as f:
-            f.write(",".join(rows[0]) + "\n")
-            f.writelines(f"{t},{x},{-float(force):.6f}\n" for t, x, force in rows[1:])
+        flip_force(self.path("along.csv"))
         with self.assertRaises(ValueError) as caught:
             texture_fit.fit_files([self.path("along.csv")], 2.5, (50, 120))
         self.assertIn("runs with the motion", str(caught.exception))
@@ -204,11 +209,7 @@ class RigRecordingTest(unittest.TestCase):
         # of -2 N per 400 mm/s and set
         write_rig_csv(self.path("slow.csv"), speeds_mm_s=(50.0,))
         write_rig_csv(self.path("fast.csv"), speeds_mm_s=(120.0,))
-        with open(self.path("fast.csv")) as f:
-            rows = [line.rstrip("\n").split(",") for line in f]
-        with open(self.path("fast.csv"), "w") as f:
-            f.write(",".join(rows[0]) + "\n")
-            f.writelines(f"{t},{x},{-float(force):.6f}\n" for t, x, force in rows[1:])
+        flip_force(self.path("fast.csv"))
         with self.assertRaises(ValueError) as caught:
             texture_fit.fit_files([self.path("slow.csv"), self.path("fast.csv")], 2.5, (50, 120))
         self.assertIn("runs with the motion, not against it, in fast.csv (-0.92 N at 120 mm/s)", str(caught.exception))

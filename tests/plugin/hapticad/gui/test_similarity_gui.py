@@ -171,12 +171,7 @@ class SimilarityGuiTest(unittest.TestCase):
         self.assertIsNone(ss.presented_texture(self.plate))
 
     def test_the_document_stays_open_while_a_run_holds_answers(self):
-        study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=2)
-        Gui.runCommand("HaptiCAD_Feel")
-        h.process_events()
-        controls = task_panel_feel.active_panel().similarity_controls[0]
-        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Eve")
-        h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        study, controls = self.start_run("Eve")
         self.assertEqual(controls.run.seed, 20261124)  # the same trials every time
         self.assertTrue(self.doc.isClosable())  # nothing answered yet: nothing to lose
         self.hand_on_plate()
@@ -213,6 +208,17 @@ class SimilarityGuiTest(unittest.TestCase):
         self.assertFalse(Gui.Control.activeDialog())
         self.assertTrue(self.doc.isClosable())
         self.assertEqual(study.Participants, 0)
+
+    def start_run(self, name):
+        """A study of two warm-ups on the plate, the Feel panel open on it, and ``name``'s
+        run started: (the study, its controls)."""
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=2)
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        controls = task_panel_feel.active_panel().similarity_controls[0]
+        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText(name)
+        h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        return study, controls
 
     def answer_in_code(self, controls, count=None):
         """Answers the run's trials through the controls (4, or A), each texture counted
@@ -261,12 +267,7 @@ class SimilarityGuiTest(unittest.TestCase):
     def test_an_edit_during_a_run_pauses_it_and_undoing_the_edit_goes_on(self):
         # a friction edit at trial 60 threw the run's answers away, and undoing it did not
         # bring them back
-        study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=2)
-        Gui.runCommand("HaptiCAD_Feel")
-        h.process_events()
-        controls = task_panel_feel.active_panel().similarity_controls[0]
-        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Dee")
-        h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        study, controls = self.start_run("Dee")
         self.answer_in_code(controls, 3)
         self.doc.openTransaction("friction")
         self.plate.StaticFriction = 0.61
