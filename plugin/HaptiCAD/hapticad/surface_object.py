@@ -180,10 +180,11 @@ class HapticSurface(SchemaState):
         self._applying = True
         try:
             if prop == "References":
+                before = getattr(self, "_pairs_before", [])  # the setting below changes it
                 pairs = reference_pairs(obj)
                 if len(set((o.Name, f) for o, f in pairs)) != len(pairs):
                     obj.References = link_sub_list(pairs)  # a face listed twice is tagged once
-                record_deleted_parts(obj, getattr(self, "_pairs_before", []))
+                record_deleted_parts(obj, before)
                 sync_reference_state(obj)
                 # the first tagged part may be another one now: the centre stays where it is
                 follow_pattern_anchor(obj)
