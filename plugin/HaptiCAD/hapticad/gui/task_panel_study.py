@@ -248,12 +248,12 @@ class StudyTaskPanel(CloseOnlyPanel):
                stiffness_study.BEAM else f"Operating force <b>{obj.OperatingForce:.3g} N</b> at "
                f"{obj.Pretravel:g} mm, returning at {obj.OperatingForce * (1 - obj.SnapRatio):.3g} N; bottoms "
                f"out at {obj.TotalTravel:g} mm on its housing, {obj.HousingStiffness:g} N/mm")
-        note = "; ".join(n for n in (stiffness_study.device_note(obj, self.device_k),
-                                     stiffness_study.force_note(obj, preferences.load().force_limit_n),
-                                     stiffness_study.ergonomic_note(obj)) if n)
+        notes = [n for n in (stiffness_study.device_note(obj, self.device_k),
+                             stiffness_study.force_note(obj, preferences.load().force_limit_n),
+                             stiffness_study.ergonomic_note(obj)) if n]
         override = stiffness_study.material_override(obj)  # the combo still names the material
         self.law_label.setText(law + (f"<br>Modulus edited: {override}." if override else "")
-                               + (f"<br><span style='color:#a06000'>Note: {note}.</span>" if note else ""))
+                               + "".join(f"<br><span style='color:#a06000'>Note: {n}.</span>" for n in notes))
         if self.controls is None or self.controls_model != obj.Model:  # "softer" or "lighter"
             if self.controls is not None:
                 self.controls.setParent(None)
