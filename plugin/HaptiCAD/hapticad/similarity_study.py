@@ -792,10 +792,11 @@ def analyse(study):
             notes.append("some stimuli were never classed: no vector for likeness to the references")
         else:
             q = [share - 0.5 for share in likeness]  # the paper: always B -0.5, always A +0.5
-            if any(q):
+            if max(q) - min(q) > 1e-12:
                 vectors[LIKENESS] = _vector(space.points, q, "like B", "like A")
-            else:
-                notes.append("every stimulus was classed A and B equally often: no vector for likeness")
+            else:  # one share for every stimulus: nothing to point along (a vector of length 0 was shown)
+                how = ("closer to A" if q[0] > 0 else "closer to B" if q[0] < 0 else "A and B equally often")
+                notes.append(f"every stimulus was classed {how}: no vector for likeness")
     if space.stress > 0.2:
         notes.append(f"stress {space.stress:.2f}: the space's distances stray from the dissimilarities by a "
                      "fifth or more; more dimensions or more participants may help")

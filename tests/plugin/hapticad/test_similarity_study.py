@@ -249,6 +249,17 @@ class StudyTest(unittest.TestCase):
         self.assertEqual(result["likeness"][names.index("f_DC 0.325 f_vis -0.2")], 1.0)
         self.assertEqual(result["likeness"][names.index("f_DC 0.675 f_vis +0.2")], 0.0)
 
+    def test_one_share_for_every_stimulus_gives_no_likeness_vector_and_says_so(self):
+        # everything classed closer to A was shown as a vector "closer to A |p| 0.000 r 0.00"
+        a, b = self.references()
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, ReferenceA=a, ReferenceB=b)
+        for p in range(3):
+            ss.record_run(study, finish(ss.Run(study, f"P{p}", seed=p), seed=p, likes_a=lambda v: True))
+        result = ss.analyse(study)
+        self.assertEqual(result["likeness"], [1.0] * 9)
+        self.assertNotIn(ss.LIKENESS, result["vectors"])
+        self.assertIn("every stimulus was classed closer to A: no vector for likeness", result["notes"])
+
     def test_warm_ups_hold_every_stimulus_and_no_pair_twice(self):
         # drawn with repeats, 435 of 500 runs repeated a warm-up pair and 200 left a
         # stimulus unfelt before the rated pairs: the paper's warm-ups give context
