@@ -13,8 +13,8 @@ import csv
 from .cohort import spreadsheet_safe
 from .similarity_study import SYMBOLS, TEXTURE_VALUES, classings_pooled, comparable, runs
 
-COLUMNS = ("participant", "started", "recorded", "device", "servo_rate_hz", "seed", "steps", "pooled", "position", "kind", "first", "second",
-           "rating", "class", *(f"first_{SYMBOLS[k]}" for k in TEXTURE_VALUES),
+COLUMNS = ("participant", "started", "recorded", "device", "servo_rate_hz", "seed", "steps", "pooled", "position",
+           "kind", "first", "second", "rating", "class", *(f"first_{SYMBOLS[k]}" for k in TEXTURE_VALUES),
            *(f"second_{SYMBOLS[k]}" for k in TEXTURE_VALUES))
 
 

@@ -586,8 +586,9 @@ class Run:
         # for order effects (the ratings above are what the analysis reads)
         sequence = [[t.kind, t.first, t.second, a] for t, a in zip(self.trials, self.answers)]
         return {"name": self.participant, "started": self.started,
-                "recorded": datetime.now().isoformat(timespec="seconds"), **self.felt_with, "seed": self.seed, "steps": self.steps, "stimuli": self.stimuli, "ratings": ratings,
-                "choices": choices, "trials": sequence, "context": self.context}
+                "recorded": datetime.now().isoformat(timespec="seconds"), **self.felt_with, "seed": self.seed,
+                "steps": self.steps, "stimuli": self.stimuli, "ratings": ratings, "choices": choices,
+                "trials": sequence, "context": self.context}
 
 
 def record_problems(record):

@@ -53,6 +53,7 @@ class SimilarityControls(QtWidgets.QWidget):
         self.slot = None  # what is on the face now: 1, 2, "A", "B" or None
         self.paused = ""  # why the run is paused: the study changed under it ("" when not)
         self.kept_here = []  # the runs these controls kept: an Undo may take them back
+        self.taken_said = []  # those of them taken back that the message has said
         layout = QtWidgets.QVBoxLayout(self)
         layout.setContentsMargins(0, 0, 0, 0)
         row = QtWidgets.QHBoxLayout()
@@ -145,10 +146,11 @@ class SimilarityControls(QtWidgets.QWidget):
                 self.paused = ""
                 self.show_message("The study is as the run began: the run goes on.")
         taken = self.taken_back()
-        if taken and taken != getattr(self, "_taken_said", None):
-            self.show_message(f"Undo took back {html.escape(self._names(taken), quote=False)} kept run: Redo brings it back. "
-                              "The next run kept asks whether to keep it too.", error=True)
-        self._taken_said = taken
+        if taken and taken != self.taken_said:
+            names = html.escape(self._names(taken), quote=False)
+            self.show_message(f"Undo took back {names} kept run: Redo brings it back. The next run kept asks "
+                              "whether to keep it too.", error=True)
+        self.taken_said = taken
         self.load()
 
     def _changed_since_start(self):
