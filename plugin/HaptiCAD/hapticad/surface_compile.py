@@ -37,19 +37,25 @@ def _vec(v, scale=1.0):
     return np.array([v.x, v.y, v.z], dtype=float) * scale
 
 
-def face_frame(face, angle_deg):
-    """(origin m, e1, e2, n) at the face's centre; e1 is the u direction turned by angle."""
-    u, v = point_on_face(face)
+def _cross(a, b):
+    """a x b of two 3-vectors (numpy's cross costs 60 us a call: most of a frame)."""
+    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+
+
+def face_frame(face, angle_deg, uv=None):
+    """(origin m, e1, e2, n) at the face's centre; e1 is the u direction turned by angle.
+    ``uv``: point_on_face(face) when already known (it costs most of the frame)."""
+    u, v = uv if uv is not None else point_on_face(face)
     origin = _vec(face.valueAt(u, v), MM)
     n = _vec(face.normalAt(u, v))
     du = _vec(face.derivative1At(u, v)[0])
     e1 = du - du.dot(n) * n
     if np.linalg.norm(e1) < 1e-12:  # degenerate parametrisation at the centre: any tangent
-        e1 = np.cross(n, [1.0, 0, 0] if abs(n[0]) < 0.9 else [0, 1.0, 0])
+        e1 = _cross(n, [1.0, 0, 0] if abs(n[0]) < 0.9 else [0, 1.0, 0])
     e1 /= np.linalg.norm(e1)
     a = math.radians(angle_deg)
-    e1 = math.cos(a) * e1 + math.sin(a) * np.cross(n, e1)
-    e2 = np.cross(n, e1)
+    e1 = math.cos(a) * e1 + math.sin(a) * _cross(n, e1)
+    e2 = _cross(n, e1)
     return origin, e1, e2, n
 
 
@@ -254,8 +260,9 @@ def _is_curved(obj, sub):
         return False
 
 
-def compile_surface(surface, face):
-    """_core.SurfaceProperties of HapticSurface ``surface`` on B-rep ``face`` (global)."""
+def compile_surface(surface, face, uv=None):
+    """_core.SurfaceProperties of HapticSurface ``surface`` on B-rep ``face`` (global);
+    ``uv``: point_on_face(face), when known (face_frame)."""
     props = _core.SurfaceProperties()
     friction = props.friction
     friction.static_coefficient = surface.StaticFriction
@@ -272,7 +279,7 @@ def compile_surface(surface, face):
     props.friction_mode = (_core.FrictionMode.CONE if surface.FrictionModel.startswith("Friction cone")
                            else _core.FrictionMode.VELOCITY)
 
-    frame = face_frame(face, float(surface.PatternAngle))
+    frame = face_frame(face, float(surface.PatternAngle), uv)
     origin, e1, e2, n = frame
     surface_frame = _core.SurfaceFrame(origin, e1, e2)
     anisotropy = props.anisotropy
