@@ -13,6 +13,10 @@ undo step; a run stopped before is not kept (a half run would skew the cohort). 
 run holds answers its document cannot be closed (``holds_answers``; the Feel panel sets
 it), so no way of closing it loses them unasked.
 
+Every answer of a run in progress is written to disk (run_journal): a run FreeCAD never
+kept (it was closed, or crashed) is offered to go on when the study's controls are next
+shown, on the study as it was.
+
 A change to the study during a run (a stimulus, the surface's friction, a reference)
 pauses it, its answers held: undoing the change lets it go on, Stop run ends it. An Undo
 that takes back a run kept earlier is said at once, and the next run kept asks whether
@@ -24,6 +28,7 @@ import json
 import FreeCAD as App
 from PySide2 import QtCore, QtWidgets
 
+from .. import run_journal
 from .. import similarity_study as ss
 from .. import trace_path
 from ..proxy_state import is_alive
@@ -71,6 +76,12 @@ class SimilarityControls(QtWidgets.QWidget):
         self.stop_button.clicked.connect(self.stop)
         row.addWidget(self.stop_button)
         layout.addLayout(row)
+        # a run written to disk after every answer and never kept (FreeCAD closed, or
+        # crashed, mid-run): offered to go on
+        self.resume_button = QtWidgets.QPushButton()
+        self.resume_button.setObjectName("similarityResume")
+        self.resume_button.clicked.connect(self.resume)
+        layout.addWidget(self.resume_button)
 
         self.trial_label = QtWidgets.QLabel()
         self.trial_label.setObjectName("similarityTrial")
@@ -238,6 +249,12 @@ class SimilarityControls(QtWidgets.QWidget):
         trial = self.run.current if running and not self.paused else None
         self.name.setEnabled(not running)
         self.start_button.setEnabled(not running)
+        waiting = None if running else run_journal.read(self.study)
+        self.resume_button.setVisible(waiting is not None)
+        if waiting is not None:
+            count = len(waiting["trials"])
+            self.resume_button.setText(f"Go on with {waiting['name']}'s run ({len(waiting['answers'])} of {count} "
+                                       "answered, not kept)")
         self.stop_button.setEnabled(running)
         self._set_scale(self.run.steps if running else int(self.study.RatingSteps))
         kind = trial.kind if trial else None
@@ -302,6 +319,14 @@ class SimilarityControls(QtWidgets.QWidget):
     # --- actions -------------------------------------------------------------------------
 
     def start(self):
+        waiting = run_journal.read(self.study)
+        if waiting is not None and QtWidgets.QMessageBox.question(
+                self, "Start run",
+                f"{waiting['name']}'s run ({len(waiting['answers'])} of {len(waiting['trials'])} answered) was never "
+                "kept. Start a new run and drop it?",
+                QtWidgets.QMessageBox.Yes | QtWidgets.QMessageBox.No,
+                QtWidgets.QMessageBox.No) != QtWidgets.QMessageBox.Yes:
+            return False
         try:
             self.run = ss.Run(self.study, self.name.text())
         except ValueError as exc:
@@ -323,10 +348,38 @@ class SimilarityControls(QtWidgets.QWidget):
         self.load()
         return True
 
+    def resume(self):
+        """Takes back the run written to disk, its answers as they were."""
+        state = run_journal.read(self.study)
+        if state is None or self.run is not None:
+            return False
+        try:
+            self.run = run_journal.resume(self.study, state)
+        except ValueError as exc:
+            self.show_message(f"{html.escape(str(exc), quote=False)}. Stop it to start again.", error=True)
+            return False
+        self.slot = None
+        self.paused = ""
+        self.show_message(f"{html.escape(self.run.participant)}'s run goes on at answer {len(self.run.answers) + 1}.")
+        self.load()
+        return True
+
+    def _write_journal(self):
+        """The run in progress to disk (run_journal), so a crash loses no answer."""
+        try:
+            if self.run is not None and self.run.answers and not self.run.done:
+                run_journal.write(self.study, self.run)
+            else:
+                run_journal.forget(self.study)
+        except OSError as exc:
+            self.show_message(f"The answers could not be written to disk as they come ({exc}): they are held "
+                              "in memory only until the run is kept.", error=True)
+
     def stop(self):
         self.run = None
         self.slot = None
         self.paused = ""
+        run_journal.forget(self.study)
         ss.stop_presenting(self.study)
         self.presented.emit()
         self.show_message("Run stopped; nothing kept.")
@@ -363,11 +416,14 @@ class SimilarityControls(QtWidgets.QWidget):
             self.presented.emit()  # the face is back to the surface's own texture
         if self.run.done:
             self.keep()
+        else:
+            self._write_journal()
         self.load()
 
     def back(self):
         if self.run is not None and is_alive(self.study):
             self.run.back()
+            self._write_journal()
             self.slot = None
             self.presented.emit()
             self.load()
@@ -395,6 +451,7 @@ class SimilarityControls(QtWidgets.QWidget):
             self.show_message(f"Not kept: {exc}", error=True)
             return None
         doc.commitTransaction()
+        run_journal.forget(self.study)
         self.kept_here.append(json.loads(json.dumps(record)))  # as stored: compared with the stored runs
         self.run = None
         self.name.clear()

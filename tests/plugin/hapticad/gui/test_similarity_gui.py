@@ -264,6 +264,31 @@ class SimilarityGuiTest(unittest.TestCase):
             self.answer_in_code(controls)
         self.assertEqual([r["name"] for r in ss.runs(study)], ["Cy"])
 
+    def test_a_run_freecad_never_kept_goes_on_where_it_stopped(self):
+        # a crash at trial 74 lost the whole run: the document holds a run only once kept
+        from hapticad import run_journal
+        from hapticad.gui.similarity_controls import SimilarityControls
+
+        folder = tempfile.mkdtemp()
+        self.doc.saveAs(os.path.join(folder, "study.FCStd"))  # a journal is named by the document's path
+        study, controls = self.start_run("Fay")
+        self.answer_in_code(controls, 4)
+        self.assertEqual(run_journal.read(study)["answers"], [4] * 4)
+        # FreeCAD gone without a word: the next controls on the study (a new session) offer it
+        fresh = SimilarityControls(study)
+        self.addCleanup(fresh.deleteLater)
+        resume = fresh.findChild(QtWidgets.QPushButton, "similarityResume")
+        self.assertFalse(resume.isHidden())
+        self.assertEqual(resume.text(), "Go on with Fay's run (4 of 38 answered, not kept)")
+        resume.click()
+        self.assertEqual((fresh.run.participant, fresh.run.answers), ("Fay", [4] * 4))
+        self.assertIn("Fay's run goes on at answer 5", fresh.message.text())
+        self.assertTrue(resume.isHidden())
+        self.answer_in_code(fresh)
+        self.assertEqual([r["name"] for r in ss.runs(study)], ["Fay"])
+        self.assertIsNone(run_journal.read(study))  # kept: the journal goes
+        controls.stop()
+
     def test_an_edit_during_a_run_pauses_it_and_undoing_the_edit_goes_on(self):
         # a friction edit at trial 60 threw the run's answers away, and undoing it did not
         # bring them back

@@ -1,0 +1,89 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""A similarity run in progress written to disk after every answer (run_journal): read
+back as it was, resumed on the study as it was and only then, gone once kept or stopped.
+Run by freecadcmd (see tests/plugin/CMakeLists.txt)."""
+import os
+import sys
+import tempfile
+import unittest
+
+import FreeCAD as App
+
+import HaptiCAD
+from hapticad import run_journal
+from hapticad import similarity_study as ss
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from test_similarity_study import finish  # noqa: E402
+
+
+class RunJournalTest(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.doc = App.newDocument("RunJournal")
+        box = self.doc.addObject("Part::Box", "Plate")
+        self.doc.recompute()
+        self.plate = HaptiCAD.make_surface(self.doc, [(box, "Face6")], material="ABS", FeelRoughness=False)
+        self.study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=2)
+
+    def tearDown(self):
+        run_journal.forget(self.study)
+        App.closeDocument(self.doc.Name)
+        self.tmp.cleanup()
+
+    def half_run(self, answers=5):
+        run = ss.Run(self.study, "Ada", seed=7)
+        while len(run.answers) < answers:
+            run.present_each()
+            run.answer(4)
+        return run
+
+    def test_an_unsaved_document_has_no_journal(self):
+        self.assertIsNone(run_journal.path_for(self.study))
+        run_journal.write(self.study, self.half_run())  # nothing to name it by: nothing written
+        self.assertIsNone(run_journal.read(self.study))
+
+    def test_a_run_written_is_read_back_and_goes_on_with_its_answers(self):
+        self.doc.saveAs(os.path.join(self.tmp.name, "study.FCStd"))
+        run = self.half_run()
+        run_journal.write(self.study, run)
+        path = run_journal.path_for(self.study)
+        self.assertTrue(path.startswith(App.getUserAppDataDir()))
+        self.assertFalse(os.path.exists(path + ".part"))  # written whole, then moved in place
+        state = run_journal.read(self.study)
+        self.assertEqual((state["name"], state["seed"], state["answers"]), ("Ada", 7, [4] * 5))
+        again = run_journal.resume(self.study, state)
+        self.assertEqual([(t.kind, t.first, t.second) for t in again.trials],
+                         [(t.kind, t.first, t.second) for t in run.trials])
+        self.assertEqual((again.answers, again.started), (run.answers, run.started))
+        finish(again)  # it goes on to the end and is kept as any run
+        ss.record_run(self.study, again)
+        self.assertEqual(self.study.Participants, 1)
+        run_journal.forget(self.study)
+        self.assertIsNone(run_journal.read(self.study))
+        self.assertFalse(os.path.exists(path))
+
+    def test_a_run_on_a_study_that_changed_since_does_not_go_on(self):
+        self.doc.saveAs(os.path.join(self.tmp.name, "study.FCStd"))
+        run_journal.write(self.study, self.half_run())
+        state = run_journal.read(self.study)
+        self.assertEqual(run_journal.resumable(self.study, state), "")
+        self.plate.StaticFriction = 0.9
+        self.assertEqual(run_journal.resumable(self.study, state), "the surface or a reference changed since")
+        with self.assertRaisesRegex(ValueError, "Ada's run cannot go on: the surface or a reference changed since"):
+            run_journal.resume(self.study, state)
+        self.plate.StaticFriction = 0.6
+        ss.set_stimuli(self.study, ss.stimuli(self.study)[:5])
+        self.assertEqual(run_journal.resumable(self.study, state), "the study's stimuli changed since")
+
+    def test_a_damaged_journal_is_no_run(self):
+        self.doc.saveAs(os.path.join(self.tmp.name, "study.FCStd"))
+        path = run_journal.path_for(self.study)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, "w") as handle:
+            handle.write('{"name": "Ada", "answers": [4, 4')  # cut off
+        self.assertIsNone(run_journal.read(self.study))
+
+
+if __name__ == "__main__":
+    unittest.main()
