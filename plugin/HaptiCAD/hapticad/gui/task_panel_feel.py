@@ -401,6 +401,9 @@ class FeelTaskPanel:
             return True  # left already (the document closed under it)
         if not self.confirm_ending_runs():
             return False  # the panel stays, the run goes on
+        for controls in self.similarity_controls:  # ended as agreed: not offered again later
+            if controls.run is not None:
+                controls.stop()
         self.stop()
         self._leave()
         return True

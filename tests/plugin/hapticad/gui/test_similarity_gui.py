@@ -140,6 +140,9 @@ class SimilarityGuiTest(unittest.TestCase):
         self.assertFalse(Gui.Control.activeDialog())
 
     def test_closing_the_feel_panel_in_the_middle_of_a_run_asks_first(self):
+        from hapticad import run_journal
+
+        self.doc.saveAs(os.path.join(tempfile.mkdtemp(), "study.FCStd"))  # its runs in progress are written
         study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=2)
         Gui.runCommand("HaptiCAD_Feel")
         h.process_events()
@@ -151,6 +154,7 @@ class SimilarityGuiTest(unittest.TestCase):
         self.feel_both(controls)
         h.widget(QtWidgets.QPushButton, "similarityRate4").click()
         self.assertEqual(len(controls.run.answers), 1)
+        self.assertEqual(run_journal.read(study)["answers"], [4])
         asked = []
         original = QtWidgets.QMessageBox.question
         try:
@@ -168,6 +172,7 @@ class SimilarityGuiTest(unittest.TestCase):
             QtWidgets.QMessageBox.question = original
         self.assertFalse(Gui.Control.activeDialog())
         self.assertEqual(study.Participants, 0)  # a run is kept only when finished
+        self.assertIsNone(run_journal.read(study))  # ended as agreed: not offered to go on later
         self.assertIsNone(ss.presented_texture(self.plate))
 
     def test_the_document_stays_open_while_a_run_holds_answers(self):
