@@ -356,7 +356,7 @@ class SimilarityControls(QtWidgets.QWidget):
         try:
             self.run = run_journal.resume(self.study, state)
         except ValueError as exc:
-            self.show_message(f"{html.escape(str(exc), quote=False)}. Stop it to start again.", error=True)
+            self.show_message(f"{html.escape(str(exc), quote=False)}. Start run drops it (it asks first).", error=True)
             return False
         self.slot = None
         self.paused = ""

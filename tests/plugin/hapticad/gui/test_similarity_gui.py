@@ -293,6 +293,27 @@ class SimilarityGuiTest(unittest.TestCase):
         self.assertEqual([r["name"] for r in ss.runs(study)], ["Fay"])
         self.assertIsNone(run_journal.read(study))  # kept: the journal goes
         controls.stop()
+        # one left on a study edited since: not resumed, and dropped only when asked
+        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Gus")
+        h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        self.answer_in_code(controls, 2)
+        controls.run = None  # gone without a word
+        self.plate.StaticFriction = 0.9
+        fresh.load()
+        fresh.findChild(QtWidgets.QPushButton, "similarityResume").click()
+        self.assertIsNone(fresh.run)
+        self.assertIn("Gus's run cannot go on: the surface or a reference changed since. Start run drops it",
+                      fresh.message.text())
+        fresh.name.setText("Hal")
+        with mock.patch.object(QtWidgets.QMessageBox, "question", return_value=QtWidgets.QMessageBox.No):
+            fresh.start()
+        self.assertIsNone(fresh.run)  # not dropped unasked
+        self.assertEqual(run_journal.read(study)["name"], "Gus")
+        with mock.patch.object(QtWidgets.QMessageBox, "question", return_value=QtWidgets.QMessageBox.Yes):
+            fresh.start()
+        self.assertEqual(fresh.run.participant, "Hal")
+        fresh.stop()
+        self.assertIsNone(run_journal.read(study))
 
     def test_an_edit_during_a_run_pauses_it_and_undoing_the_edit_goes_on(self):
         # a friction edit at trial 60 threw the run's answers away, and undoing it did not
