@@ -10,6 +10,7 @@ import os
 import struct
 import subprocess
 import tempfile
+import time
 import unittest
 
 CLI = os.environ["HAPTICAD_CLI"]
@@ -33,6 +34,10 @@ class BenchMeshCommandTest(unittest.TestCase):
         low, high = result["expected_force_n"]
         self.assertGreater(result["max_force_n"], low)
         self.assertLessEqual(result["max_force_n"], high * 1.001)
+        # ready: the repair, the build and the solids' analysis, all of which come before a touch
+        parts = result["repair_ms"] + result["build_ms"] + result["solids_ms"]
+        self.assertAlmostEqual(result["ready_ms"], parts, delta=0.002)
+        self.assertGreater(result["ready_ms"], result["build_ms"])
 
     def test_icosphere_point_and_sphere_in_mm_and_m(self):
         for proxy in ("point", "sphere:1"):
@@ -70,6 +75,30 @@ class BenchMeshCommandTest(unittest.TestCase):
             self.assertEqual(done.returncode, 2, args)
             self.assertIn(message, done.stderr)
         self.assertNotIn("not both", bench("--ticks", "2000").stderr)
+
+    def test_paced_ticks_feel_the_same_stroke_at_the_servo_rate(self):
+        # --rate-hz runs the ticks as the servo loop does, a period apart; what is felt
+        # must not change, only when each tick runs
+        plain = json.loads(bench("--icosphere", "9680", "--ticks", "300").stdout)
+        for pace in ("sleep", "spin"):
+            with self.subTest(pace=pace):
+                started = time.monotonic()
+                done = bench("--icosphere", "9680", "--ticks", "300", "--rate-hz", "1000", "--pace", pace)
+                self.assertEqual(done.returncode, 0, done.stderr)
+                paced = json.loads(done.stdout)
+                # 300 ticks at 1 kHz take at least 0.3 s on any machine
+                self.assertGreaterEqual(time.monotonic() - started, 0.3)
+                self.assertEqual((paced["rate_hz"], paced["pace"]), (1000, pace))
+                self.assertEqual(paced["max_force_n"], plain["max_force_n"])
+                self.assertEqual(paced["contact_ticks"], plain["contact_ticks"])
+                self.assertEqual(paced["pop_through"], 0)
+        self.assertEqual(plain["pace"], "back to back")
+        for args, message in ((("--pace", "spin"), "--pace needs --rate-hz"),
+                              (("--rate-hz", "1000", "--pace", "nap"), "--pace must be sleep or spin"),
+                              (("--rate-hz", "5"), "--rate-hz must be 0 (back to back) or from 100 to 100000")):
+            done = bench("--icosphere", "80", *args)
+            self.assertEqual(done.returncode, 2, args)
+            self.assertIn(message, done.stderr)
 
     def test_ticks_are_grouped_by_how_far_the_contact_moved(self):
         # every tick after the first touches, so each is in one group; a finer mesh of

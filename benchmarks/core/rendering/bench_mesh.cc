@@ -3,7 +3,7 @@
 //
 //   hapticad-bench-mesh (MESH_FILE | --icosphere TRIANGLES) [--radius MM] [--ticks N]
 //       [--proxy point|sphere:R_MM] [--units mm|m] [--seed S] [--convex-pieces on|off]
-//       [--warm-ahead N] [--json]
+//       [--warm-ahead N] [--rate-hz R [--pace sleep|spin]] [--json]
 //
 // Workload (issue 4): the device strokes over the surface along a seeded path at
 // 50-100 mm/s, pressed 1-3 mm below it (for meshes under 50 mm in bounding radius,
@@ -18,6 +18,11 @@
 // second renderer that has followed the same inputs runs that block untimed, so the
 // timed ticks find their data in the caches. What still grows with the model is then
 // the work, not the memory.
+//
+// --rate-hz R: the ticks run R a second, as the servo loop runs them, rather than back to
+// back: each waits for its deadline by sleeping (--pace sleep, what ServoLoop does) or by
+// reading the clock (--pace spin, the core never idles). Back to back, a tick finds
+// in the caches what the tick before read; paced, the wait in between may lose it.
 //
 // `tick_us_by_move` groups the contact ticks by how far the contact moved since the
 // tick before, in triangles: `stayed` (the same triangle), `next` (one across an edge),
@@ -34,6 +39,9 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <sys/prctl.h>
+#include <time.h>
 
 #include "hapticad/core/geometry/icosphere.h"
 #include "hapticad/core/geometry/mesh_file.h"
@@ -62,6 +70,9 @@ struct Options {
   unsigned seed = 1;
   long long warm_ahead = 0;  // 0: off
   bool convex_pieces = true;
+  double rate_hz = 0.0;  // 0: back to back
+  bool spin = false;     // with rate_hz: wait by reading the clock rather than sleeping
+  bool pace_given = false;
 };
 
 [[noreturn]] void Usage(const std::string& problem) {
@@ -70,7 +81,7 @@ struct Options {
                "[--ticks N]\n"
                "           [--proxy point|sphere:R_MM] [--units mm|m] [--seed S] "
                "[--convex-pieces on|off]\n"
-               "           [--warm-ahead N] [--json]\n";
+               "           [--warm-ahead N] [--rate-hz R [--pace sleep|spin]] [--json]\n";
   std::exit(2);
 }
 
@@ -143,7 +154,16 @@ Options Parse(int argc, char** argv) {
       o.seed = static_cast<unsigned>(Integer(next(), "--seed", 0, 4294967295LL));
     else if (a == "--warm-ahead")
       o.warm_ahead = Integer(next(), "--warm-ahead", 0, kMaxTicks, " (0: off; at most --ticks)");
-    else if (a == "--json")
+    else if (a == "--rate-hz") {
+      o.rate_hz = Number(next(), "--rate-hz");
+      if (!(o.rate_hz == 0.0 || (o.rate_hz >= 100.0 && o.rate_hz <= 100000.0)))
+        Usage("--rate-hz must be 0 (back to back) or from 100 to 100000");
+    } else if (a == "--pace") {
+      const std::string v = next();
+      if (v != "sleep" && v != "spin") Usage("--pace must be sleep or spin");
+      o.spin = v == "spin";
+      o.pace_given = true;
+    } else if (a == "--json")
       continue;
     else if (a == "--convex-pieces") {
       const std::string v = next();
@@ -173,6 +193,8 @@ Options Parse(int argc, char** argv) {
   }
   if (o.file.empty() && !o.icosphere_given) Usage("give a mesh file or --icosphere TRIANGLES");
   if (!o.file.empty() && o.icosphere_given) Usage("give a mesh file or --icosphere, not both");
+  if (o.pace_given && o.rate_hz == 0.0)
+    Usage("--pace needs --rate-hz (back to back, no tick waits)");
   if (o.warm_ahead > o.ticks) {
     Usage("--warm-ahead must be at most --ticks (" + std::to_string(o.ticks) + "), got " +
           std::to_string(o.warm_ahead));
@@ -311,7 +333,30 @@ int Run(const Options& o) {
   double max_force = 0.0;
   std::size_t contact = 0;
   const auto block = static_cast<std::size_t>(o.warm_ahead);
+  // --rate-hz: the servo loop's pacing (servo_loop.cc): a sleep to an absolute deadline
+  // with 1 us of timer slack
+  const auto period_ns =
+      o.rate_hz > 0.0 ? static_cast<long long>(std::llround(1e9 / o.rate_hz)) : 0;
+  if (period_ns > 0) prctl(PR_SET_TIMERSLACK, 1000UL, 0, 0, 0);
+  timespec deadline{};
+  clock_gettime(CLOCK_MONOTONIC, &deadline);
   for (std::size_t k = 0; k < path.size(); ++k) {
+    if (period_ns > 0) {
+      deadline.tv_nsec += period_ns;
+      while (deadline.tv_nsec >= 1000000000L) {
+        deadline.tv_nsec -= 1000000000L;
+        ++deadline.tv_sec;
+      }
+      if (o.spin) {
+        timespec now{};
+        do clock_gettime(CLOCK_MONOTONIC, &now);
+        while (now.tv_sec < deadline.tv_sec ||
+               (now.tv_sec == deadline.tv_sec && now.tv_nsec < deadline.tv_nsec));
+      } else {
+        while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &deadline, nullptr) == EINTR) {
+        }
+      }
+    }
     if (block > 0 && k % block == 0) {
       for (std::size_t j = k; j < std::min(path.size(), k + block); ++j) {
         ahead.Render(path[j], &ahead_out);
@@ -388,10 +433,16 @@ int Run(const Options& o) {
   std::printf("  \"structure\": \"%s\",\n", point ? "grid" : "tree");
   std::printf("  \"repair_ms\": %.3f,\n", repair_ms);
   std::printf("  \"solids_ms\": %.3f,\n", solids_ms);
+  // from the soup read to a scene the renderer can touch: what a designer waits for
+  std::printf("  \"ready_ms\": %.3f,\n", repair_ms + build_ms + solids_ms);
   std::printf("  \"repair\": \"%s\",\n", report.Describe().c_str());
   std::printf("  \"bytes_per_triangle\": %.1f,\n", static_cast<double>(bytes) / triangles);
   std::printf("  \"ticks\": %zu,\n", path.size());
   std::printf("  \"warm_ahead\": %lld,\n", o.warm_ahead);
+  std::printf("  \"rate_hz\": %g,\n", o.rate_hz);
+  std::printf("  \"pace\": \"%s\",\n", o.rate_hz == 0.0 ? "back to back"
+                                       : o.spin         ? "spin"
+                                                        : "sleep");
   std::printf("  \"contact_ticks\": %zu,\n", contact);
   std::printf("  \"tick_us\": {\"p50\": %.3f, \"p99\": %.3f, \"p999\": %.3f, \"max\": %.3f},\n",
               Percentile(contact_us, 0.5), Percentile(contact_us, 0.99),
