@@ -109,6 +109,48 @@ class FeelCommandTest(unittest.TestCase):
         self.assertEqual(proc.returncode, 0, proc.stderr)
         self.assertIn("700 Hz is felt at 300 Hz instead at the 1000 Hz servo rate", proc.stderr)
 
+    def test_a_custom_accuracy_is_built_and_said(self):
+        # a cylinder's side is where deflection shows: coarser values, fewer triangles
+        path = os.path.join(self.tmp.name, "can.FCStd")
+        doc = App.newDocument("CliCan")
+        can = doc.addObject("Part::Cylinder", "Can")
+        can.Radius, can.Height = 20, 30
+        doc.recompute()
+        HaptiCAD.make_surface(doc, [(can, "Face2")], material="PMMA", FeelRoughness=False)
+        doc.saveAs(path)
+        App.closeDocument(doc.Name)
+        felt = {}
+        for name, args in (("Fine", ("--accuracy", "Fine")),
+                           ("coarse", ("--linear-deflection", "0.5", "--angular-deflection", "30",
+                                       "--no-force-shading")),
+                           ("refined", ("--accuracy", "Custom", "--linear-deflection", "0.5",
+                                        "--angular-deflection", "30", "--refine-edge", "2"))):
+            proc = run_cli("feel", path, "--stroke", "-10,0,30:10,0,30", "--out", os.path.join(self.tmp.name, name),
+                           *args)
+            self.assertEqual(proc.returncode, 0, proc.stderr)
+            felt[name] = json.loads(proc.stdout)["accuracy"]
+        self.assertEqual(felt["Fine"]["name"], "Fine")
+        self.assertEqual({k: felt["coarse"][k] for k in ("name", "linear_deflection_mm", "angular_deflection_deg",
+                                                         "force_shading", "refine_edge_mm")},
+                         {"name": "Custom", "linear_deflection_mm": 0.5, "angular_deflection_deg": 30.0,
+                          "force_shading": False, "refine_edge_mm": 0.0})
+        self.assertLess(felt["coarse"]["triangles"], felt["Fine"]["triangles"] / 4)
+        # refinement splits the long facets of the coarse side; shading stays on unless turned off
+        self.assertGreater(felt["refined"]["triangles"], felt["coarse"]["triangles"])
+        self.assertTrue(felt["refined"]["force_shading"])
+        # what cannot be built is said, and nothing runs
+        for args, message in ((("--accuracy", "Draft", "--linear-deflection", "0.5"),
+                               "cannot go with --accuracy Draft"),
+                              (("--linear-deflection", "0"), "custom linear deflection 0.0 mm is outside"),
+                              (("--angular-deflection", "120"), "custom angular deflection 120.0 degrees is outside"),
+                              (("--refine-edge", "0.001"), "custom refinement edge 0.001 mm is neither 0")):
+            with self.subTest(args=args):
+                out = os.path.join(self.tmp.name, "refused")
+                proc = run_cli("feel", path, "--stroke", "-10,0,30:10,0,30", "--out", out, *args)
+                self.assertEqual(proc.returncode, 2, proc.stdout[:200])
+                self.assertIn(message, proc.stderr)
+                self.assertFalse(os.path.exists(out))
+
     def test_bad_input_gets_a_clear_error(self):
         out = os.path.join(self.tmp.name, "bad")
         cut_short = os.path.join(self.tmp.name, "cut_short.FCStd")

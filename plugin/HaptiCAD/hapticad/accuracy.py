@@ -13,6 +13,12 @@ default is the one the speed/accuracy table in BENCHMARKS.md justifies
 import math
 from dataclasses import dataclass
 
+# what a custom accuracy may take (FreeCAD's tessellator and the core's refinement)
+LINEAR_RANGE_MM = (1e-4, 10.0)
+ANGULAR_RANGE_RAD = (0.01, 1.5)
+REFINE_RANGE_MM = (0.01, 100.0)  # or 0: no refinement
+CUSTOM = "Custom"
+
 
 @dataclass(frozen=True)
 class Accuracy:
@@ -25,15 +31,18 @@ class Accuracy:
     def problems(self):
         """What is wrong with the values, as sentences (empty when fine)."""
         found = []
-        if not (isinstance(self.linear_deflection_mm, (int, float)) and math.isfinite(self.linear_deflection_mm)
-                and 1e-4 <= self.linear_deflection_mm <= 10.0):
+        def within(value, bounds):
+            return (isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+                    and bounds[0] <= value <= bounds[1])
+
+        if not within(self.linear_deflection_mm, LINEAR_RANGE_MM):
             found.append(f"linear deflection {self.linear_deflection_mm!r} mm is outside 0.0001..10 mm")
-        if not (isinstance(self.angular_deflection_rad, (int, float)) and math.isfinite(self.angular_deflection_rad)
-                and 0.01 <= self.angular_deflection_rad <= 1.5):
+        if not within(self.angular_deflection_rad, ANGULAR_RANGE_RAD):
             found.append(f"angular deflection {self.angular_deflection_rad!r} rad is outside 0.01..1.5 rad")
-        if not (isinstance(self.refine_edge_mm, (int, float)) and math.isfinite(self.refine_edge_mm)
-                and (self.refine_edge_mm == 0.0 or 0.01 <= self.refine_edge_mm <= 100.0)):
+        if not (self.refine_edge_mm == 0.0 or within(self.refine_edge_mm, REFINE_RANGE_MM)):
             found.append(f"refinement edge {self.refine_edge_mm!r} mm is neither 0 (off) nor in 0.01..100 mm")
+        if not isinstance(self.force_shading, bool):
+            found.append(f"force shading {self.force_shading!r} is neither True nor False")
         return found
 
 
@@ -58,7 +67,7 @@ def preset(name=DEFAULT):
 
 def custom(linear_deflection_mm, angular_deflection_rad, force_shading=True, refine_edge_mm=0.0):
     """A preset of one's own. ValueError naming what is out of range."""
-    accuracy = Accuracy("Custom", linear_deflection_mm, angular_deflection_rad, force_shading, refine_edge_mm)
+    accuracy = Accuracy(CUSTOM, linear_deflection_mm, angular_deflection_rad, force_shading, refine_edge_mm)
     found = accuracy.problems()
     if found:
         raise ValueError("; ".join(found))

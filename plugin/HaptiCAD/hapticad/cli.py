@@ -4,13 +4,14 @@ exit status 2 (bad input) or 1 (failure, or a material card refused)."""
 import argparse
 import json
 import os
+import re
 import signal
 import sys
 import zipfile
 import zlib
 from xml.etree import ElementTree
 
-from .accuracy import PRESETS
+from .accuracy import CUSTOM, PRESETS
 from .freecad_env import ensure_freecad
 
 
@@ -71,15 +72,37 @@ _csv_file = _output_file("CSV", "cohort.csv")
 _answers_csv_file = _output_file("CSV", "answers.csv")
 
 
+def _feel_accuracy(args, prefs):
+    """The accuracy `hapticad feel` builds with: --accuracy, else the preferences'. A
+    custom value given (--linear-deflection ...) makes it Custom, starting from the
+    preferences' custom values."""
+    from . import accuracy, preferences
+
+    given = {"custom_linear_deflection_mm": args.linear_deflection,
+             "custom_angular_deflection_deg": args.angular_deflection,
+             "custom_refine_edge_mm": args.refine_edge,
+             "custom_force_shading": False if args.no_force_shading else None}
+    given = {key: value for key, value in given.items() if value is not None}
+    name = args.accuracy or (accuracy.CUSTOM if given else prefs.accuracy)
+    if given and name != accuracy.CUSTOM:
+        raise ValueError(f"--linear-deflection, --angular-deflection, --refine-edge and --no-force-shading set a "
+                         f"custom accuracy; they cannot go with --accuracy {name} (leave --accuracy out)")
+    chosen = prefs.replace(accuracy=name, **given)
+    found = [p for p in preferences.problems(chosen) if p.startswith("custom")]
+    if found and name == accuracy.CUSTOM:
+        raise ValueError("; ".join(found))
+    return preferences.scene_accuracy(chosen)
+
+
 def cmd_feel(args):
     App = ensure_freecad()
-    from . import accuracy, preferences, surface_object, vibration_object
+    from . import preferences, surface_object, vibration_object
     from .document_scene import build_document_scene
     from .feel import Stroke, feel_document
 
     doc = _open_document(App, args.file)
     try:
-        doc_scene = build_document_scene(doc, accuracy.preset(args.accuracy or preferences.load().accuracy))
+        doc_scene = build_document_scene(doc, _feel_accuracy(args, preferences.load()))
         if not doc_scene.watertight:
             print(f"hapticad feel: the scene is not closed: {doc_scene.repair}", file=sys.stderr)
         for note in vibration_object.rate_notes(doc, args.rate) + surface_object.rate_notes(doc, args.rate):
@@ -437,8 +460,17 @@ def build_parser():
     feel.add_argument("--depth", type=float, default=1.0, metavar="MM", help="depth below the surface (1)")
     feel.add_argument("--rate", type=float, default=1000.0, metavar="HZ", help="servo rate (1000)")
     feel.add_argument("--out", required=True, metavar="DIR", help="folder for trace.csv and trace.png")
-    feel.add_argument("--accuracy", default=None, choices=list(PRESETS),
-                      help="tessellation and shading preset (default: the preferences', else Fine)")
+    feel.add_argument("--accuracy", default=None, choices=list(PRESETS) + [CUSTOM],
+                      help="tessellation and shading preset (default: the preferences', else Fine); Custom "
+                           "uses the preferences' custom values and the four options below")
+    feel.add_argument("--linear-deflection", type=float, default=None, metavar="MM",
+                      help="custom accuracy: largest distance between a facet and its face, 0.0001-10 mm")
+    feel.add_argument("--angular-deflection", type=float, default=None, metavar="DEGREES",
+                      help="custom accuracy: largest angle between neighbouring facets, 0.58-85.9 degrees")
+    feel.add_argument("--refine-edge", type=float, default=None, metavar="MM",
+                      help="custom accuracy: split edges longer than this, 0.01-100 mm (0: off)")
+    feel.add_argument("--no-force-shading", action="store_true",
+                      help="custom accuracy: push along the facets' normals, not the exact B-rep ones")
     feel.set_defaults(run=cmd_feel)
 
     mats = sub.add_parser("materials", help="list the haptic materials (shipped and the user's)")
@@ -455,7 +487,7 @@ def build_parser():
         "bench-mesh", help="time the contact engine on a mesh file or an icosphere (JSON)",
         description="hapticad bench-mesh (MESH_FILE | --icosphere TRIANGLES) [--radius MM] "
                     "[--proxy point|sphere:R_MM] [--ticks N] [--units mm|m] [--seed S] "
-                    "[--convex-pieces on|off] --json. "
+                    "[--convex-pieces on|off] [--warm-ahead N] [--rate-hz R [--pace sleep|spin]] --json. "
                     "Strokes the surface along a seeded path at 50-100 mm/s, 1-3 mm deep, "
                     "k = 0.4 N/mm, mu 0.3/0.2, and prints build time, tick percentiles, bytes "
                     "per triangle, contact ticks, pop-through and the largest force.")
@@ -531,12 +563,31 @@ class Finished:
         self.result, self.status = result, status
 
 
+_NEGATIVE_VALUE = re.compile(r"^-\.?\d[\d.,:eE+-]*$")
+
+
+def _joined_negative_values(argv):
+    """`--stroke -10,0,30:10,0,30` as `--stroke=-10,0,30:10,0,30`: argparse reads a value
+    starting with a minus as an option unless it is one plain number, and said the
+    stroke had no value. Not for bench-mesh, whose options its own program reads."""
+    if argv[:1] == ["bench-mesh"]:
+        return list(argv)
+    joined = []
+    for token in argv:
+        if (joined and joined[-1].startswith("--") and "=" not in joined[-1]
+                and _NEGATIVE_VALUE.match(token)):
+            joined[-1] += "=" + token
+        else:
+            joined.append(token)
+    return joined
+
+
 def main(argv=None):
     # a closed pipe (`hapticad materials | head`) ends the program quietly
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)
     parser = build_parser()
     # bench-mesh passes its options on to the program untouched
-    args, extra = parser.parse_known_args(argv)
+    args, extra = parser.parse_known_args(_joined_negative_values(sys.argv[1:] if argv is None else argv))
     if args.command == "bench-mesh":
         args.options = extra
     elif extra:

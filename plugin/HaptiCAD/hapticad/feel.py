@@ -8,6 +8,7 @@ the part along the inward normal at P0), dwells and retreats. The C++ servo loop
 it in real time at ``rate_hz`` and returns the trace. No GUI.
 """
 import csv
+import math
 import os
 from dataclasses import dataclass
 
@@ -200,6 +201,7 @@ def summarize(result, doc_scene):
         "tick_us": _percentiles(tick_us),
         "contact_tick_us": _percentiles(contact_us),
         "rate_hz": result.stroke.rate_hz,
+        "accuracy": _accuracy_summary(doc_scene),
         "overruns": int(result.stats.overruns),
         "skipped_ticks": int(result.stats.skipped_ticks),
         "stroke": {
@@ -210,6 +212,16 @@ def summarize(result, doc_scene):
             "start_face": doc_scene.face_names[start_face],
         },
     }
+
+
+def _accuracy_summary(doc_scene):
+    accuracy = doc_scene.accuracy
+    described = {"triangles": int(doc_scene.scene.num_triangles)}
+    if accuracy is not None:
+        described.update(name=accuracy.name, linear_deflection_mm=accuracy.linear_deflection_mm,
+                         angular_deflection_deg=round(math.degrees(accuracy.angular_deflection_rad), 4),
+                         force_shading=accuracy.force_shading, refine_edge_mm=accuracy.refine_edge_mm)
+    return described
 
 
 def _percentiles(values):

@@ -21,7 +21,10 @@ from . import accuracy as accuracy_presets
 
 GROUP = "User parameter:BaseApp/Preferences/Mod/HaptiCAD"
 SIMULATED_DEVICE = "simulated"
-ACCURACY_PRESETS = tuple(accuracy_presets.PRESETS)
+ACCURACY_PRESETS = tuple(accuracy_presets.PRESETS) + (accuracy_presets.CUSTOM,)
+# the custom accuracy's angle is set in degrees, as in FreeCAD's own tessellation settings
+ANGULAR_RANGE_DEG = tuple(math.degrees(r) for r in accuracy_presets.ANGULAR_RANGE_RAD)
+_START = accuracy_presets.PRESETS[accuracy_presets.DEFAULT]  # a custom accuracy starts as the default
 WORKSPACE_MAPPINGS = ("Fit part", "Fixed scale")
 COLOUR_BY = ("Material", "Roughness")
 # The servo loop refuses a period over half its 5 ms watchdog (and stale-data limit):
@@ -35,7 +38,12 @@ WORKSPACE_SCALE_RANGE = (0.01, 100.0)
 class Preferences:
     device: str = SIMULATED_DEVICE  # "simulated" or a HID device path
     servo_rate_hz: int = 1000
-    accuracy: str = accuracy_presets.DEFAULT  # tessellation preset of the haptic scene (accuracy.py)
+    accuracy: str = accuracy_presets.DEFAULT  # tessellation preset of the haptic scene (accuracy.py), or Custom
+    # the Custom accuracy's values (kept while a preset is chosen)
+    custom_linear_deflection_mm: float = _START.linear_deflection_mm
+    custom_angular_deflection_deg: float = round(math.degrees(_START.angular_deflection_rad), 4)
+    custom_force_shading: bool = _START.force_shading
+    custom_refine_edge_mm: float = _START.refine_edge_mm  # 0: off
     force_limit_n: float = 3.0  # never more than the device's own limit
     workspace_mapping: str = "Fit part"  # device workspace -> model
     workspace_scale: float = 1.0  # model mm per device mm, with "Fixed scale"
@@ -51,6 +59,10 @@ _PARAMETERS = {
     "device": ("Device", "String"),
     "servo_rate_hz": ("ServoRateHz", "Int"),
     "accuracy": ("AccuracyPreset", "String"),
+    "custom_linear_deflection_mm": ("CustomLinearDeflectionMm", "Float"),
+    "custom_angular_deflection_deg": ("CustomAngularDeflectionDeg", "Float"),
+    "custom_force_shading": ("CustomForceShading", "Bool"),
+    "custom_refine_edge_mm": ("CustomRefineEdgeMm", "Float"),
     "force_limit_n": ("ForceLimitN", "Float"),
     "workspace_mapping": ("WorkspaceMapping", "String"),
     "workspace_scale": ("WorkspaceScale", "Float"),
@@ -70,6 +82,16 @@ def problems(prefs):
         found.append(f"servo rate {prefs.servo_rate_hz!r} Hz is outside {low}..{high} Hz")
     if prefs.accuracy not in ACCURACY_PRESETS:
         found.append(f"accuracy {prefs.accuracy!r} is not one of {', '.join(ACCURACY_PRESETS)}")
+    angle = prefs.custom_angular_deflection_deg
+    if not (isinstance(angle, (int, float)) and not isinstance(angle, bool) and math.isfinite(angle)
+            and ANGULAR_RANGE_DEG[0] <= angle <= ANGULAR_RANGE_DEG[1]):
+        found.append(f"custom angular deflection {angle!r} degrees is outside "
+                     f"{ANGULAR_RANGE_DEG[0]:.2f}..{ANGULAR_RANGE_DEG[1]:.2f} degrees")
+    # the other custom values, checked as accuracy.py checks them (the angle above, in degrees)
+    others = accuracy_presets.Accuracy(accuracy_presets.CUSTOM, prefs.custom_linear_deflection_mm,
+                                       _START.angular_deflection_rad, prefs.custom_force_shading,
+                                       prefs.custom_refine_edge_mm)
+    found += ["custom " + p for p in others.problems()]
     for label, value, (low, high), unit in (
             ("force limit", prefs.force_limit_n, FORCE_LIMIT_RANGE_N, " N"),
             ("workspace scale", prefs.workspace_scale, WORKSPACE_SCALE_RANGE, "")):
@@ -80,6 +102,16 @@ def problems(prefs):
     if prefs.overlay_colour_by not in COLOUR_BY:
         found.append(f"overlay colour {prefs.overlay_colour_by!r} is not one of {', '.join(COLOUR_BY)}")
     return found
+
+
+def scene_accuracy(prefs):
+    """The accuracy.Accuracy the haptic scene is built with: the preset chosen, or the
+    custom values when Custom is."""
+    if prefs.accuracy == accuracy_presets.CUSTOM:
+        return accuracy_presets.custom(prefs.custom_linear_deflection_mm,
+                                       math.radians(prefs.custom_angular_deflection_deg),
+                                       prefs.custom_force_shading, prefs.custom_refine_edge_mm)
+    return accuracy_presets.preset(prefs.accuracy)
 
 
 def _group():

@@ -61,6 +61,49 @@ class PreferencesTest(unittest.TestCase):
         prefs = preferences.load()
         self.assertEqual((prefs.servo_rate_hz, prefs.accuracy), (1000, "Fine"))
 
+    def test_a_custom_accuracy_round_trips_and_builds_the_scene(self):
+        import math
+
+        prefs = preferences.Preferences(accuracy="Custom", custom_linear_deflection_mm=0.3,
+                                        custom_angular_deflection_deg=20.0, custom_force_shading=False,
+                                        custom_refine_edge_mm=2.5)
+        preferences.save(prefs)
+        self.assertEqual(preferences.load(), prefs)
+        group = App.ParamGet(preferences.GROUP)
+        self.assertEqual((group.GetString("AccuracyPreset"), group.GetFloat("CustomAngularDeflectionDeg"),
+                          group.GetBool("CustomForceShading")), ("Custom", 20.0, False))
+        chosen = preferences.scene_accuracy(preferences.load())
+        self.assertEqual((chosen.name, chosen.linear_deflection_mm, chosen.force_shading, chosen.refine_edge_mm),
+                         ("Custom", 0.3, False, 2.5))
+        self.assertAlmostEqual(chosen.angular_deflection_rad, math.radians(20.0), places=12)
+        # a preset chosen keeps the custom values for later, and is what the scene uses
+        preferences.update(accuracy="Draft")
+        self.assertEqual(preferences.scene_accuracy(preferences.load()).name, "Draft")
+        self.assertEqual(preferences.load().custom_linear_deflection_mm, 0.3)
+
+    def test_bad_custom_values_are_each_said_and_nothing_is_written(self):
+        preferences.save(preferences.Preferences(accuracy="Custom", custom_linear_deflection_mm=0.3))
+        with self.assertRaises(ValueError) as raised:
+            preferences.update(custom_linear_deflection_mm=0.0, custom_angular_deflection_deg=90.0,
+                               custom_refine_edge_mm=0.001)
+        message = str(raised.exception)
+        for part in ("custom linear deflection 0.0 mm is outside 0.0001..10 mm",
+                     "custom angular deflection 90.0 degrees is outside 0.57..85.94 degrees",
+                     "custom refinement edge 0.001 mm is neither 0 (off) nor in 0.01..100 mm"):
+            self.assertIn(part, message)
+        for change in ({"custom_angular_deflection_deg": float("nan")}, {"custom_force_shading": 1},
+                       {"custom_linear_deflection_mm": "0.1"}):
+            with self.subTest(change=change):
+                with self.assertRaisesRegex(ValueError, "custom"):
+                    preferences.update(**change)
+        self.assertEqual(preferences.load(),
+                         preferences.Preferences(accuracy="Custom", custom_linear_deflection_mm=0.3))
+        # a hand-edited bad custom value falls back to its default alone
+        App.ParamGet(preferences.GROUP).SetFloat("CustomAngularDeflectionDeg", -3.0)
+        prefs = preferences.load()
+        self.assertEqual((prefs.accuracy, prefs.custom_linear_deflection_mm, prefs.custom_angular_deflection_deg),
+                         ("Custom", 0.3, preferences.DEFAULTS.custom_angular_deflection_deg))
+
 
 if __name__ == "__main__":
     unittest.main()

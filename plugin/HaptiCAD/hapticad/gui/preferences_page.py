@@ -2,11 +2,15 @@
 """HaptiCAD's page in FreeCAD's preferences (Edit > Preferences > HaptiCAD).
 
 Shows and stores hapticad.preferences: the device (the simulated probe, or a HID
-device found now), servo rate, accuracy preset, force limit, workspace mapping, and
-the overlay. The widgets only allow valid values; preferences.save checks them again.
+device found now), servo rate, accuracy (a preset, whose values are shown, or Custom's
+own linear and angular deflection, force shading and refinement), force limit,
+workspace mapping, and the overlay. The widgets only allow valid values; preferences.save checks them again.
 """
+import math
+
 from PySide2 import QtWidgets
 
+from .. import accuracy as accuracy_presets
 from .. import preferences
 
 
@@ -76,8 +80,44 @@ class PreferencesPage:
         self.accuracy.setObjectName("accuracy")
         self.accuracy.addItems(preferences.ACCURACY_PRESETS)
         self.accuracy.setToolTip("How finely parts are tessellated for feeling: Draft is quick to build, Fine "
-                                 "follows curved faces closely")
+                                 "follows curved faces closely; Custom takes your own values")
         form.addRow("Accuracy", self.accuracy)
+        # what the chosen accuracy means: a preset's values shown greyed, Custom's editable
+        self.linear_deflection = QtWidgets.QDoubleSpinBox()
+        self.linear_deflection.setObjectName("linearDeflection")
+        self.linear_deflection.setDecimals(4)
+        self.linear_deflection.setRange(*accuracy_presets.LINEAR_RANGE_MM)
+        self.linear_deflection.setSingleStep(0.01)
+        self.linear_deflection.setSuffix(" mm")
+        self.linear_deflection.setToolTip("Largest distance between a facet and the face it stands for")
+        form.addRow("Linear deflection", self.linear_deflection)
+        self.angular_deflection = QtWidgets.QDoubleSpinBox()
+        self.angular_deflection.setObjectName("angularDeflection")
+        self.angular_deflection.setDecimals(2)
+        low, high = preferences.ANGULAR_RANGE_DEG
+        self.angular_deflection.setRange(math.ceil(low * 100) / 100, math.floor(high * 100) / 100)
+        self.angular_deflection.setSuffix(" \u00b0")
+        self.angular_deflection.setToolTip("Largest angle between the normals of neighbouring facets")
+        form.addRow("Angular deflection", self.angular_deflection)
+        self.force_shading = QtWidgets.QCheckBox("Force shading (push along the exact normal of curved faces)")
+        self.force_shading.setObjectName("forceShading")
+        form.addRow(self.force_shading)
+        self.refine_edge = QtWidgets.QDoubleSpinBox()
+        self.refine_edge.setObjectName("refineEdge")
+        self.refine_edge.setDecimals(2)
+        self.refine_edge.setRange(0.0, accuracy_presets.REFINE_RANGE_MM[1])
+        self.refine_edge.setSpecialValueText("off")
+        self.refine_edge.setSuffix(" mm")
+        self.refine_edge.setToolTip("Split edges longer than this after tessellating (off: keep FreeCAD's facets)")
+        form.addRow("Refine edges over", self.refine_edge)
+        self.accuracy_hint = QtWidgets.QLabel()
+        self.accuracy_hint.setObjectName("accuracyHint")
+        self.accuracy_hint.setWordWrap(True)
+        self.accuracy_hint.setStyleSheet("color: #606060")
+        form.addRow(self.accuracy_hint)
+        self._custom = None  # Custom's values while a preset is shown
+        self._shown = None  # the accuracy the four fields show
+        self.accuracy.currentTextChanged.connect(self._show_accuracy)
         layout.addWidget(scene_box)
 
         overlay_box = QtWidgets.QGroupBox("Overlay")
@@ -108,7 +148,10 @@ class PreferencesPage:
         self.mapping.setCurrentText(prefs.workspace_mapping)
         self.scale.setValue(prefs.workspace_scale)
         self._enable_mapping()
+        self._custom = self._stored_custom()
+        self._shown = None
         self.accuracy.setCurrentText(prefs.accuracy)
+        self._show_accuracy(self.accuracy.currentText())
         self.overlay_visible.setChecked(prefs.overlay_visible)
         self.colour_by.setCurrentText(prefs.overlay_colour_by)
 
@@ -128,11 +171,49 @@ class PreferencesPage:
         self.mapping_hint.setText(hint)
         self.mapping_hint.setVisible(bool(hint))
 
+    def _custom_fields(self):
+        return (float(self.linear_deflection.value()), float(self.angular_deflection.value()),
+                self.force_shading.isChecked(), float(self.refine_edge.value()))
+
+    @staticmethod
+    def _stored_custom():
+        prefs = preferences.load()
+        return (prefs.custom_linear_deflection_mm, prefs.custom_angular_deflection_deg, prefs.custom_force_shading,
+                prefs.custom_refine_edge_mm)
+
+    def _show_accuracy(self, name):
+        """Fills the four fields: Custom's own values, editable, or the preset's, greyed
+        (Custom's edits are kept while a preset is shown)."""
+        if self._custom is None or name == self._shown:
+            return
+        if self._shown == accuracy_presets.CUSTOM:
+            self._custom = self._custom_fields()
+        custom = name == accuracy_presets.CUSTOM
+        if custom:
+            linear, angle, shading, refine = self._custom
+        else:
+            chosen = accuracy_presets.preset(name)
+            linear, angle, shading, refine = (chosen.linear_deflection_mm, math.degrees(chosen.angular_deflection_rad),
+                                              chosen.force_shading, chosen.refine_edge_mm)
+        self.linear_deflection.setValue(linear)
+        self.angular_deflection.setValue(angle)
+        self.force_shading.setChecked(shading)
+        self.refine_edge.setValue(refine)
+        for widget in (self.linear_deflection, self.angular_deflection, self.force_shading, self.refine_edge):
+            widget.setEnabled(custom)
+        self.accuracy_hint.setText("" if custom else f"{name}'s values; choose Custom to set your own.")
+        self.accuracy_hint.setVisible(not custom)
+        self._shown = name
+
     def values(self):
         return preferences.Preferences(
             device=self.device.currentData() or preferences.SIMULATED_DEVICE,
             servo_rate_hz=int(self.servo_rate.value()),
             accuracy=self.accuracy.currentText(),
+            **dict(zip(("custom_linear_deflection_mm", "custom_angular_deflection_deg", "custom_force_shading",
+                        "custom_refine_edge_mm"),
+                       self._custom_fields() if self._shown == accuracy_presets.CUSTOM
+                       else self._custom or self._stored_custom())),
             force_limit_n=float(self.force_limit.value()),
             workspace_mapping=self.mapping.currentText(),
             workspace_scale=float(self.scale.value()),

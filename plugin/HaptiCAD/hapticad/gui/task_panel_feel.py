@@ -190,13 +190,13 @@ class FeelTaskPanel:
     # --- session -----------------------------------------------------------------------
 
     def start(self):
-        from .. import accuracy, preferences
+        from .. import preferences
         from ..document_scene import build_document_scene
 
         self.show_message("")
         try:
             with busy_cursor():  # tessellating and building a large part's scene takes seconds
-                self.doc_scene = build_document_scene(self.doc, accuracy.preset(preferences.load().accuracy))
+                self.doc_scene = build_document_scene(self.doc, preferences.scene_accuracy(preferences.load()))
                 self.session = feel_session.LiveSession(self.doc_scene, self.device.currentData() or
                                                         feel_session.SIMULATED)
         except (ValueError, RuntimeError) as exc:

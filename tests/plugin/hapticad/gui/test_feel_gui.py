@@ -137,6 +137,18 @@ class FeelGuiTest(unittest.TestCase):
         self.assertNotIn("HaptiCAD_Feel", names)
         h.press_task_button("Close")
 
+    def test_feel_builds_the_scene_with_the_custom_accuracy_chosen_in_the_preferences(self):
+        preferences.update(accuracy="Custom", custom_linear_deflection_mm=0.4, custom_angular_deflection_deg=25.0,
+                           custom_force_shading=False)
+        try:
+            panel = self.open_feel()
+            built = panel.doc_scene.accuracy
+            self.assertEqual((built.name, built.linear_deflection_mm, built.force_shading), ("Custom", 0.4, False))
+            self.assertAlmostEqual(built.angular_deflection_rad, np.radians(25.0), places=12)
+            h.press_task_button("Close")
+        finally:
+            preferences.update(accuracy="Fine")
+
     def press_on_the_top(self):
         """Starts a session and presses the probe well into the middle of the top face;
         the panel's Stop button and strip chart."""
