@@ -457,7 +457,9 @@ class SimilarityControls(QtWidgets.QWidget):
         self.name.clear()
         self.show_message(f"Kept {record['name']}'s run: {len(record['ratings'])} pairs"
                           + (f", {len(record['choices'])} classings" if record["choices"] else "")
-                          + f" ({self.study.Participants} participant{'s' if self.study.Participants != 1 else ''}).")
+                          + f" ({self.study.Participants} participant{'s' if self.study.Participants != 1 else ''})."
+                          # nothing is saved for the designer; the journal of the run is gone now
+                          + " It is in the document: save the document to keep it on disk.")
         App.Console.PrintLog(f"HaptiCAD: {self.study.Label}: kept {record['name']}'s run\n")
         self.changed.emit()
         return record

@@ -435,8 +435,8 @@ class SimilarityGuiTest(unittest.TestCase):
         self.assertEqual(study.Participants, 6)
         h.wait(0.1)
         self.assertEqual(panel.chart.hidden, set())  # the run is over: the chart draws every force again
-        self.assertIn("Kept Ada's run: 36 pairs, 27 classings (6 participants)",
-                      h.widget(QtWidgets.QLabel, "similarityMessage").text())
+        self.assertIn("Kept Ada's run: 36 pairs, 27 classings (6 participants). It is in the document: save the "
+                      "document to keep it on disk.", h.widget(QtWidgets.QLabel, "similarityMessage").text())
         self.assertIn("Keep a similarity run", self.doc.UndoNames)
         self.assertIsNone(ss.presented_texture(self.plate))
         self.assertTrue(panel.session.running)
