@@ -110,7 +110,8 @@ class FeelCommandTest(unittest.TestCase):
         self.assertIn("700 Hz is felt at 300 Hz instead at the 1000 Hz servo rate", proc.stderr)
 
     def test_a_custom_accuracy_is_built_and_said(self):
-        # a cylinder's side is where deflection shows: coarser values, fewer triangles
+        # a cylinder: its side's tessellation is where deflection shows (coarser values,
+        # fewer triangles); the stroke crosses its flat top
         path = os.path.join(self.tmp.name, "can.FCStd")
         doc = App.newDocument("CliCan")
         can = doc.addObject("Part::Cylinder", "Can")
@@ -124,7 +125,7 @@ class FeelCommandTest(unittest.TestCase):
                            ("coarse", ("--linear-deflection", "0.5", "--angular-deflection", "30",
                                        "--no-force-shading")),
                            ("refined", ("--accuracy", "Custom", "--linear-deflection", "0.5",
-                                        "--angular-deflection", "30", "--refine-edge", "2"))):
+                                        "--angular-deflection", "30", "--refine-edge", "2", "--force-shading"))):
             proc = run_cli("feel", path, "--stroke", "-10,0,30:10,0,30", "--out", os.path.join(self.tmp.name, name),
                            *args)
             self.assertEqual(proc.returncode, 0, proc.stderr)
@@ -141,15 +142,21 @@ class FeelCommandTest(unittest.TestCase):
         # what cannot be built is said, and nothing runs
         for args, message in ((("--accuracy", "Draft", "--linear-deflection", "0.5"),
                                "cannot go with --accuracy Draft"),
-                              (("--linear-deflection", "0"), "custom linear deflection 0.0 mm is outside"),
-                              (("--angular-deflection", "120"), "custom angular deflection 120.0 degrees is outside"),
-                              (("--refine-edge", "0.001"), "custom refinement edge 0.001 mm is neither 0")):
+                              (("--linear-deflection", "0"), "--linear-deflection 0.0 mm is outside 0.0001..10 mm"),
+                              (("--angular-deflection", "0.57"),
+                               "--angular-deflection 0.57 degrees is outside 0.573..85.9436 degrees"),
+                              (("--refine-edge", "0.001"), "--refine-edge 0.001 mm is neither 0 (off) nor in"),
+                              # a flag takes no value, negative or not; after -- a name is a name
+                              (("--force-shading", "-1"), "unrecognized arguments: -1")):
             with self.subTest(args=args):
                 out = os.path.join(self.tmp.name, "refused")
                 proc = run_cli("feel", path, "--stroke", "-10,0,30:10,0,30", "--out", out, *args)
                 self.assertEqual(proc.returncode, 2, proc.stdout[:200])
                 self.assertIn(message, proc.stderr)
                 self.assertFalse(os.path.exists(out))
+        proc = run_cli("feel", "--stroke", "-10,0,30:10,0,30", "--out", os.path.join(self.tmp.name, "x"), "--", "-5")
+        self.assertEqual(proc.returncode, 2)
+        self.assertIn("-5: no such file", proc.stderr)
 
     def test_bad_input_gets_a_clear_error(self):
         out = os.path.join(self.tmp.name, "bad")

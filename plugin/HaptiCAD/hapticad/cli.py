@@ -81,15 +81,22 @@ def _feel_accuracy(args, prefs):
     given = {"custom_linear_deflection_mm": args.linear_deflection,
              "custom_angular_deflection_deg": args.angular_deflection,
              "custom_refine_edge_mm": args.refine_edge,
-             "custom_force_shading": False if args.no_force_shading else None}
+             "custom_force_shading": args.force_shading}
     given = {key: value for key, value in given.items() if value is not None}
     name = args.accuracy or (accuracy.CUSTOM if given else prefs.accuracy)
     if given and name != accuracy.CUSTOM:
-        raise ValueError(f"--linear-deflection, --angular-deflection, --refine-edge and --no-force-shading set a "
+        raise ValueError(f"--linear-deflection, --angular-deflection, --refine-edge and --[no-]force-shading set a "
                          f"custom accuracy; they cannot go with --accuracy {name} (leave --accuracy out)")
     chosen = prefs.replace(accuracy=name, **given)
     found = [p for p in preferences.problems(chosen) if p.startswith("custom")]
     if found and name == accuracy.CUSTOM:
+        # said by the option that sets it (a bad value from the preferences by its own name)
+        flags = {"custom_linear_deflection_mm": ("custom linear deflection", "--linear-deflection"),
+                 "custom_angular_deflection_deg": ("custom angular deflection", "--angular-deflection"),
+                 "custom_refine_edge_mm": ("custom refinement edge", "--refine-edge")}
+        for key, (said, flag) in flags.items():
+            if key in given:
+                found = [p.replace(said, flag, 1) if p.startswith(said) else p for p in found]
         raise ValueError("; ".join(found))
     return preferences.scene_accuracy(chosen)
 
@@ -466,11 +473,12 @@ def build_parser():
     feel.add_argument("--linear-deflection", type=float, default=None, metavar="MM",
                       help="custom accuracy: largest distance between a facet and its face, 0.0001-10 mm")
     feel.add_argument("--angular-deflection", type=float, default=None, metavar="DEGREES",
-                      help="custom accuracy: largest angle between neighbouring facets, 0.58-85.9 degrees")
+                      help="custom accuracy: largest angle between neighbouring facets, 0.573-85.9436 degrees")
     feel.add_argument("--refine-edge", type=float, default=None, metavar="MM",
                       help="custom accuracy: split edges longer than this, 0.01-100 mm (0: off)")
-    feel.add_argument("--no-force-shading", action="store_true",
-                      help="custom accuracy: push along the facets' normals, not the exact B-rep ones")
+    feel.add_argument("--force-shading", action=argparse.BooleanOptionalAction, default=None,
+                      help="custom accuracy: push along the exact B-rep normals (--no-force-shading: along the "
+                           "facets' own)")
     feel.set_defaults(run=cmd_feel)
 
     mats = sub.add_parser("materials", help="list the haptic materials (shipped and the user's)")
@@ -566,16 +574,30 @@ class Finished:
 _NEGATIVE_VALUE = re.compile(r"^-\.?\d[\d.,:eE+-]*$")
 
 
-def _joined_negative_values(argv):
+def _valued_options(parser):
+    """The option strings of ``parser`` and its commands that take a value."""
+    found = set()
+    for action in parser._actions:  # argparse keeps no public list of them
+        if isinstance(action, argparse._SubParsersAction):
+            for command in action.choices.values():
+                found |= _valued_options(command)
+        elif action.option_strings and action.nargs != 0:
+            found.update(action.option_strings)
+    return found
+
+
+def _joined_negative_values(argv, valued):
     """`--stroke -10,0,30:10,0,30` as `--stroke=-10,0,30:10,0,30`: argparse reads a value
     starting with a minus as an option unless it is one plain number, and said the
-    stroke had no value. Not for bench-mesh, whose options its own program reads."""
+    stroke had no value. Only after an option in ``valued`` and before `--`; not for
+    bench-mesh, whose options its own program reads."""
     if argv[:1] == ["bench-mesh"]:
         return list(argv)
     joined = []
-    for token in argv:
-        if (joined and joined[-1].startswith("--") and "=" not in joined[-1]
-                and _NEGATIVE_VALUE.match(token)):
+    for index, token in enumerate(argv):
+        if token == "--":
+            return joined + list(argv[index:])
+        if joined and joined[-1] in valued and _NEGATIVE_VALUE.match(token):
             joined[-1] += "=" + token
         else:
             joined.append(token)
@@ -587,7 +609,8 @@ def main(argv=None):
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)
     parser = build_parser()
     # bench-mesh passes its options on to the program untouched
-    args, extra = parser.parse_known_args(_joined_negative_values(sys.argv[1:] if argv is None else argv))
+    args, extra = parser.parse_known_args(
+        _joined_negative_values(sys.argv[1:] if argv is None else argv, _valued_options(parser)))
     if args.command == "bench-mesh":
         args.options = extra
     elif extra:

@@ -49,6 +49,13 @@ class DocumentScene:
     # property edit compiled the toothbrush's five faces in 3 ms, finding each again)
     face_points: dict = field(default_factory=dict)
 
+    def contact_options(self):
+        """The proxy's options for this scene: force shading as its accuracy says (on
+        without one). Every renderer of the scene is made with them."""
+        options = _core.ContactOptions()
+        options.force_shading = self.accuracy is None or bool(self.accuracy.force_shading)
+        return options
+
     def face_id(self, name):
         try:
             return self.face_names.index(name)

@@ -116,7 +116,8 @@ def run_stroke_in_servo_loop(doc_scene, stroke, limits=None):
     render_limits = _core.RenderLimits()
     render_limits.max_force_n = limits.max_force_n
     render_limits.max_stiffness_n_per_m = limits.max_stiffness_n_per_m
-    renderer = _core.ForceRenderer(doc_scene.scene, doc_scene.surfaces, render_limits)
+    renderer = _core.ForceRenderer(doc_scene.scene, doc_scene.surfaces, render_limits,
+                                   doc_scene.contact_options())
     loop = _core.ServoLoop(device, renderer, stroke.rate_hz,
                            trace_capacity=int(stroke.rate_hz * (plan.times_s[-1] + 1)) + 1024)
     trace = loop.run_for(float(plan.times_s[-1]))

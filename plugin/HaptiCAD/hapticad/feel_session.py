@@ -133,7 +133,8 @@ class LiveSession:
         render = _core.render_limits_for(limits, mapping or _core.WorkspaceMapping())
         render.max_force_n = min(render.max_force_n, prefs.force_limit_n)
         self.render_limits = render
-        self.renderer = _core.ForceRenderer(doc_scene.scene, doc_scene.surfaces, render)
+        self.renderer = _core.ForceRenderer(doc_scene.scene, doc_scene.surfaces, render,
+                                            doc_scene.contact_options())
         self.loop = _core.ServoLoop(self.device, self.renderer, rate_hz=self.rate_hz,
                                     trace_capacity=int(self.rate_hz * TRACE_SECONDS) + 1024)
         if mapping is not None:
@@ -186,7 +187,8 @@ class LiveSession:
             if (low < self.reach_m[0]).any() or (high > self.reach_m[1]).any():
                 raise ValueError("the parts now reach beyond the simulated probe's workspace, "
                                  "which was set when the session started: start it again")
-        renderer = _core.ForceRenderer(doc_scene.scene, doc_scene.surfaces, self.render_limits)
+        renderer = _core.ForceRenderer(doc_scene.scene, doc_scene.surfaces, self.render_limits,
+                                       doc_scene.contact_options())
         self.loop.set_renderer(renderer)
         self.renderer = renderer
         self.doc_scene = doc_scene

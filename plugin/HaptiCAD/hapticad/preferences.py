@@ -24,6 +24,8 @@ SIMULATED_DEVICE = "simulated"
 ACCURACY_PRESETS = tuple(accuracy_presets.PRESETS) + (accuracy_presets.CUSTOM,)
 # the custom accuracy's angle is set in degrees, as in FreeCAD's own tessellation settings
 ANGULAR_RANGE_DEG = tuple(math.degrees(r) for r in accuracy_presets.ANGULAR_RANGE_RAD)
+# as shown and typed: 4 decimals, rounded inwards (0.5730..85.9436)
+ANGULAR_RANGE_DEG_SHOWN = (math.ceil(ANGULAR_RANGE_DEG[0] * 1e4) / 1e4, math.floor(ANGULAR_RANGE_DEG[1] * 1e4) / 1e4)
 _START = accuracy_presets.PRESETS[accuracy_presets.DEFAULT]  # a custom accuracy starts as the default
 WORKSPACE_MAPPINGS = ("Fit part", "Fixed scale")
 COLOUR_BY = ("Material", "Roughness")
@@ -86,7 +88,7 @@ def problems(prefs):
     if not (isinstance(angle, (int, float)) and not isinstance(angle, bool) and math.isfinite(angle)
             and ANGULAR_RANGE_DEG[0] <= angle <= ANGULAR_RANGE_DEG[1]):
         found.append(f"custom angular deflection {angle!r} degrees is outside "
-                     f"{ANGULAR_RANGE_DEG[0]:.2f}..{ANGULAR_RANGE_DEG[1]:.2f} degrees")
+                     f"{ANGULAR_RANGE_DEG_SHOWN[0]:g}..{ANGULAR_RANGE_DEG_SHOWN[1]:g} degrees")
     # the other custom values, checked as accuracy.py checks them (the angle above, in degrees)
     others = accuracy_presets.Accuracy(accuracy_presets.CUSTOM, prefs.custom_linear_deflection_mm,
                                        _START.angular_deflection_rad, prefs.custom_force_shading,

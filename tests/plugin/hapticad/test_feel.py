@@ -26,6 +26,41 @@ class FeelTest(unittest.TestCase):
     def tearDownClass(cls):
         App.closeDocument(cls.doc.Name)
 
+    def test_force_shading_off_pushes_along_the_facets_on_a_coarse_cylinder(self):
+        # the accuracy's force shading reaches the renderer: on, the push on a coarse
+        # tessellation of a cylinder's side is radial; off, it is the facet's normal
+        import math
+
+        from hapticad import accuracy
+
+        doc = App.newDocument("FeelShading")
+        try:
+            can = doc.addObject("Part::Cylinder", "Can")
+            can.Radius, can.Height = 20, 30
+            doc.recompute()
+            HaptiCAD.make_surface(doc, [(can, "Face1")], material="Rubber", static_friction=0.0,
+                                  dynamic_friction=0.0, FeelRoughness=False)
+            worst = {}
+            for shading in (True, False):
+                scene = build_document_scene(doc, accuracy.custom(0.5, math.radians(30), force_shading=shading))
+                self.assertEqual(scene.contact_options().force_shading, shading)
+                angles = []
+                for degrees in (3.0, 7.0, 11.0, 17.0):
+                    a = math.radians(degrees)
+                    radial = np.array([math.cos(a), math.sin(a), 0.0])
+                    start, end = 20 * radial + [0, 0, 8], 20 * radial + [0, 0, 22]
+                    trace = run_stroke_in_servo_loop(scene, Stroke(start, end, speed_mm_s=60, depth_mm=1)).trace
+                    contact = np.asarray(trace["normal_force_n"]) > 0.05
+                    force = np.asarray(trace["force_n"])[contact]
+                    self.assertGreater(len(force), 100)
+                    horizontal = force[:, :2] / np.linalg.norm(force[:, :2], axis=1)[:, None]
+                    angles.append(float(np.degrees(np.arccos(np.clip(horizontal @ radial[:2], -1, 1))).max()))
+                worst[shading] = max(angles)
+            self.assertLess(worst[True], 1.0, worst)
+            self.assertGreater(worst[False], 4.0, worst)
+        finally:
+            App.closeDocument(doc.Name)
+
     def test_plan_goes_depth_below_the_surface_along_the_inward_normal(self):
         plan = plan_stroke(self.scene, Stroke((10, 20, 20), (50, 20, 20), speed_mm_s=40, depth_mm=2))
         np.testing.assert_allclose(plan.outward_normal, [0, 0, 1], atol=1e-12)

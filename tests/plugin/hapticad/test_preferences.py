@@ -88,7 +88,7 @@ class PreferencesTest(unittest.TestCase):
                                custom_refine_edge_mm=0.001)
         message = str(raised.exception)
         for part in ("custom linear deflection 0.0 mm is outside 0.0001..10 mm",
-                     "custom angular deflection 90.0 degrees is outside 0.57..85.94 degrees",
+                     "custom angular deflection 90.0 degrees is outside 0.573..85.9436 degrees",
                      "custom refinement edge 0.001 mm is neither 0 (off) nor in 0.01..100 mm"):
             self.assertIn(part, message)
         for change in ({"custom_angular_deflection_deg": float("nan")}, {"custom_force_shading": 1},

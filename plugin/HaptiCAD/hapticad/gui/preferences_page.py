@@ -93,9 +93,8 @@ class PreferencesPage:
         form.addRow("Linear deflection", self.linear_deflection)
         self.angular_deflection = QtWidgets.QDoubleSpinBox()
         self.angular_deflection.setObjectName("angularDeflection")
-        self.angular_deflection.setDecimals(2)
-        low, high = preferences.ANGULAR_RANGE_DEG
-        self.angular_deflection.setRange(math.ceil(low * 100) / 100, math.floor(high * 100) / 100)
+        self.angular_deflection.setDecimals(4)
+        self.angular_deflection.setRange(*preferences.ANGULAR_RANGE_DEG_SHOWN)
         self.angular_deflection.setSuffix(" \u00b0")
         self.angular_deflection.setToolTip("Largest angle between the normals of neighbouring facets")
         form.addRow("Angular deflection", self.angular_deflection)
@@ -172,8 +171,18 @@ class PreferencesPage:
         self.mapping_hint.setVisible(bool(hint))
 
     def _custom_fields(self):
-        return (float(self.linear_deflection.value()), float(self.angular_deflection.value()),
-                self.force_shading.isChecked(), float(self.refine_edge.value()))
+        """Custom's values as the fields hold them; a field left as it was shown gives the
+        value it was shown from, not that value rounded to the field's decimals."""
+        shown = self._custom or self._stored_custom()
+        spins = (self.linear_deflection, self.angular_deflection, None, self.refine_edge)
+        values = []
+        for spin, before in zip(spins, shown):
+            if spin is None:
+                values.append(self.force_shading.isChecked())
+                continue
+            as_shown = min(max(round(before, spin.decimals()), spin.minimum()), spin.maximum())
+            values.append(float(before) if spin.value() == as_shown else float(spin.value()))
+        return tuple(values)
 
     @staticmethod
     def _stored_custom():

@@ -131,6 +131,20 @@ class PreferencesPageTest(unittest.TestCase):
         self.assertEqual((prefs.accuracy, prefs.custom_linear_deflection_mm, prefs.custom_refine_edge_mm),
                          ("Normal", 0.25, 3.0))
 
+        # values set from Python, finer than the fields show, survive the page untouched:
+        # shown, switched to and from, and OK'd (they were rounded to the fields' decimals)
+        fine_grained = prefs.replace(accuracy="Custom", custom_linear_deflection_mm=0.012345,
+                                     custom_angular_deflection_deg=0.5730001)
+        preferences.save(fine_grained)
+
+        def flick(dialog, seen):
+            accuracy = dialog.findChild(QtWidgets.QComboBox, "accuracy")
+            for name in ("Fine", "Custom", "Draft", "Custom"):
+                accuracy.setCurrentText(name)
+
+        self._run_dialog(flick)
+        self.assertEqual(preferences.load(), fine_grained)
+
 
 if __name__ == "__main__":
     unittest.main()
