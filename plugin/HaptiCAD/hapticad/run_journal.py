@@ -9,6 +9,11 @@ participant, the seed, the trials and answers so far, and what the run was felt 
 run is resumed only on the study as it was (the same trials from the same seed, the same
 stimuli and context): ``resumable`` says why not otherwise. The file goes when the run
 is kept or stopped. App-only.
+
+A kept run is in the document, but on disk only once the document is saved: until then
+it is written here too (``write_kept``, one file per kept run), offered back by
+``unsaved_kept`` if the document was closed or lost without it, and forgotten when the
+document is saved (``SaveWatcher``).
 """
 import hashlib
 import json
@@ -19,14 +24,31 @@ import FreeCAD as App
 from . import similarity_study as ss
 
 
+def _folder():
+    return os.path.join(App.getUserAppDataDir(), "HaptiCAD", "runs")
+
+
+def _key(doc_path, study_name):
+    return hashlib.sha1(f"{os.path.abspath(doc_path)}\n{study_name}".encode()).hexdigest()[:16]
+
+
 def path_for(study):
     """Where ``study``'s run in progress is written, or None for a document never saved
     (no path to tell it from another's)."""
     doc_path = study.Document.FileName
     if not doc_path:
         return None
-    key = hashlib.sha1(f"{os.path.abspath(doc_path)}\n{study.Name}".encode()).hexdigest()[:16]
-    return os.path.join(App.getUserAppDataDir(), "HaptiCAD", "runs", f"{key}.json")
+    return os.path.join(_folder(), f"{_key(doc_path, study.Name)}.json")
+
+
+def _write_atomically(path, state):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    temporary = path + ".part"
+    with open(temporary, "w", encoding="utf-8") as handle:
+        json.dump(state, handle)
+        handle.flush()
+        os.fsync(handle.fileno())
+    os.replace(temporary, path)
 
 
 def write(study, run):
@@ -35,17 +57,11 @@ def write(study, run):
     path = path_for(study)
     if path is None:
         return
-    os.makedirs(os.path.dirname(path), exist_ok=True)
     state = {"document": os.path.abspath(study.Document.FileName), "study": study.Name,
              "name": run.participant, "seed": run.seed, "started": run.started,
              "trials": [[t.kind, t.first, t.second] for t in run.trials], "answers": list(run.answers),
              "stimuli": run.stimuli, "context": run.context}
-    temporary = path + ".part"
-    with open(temporary, "w", encoding="utf-8") as handle:
-        json.dump(state, handle)
-        handle.flush()
-        os.fsync(handle.fileno())
-    os.replace(temporary, path)
+    _write_atomically(path, state)
 
 
 def read(study):
@@ -93,3 +109,90 @@ def resume(study, state):
     run.started = state.get("started", run.started)
     run.answers = list(state["answers"])
     return run
+
+
+# --- kept runs the document has not saved yet ------------------------------------------
+
+def _kept_prefix(doc_path, study_name):
+    return os.path.join(_folder(), f"{_key(doc_path, study_name)}-kept-")
+
+
+def _same(a, b):
+    return json.dumps(a, sort_keys=True) == json.dumps(b, sort_keys=True)
+
+
+def write_kept(study, record):
+    """Writes a run just kept in ``study`` (its record as stored) until the document is
+    saved. Nothing for a document never saved."""
+    doc_path = study.Document.FileName
+    if not doc_path:
+        return
+    _WRITTEN_UNDER.setdefault(study.Document.Name, set()).add(doc_path)
+    digest = hashlib.sha1(json.dumps(record, sort_keys=True).encode()).hexdigest()[:12]
+    _write_atomically(_kept_prefix(doc_path, study.Name) + f"{digest}.json",
+                      {"document": os.path.abspath(doc_path), "study": study.Name, "kept": record})
+
+
+def _kept_files(doc_path, study_name):
+    folder, prefix = os.path.split(_kept_prefix(doc_path, study_name))
+    try:
+        names = sorted(os.listdir(folder))
+    except OSError:
+        return []
+    return [os.path.join(folder, n) for n in names if n.startswith(prefix) and n.endswith(".json")]
+
+
+def unsaved_kept(study):
+    """The runs kept in ``study`` and not saved with its document that the study does
+    not hold now (the document was closed without saving, or FreeCAD ended), oldest
+    first."""
+    doc_path = study.Document.FileName
+    if not doc_path:
+        return []
+    held = ss.runs(study)
+    found = []
+    for path in _kept_files(doc_path, study.Name):
+        try:
+            with open(path, encoding="utf-8") as handle:
+                record = json.load(handle).get("kept")
+        except (OSError, ValueError, AttributeError):
+            continue
+        if isinstance(record, dict) and not any(_same(record, r) for r in held):
+            found.append(record)
+    return sorted(found, key=lambda r: str(r.get("started", "")))
+
+
+def forget_kept(doc_path, study_name):
+    """The document is saved (or its kept runs put back and saved): the files go."""
+    for path in _kept_files(doc_path, study_name):
+        try:
+            os.remove(path)
+        except OSError:
+            pass
+
+
+# document name -> the paths its kept runs were written under (Save As names it anew,
+# and FreeCAD has taken the new name by the time it says it saves)
+_WRITTEN_UNDER = {}
+
+
+class SaveWatcher:
+    """Forgets a document's kept runs once it is saved, under its new name and the ones
+    they were written under. One is enough for all documents: ``watch_saves``."""
+
+    def slotFinishSaveDocument(self, doc, path):
+        paths = {p for p in (path, doc.FileName, *_WRITTEN_UNDER.pop(doc.Name, ())) if p}
+        for obj in doc.Objects:
+            if ss.is_similarity_study(obj):
+                for doc_path in paths:
+                    forget_kept(doc_path, obj.Name)
+
+
+_WATCHER = []
+
+
+def watch_saves():
+    """Registers the SaveWatcher once."""
+    if not _WATCHER:
+        _WATCHER.append(SaveWatcher())
+        App.addDocumentObserver(_WATCHER[0])

@@ -2,6 +2,7 @@
 """A similarity run in progress written to disk after every answer (run_journal): read
 back as it was, resumed on the study as it was and only then, gone once kept or stopped.
 Run by freecadcmd (see tests/plugin/CMakeLists.txt)."""
+import json
 import os
 import sys
 import tempfile
@@ -37,6 +38,43 @@ class RunJournalTest(unittest.TestCase):
             run.present_each()
             run.answer(4)
         return run
+
+    def test_a_kept_run_the_document_lost_unsaved_is_offered_until_a_save(self):
+        path = os.path.join(self.tmp.name, "study.FCStd")
+        self.doc.saveAs(path)
+        run = ss.Run(self.study, "Ada", seed=7)
+        finish(run)
+        record = json.loads(json.dumps(ss.record_run(self.study, run)))
+        run_journal.write_kept(self.study, record)
+        self.assertEqual(run_journal.unsaved_kept(self.study), [])  # the study holds it
+        # FreeCAD gone before a save: the document opens without the run, which is offered
+        name = self.study.Name
+        App.closeDocument(self.doc.Name)
+        self.doc = App.openDocument(path)
+        self.study = self.doc.getObject(name)
+        self.assertEqual(ss.runs(self.study), [])
+        self.assertEqual(run_journal.unsaved_kept(self.study), [record])
+        ss.record_run(self.study, run_journal.unsaved_kept(self.study)[0])
+        self.assertEqual(run_journal.unsaved_kept(self.study), [])  # put back: held again
+        # a save (Save As too) is what lets the files go: watched as FreeCAD saves
+        run_journal.watch_saves()
+        run_journal.write_kept(self.study, record)
+        self.assertTrue(os.listdir(os.path.join(App.getUserAppDataDir(), "HaptiCAD", "runs")))
+        kept_files = run_journal._kept_files(path, self.study.Name)
+        self.assertEqual(len(kept_files), 1)
+        self.doc.saveAs(os.path.join(self.tmp.name, "renamed.FCStd"))
+        self.assertFalse(any(os.path.exists(f) for f in kept_files))
+        # a document never saved writes nothing
+        unsaved = App.newDocument("RunJournalUnsaved")
+        try:
+            box = unsaved.addObject("Part::Box", "Box")
+            unsaved.recompute()
+            other = HaptiCAD.make_similarity_study(unsaved, HaptiCAD.make_surface(
+                unsaved, [(box, "Face6")], material="ABS", FeelRoughness=False))
+            run_journal.write_kept(other, record)
+            self.assertEqual(run_journal.unsaved_kept(other), [])
+        finally:
+            App.closeDocument(unsaved.Name)
 
     def test_an_unsaved_document_has_no_journal(self):
         self.assertIsNone(run_journal.path_for(self.study))

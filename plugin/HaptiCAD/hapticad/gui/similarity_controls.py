@@ -82,6 +82,12 @@ class SimilarityControls(QtWidgets.QWidget):
         self.resume_button.setObjectName("similarityResume")
         self.resume_button.clicked.connect(self.resume)
         layout.addWidget(self.resume_button)
+        # runs kept in the document that was then closed or lost unsaved: offered back
+        self.put_back_button = QtWidgets.QPushButton()
+        self.put_back_button.setObjectName("similarityPutBack")
+        self.put_back_button.clicked.connect(self.put_back)
+        layout.addWidget(self.put_back_button)
+        run_journal.watch_saves()
 
         self.trial_label = QtWidgets.QLabel()
         self.trial_label.setObjectName("similarityTrial")
@@ -250,6 +256,13 @@ class SimilarityControls(QtWidgets.QWidget):
         self.name.setEnabled(not running)
         self.start_button.setEnabled(not running)
         waiting = None if running else run_journal.read(self.study)
+        lost = [] if running else self.unsaved_kept()
+        self.put_back_button.setVisible(bool(lost))
+        if lost:
+            self.put_back_button.setText(f"Put back {self._names(lost)} kept run{'s' if len(lost) > 1 else ''}, "
+                                         "never saved")
+            self.put_back_button.setToolTip("Kept in the document, which closed (or FreeCAD ended) before it "
+                                            "was saved. Put back, then save the document.")
         self.resume_button.setVisible(waiting is not None)
         if waiting is not None:
             count = len(waiting["trials"])
@@ -364,6 +377,37 @@ class SimilarityControls(QtWidgets.QWidget):
         self.load()
         return True
 
+    def unsaved_kept(self):
+        """Runs kept earlier that the document lost unsaved (not those these controls
+        kept and an Undo took back: Redo brings those, and the next keep asks)."""
+        try:
+            return [r for r in run_journal.unsaved_kept(self.study) if r not in self.kept_here]
+        except ValueError:  # the study's stored runs are unreadable: said elsewhere
+            return []
+
+    def put_back(self):
+        """Keeps again, one undo step, the runs the document lost unsaved."""
+        lost = self.unsaved_kept()
+        if not lost or self.run is not None:
+            return False
+        doc = self.study.Document
+        doc.openTransaction("Put back kept similarity runs")
+        try:
+            for record in lost:
+                ss.record_run(self.study, record)
+        except ValueError as exc:
+            doc.abortTransaction()
+            self.show_message(f"Not put back: {html.escape(str(exc), quote=False)}", error=True)
+            return False
+        doc.commitTransaction()
+        self.kept_here.extend(lost)
+        self.show_message(f"Put back {self._names(lost)} run{'s' if len(lost) > 1 else ''} "
+                          f"({self.study.Participants} participant{'s' if self.study.Participants != 1 else ''}). "
+                          "Save the document to keep them on disk.")
+        self.changed.emit()
+        self.load()
+        return True
+
     def _write_journal(self):
         """The run in progress to disk (run_journal), so a crash loses no answer."""
         try:
@@ -452,6 +496,12 @@ class SimilarityControls(QtWidgets.QWidget):
             return None
         doc.commitTransaction()
         run_journal.forget(self.study)
+        try:  # on disk until the document is saved (run_journal.SaveWatcher)
+            for kept in [*taken, record]:
+                run_journal.write_kept(self.study, json.loads(json.dumps(kept)))
+        except OSError as exc:
+            App.Console.PrintWarning(f"HaptiCAD: the kept run could not be written to disk beside the "
+                                     f"document ({exc}); save the document to keep it\n")
         self.kept_here.append(json.loads(json.dumps(record)))  # as stored: compared with the stored runs
         self.run = None
         self.name.clear()

@@ -315,6 +315,54 @@ class SimilarityGuiTest(unittest.TestCase):
         fresh.stop()
         self.assertIsNone(run_journal.read(study))
 
+    def test_a_kept_run_lost_with_an_unsaved_document_is_put_back(self):
+        # the run is in the document once kept, on disk only once it is saved: FreeCAD
+        # closed (or crashed) between the two lost it, its journal already gone
+        from hapticad import run_journal
+
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=2)
+        path = os.path.join(tempfile.mkdtemp(), "study.FCStd")
+        self.doc.saveAs(path)
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        controls = task_panel_feel.active_panel().similarity_controls[0]
+        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Ida")
+        h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        self.answer_in_code(controls)
+        self.assertEqual([r["name"] for r in ss.runs(study)], ["Ida"])
+        self.assertIn("save the document to keep it on disk", controls.message.text())
+        self.assertTrue(controls.put_back_button.isHidden())  # the document holds it
+        h.press_task_button("Close")
+        name = study.Name
+        App.closeDocument(self.doc.Name)  # gone unsaved
+        self.doc = App.openDocument(path)
+        study = self.doc.getObject(name)
+        self.assertEqual(ss.runs(study), [])
+        Gui.runCommand("HaptiCAD_Feel")  # the panel, as the designer opens it again
+        h.process_events()
+        fresh = task_panel_feel.active_panel().similarity_controls[0]
+        put_back = fresh.findChild(QtWidgets.QPushButton, "similarityPutBack")
+        self.assertFalse(put_back.isHidden())
+        self.assertEqual(put_back.text(), "Put back Ida's kept run, never saved")
+        self.assertIn("closed (or FreeCAD ended) before it was saved", put_back.toolTip())
+        h.widen_panel()
+        h.grab_screen("similarity_put_back.png")
+        self.doc.UndoMode = 1
+        put_back.click()
+        self.assertEqual([r["name"] for r in ss.runs(study)], ["Ida"])
+        self.assertEqual(study.Participants, 1)
+        self.assertIn("Put back kept similarity runs", self.doc.UndoNames)
+        self.assertIn("Put back Ida's run (1 participant). Save the document", fresh.message.text())
+        self.assertTrue(put_back.isHidden())
+        # saved: nothing left to put back, whatever happens next
+        h.press_task_button("Close")
+        self.doc.save()
+        App.closeDocument(self.doc.Name)
+        self.doc = App.openDocument(path)
+        study = self.doc.getObject(name)
+        self.assertEqual([r["name"] for r in ss.runs(study)], ["Ida"])
+        self.assertEqual(run_journal.unsaved_kept(study), [])
+
     def test_an_edit_during_a_run_pauses_it_and_undoing_the_edit_goes_on(self):
         # a friction edit at trial 60 threw the run's answers away, and undoing it did not
         # bring them back
