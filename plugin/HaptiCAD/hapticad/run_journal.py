@@ -13,7 +13,7 @@ is kept or stopped. App-only.
 A kept run is in the document, but on disk only once the document is saved: until then
 it is written here too (``write_kept``, one file per kept run), offered back by
 ``unsaved_kept`` if the document was closed or lost without it, and forgotten when the
-document is saved (``SaveWatcher``).
+document is saved holding it (``SaveWatcher``).
 """
 import hashlib
 import json
@@ -129,8 +129,10 @@ def write_kept(study, record):
         return
     _WRITTEN_UNDER.setdefault(study.Document.Name, set()).add(doc_path)
     digest = hashlib.sha1(json.dumps(record, sort_keys=True).encode()).hexdigest()[:12]
+    # the study's ID tells it from a later study given the name of a deleted one
     _write_atomically(_kept_prefix(doc_path, study.Name) + f"{digest}.json",
-                      {"document": os.path.abspath(doc_path), "study": study.Name, "kept": record})
+                      {"document": os.path.abspath(doc_path), "study": study.Name, "study_id": study.ID,
+                       "kept": record})
 
 
 def _kept_files(doc_path, study_name):
@@ -142,50 +144,78 @@ def _kept_files(doc_path, study_name):
     return [os.path.join(folder, n) for n in names if n.startswith(prefix) and n.endswith(".json")]
 
 
+def _read_kept(path):
+    """(the study's ID, the record) of a kept file; None for one that cannot be read
+    or holds no run that could be kept."""
+    try:
+        with open(path, encoding="utf-8") as handle:
+            state = json.load(handle)
+        record = state["kept"]
+        if not isinstance(record, dict) or ss.record_problems(record):
+            return None
+        return state.get("study_id"), record
+    except (OSError, ValueError, KeyError, TypeError, AttributeError):
+        return None
+
+
 def unsaved_kept(study):
     """The runs kept in ``study`` and not saved with its document that the study does
     not hold now (the document was closed without saving, or FreeCAD ended), oldest
-    first."""
+    first. Raises ValueError if the study's own runs cannot be read."""
     doc_path = study.Document.FileName
     if not doc_path:
         return []
     held = ss.runs(study)
     found = []
     for path in _kept_files(doc_path, study.Name):
-        try:
-            with open(path, encoding="utf-8") as handle:
-                record = json.load(handle).get("kept")
-        except (OSError, ValueError, AttributeError):
+        read = _read_kept(path)
+        if read is None or read[0] not in (None, study.ID):
             continue
-        if isinstance(record, dict) and not any(_same(record, r) for r in held):
-            found.append(record)
+        if not any(_same(read[1], r) for r in held):
+            found.append(read[1])
     return sorted(found, key=lambda r: str(r.get("started", "")))
 
 
-def forget_kept(doc_path, study_name):
-    """The document is saved (or its kept runs put back and saved): the files go."""
-    for path in _kept_files(doc_path, study_name):
-        try:
-            os.remove(path)
-        except OSError:
-            pass
+def forget_saved(doc_path, study):
+    """The document was saved as ``doc_path``: the files of the runs ``study`` holds
+    go (they are on disk now); those of runs it does not hold (an Undo took them back)
+    stay."""
+    held = ss.runs(study)
+    for path in _kept_files(doc_path, study.Name):
+        read = _read_kept(path)
+        if read is not None and read[0] not in (None, study.ID):
+            continue  # another study of that name, since deleted
+        if read is None or any(_same(read[1], r) for r in held):
+            try:
+                os.remove(path)
+            except OSError:
+                pass
 
 
-# document name -> the paths its kept runs were written under (Save As names it anew,
-# and FreeCAD has taken the new name by the time it says it saves)
+# document name -> the paths its kept runs were written under this session (Save As
+# names it anew, and FreeCAD has taken the new name by the time it says it saves)
 _WRITTEN_UNDER = {}
 
 
 class SaveWatcher:
-    """Forgets a document's kept runs once it is saved, under its new name and the ones
-    they were written under. One is enough for all documents: ``watch_saves``."""
+    """Forgets the files of kept runs once a save holds them. One is enough for all
+    documents: ``watch_saves``."""
 
     def slotFinishSaveDocument(self, doc, path):
-        paths = {p for p in (path, doc.FileName, *_WRITTEN_UNDER.pop(doc.Name, ())) if p}
+        if not doc.FileName or os.path.abspath(path) != os.path.abspath(doc.FileName):
+            return  # a copy saved elsewhere: the document itself is as unsaved as before
+        paths = {path, *_WRITTEN_UNDER.get(doc.Name, ())}
         for obj in doc.Objects:
             if ss.is_similarity_study(obj):
                 for doc_path in paths:
-                    forget_kept(doc_path, obj.Name)
+                    try:
+                        forget_saved(doc_path, obj)
+                    except ValueError:  # its runs unreadable: nothing is taken as saved
+                        pass
+
+    def slotDeletedDocument(self, doc):
+        # a document of the same name opened later is another document
+        _WRITTEN_UNDER.pop(doc.Name, None)
 
 
 _WATCHER = []

@@ -76,6 +76,67 @@ class RunJournalTest(unittest.TestCase):
         finally:
             App.closeDocument(unsaved.Name)
 
+    def keep_and_lose(self, path, name="Ida"):
+        """Saves the document as ``path``, keeps ``name``'s run (written beside it), then
+        closes it unsaved and opens it again: the kept record."""
+        self.doc.saveAs(path)
+        run = ss.Run(self.study, name, seed=7)
+        finish(run)
+        record = json.loads(json.dumps(ss.record_run(self.study, run)))
+        run_journal.write_kept(self.study, record)
+        study_name = self.study.Name
+        App.closeDocument(self.doc.Name)
+        self.doc = App.openDocument(path)
+        self.study = self.doc.getObject(study_name)
+        return record
+
+    def test_a_save_that_does_not_hold_a_kept_run_keeps_it_offered(self):
+        # a save after the crash, before the run is put back (the next participant's run,
+        # then Ctrl+S), deleted its file: the run was lost for good
+        run_journal.watch_saves()
+        path = os.path.join(self.tmp.name, "study.FCStd")
+        record = self.keep_and_lose(path)
+        self.doc.save()
+        self.assertEqual(run_journal.unsaved_kept(self.study), [record])
+        # a copy saved elsewhere leaves the document as unsaved as before, even holding it
+        ss.record_run(self.study, record)
+        self.doc.saveCopy(os.path.join(self.tmp.name, "copy.FCStd"))
+        self.assertEqual(len(run_journal._kept_files(path, self.study.Name)), 1)
+        # a save that holds it lets it go
+        self.doc.save()
+        self.assertEqual(run_journal._kept_files(path, self.study.Name), [])
+
+    def test_another_document_or_study_of_the_same_name_leaves_a_kept_run_alone(self):
+        run_journal.watch_saves()
+        first = os.path.join(self.tmp.name, "a", "study.FCStd")
+        os.makedirs(os.path.dirname(first))
+        record = self.keep_and_lose(first, "Jo")
+        name = self.study.Name
+        App.closeDocument(self.doc.Name)
+        # a document of the same name in another folder, saved with a study of that name
+        second = os.path.join(self.tmp.name, "b", "study.FCStd")
+        os.makedirs(os.path.dirname(second))
+        self.doc = App.newDocument("study")
+        box = self.doc.addObject("Part::Box", "Plate")
+        self.doc.recompute()
+        plate = HaptiCAD.make_surface(self.doc, [(box, "Face6")], material="ABS", FeelRoughness=False)
+        self.study = HaptiCAD.make_similarity_study(self.doc, plate, WarmUps=2)
+        self.doc.saveAs(second)
+        self.doc.save()
+        App.closeDocument(self.doc.Name)
+        self.doc = App.openDocument(first)
+        self.study = self.doc.getObject(name)
+        self.assertEqual(run_journal.unsaved_kept(self.study), [record])
+        # the study deleted and another made with its name: not offered Jo's run
+        self.doc.removeObject(name)
+        self.study = HaptiCAD.make_similarity_study(self.doc, self.plate_of(self.doc), WarmUps=2)
+        self.assertEqual(self.study.Name, name)
+        self.assertEqual(run_journal.unsaved_kept(self.study), [])
+
+    @staticmethod
+    def plate_of(doc):
+        return next(o for o in doc.Objects if o.Name.startswith("HapticSurface"))
+
     def test_an_unsaved_document_has_no_journal(self):
         self.assertIsNone(run_journal.path_for(self.study))
         run_journal.write(self.study, self.half_run())  # nothing to name it by: nothing written

@@ -183,7 +183,8 @@ class SimilarityControls(QtWidgets.QWidget):
 
     def taken_back(self):
         """The runs kept here that an Undo took back (Redo would bring them back)."""
-        if not is_alive(self.study) or "Keep a similarity run" not in self.study.Document.RedoNames:
+        redo = self.study.Document.RedoNames if is_alive(self.study) else []
+        if "Keep a similarity run" not in redo and "Put back kept similarity runs" not in redo:
             return []
         stored = ss.runs(self.study)
         return [record for record in self.kept_here if record not in stored]
@@ -378,10 +379,11 @@ class SimilarityControls(QtWidgets.QWidget):
         return True
 
     def unsaved_kept(self):
-        """Runs kept earlier that the document lost unsaved (not those these controls
-        kept and an Undo took back: Redo brings those, and the next keep asks)."""
+        """Runs kept earlier that the document lost unsaved (not those an Undo took back
+        while Redo can bring them: the next keep asks about those)."""
         try:
-            return [r for r in run_journal.unsaved_kept(self.study) if r not in self.kept_here]
+            taken = self.taken_back()
+            return [r for r in run_journal.unsaved_kept(self.study) if r not in taken]
         except ValueError:  # the study's stored runs are unreadable: said elsewhere
             return []
 
@@ -401,9 +403,10 @@ class SimilarityControls(QtWidgets.QWidget):
             return False
         doc.commitTransaction()
         self.kept_here.extend(lost)
-        self.show_message(f"Put back {self._names(lost)} run{'s' if len(lost) > 1 else ''} "
+        many = len(lost) > 1
+        self.show_message(f"Put back {html.escape(self._names(lost), quote=False)} run{'s' if many else ''} "
                           f"({self.study.Participants} participant{'s' if self.study.Participants != 1 else ''}). "
-                          "Save the document to keep them on disk.")
+                          f"Save the document to keep {'them' if many else 'it'} on disk.")
         self.changed.emit()
         self.load()
         return True
@@ -495,21 +498,24 @@ class SimilarityControls(QtWidgets.QWidget):
             self.show_message(f"Not kept: {exc}", error=True)
             return None
         doc.commitTransaction()
-        run_journal.forget(self.study)
+        unwritten = ""
         try:  # on disk until the document is saved (run_journal.SaveWatcher)
+            run_journal.forget(self.study)
             for kept in [*taken, record]:
                 run_journal.write_kept(self.study, json.loads(json.dumps(kept)))
         except OSError as exc:
-            App.Console.PrintWarning(f"HaptiCAD: the kept run could not be written to disk beside the "
-                                     f"document ({exc}); save the document to keep it\n")
+            unwritten = (f" It could not be written to disk beside the document "
+                         f"({html.escape(str(exc), quote=False)}): save now.")
         self.kept_here.append(json.loads(json.dumps(record)))  # as stored: compared with the stored runs
         self.run = None
         self.name.clear()
-        self.show_message(f"Kept {record['name']}'s run: {len(record['ratings'])} pairs"
+        self.show_message(f"Kept {html.escape(record['name'], quote=False)}'s run: {len(record['ratings'])} pairs"
                           + (f", {len(record['choices'])} classings" if record["choices"] else "")
                           + f" ({self.study.Participants} participant{'s' if self.study.Participants != 1 else ''})."
-                          # nothing is saved for the designer; the journal of the run is gone now
-                          + " It is in the document: save the document to keep it on disk.")
+                          # nothing is saved for the designer: the run is written beside the
+                          # document until a save holds it (run_journal.write_kept)
+                          + " It is in the document: save the document to keep it on disk." + unwritten,
+                          error=bool(unwritten))
         App.Console.PrintLog(f"HaptiCAD: {self.study.Label}: kept {record['name']}'s run\n")
         self.changed.emit()
         return record

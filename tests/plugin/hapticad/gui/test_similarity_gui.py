@@ -354,6 +354,20 @@ class SimilarityGuiTest(unittest.TestCase):
         self.assertIn("Put back kept similarity runs", self.doc.UndoNames)
         self.assertIn("Put back Ida's run (1 participant). Save the document", fresh.message.text())
         self.assertTrue(put_back.isHidden())
+        # Undo takes it back (Redo brings it, and the next keep asks); once an edit clears
+        # Redo, it is offered again rather than lost
+        self.doc.undo()
+        fresh.load()
+        self.assertEqual(ss.runs(study), [])
+        self.assertTrue(put_back.isHidden())
+        self.doc.openTransaction("Rename")
+        study.Label = "Study of gratings"
+        self.doc.commitTransaction()
+        self.assertEqual(self.doc.RedoNames, [])
+        fresh.load()
+        self.assertFalse(put_back.isHidden())
+        put_back.click()
+        self.assertEqual([r["name"] for r in ss.runs(study)], ["Ida"])
         # saved: nothing left to put back, whatever happens next
         h.press_task_button("Close")
         self.doc.save()
@@ -362,6 +376,7 @@ class SimilarityGuiTest(unittest.TestCase):
         study = self.doc.getObject(name)
         self.assertEqual([r["name"] for r in ss.runs(study)], ["Ida"])
         self.assertEqual(run_journal.unsaved_kept(study), [])
+        self.assertEqual(run_journal._kept_files(path, name), [])  # the save let its file go
 
     def test_an_edit_during_a_run_pauses_it_and_undoing_the_edit_goes_on(self):
         # a friction edit at trial 60 threw the run's answers away, and undoing it did not
