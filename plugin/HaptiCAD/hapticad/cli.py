@@ -13,6 +13,7 @@ from xml.etree import ElementTree
 
 from .accuracy import CUSTOM, PRESETS
 from .freecad_env import ensure_freecad
+from . import texture_fit_options as fit_options
 
 
 def _point(text):
@@ -213,9 +214,6 @@ def cmd_accuracy_table(args):
     print(accuracy_table.markdown(rows))
     return None
 
-
-# a section of more periods than this is longer than any rig's recording (the range is stated)
-MAX_MIN_PERIODS = 100000
 
 BENCH_MESH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "hapticad-bench-mesh")
 
@@ -520,13 +518,15 @@ def build_parser():
     fit.add_argument("--period", type=float, required=True, metavar="MM", help="the grating's period lambda, mm")
     fit.add_argument("--speeds", type=_speeds, default=None, metavar="MM_S,...",
                      help="target scanning speeds, mm/s (the paper's 50,80,120,180,270)")
-    fit.add_argument("--tolerance", type=float, default=2.5, metavar="PERCENT",
+    fit.add_argument("--tolerance", type=float, default=fit_options.DEFAULT_TOLERANCE_PERCENT, metavar="PERCENT",
                      help="how far a section's speed may stray from its target (2.5 %%)")
-    fit.add_argument("--lowpass", type=float, default=1000.0, metavar="HZ",
+    fit.add_argument("--lowpass", type=float, default=fit_options.DEFAULT_LOWPASS_HZ, metavar="HZ",
                      help="first-order low-pass on the force, 0 for none (1000, as the paper's rig)")
-    fit.add_argument("--harmonics", type=_count(2, 8), default=3, help="harmonic peaks fitted, 2 to 8 (3, as the paper)")
-    fit.add_argument("--min-periods", type=_count(6, MAX_MIN_PERIODS), default=6, metavar="N",
-                     help=f"shortest section, periods, 6 to {MAX_MIN_PERIODS} (6)")
+    fit.add_argument("--harmonics", type=_count(*fit_options.HARMONICS_RANGE), default=fit_options.DEFAULT_HARMONICS,
+                     help="harmonic peaks fitted, 2 to 8 (3, as the paper)")
+    fit.add_argument("--min-periods", type=_count(*fit_options.MIN_PERIODS_RANGE),
+                     default=fit_options.DEFAULT_MIN_PERIODS, metavar="N",
+                     help=f"shortest section, periods, 6 to {fit_options.MAX_MIN_PERIODS} (6)")
     fit.add_argument("--plot", type=_png_file, metavar="PNG", help="draw the spectra and the fits against speed")
     fit.add_argument("--apply", metavar="FCSTD", help="set the fitted texture on a surface of this document and save it")
     fit.add_argument("--surface", metavar="NAME", help="the haptic surface (name or label) --apply sets")

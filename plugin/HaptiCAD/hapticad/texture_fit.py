@@ -24,6 +24,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _core
+from .texture_fit_options import (DEFAULT_HARMONICS, DEFAULT_LOWPASS_HZ, DEFAULT_MIN_PERIODS,
+                                  DEFAULT_TOLERANCE_PERCENT)
 
 MM = 1e-3
 PAPER_SPEEDS_MM_S = (50.0, 80.0, 120.0, 180.0, 270.0)  # seed 001 §III
@@ -197,8 +199,8 @@ def load_recording(path):
     return Recording(os.path.abspath(path), kind, data, normal)
 
 
-def fit_files(paths, period_mm, speeds_mm_s=PAPER_SPEEDS_MM_S, tolerance_percent=2.5, lowpass_hz=1000.0,
-              harmonics=3, min_periods=6):
+def fit_files(paths, period_mm, speeds_mm_s=PAPER_SPEEDS_MM_S, tolerance_percent=DEFAULT_TOLERANCE_PERCENT,
+              lowpass_hz=DEFAULT_LOWPASS_HZ, harmonics=DEFAULT_HARMONICS, min_periods=DEFAULT_MIN_PERIODS):
     """Fits the recordings in ``paths``. Raises ValueError for unreadable files, bad options,
     or recordings that hold no section of constant speed."""
     if not paths:

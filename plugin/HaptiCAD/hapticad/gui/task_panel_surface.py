@@ -211,14 +211,79 @@ class SurfaceTaskPanel:
             self._add_fit_rows(form)
         return box
 
+    def _add_fit_options(self, form):
+        """The fit's options as `hapticad fit-texture` takes them, folded away: the
+        paper's values serve most recordings."""
+        from .. import texture_fit_options as options
+
+        self.fit_options_toggle = QtWidgets.QToolButton()
+        self.fit_options_toggle.setObjectName("fitOptionsToggle")
+        self.fit_options_toggle.setText("Fit options")
+        self.fit_options_toggle.setCheckable(True)
+        self.fit_options_toggle.setToolButtonStyle(QtCore.Qt.ToolButtonTextBesideIcon)
+        self.fit_options_toggle.setArrowType(QtCore.Qt.RightArrow)
+        self.fit_options_toggle.setAutoRaise(True)
+        form.addRow(self.fit_options_toggle)
+        self.fit_options = QtWidgets.QWidget()
+        rows = QtWidgets.QFormLayout(self.fit_options)
+        rows.setContentsMargins(12, 0, 0, 0)
+        self.fit_tolerance = QtWidgets.QDoubleSpinBox()
+        self.fit_tolerance.setObjectName("fitTolerance")
+        self.fit_tolerance.setRange(*options.TOLERANCE_RANGE_PERCENT)
+        self.fit_tolerance.setDecimals(1)
+        self.fit_tolerance.setSingleStep(0.5)
+        self.fit_tolerance.setSuffix(" %")
+        self.fit_tolerance.setValue(options.DEFAULT_TOLERANCE_PERCENT)
+        self.fit_tolerance.setToolTip("How far a section's speed may stray from a recorded speed and still be fitted "
+                                      "(2.5 %, as the paper)")
+        rows.addRow("Speed tolerance", self.fit_tolerance)
+        self.fit_lowpass = QtWidgets.QDoubleSpinBox()
+        self.fit_lowpass.setObjectName("fitLowpass")
+        self.fit_lowpass.setRange(*options.LOWPASS_RANGE_HZ)
+        self.fit_lowpass.setDecimals(0)
+        self.fit_lowpass.setSingleStep(100)
+        self.fit_lowpass.setSuffix(" Hz")
+        self.fit_lowpass.setSpecialValueText("off")
+        self.fit_lowpass.setValue(options.DEFAULT_LOWPASS_HZ)
+        self.fit_lowpass.setToolTip("First-order low-pass on the recorded force before the spectrum (1000 Hz, as the "
+                                    "paper's rig; off for a force already filtered)")
+        rows.addRow("Low-pass", self.fit_lowpass)
+        self.fit_harmonics = QtWidgets.QSpinBox()
+        self.fit_harmonics.setObjectName("fitHarmonics")
+        self.fit_harmonics.setRange(*options.HARMONICS_RANGE)
+        self.fit_harmonics.setValue(options.DEFAULT_HARMONICS)
+        self.fit_harmonics.setToolTip("Harmonic peaks of the grating fitted with the power law (3, as the paper)")
+        rows.addRow("Harmonics", self.fit_harmonics)
+        self.fit_min_periods = QtWidgets.QSpinBox()
+        self.fit_min_periods.setObjectName("fitMinPeriods")
+        self.fit_min_periods.setRange(*options.MIN_PERIODS_RANGE)
+        self.fit_min_periods.setValue(options.DEFAULT_MIN_PERIODS)
+        self.fit_min_periods.setSuffix(" periods")
+        self.fit_min_periods.setToolTip("The shortest section of steady speed that is fitted (6 periods of the grating)")
+        rows.addRow("Shortest section", self.fit_min_periods)
+        self.fit_options.setVisible(False)
+        form.addRow(self.fit_options)
+
+        def fold(shown):
+            self.fit_options.setVisible(shown)
+            self.fit_options_toggle.setArrowType(QtCore.Qt.DownArrow if shown else QtCore.Qt.RightArrow)
+
+        self.fit_options_toggle.toggled.connect(fold)
+
+    def fit_option_values(self):
+        """(tolerance %, low-pass Hz, harmonics, shortest section in periods) as set."""
+        return (float(self.fit_tolerance.value()), float(self.fit_lowpass.value()), int(self.fit_harmonics.value()),
+                int(self.fit_min_periods.value()))
+
     def _add_fit_rows(self, form):
         """Fit the texture to force recordings (seed 001 §III) at the grating period above."""
         self.fit_speeds = QtWidgets.QLineEdit(", ".join(f"{s:g}" for s in texture_fit.PAPER_SPEEDS_MM_S))
         self.fit_speeds.setObjectName("fitSpeeds")
         self.fit_speeds.setCursorPosition(0)  # a narrow panel shows "50, 80, ...", not "0, 80, ..."
-        self.fit_speeds.setToolTip("The scanning speeds the recordings hold, mm/s: sections within 2.5 % of "
-                                   "one of them are fitted")
+        self.fit_speeds.setToolTip("The scanning speeds the recordings hold, mm/s: sections within the speed "
+                                   "tolerance (Fit options; 2.5 %) of one of them are fitted")
         form.addRow(QtWidgets.QLabel("Recorded speeds"), self.fit_speeds)
+        self._add_fit_options(form)
         button = QtWidgets.QPushButton("Fit to recordings…")
         button.setObjectName("fitTexture")
         button.setToolTip("Choose CSV recordings of strokes over a grating of period λ (a rig's time_s, "
@@ -581,7 +646,8 @@ class SurfaceTaskPanel:
             return False
         try:
             with busy_cursor():  # reading long recordings takes seconds
-                report = texture_fit.fit_files(paths, float(self.obj.TexturePeriod), speeds)
+                report = texture_fit.fit_files(paths, float(self.obj.TexturePeriod), speeds,
+                                               *self.fit_option_values())
                 notes = texture_fit.apply_to_surface(self.obj, report)
         except (ValueError, OSError) as exc:
             said = html.escape(str(exc), quote=False)  # a header such as "force <N>" is text
@@ -597,8 +663,25 @@ class SurfaceTaskPanel:
             f"{'s' if len(paths) != 1 else ''} (period λ {self.obj.TexturePeriod:g} mm): f_DC + v f_vis = "
             f"{fit.dc_n.intercept:.3f} {'-' if fit.dc_n.slope < 0 else '+'} {abs(fit.dc_n.slope):.3f} v N, "
             f"β_h {fit.beta_h_n.intercept:.3f} N, α_h {fit.alpha_h.intercept:.2f} (v per 400 mm/s)."
+            + self._fit_options_said()
             + "".join(f"<br>{html.escape(n, quote=False)}" for n in notes))
         return True
+
+    def _fit_options_said(self):
+        """The options that differ from the paper's, said with the fit they made."""
+        from .. import texture_fit_options as options
+
+        tolerance, lowpass, harmonics, min_periods = self.fit_option_values()
+        said = []
+        if tolerance != options.DEFAULT_TOLERANCE_PERCENT:
+            said.append(f"speed tolerance {tolerance:g} %")
+        if lowpass != options.DEFAULT_LOWPASS_HZ:
+            said.append(f"low-pass {lowpass:g} Hz" if lowpass > 0 else "no low-pass")
+        if harmonics != options.DEFAULT_HARMONICS:
+            said.append(f"{harmonics} harmonics")
+        if min_periods != options.DEFAULT_MIN_PERIODS:
+            said.append(f"sections of {min_periods} periods or more")
+        return f" With {', '.join(said)}." if said else ""
 
     def use_selected_curve(self):
         curve = selected_curve()

@@ -232,6 +232,65 @@ class TaskPanelTest(unittest.TestCase):
         h.press_task_button("Cancel")
         self.assertEqual(HaptiCAD.surfaces_of(self.doc), [])
 
+    def test_the_fits_options_are_set_in_the_panel_and_said_with_the_fit(self):
+        # a rig that ran 4 % fast: the paper's 2.5 % tolerance finds no section at 50 and
+        # 120 mm/s; the panel's options (as the CLI's) widen it, and say so with the fit
+        sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "support"))
+        from texture_recordings import write_rig_csv
+
+        from hapticad import _core, texture_fit
+
+        surface = self.open_new_surface()
+        used = []
+        fit_files = texture_fit.fit_files
+
+        def watched(*args, **kwargs):
+            try:
+                report = fit_files(*args, **kwargs)
+            except ValueError:
+                options = _core.TextureFitOptions()  # what the failed fit was asked for, as the core reads it
+                options.speed_tolerance, options.lowpass_hz, options.harmonics, options.min_periods = (
+                    args[3] / 100.0, args[4], args[5], args[6])
+                used.append(options)
+                raise
+            used.append(report.options)
+            return report
+
+        self.addCleanup(setattr, texture_fit, "fit_files", fit_files)
+        texture_fit.fit_files = watched
+        rig = os.path.join(tempfile.mkdtemp(), "fast_rig.csv")
+        write_rig_csv(_core, rig, speeds_mm_s=(52.0, 124.8), f_dc=0.4, f_vis=0.2, full_range_n=2.0)
+        toggle = h.widget(QtWidgets.QToolButton, "fitOptionsToggle")
+        tolerance = h.widget(QtWidgets.QDoubleSpinBox, "fitTolerance")
+        harmonics = h.widget(QtWidgets.QSpinBox, "fitHarmonics")
+        self.assertFalse(tolerance.isVisibleTo(Gui.getMainWindow()))  # folded away
+        self.assertEqual((tolerance.value(), h.widget(QtWidgets.QDoubleSpinBox, "fitLowpass").value(),
+                          harmonics.value(), h.widget(QtWidgets.QSpinBox, "fitMinPeriods").value()),
+                         (2.5, 1000.0, 3, 6))
+        info = h.widget(QtWidgets.QLabel, "fitInfo")
+        h.widget(QtWidgets.QLineEdit, "fitSpeeds").setText("50, 120")
+        with mock.patch.object(QtWidgets.QFileDialog, "getOpenFileNames", return_value=([rig], "")):
+            h.widget(QtWidgets.QPushButton, "fitTexture").click()
+            self.assertIn("Not fitted, nothing changed", info.text())
+            self.assertEqual(surface.Texture, "None")
+            toggle.click()
+            self.assertTrue(tolerance.isVisibleTo(Gui.getMainWindow()))
+            tolerance.setValue(5.0)
+            harmonics.setValue(4)
+            h.widget(QtWidgets.QPushButton, "fitTexture").click()
+        self.assertIn("Fitted to 4 sections at 52, 125 mm/s", info.text())
+        self.assertIn("With speed tolerance 5 %, 4 harmonics.", info.text())
+        # the fit was run with them: its options, as the core read them
+        self.assertEqual([(o.harmonics, round(o.speed_tolerance, 9), o.lowpass_hz, o.min_periods) for o in used],
+                         [(3, 0.025, 1000.0, 6), (4, 0.05, 1000.0, 6)])
+        self.assertAlmostEqual(surface.TextureDC * surface.TextureFullRange, 0.8, delta=0.02)
+        h.widen_panel()
+        for area in Gui.getMainWindow().findChildren(QtWidgets.QScrollArea):
+            if area.isVisible() and area.widget() is not None and area.widget().isAncestorOf(info):
+                area.ensureWidgetVisible(info, 0, 0)
+        h.grab_screen("task_panel_fit_options.png")
+        h.press_task_button("Cancel")
+
     def test_the_panel_names_its_surface_and_shows_what_applies(self):
         surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS", FeelRoughness=False)
         surface.Label = "ThumbGrip"
