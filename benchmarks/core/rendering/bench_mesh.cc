@@ -21,8 +21,10 @@
 //
 // --rate-hz R: the ticks run R a second, as the servo loop runs them, rather than back to
 // back: each waits for its deadline by sleeping (--pace sleep, what ServoLoop does) or by
-// reading the clock (--pace spin, the core never idles). Back to back, a tick finds
-// in the caches what the tick before read; paced, the wait in between may lose it.
+// reading the clock (--pace spin, the core never idles); after a tick more than a period
+// late the lost periods are skipped, as ServoLoop skips them (`late_ticks` counts those). Back to
+// back, a tick finds in the caches what the tick before read; paced, the wait in between may lose
+// it.
 //
 // `tick_us_by_move` groups the contact ticks by how far the contact moved since the
 // tick before, in triangles: `stayed` (the same triangle), `next` (one across an edge),
@@ -30,6 +32,7 @@
 // the mesh, the more triangles a stroke crosses in a tick, and a tick that crosses more
 // tests more: this tells that growth of the work from the growth of the memory.
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -195,6 +198,11 @@ Options Parse(int argc, char** argv) {
   if (!o.file.empty() && o.icosphere_given) Usage("give a mesh file or --icosphere, not both");
   if (o.pace_given && o.rate_hz == 0.0)
     Usage("--pace needs --rate-hz (back to back, no tick waits)");
+  if (o.rate_hz > 0.0 && o.warm_ahead > 0) {
+    Usage(
+        "--warm-ahead replays a block of ticks just before them, back to back; it means nothing "
+        "with --rate-hz");
+  }
   if (o.warm_ahead > o.ticks) {
     Usage("--warm-ahead must be at most --ticks (" + std::to_string(o.ticks) + "), got " +
           std::to_string(o.warm_ahead));
@@ -334,25 +342,32 @@ int Run(const Options& o) {
   std::size_t contact = 0;
   const auto block = static_cast<std::size_t>(o.warm_ahead);
   // --rate-hz: the servo loop's pacing (servo_loop.cc): a sleep to an absolute deadline
-  // with 1 us of timer slack
+  // with 1 us of timer slack, and, after a tick more than a period late, the lost
+  // periods skipped rather than run back to back
   const auto period_ns =
       o.rate_hz > 0.0 ? static_cast<long long>(std::llround(1e9 / o.rate_hz)) : 0;
   if (period_ns > 0) prctl(PR_SET_TIMERSLACK, 1000UL, 0, 0, 0);
-  timespec deadline{};
-  clock_gettime(CLOCK_MONOTONIC, &deadline);
+  const auto monotonic_ns = [] {
+    timespec t{};
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return static_cast<long long>(t.tv_sec) * 1000000000LL + t.tv_nsec;
+  };
+  long long deadline_ns = monotonic_ns();
+  std::size_t late_ticks = 0;
   for (std::size_t k = 0; k < path.size(); ++k) {
     if (period_ns > 0) {
-      deadline.tv_nsec += period_ns;
-      while (deadline.tv_nsec >= 1000000000L) {
-        deadline.tv_nsec -= 1000000000L;
-        ++deadline.tv_sec;
+      deadline_ns += period_ns;
+      const long long now = monotonic_ns();
+      if (now > deadline_ns + period_ns) {
+        ++late_ticks;
+        deadline_ns += (now - deadline_ns) / period_ns * period_ns;
       }
       if (o.spin) {
-        timespec now{};
-        do clock_gettime(CLOCK_MONOTONIC, &now);
-        while (now.tv_sec < deadline.tv_sec ||
-               (now.tv_sec == deadline.tv_sec && now.tv_nsec < deadline.tv_nsec));
+        while (monotonic_ns() < deadline_ns) {
+        }
       } else {
+        const timespec deadline{static_cast<time_t>(deadline_ns / 1000000000LL),
+                                static_cast<long>(deadline_ns % 1000000000LL)};
         while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &deadline, nullptr) == EINTR) {
         }
       }
@@ -440,6 +455,7 @@ int Run(const Options& o) {
   std::printf("  \"ticks\": %zu,\n", path.size());
   std::printf("  \"warm_ahead\": %lld,\n", o.warm_ahead);
   std::printf("  \"rate_hz\": %g,\n", o.rate_hz);
+  std::printf("  \"late_ticks\": %zu,\n", late_ticks);
   std::printf("  \"pace\": \"%s\",\n", o.rate_hz == 0.0 ? "back to back"
                                        : o.spin         ? "spin"
                                                         : "sleep");

@@ -16,6 +16,9 @@ from dataclasses import dataclass
 # what a custom accuracy may take (FreeCAD's tessellator and the core's refinement)
 LINEAR_RANGE_MM = (1e-4, 10.0)
 ANGULAR_RANGE_RAD = (0.01, 1.5)
+# the same in degrees as shown and typed: 4 decimals, rounded inwards (0.573..85.9436)
+ANGULAR_RANGE_DEG_SHOWN = (math.ceil(math.degrees(ANGULAR_RANGE_RAD[0]) * 1e4) / 1e4,
+                           math.floor(math.degrees(ANGULAR_RANGE_RAD[1]) * 1e4) / 1e4)
 REFINE_RANGE_MM = (0.01, 100.0)  # or 0: no refinement
 CUSTOM = "Custom"
 

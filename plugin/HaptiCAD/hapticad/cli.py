@@ -11,7 +11,7 @@ import zipfile
 import zlib
 from xml.etree import ElementTree
 
-from .accuracy import CUSTOM, PRESETS
+from .accuracy import ANGULAR_RANGE_DEG_SHOWN, CUSTOM, LINEAR_RANGE_MM, PRESETS, REFINE_RANGE_MM
 from .freecad_env import ensure_freecad
 from . import texture_fit_options as fit_options
 
@@ -469,11 +469,14 @@ def build_parser():
                       help="tessellation and shading preset (default: the preferences', else Fine); Custom "
                            "uses the preferences' custom values and the four options below")
     feel.add_argument("--linear-deflection", type=float, default=None, metavar="MM",
-                      help="custom accuracy: largest distance between a facet and its face, 0.0001-10 mm")
+                      help="custom accuracy: largest distance between a facet and its face, "
+                           "{:g}-{:g} mm".format(*LINEAR_RANGE_MM))
     feel.add_argument("--angular-deflection", type=float, default=None, metavar="DEGREES",
-                      help="custom accuracy: largest angle between neighbouring facets, 0.573-85.9436 degrees")
+                      help="custom accuracy: largest angle between neighbouring facets, "
+                           "{:g}-{:g} degrees".format(*ANGULAR_RANGE_DEG_SHOWN))
     feel.add_argument("--refine-edge", type=float, default=None, metavar="MM",
-                      help="custom accuracy: split edges longer than this, 0.01-100 mm (0: off)")
+                      help="custom accuracy: split edges longer than this, {:g}-{:g} mm (0: off)".format(
+                          *REFINE_RANGE_MM))
     feel.add_argument("--force-shading", action=argparse.BooleanOptionalAction, default=None,
                       help="custom accuracy: push along the exact B-rep normals (--no-force-shading: along the "
                            "facets' own)")

@@ -24,8 +24,7 @@ SIMULATED_DEVICE = "simulated"
 ACCURACY_PRESETS = tuple(accuracy_presets.PRESETS) + (accuracy_presets.CUSTOM,)
 # the custom accuracy's angle is set in degrees, as in FreeCAD's own tessellation settings
 ANGULAR_RANGE_DEG = tuple(math.degrees(r) for r in accuracy_presets.ANGULAR_RANGE_RAD)
-# as shown and typed: 4 decimals, rounded inwards (0.5730..85.9436)
-ANGULAR_RANGE_DEG_SHOWN = (math.ceil(ANGULAR_RANGE_DEG[0] * 1e4) / 1e4, math.floor(ANGULAR_RANGE_DEG[1] * 1e4) / 1e4)
+ANGULAR_RANGE_DEG_SHOWN = accuracy_presets.ANGULAR_RANGE_DEG_SHOWN
 _START = accuracy_presets.PRESETS[accuracy_presets.DEFAULT]  # a custom accuracy starts as the default
 WORKSPACE_MAPPINGS = ("Fit part", "Fixed scale")
 COLOUR_BY = ("Material", "Roughness")

@@ -192,6 +192,18 @@ def forget_saved(doc_path, study):
                 pass
 
 
+def drop_kept(study, records):
+    """The files of ``records`` (kept in ``study``, held by no saved document) go: the
+    designer dropped them."""
+    doc_path = study.Document.FileName
+    if not doc_path:
+        return
+    for path in _kept_files(doc_path, study.Name):
+        read = _read_kept(path)
+        if read is not None and read[0] in (None, study.ID) and any(_same(read[1], r) for r in records):
+            os.remove(path)
+
+
 # document name -> the paths its kept runs were written under this session (Save As
 # names it anew, and FreeCAD has taken the new name by the time it says it saves)
 _WRITTEN_UNDER = {}

@@ -82,11 +82,19 @@ class SimilarityControls(QtWidgets.QWidget):
         self.resume_button.setObjectName("similarityResume")
         self.resume_button.clicked.connect(self.resume)
         layout.addWidget(self.resume_button)
-        # runs kept in the document that was then closed or lost unsaved: offered back
+        # runs kept in the document that was then closed or lost unsaved: offered back,
+        # or dropped for good
+        lost_row = QtWidgets.QHBoxLayout()
         self.put_back_button = QtWidgets.QPushButton()
         self.put_back_button.setObjectName("similarityPutBack")
         self.put_back_button.clicked.connect(self.put_back)
-        layout.addWidget(self.put_back_button)
+        lost_row.addWidget(self.put_back_button, 1)
+        self.drop_button = QtWidgets.QPushButton("Drop")
+        self.drop_button.setObjectName("similarityDropLost")
+        self.drop_button.setToolTip("Forget these runs for good (it asks first)")
+        self.drop_button.clicked.connect(self.drop_lost)
+        lost_row.addWidget(self.drop_button)
+        layout.addLayout(lost_row)
         run_journal.watch_saves()
 
         self.trial_label = QtWidgets.QLabel()
@@ -259,9 +267,10 @@ class SimilarityControls(QtWidgets.QWidget):
         waiting = None if running else run_journal.read(self.study)
         lost = [] if running else self.unsaved_kept()
         self.put_back_button.setVisible(bool(lost))
+        self.drop_button.setVisible(bool(lost))
         if lost:
-            self.put_back_button.setText(f"Put back {self._names(lost)} kept run{'s' if len(lost) > 1 else ''}, "
-                                         "never saved")
+            self.put_back_button.setText(f"Put back {self._names(lost)} run{'s' if len(lost) > 1 else ''} "
+                                         "(kept, document not saved)")
             self.put_back_button.setToolTip("Kept in the document, which closed (or FreeCAD ended) before it "
                                             "was saved. Put back, then save the document.")
         self.resume_button.setVisible(waiting is not None)
@@ -411,6 +420,27 @@ class SimilarityControls(QtWidgets.QWidget):
         self.load()
         return True
 
+    def drop_lost(self):
+        """Forgets, when the designer says so, the runs the document lost unsaved."""
+        lost = self.unsaved_kept()
+        many = len(lost) > 1
+        if not lost or QtWidgets.QMessageBox.question(
+                self, "Drop kept runs",
+                f"Drop {self._names(lost)} kept run{'s' if many else ''} for good? No saved document "
+                f"holds {'them' if many else 'it'}.",
+                QtWidgets.QMessageBox.Yes | QtWidgets.QMessageBox.No,
+                QtWidgets.QMessageBox.No) != QtWidgets.QMessageBox.Yes:
+            return False
+        try:
+            run_journal.drop_kept(self.study, lost)
+        except OSError as exc:
+            self.show_message(f"Not dropped: {html.escape(str(exc), quote=False)}", error=True)
+            return False
+        self.show_message(f"Dropped {html.escape(self._names(lost), quote=False)} run"
+                          f"{'s' if len(lost) > 1 else ''}.")
+        self.load()
+        return True
+
     def _write_journal(self):
         """The run in progress to disk (run_journal), so a crash loses no answer."""
         try:
@@ -500,12 +530,15 @@ class SimilarityControls(QtWidgets.QWidget):
         doc.commitTransaction()
         unwritten = ""
         try:  # on disk until the document is saved (run_journal.SaveWatcher)
-            run_journal.forget(self.study)
             for kept in [*taken, record]:
                 run_journal.write_kept(self.study, json.loads(json.dumps(kept)))
         except OSError as exc:
             unwritten = (f" It could not be written to disk beside the document "
                          f"({html.escape(str(exc), quote=False)}): save now.")
+        try:  # the run in progress is over: its journal goes
+            run_journal.forget(self.study)
+        except OSError as exc:
+            App.Console.PrintWarning(f"HaptiCAD: the journal of the kept run could not be removed ({exc})\n")
         self.kept_here.append(json.loads(json.dumps(record)))  # as stored: compared with the stored runs
         self.run = None
         self.name.clear()

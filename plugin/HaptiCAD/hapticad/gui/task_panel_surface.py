@@ -271,9 +271,9 @@ class SurfaceTaskPanel:
         self.fit_options_toggle.toggled.connect(fold)
 
     def fit_option_values(self):
-        """(tolerance %, low-pass Hz, harmonics, shortest section in periods) as set."""
-        return (float(self.fit_tolerance.value()), float(self.fit_lowpass.value()), int(self.fit_harmonics.value()),
-                int(self.fit_min_periods.value()))
+        """The fit's options as set, as texture_fit.fit_files takes them."""
+        return {"tolerance_percent": float(self.fit_tolerance.value()), "lowpass_hz": float(self.fit_lowpass.value()),
+                "harmonics": int(self.fit_harmonics.value()), "min_periods": int(self.fit_min_periods.value())}
 
     def _add_fit_rows(self, form):
         """Fit the texture to force recordings (seed 001 §III) at the grating period above."""
@@ -647,7 +647,7 @@ class SurfaceTaskPanel:
         try:
             with busy_cursor():  # reading long recordings takes seconds
                 report = texture_fit.fit_files(paths, float(self.obj.TexturePeriod), speeds,
-                                               *self.fit_option_values())
+                                               **self.fit_option_values())
                 notes = texture_fit.apply_to_surface(self.obj, report)
         except (ValueError, OSError) as exc:
             said = html.escape(str(exc), quote=False)  # a header such as "force <N>" is text
@@ -671,7 +671,9 @@ class SurfaceTaskPanel:
         """The options that differ from the paper's, said with the fit they made."""
         from .. import texture_fit_options as options
 
-        tolerance, lowpass, harmonics, min_periods = self.fit_option_values()
+        chosen = self.fit_option_values()
+        tolerance, lowpass = chosen["tolerance_percent"], chosen["lowpass_hz"]
+        harmonics, min_periods = chosen["harmonics"], chosen["min_periods"]
         said = []
         if tolerance != options.DEFAULT_TOLERANCE_PERCENT:
             said.append(f"speed tolerance {tolerance:g} %")

@@ -343,7 +343,8 @@ class SimilarityGuiTest(unittest.TestCase):
         fresh = task_panel_feel.active_panel().similarity_controls[0]
         put_back = fresh.findChild(QtWidgets.QPushButton, "similarityPutBack")
         self.assertFalse(put_back.isHidden())
-        self.assertEqual(put_back.text(), "Put back Ida's kept run, never saved")
+        self.assertEqual(put_back.text(), "Put back Ida's run (kept, document not saved)")
+        self.assertFalse(fresh.findChild(QtWidgets.QPushButton, "similarityDropLost").isHidden())
         self.assertIn("closed (or FreeCAD ended) before it was saved", put_back.toolTip())
         h.widen_panel()
         h.grab_screen("similarity_put_back.png")
@@ -377,6 +378,33 @@ class SimilarityGuiTest(unittest.TestCase):
         self.assertEqual([r["name"] for r in ss.runs(study)], ["Ida"])
         self.assertEqual(run_journal.unsaved_kept(study), [])
         self.assertEqual(run_journal._kept_files(path, name), [])  # the save let its file go
+        # one kept, undone and saved without it: offered until dropped, and dropped only when asked
+        self.doc.UndoMode = 1
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        controls = task_panel_feel.active_panel().similarity_controls[0]
+        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Jan")
+        h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        self.answer_in_code(controls)
+        self.doc.undo()
+        self.doc.save()
+        self.doc.openTransaction("Rename")  # and Redo cleared
+        study.Label = "Gratings"
+        self.doc.commitTransaction()
+        controls.load()
+        drop = controls.findChild(QtWidgets.QPushButton, "similarityDropLost")
+        self.assertEqual(controls.put_back_button.text(), "Put back Jan's run (kept, document not saved)")
+        with mock.patch.object(QtWidgets.QMessageBox, "question", return_value=QtWidgets.QMessageBox.No) as asked:
+            drop.click()
+        self.assertEqual(asked.call_args[0][2], "Drop Jan's kept run for good? No saved document holds it.")
+        self.assertFalse(drop.isHidden())
+        with mock.patch.object(QtWidgets.QMessageBox, "question", return_value=QtWidgets.QMessageBox.Yes):
+            drop.click()
+        self.assertTrue(drop.isHidden())
+        self.assertTrue(controls.put_back_button.isHidden())
+        self.assertIn("Dropped Jan's run.", controls.message.text())
+        self.assertEqual(run_journal._kept_files(path, name), [])
+        self.assertEqual([r["name"] for r in ss.runs(study)], ["Ida"])
 
     def test_an_edit_during_a_run_pauses_it_and_undoing_the_edit_goes_on(self):
         # a friction edit at trial 60 threw the run's answers away, and undoing it did not

@@ -250,7 +250,8 @@ class TaskPanelTest(unittest.TestCase):
             except ValueError:
                 options = _core.TextureFitOptions()  # what the failed fit was asked for, as the core reads it
                 options.speed_tolerance, options.lowpass_hz, options.harmonics, options.min_periods = (
-                    args[3] / 100.0, args[4], args[5], args[6])
+                    kwargs["tolerance_percent"] / 100.0, kwargs["lowpass_hz"], kwargs["harmonics"],
+                    kwargs["min_periods"])
                 used.append(options)
                 raise
             used.append(report.options)
