@@ -176,6 +176,14 @@ def report_text():
     return edits[0].toPlainText()
 
 
+def scroll_to(widget):
+    """Scrolls the task panel that holds ``widget`` until it shows (for a screenshot)."""
+    for area in Gui.getMainWindow().findChildren(QtWidgets.QScrollArea):
+        if area.isVisible() and area.widget() is not None and area.widget().isAncestorOf(widget):
+            area.ensureWidgetVisible(widget, 0, 0)
+    process_events()
+
+
 def widen_panel(width=440):
     """Gives the combo view (tree and task panels) room, as a user would drag it."""
     main = Gui.getMainWindow()

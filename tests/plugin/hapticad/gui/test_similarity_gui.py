@@ -225,6 +225,16 @@ class SimilarityGuiTest(unittest.TestCase):
         h.widget(QtWidgets.QPushButton, "similarityStart").click()
         return study, controls
 
+    def run_in_feel(self, name):
+        """Opens Feel on the document and answers ``name``'s whole run there: its controls."""
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        controls = task_panel_feel.active_panel().similarity_controls[0]
+        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText(name)
+        h.widget(QtWidgets.QPushButton, "similarityStart").click()
+        self.answer_in_code(controls)
+        return controls
+
     def answer_in_code(self, controls, count=None):
         """Answers the run's trials through the controls (4, or A), each texture counted
         as felt without strokes: for the keeping and pausing around the answers."""
@@ -323,12 +333,7 @@ class SimilarityGuiTest(unittest.TestCase):
         study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=2)
         path = os.path.join(tempfile.mkdtemp(), "study.FCStd")
         self.doc.saveAs(path)
-        Gui.runCommand("HaptiCAD_Feel")
-        h.process_events()
-        controls = task_panel_feel.active_panel().similarity_controls[0]
-        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Ida")
-        h.widget(QtWidgets.QPushButton, "similarityStart").click()
-        self.answer_in_code(controls)
+        controls = self.run_in_feel("Ida")
         self.assertEqual([r["name"] for r in ss.runs(study)], ["Ida"])
         self.assertIn("save the document to keep it on disk", controls.message.text())
         self.assertTrue(controls.put_back_button.isHidden())  # the document holds it
@@ -380,12 +385,7 @@ class SimilarityGuiTest(unittest.TestCase):
         self.assertEqual(run_journal._kept_files(path, name), [])  # the save let its file go
         # one kept, undone and saved without it: offered until dropped, and dropped only when asked
         self.doc.UndoMode = 1
-        Gui.runCommand("HaptiCAD_Feel")
-        h.process_events()
-        controls = task_panel_feel.active_panel().similarity_controls[0]
-        h.widget(QtWidgets.QLineEdit, "similarityParticipant").setText("Jan")
-        h.widget(QtWidgets.QPushButton, "similarityStart").click()
-        self.answer_in_code(controls)
+        controls = self.run_in_feel("Jan")
         self.doc.undo()
         self.doc.save()
         self.doc.openTransaction("Rename")  # and Redo cleared

@@ -128,9 +128,7 @@ class TaskPanelTest(unittest.TestCase):
         self.assertEqual({v.Part.Name: v.Frequency for v in HaptiCAD.vibrations_of(self.doc)},
                          {"Box": 100.0, "Lid": 240.0})
         h.widen_panel()
-        for area in Gui.getMainWindow().findChildren(QtWidgets.QScrollArea):
-            if area.isVisible() and area.widget() is not None and area.widget().isAncestorOf(part):
-                area.ensureWidgetVisible(part, 0, 0)
+        h.scroll_to(part)
         h.grab_screen("task_panel_vibration_parts.png")
         h.press_task_button("OK")
         self.assertEqual(len(HaptiCAD.vibrations_of(self.doc)), 2)
@@ -223,9 +221,7 @@ class TaskPanelTest(unittest.TestCase):
         self.assertAlmostEqual(h.widget(QtWidgets.QDoubleSpinBox, "TextureDC").value(), surface.TextureDC, places=4)
         self.assertIn("Full range set to", info.text())
         h.widen_panel()
-        for area in Gui.getMainWindow().findChildren(QtWidgets.QScrollArea):
-            if area.isVisible() and area.widget() is not None and area.widget().isAncestorOf(info):
-                area.ensureWidgetVisible(info, 0, 0)
+        h.scroll_to(info)
         h.grab_screen("task_panel_texture_fit.png")
         h.widget(QtWidgets.QDoubleSpinBox, "TexturePeriod").setValue(3.0)
         self.assertEqual(info.text(), "")  # the fit's message named 2.5 mm
@@ -286,9 +282,7 @@ class TaskPanelTest(unittest.TestCase):
                          [(3, 0.025, 1000.0, 6), (4, 0.05, 1000.0, 6)])
         self.assertAlmostEqual(surface.TextureDC * surface.TextureFullRange, 0.8, delta=0.02)
         h.widen_panel()
-        for area in Gui.getMainWindow().findChildren(QtWidgets.QScrollArea):
-            if area.isVisible() and area.widget() is not None and area.widget().isAncestorOf(info):
-                area.ensureWidgetVisible(info, 0, 0)
+        h.scroll_to(info)
         h.grab_screen("task_panel_fit_options.png")
         h.press_task_button("Cancel")
 
