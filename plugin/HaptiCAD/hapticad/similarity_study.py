@@ -84,7 +84,8 @@ PROPERTIES = [
      "How the space follows the ratings: Metric (classical MDS: the dissimilarities taken as distances) or "
      "Ordinal (Kruskal's nonmetric MDS: only their order counts, for a scale used unevenly)",
      ["Metric", "Ordinal"], None),
-    ("Participants", "App::PropertyInteger", "Cohort", "Participants whose runs are kept", 0, None),
+    ("Participants", "App::PropertyInteger", "Cohort",
+     "Participants whose runs are kept (a participant who ran twice counts once)", 0, None),
 ]
 HIDDEN_STATE = [("Stimuli", "The stimuli: name and eq. 2's values of each (JSON)"),
                 ("Responses", "The participants' runs (JSON)")]
@@ -125,6 +126,10 @@ class SimilarityStudy(SchemaState):
 
     def onDocumentRestored(self, obj):
         self.setup(obj)
+        try:  # documents saved before it counted people counted runs
+            obj.Participants = count_participants(runs(obj))
+        except ValueError:
+            pass  # unreadable runs: said by validate at the next recompute
         from .surface_object import attach_view_provider
 
         attach_view_provider(obj)
@@ -630,6 +635,24 @@ def runs(study):
         raise ValueError(f"{study.Label}: the stored runs are not readable JSON") from None
 
 
+def participant_key(name):
+    """Who ran a run: the name as typed, but for case and spacing ("ida  Berg" is "Ida Berg")."""
+    return " ".join(str(name).split()).casefold()
+
+
+def by_participant(records):
+    """The runs grouped by participant_key, each group oldest first, groups in order of
+    their first run."""
+    groups = {}
+    for record in records:
+        groups.setdefault(participant_key(record["name"]), []).append(record)
+    return list(groups.values())
+
+
+def count_participants(records):
+    return len(by_participant(records))
+
+
 def record_run(study, run):
     """Keeps a finished run in the study. Raises ValueError, keeping nothing, if it is not done."""
     record = run.as_record() if isinstance(run, Run) else run
@@ -638,17 +661,17 @@ def record_run(study, run):
         raise ValueError("; ".join(found))
     kept = [*runs(study), record]
     study.Responses = json.dumps(kept)
-    study.Participants = len(kept)
+    study.Participants = count_participants(kept)
     return record
 
 
 def remove_run(study, index):
     kept = runs(study)
     if not 0 <= index < len(kept):
-        raise ValueError(f"{study.Label}: no participant {index + 1} (it has {len(kept)})")
+        raise ValueError(f"{study.Label}: no run {index + 1} (it has {len(kept)})")
     del kept[index]
     study.Responses = json.dumps(kept)
-    study.Participants = len(kept)
+    study.Participants = count_participants(kept)
 
 
 def same_stimuli(a, b):
@@ -724,13 +747,17 @@ def comparable_runs(study):
 
 def dissimilarity(kept, n):
     """The cohort's dissimilarity matrix: 1 - the mean similarity of each pair, every
-    rating first scaled to 0 (nothing alike) .. 1 (the same) by its run's steps."""
+    rating first scaled to 0 (nothing alike) .. 1 (the same) by its run's steps. Each
+    participant weighs the same: the runs of one who ran more than once are averaged
+    first (the paper ran each of its ten subjects once)."""
     total = np.zeros((n, n))
-    for record in kept:
-        steps = record["steps"]
-        for i, j, s in record["ratings"]:
-            total[i, j] += (s - 1) / (steps - 1)
-    mean = total / len(kept)
+    people = by_participant(kept)
+    for own in people:
+        for record in own:
+            steps = record["steps"]
+            for i, j, s in record["ratings"]:
+                total[i, j] += (s - 1) / (steps - 1) / len(own)
+    mean = total / len(people)
     mean = mean + mean.T
     d = 1.0 - mean
     np.fill_diagonal(d, 0.0)
@@ -742,7 +769,8 @@ def analyse(study):
     ``stimuli`` (names), ``stimulus_values`` (eq. 2's values of each), ``dissimilarity``
     (the pooled n x n matrix scaled), ``points`` (n x dims), ``stress``, ``explained``,
     ``eigenvalues``, ``vectors`` ({label: {direction, length, correlation, low, high}}),
-    ``likeness`` (per stimulus, the share classed closer to A, or None), ``participants``,
+    ``likeness`` (per stimulus, the share classed closer to A, or None), ``participants``
+    (the people pooled, by participant_key), ``runs`` (their runs),
     ``classed_by`` (the runs whose classings make ``likeness``: classings_pooled),
     ``held`` (runs not pooled), ``held_note`` (why, in words), ``notes``, ``scaling`` ("metric" or "ordinal", the
     study's Scaling) and ``iterations`` (ordinal scaling's rounds). Raises ValueError
@@ -777,11 +805,12 @@ def analyse(study):
             continue  # held constant, as the paper's beta_h and alpha_h: no vector
         vectors[SYMBOLS[key]] = _vector(space.points, q, f"low {SYMBOLS[key]}", f"high {SYMBOLS[key]}")
     likeness = [None] * n
-    counts = [[0, 0] for _ in range(n)]
+    counts = [[0.0, 0.0] for _ in range(n)]
     classed = [r for r in kept if r["choices"] and classings_pooled(r, study)]
-    for record in classed:
-        for i, choice in record["choices"]:
-            counts[i][0 if choice == "A" else 1] += 1
+    for own in by_participant(classed):  # as the ratings: each participant weighs the same
+        for record in own:
+            for i, choice in record["choices"]:
+                counts[i][0 if choice == "A" else 1] += 1.0 / len(own)
     apart = [r for r in kept if r["choices"] and r not in classed]
     if apart:  # their ratings are in the space; their classings meant other references
         reasons = sorted({why_not_pooled(r, study, references=True) for r in apart})
@@ -805,21 +834,29 @@ def analyse(study):
     if len(steps) > 1:  # pooled as the share of each scale's range: say so, it is a choice
         notes.append(f"runs rated on {' and '.join(map(str, steps))}-step scales are pooled, each rating taken as "
                      "its share of its own scale's range")
-    if len(kept) < 3:
-        notes.append(f"{len(kept)} participant{'s' if len(kept) != 1 else ''}: the space shows one or two people's "
-                     "impressions, not a cohort's")
+    people = by_participant(kept)
+    again = [own for own in people if len(own) > 1]
+    if again:
+        names = ", ".join(f"{own[0]['name']} ({len(own)})" for own in again)
+        notes.append(f"runs of one participant are averaged before pooling, so each participant weighs the same: "
+                     f"{names}")
+    if len(people) < 3:
+        notes.append(f"{len(people)} participant{'s' if len(people) != 1 else ''}: the space shows one or two "
+                     "people's impressions, not a cohort's")
     return {"stimuli": [s["name"] for s in items], "stimulus_values": [dict(s["values"]) for s in items],
             "dissimilarity": d.tolist(), "points": space.points.tolist(), "stress": space.stress,
             "scaling": "ordinal" if ordinal else "metric", "iterations": space.iterations,
             "explained": space.explained, "eigenvalues": list(space.eigenvalues), "vectors": vectors,
-            "likeness": likeness, "participants": len(kept), "classed_by": len(classed), "held": held,
+            "likeness": likeness, "participants": len(people), "runs": len(kept), "classed_by": len(classed),
+            "held": held,
             "held_note": held_note(study, kept) if held else "", "notes": notes}
 
 
 def describe(study, result):
     """A few lines of text of ``result`` (analyse) for the console and the panel."""
-    n = result["participants"]
+    n, count = result["participants"], result.get("runs", result["participants"])
     lines = [f"{study.Label}: {len(result['stimuli'])} stimuli, {n} participant{'s' if n != 1 else ''}"
+             + (f" in {count} runs" if count != n else "")
              + (f" (not pooled: {result['held_note']})" if result["held"] else ""),
              (f"  ordinal scaling, Kruskal's stress-1 {result['stress']:.3f}"
               + (": the ratings' order fits exactly" if result["stress"] < EXACT_STRESS else "")

@@ -318,6 +318,39 @@ class StudyTest(unittest.TestCase):
         study.Dimensions = 3
         self.assertTrue(any("too few pairs" in n for n in ss.analyse(study)["notes"]))
 
+    def test_a_participant_who_ran_twice_counts_once_and_weighs_as_much_as_the_others(self):
+        a, b = self.references()
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, ReferenceA=a, ReferenceB=b, WarmUps=0)
+        # Ida weighs friction only and classes everything A; Bo weighs viscosity only and
+        # classes everything B. Ida runs twice, the second time typed "ida " in lower case.
+        ida, bo = dict(weights=(1.0, 0.0), likes_a=lambda v: True), dict(weights=(0.0, 1.0), likes_a=lambda v: False)
+        for name, seed, how in (("Ida", 1, ida), ("Bo", 2, bo), (" ida ", 3, ida)):
+            ss.record_run(study, finish(ss.Run(study, name, seed=seed), seed=seed, noise=0.0, **how))
+        self.assertEqual(study.Participants, 2)
+        result = ss.analyse(study)
+        self.assertEqual((result["participants"], result["runs"]), (2, 3))
+        # each person half: Ida's two runs are one share, so the likeness is 0.5 (not 2/3)
+        self.assertEqual(result["likeness"], [0.5] * 9)
+        kept = ss.runs(study)
+        once = ss.dissimilarity([kept[0], kept[1]], 9)  # Ida once and Bo
+        np.testing.assert_allclose(result["dissimilarity"], once, atol=1e-12)  # Ida twice: the same
+        as_runs = ss.dissimilarity([kept[0], kept[1], {**kept[2], "name": "Ida's twin"}], 9)
+        self.assertGreater(np.abs(as_runs - once).max(), 0.05)  # counted as runs she would weigh double
+        self.assertIn("runs of one participant are averaged before pooling, so each participant weighs the same: "
+                      "Ida (2)", result["notes"])
+        self.assertIn("9 stimuli, 2 participants in 3 runs", ss.describe(study, result))
+        # removing a run recounts the people, and so does opening a document that counted runs
+        ss.remove_run(study, 1)
+        self.assertEqual(study.Participants, 1)
+        study.Participants = 7  # as a document saved before counting people
+        path = os.path.join(self.tmp.name, "counted.FCStd")
+        self.doc.saveAs(path)
+        App.closeDocument(self.doc.Name)
+        self.doc = App.openDocument(path)
+        study = ss.similarity_studies_of(self.doc)[0]
+        self.assertEqual(study.Participants, 1)
+        self.assertNotIn("Touched", study.State)
+
     def test_runs_on_other_stimuli_are_kept_but_not_pooled(self):
         study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=0)
         ss.record_run(study, finish(ss.Run(study, "P1", seed=1)))
