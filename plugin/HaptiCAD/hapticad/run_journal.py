@@ -60,7 +60,7 @@ def write(study, run):
     state = {"document": os.path.abspath(study.Document.FileName), "study": study.Name,
              "name": run.participant, "seed": run.seed, "started": run.started,
              "trials": [[t.kind, t.first, t.second] for t in run.trials], "answers": list(run.answers),
-             "stimuli": run.stimuli, "context": run.context}
+             "stimuli": run.stimuli, "context": run.context, "protocol": protocol_of(study)}
     _write_atomically(path, state)
 
 
@@ -88,12 +88,27 @@ def _as_written(value):
     return json.loads(json.dumps(value))  # tuples become lists, as the file has them
 
 
+# the study's settings a run's trials and ratings are made with: (property, words)
+PROTOCOL = (("RatingSteps", "Rating steps"), ("WarmUps", "Warm ups"), ("Repeats", "Repeats"))
+
+
+def protocol_of(study):
+    return {name: int(getattr(study, name)) for name, _ in PROTOCOL}
+
+
 def resumable(study, state):
-    """"" when ``state`` can go on on ``study`` as it is now, else why not."""
+    """"" when ``state`` can go on on ``study`` as it is now, else why not: what changed
+    and, for a setting of the protocol, the value to set back (a rating given on a
+    7-step scale is not one on a 5-step scale; the warm-ups and repeats draw the trials)."""
     if state.get("stimuli") != _as_written(ss.stimuli(study)):
         return "the study's stimuli changed since"
-    if state.get("context") != _as_written(ss.felt_context(study)):
+    if not ss.same_context(state.get("context") or {}, ss.felt_context(study)):
         return "the surface or a reference changed since"
+    then, now = state.get("protocol") or {}, protocol_of(study)  # journals before it: none
+    changed = [f"{words} {now[name]} (it was {then[name]}: set it back to go on)"
+               for name, words in PROTOCOL if name in then and then[name] != now[name]]
+    if changed:
+        return f"the study's {', '.join(changed)}"
     return ""
 
 

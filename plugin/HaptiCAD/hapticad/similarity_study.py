@@ -58,8 +58,10 @@ REFERENCE_VALUES = (*TEXTURE_VALUES, "TexturePeriod", "TextureScale", "TextureFu
 # what the stimuli take from the study's surface: runs felt with other values are not pooled
 # (property: its words and unit, to say so)
 CONTEXT_WORDS = {"TexturePeriod": ("period", " mm"), "TextureScale": ("texture scale", ""),
-                 "TextureFullRange": ("full range", " N"), "StaticFriction": ("static friction", "")}
-CONTEXT_VALUES = tuple(CONTEXT_WORDS)
+                 "TextureFullRange": ("full range", " N"), "StaticFriction": ("static friction", ""),
+                 "StickSpeed": ("stick speed", " mm/s")}
+# kept in the context since 2026-11-24: a run kept before has none, and is not held apart by it
+CONTEXT_ADDED = ("StickSpeed",)
 LIKENESS = "closer to A"
 # a texture held out counts as felt once the finger slid this many of its grating's periods
 # over the face: a grating is felt by the force changing along the stroke, so one full
@@ -249,18 +251,50 @@ def stimulus_notes(study, surface):
 # --- validity ------------------------------------------------------------------------
 
 def felt_context(study):
-    """What the stimuli were felt with besides their own values: the surface's period,
-    scale, full range and friction, and the references' textures. Runs are pooled only
-    with runs of the same context."""
+    """What the stimuli were felt with besides their own values, as the renderer uses it
+    (force_renderer.cc): the surface's period, scale and stick speed; its full range
+    under Device force; its static friction under Friction level (for it or a reference,
+    presented on the same surface); and the references' textures. Runs are pooled only
+    with runs of the same context (same_context)."""
     from .surface_object import is_haptic_surface
 
     if study.Surface is None or not is_haptic_surface(study.Surface):
         return {}  # nothing can be felt: no run matches
-    context = {k: getattr(study.Surface, k) for k in CONTEXT_VALUES}
+    context = {k: getattr(study.Surface, k) for k in ("TexturePeriod", "TextureScale", "StickSpeed",
+                                                      "TextureFullRange", "StaticFriction")}
     for key, surface in references(study).items():
         if is_haptic_surface(surface) and surface.Texture != "None":
-            context[f"Reference{key}"] = {**reference_texture(surface), "StaticFriction": surface.StaticFriction}
-    return context
+            # presented on the study's surface: a friction level is of that surface's friction
+            context[f"Reference{key}"] = {**reference_texture(surface), "StaticFriction": study.Surface.StaticFriction}
+    return as_felt(context)
+
+
+def _felt_part(values):
+    return {k: v for k, v in values.items()
+            if not (k == "TextureFullRange" and values.get("TextureScale") != "Device force"
+                    or k == "StaticFriction" and values.get("TextureScale") != "Friction level")}
+
+
+def as_felt(context):
+    """``context`` without what its scales leave unfelt, for the surface and each
+    reference alike: the full range but under Device force, the static friction but
+    under Friction level (runs kept before held both whatever the scale, and a
+    reference's own friction, compared as it stands)."""
+    return {k: _felt_part(v) if k.startswith("Reference") and isinstance(v, dict) else v
+            for k, v in _felt_part(context).items()}
+
+
+def same_context(then, now):
+    """Whether a run felt with ``then`` (a kept run's or journal's context) pools with
+    one felt with ``now`` (felt_context)."""
+    return _compared(then, now) == _compared(now, then)
+
+
+def _compared(context, other):
+    """``context`` as felt, as compared with ``other``: JSON's lists for tuples, and a key
+    added since (CONTEXT_ADDED) left out when ``other`` predates it."""
+    felt = json.loads(json.dumps(as_felt(context)))
+    return {k: v for k, v in felt.items() if k not in CONTEXT_ADDED or k in other}
 
 
 def pooled_runs(doc):
@@ -710,13 +744,14 @@ def why_not_pooled(record, study, references=False):
     if not references:
         then = {k: v for k, v in then.items() if k not in _reference_keys(then)}
         now = {k: v for k, v in now.items() if k not in _reference_keys(now)}
-    if then == now:
+    if same_context(then, now):
         return ""
     if not now:
         return "on a surface the study no longer has"
+    then, now = _compared(then, now), _compared(now, then)
     surface = []
     for key, (word, unit) in CONTEXT_WORDS.items():
-        if then.get(key) != now.get(key):
+        if then.get(key) != now.get(key) and (key in then and key in now or key == "TextureScale"):
             def text(v, unit=unit):
                 return "none" if v is None else f"{v:g}{unit}" if isinstance(v, float) else f"{v}{unit}"
             surface.append(f"the surface's {word} {text(then.get(key))} (now {text(now.get(key))})")

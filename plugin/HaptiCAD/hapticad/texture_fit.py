@@ -148,6 +148,8 @@ def _read_columns(path):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # "input contained no data": the fit says so, by file
             table = np.loadtxt(source, delimiter=separator, skiprows=1, usecols=index, ndmin=2, dtype=float)
+        if not np.isfinite(table).all():  # "nan" or "inf" in a cell: _read_rows names its line
+            raise ValueError("not finite")
     except (ValueError, UnicodeDecodeError):
         table = _read_rows(path, name, wanted, index, separator)  # slow, and says which line is wrong
     return kind, {c: table[:, k] for k, c in enumerate(wanted)}
@@ -170,6 +172,8 @@ def _read_rows(path, name, wanted, index, separator=","):
                 table[kept, k] = float(cell.replace(",", ".") if separator != "," else cell)
             except (ValueError, IndexError):
                 raise ValueError(f"{name}, line {line}: {c} is not a number") from None
+            if not math.isfinite(table[kept, k]):  # float() reads "nan" and "inf"
+                raise ValueError(f"{name}, line {line}: {c} is not a number ({cell})")
         kept += 1
     return table[:kept]
 
@@ -433,9 +437,20 @@ def full_range_for(surface, report):
         return surface.TextureFullRange, {}, []
     chosen = math.ceil(peak_force_n(report.fit) * 10 - 1e-9) / 10
     chosen = max(chosen, 0.1)
+    most = _full_range_limit()
+    if chosen > most:  # FreeCAD would store its limit, and every level would be felt low
+        raise ValueError(f"the fitted lateral force reaches {peak_force_n(report.fit):.4g} N, more than the "
+                         f"{most:g} N a texture's full range can stand for (a finger's lateral force is a few "
+                         "newtons): are the forces recorded in mN? Give lateral_force_n in newtons")
     return chosen, {"TextureFullRange": chosen}, [
         f"Full range set to {chosen:g} N (it was the device's full range), so the recorded forces are felt "
         "as recorded"]
+
+
+def _full_range_limit():
+    from .surface_object import PROPERTIES
+
+    return next(c[1] for name, _, _, _, _, c in PROPERTIES if name == "TextureFullRange")
 
 
 def apply_to_surface(surface, report):

@@ -167,13 +167,39 @@ class RunJournalTest(unittest.TestCase):
         run_journal.write(self.study, self.half_run())
         state = run_journal.read(self.study)
         self.assertEqual(run_journal.resumable(self.study, state), "")
-        self.plate.StaticFriction = 0.9
+        self.plate.StickSpeed = 3.0
         self.assertEqual(run_journal.resumable(self.study, state), "the surface or a reference changed since")
         with self.assertRaisesRegex(ValueError, "Ada's run cannot go on: the surface or a reference changed since"):
             run_journal.resume(self.study, state)
-        self.plate.StaticFriction = 0.6
+        self.plate.StickSpeed = 2.0
+        self.plate.StaticFriction = 0.9  # not felt with a texture at Device force: it goes on
+        self.assertEqual(run_journal.resumable(self.study, state), "")
+        state["context"] = {**state["context"], "StaticFriction": 0.6, "TextureFullRange": 0.0}
+        del state["context"]["StickSpeed"]  # as journals before the stick speed was kept
+        self.assertEqual(run_journal.resumable(self.study, state), "")
         ss.set_stimuli(self.study, ss.stimuli(self.study)[:5])
         self.assertEqual(run_journal.resumable(self.study, state), "the study's stimuli changed since")
+
+    def test_a_run_on_another_scale_or_protocol_does_not_go_on_and_says_what_to_set_back(self):
+        # a 5 given on a 7-step scale was stored as a 5 on a 5-step scale ("the same")
+        self.doc.saveAs(os.path.join(self.tmp.name, "study.FCStd"))
+        self.study.Repeats = 2
+        run_journal.write(self.study, self.half_run())
+        state = run_journal.read(self.study)
+        for name, value, said in (("RatingSteps", 5, "Rating steps 5 (it was 7: set it back to go on)"),
+                                  ("WarmUps", 4, "Warm ups 4 (it was 2: set it back to go on)"),
+                                  ("Repeats", 3, "Repeats 3 (it was 2: set it back to go on)")):
+            before = getattr(self.study, name)
+            setattr(self.study, name, value)
+            with self.assertRaises(ValueError) as caught:
+                run_journal.resume(self.study, state)
+            self.assertEqual(str(caught.exception), f"Ada's run cannot go on: the study's {said}", name)
+            setattr(self.study, name, before)
+        again = run_journal.resume(self.study, state)  # set back, it goes on
+        self.assertEqual((again.steps, again.answers), (7, [4] * 5))
+        # a journal written before the protocol was: resumed as before, on what the trials show
+        del state["protocol"]
+        self.assertEqual(run_journal.resumable(self.study, state), "")
 
     def test_a_damaged_journal_is_no_run(self):
         self.doc.saveAs(os.path.join(self.tmp.name, "study.FCStd"))

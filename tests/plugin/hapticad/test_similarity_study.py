@@ -366,6 +366,46 @@ class StudyTest(unittest.TestCase):
         self.assertTrue(any("one or two people" in n for n in result["notes"]))
         self.assertIn("4 stimuli, 1 participant (not pooled: 1 run on other stimuli)", ss.describe(study, result))
 
+    def test_only_what_the_texture_is_felt_with_keeps_runs_apart(self):
+        # a friction edit on a Device force texture unpooled every run, "felt with the
+        # static friction 0.6 (now 0.7)", though the texture replaces the friction there
+        a, b = self.references()
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, ReferenceA=a, ReferenceB=b, WarmUps=0)
+        for p in range(2):
+            ss.record_run(study, finish(ss.Run(study, f"P{p}", seed=p)))
+        self.assertEqual(self.plate.TextureScale, "Device force")
+        self.plate.StaticFriction, a.StaticFriction = 0.7, 0.3
+        self.assertEqual(len(ss.comparable_runs(study)), 2)
+        self.plate.StickSpeed = 4.0  # the texture's viscous term uses it
+        self.assertEqual(ss.comparable_runs(study), [])
+        self.assertEqual(ss.why_not_pooled(ss.runs(study)[0], study),
+                         "felt with the surface's stick speed 2 mm/s (now 4 mm/s)")
+        self.plate.StickSpeed = 2.0
+        # runs kept before the stick speed was kept, with the friction and full range they held
+        old = ss.runs(study)
+        for record in old:
+            record["context"] = {**record["context"], "StaticFriction": 0.6}
+            del record["context"]["StickSpeed"]
+        study.Responses = json.dumps(old)
+        self.assertEqual(len(ss.comparable_runs(study)), 2)
+        # Friction level: the friction is felt (the references', presented here, too) and
+        # the full range is not
+        self.plate.TextureScale = "Friction level"
+        ss.record_run(study, finish(ss.Run(study, "P2", seed=2)))
+        self.plate.TextureFullRange = 5.0
+        self.assertEqual([r["name"] for r in ss.comparable_runs(study)], ["P2"])
+        self.plate.StaticFriction = 0.8
+        self.assertEqual(ss.why_not_pooled(ss.runs(study)[2], study),
+                         "felt with the surface's static friction 0.7 (now 0.8)")
+        self.plate.StaticFriction, self.plate.TextureScale = 0.7, "Device force"
+        self.plate.TextureFullRange = FULL_RANGE_N
+        b.TextureScale = "Friction level"  # presented on the plate: the plate's friction counts for B
+        self.assertEqual(ss.why_not_pooled(ss.runs(study)[0], study, references=True),
+                         "classed against another reference B")
+        self.assertEqual(ss.why_not_pooled(ss.runs(study)[0], study), "")  # rated before B was felt
+        self.assertEqual(ss.felt_context(study)["ReferenceB"]["StaticFriction"], self.plate.StaticFriction)
+        self.assertNotIn("StaticFriction", ss.felt_context(study))
+
     def test_why_runs_are_not_pooled_is_said_and_two_rating_scales_pooled_are_noted(self):
         study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=0)
         for p in range(2):

@@ -7,7 +7,6 @@ import sys
 import tempfile
 import unittest
 
-import numpy as np
 
 import FreeCAD as App
 
@@ -227,7 +226,16 @@ class RigRecordingTest(unittest.TestCase):
             f.write("time_s,position_mm,lateral_force_n\n")
         with open(self.path("backwards.csv"), "w") as f:
             f.write("time_s,position_mm,lateral_force_n\n0,0,0\n0.001,0.1,0\n0.001,0.2,0\n")
+        # a cell of "nan" or "inf" reads as a float, and a NaN normal force was kept as the press
+        write_rig_csv(self.path("nan.csv"), normal_force_n=0.8)
+        with open(self.path("nan.csv")) as f:
+            rows = f.read().splitlines()
+        rows[7] = rows[7].rsplit(",", 1)[0] + ",nan"
+        rows[9] = rows[9].replace(rows[9].split(",")[1], "inf", 1)
+        with open(self.path("nan.csv"), "w") as f:
+            f.write("\n".join(rows) + "\n")
         cases = [("columns.csv", "needs the columns time_s, position_mm, lateral_force_n"),
+                 ("nan.csv", "nan.csv, line 8: normal_force_n is not a number (nan)"),
                  ("number.csv", "number.csv, line 3: lateral_force_n is not a number"),
                  ("empty.csv", "empty file"),
                  ("header.csv", "header.csv: fewer than 3 samples"),
@@ -370,6 +378,25 @@ class RigRecordingTest(unittest.TestCase):
             texture_fit.fit_files([self.path("slow.csv")], 2.5)
         self.assertIn("no section of constant speed", str(caught.exception))
         self.assertIn("range from", str(caught.exception))
+
+    def test_forces_beyond_what_a_full_range_holds_are_refused_not_clamped(self):
+        # a rig logging mN as N: the full range was set to 100 N (the property's top)
+        # against a fitted 138 N, so every level was felt 28 % low, "as recorded"
+        write_rig_csv(self.path("millinewtons.csv"), full_range_n=200.0)
+        report = texture_fit.fit_files([self.path("millinewtons.csv")], 2.5, (50, 120))
+        doc = App.newDocument("TextureFitTooStrong")
+        try:
+            box = doc.addObject("Part::Box", "Box")
+            doc.recompute()
+            surface = HaptiCAD.make_surface(doc, [(box, "Face6")], material="ABS", FeelRoughness=False)
+            before = {name: getattr(surface, name) for name in (*texture_fit.FIELDS, "Texture", "TextureFullRange")}
+            with self.assertRaises(ValueError) as caught:
+                texture_fit.apply_to_surface(surface, report)
+            self.assertIn("more than the 100 N a texture's full range can stand for", str(caught.exception))
+            self.assertIn("recorded in mN?", str(caught.exception))
+            self.assertEqual({name: getattr(surface, name) for name in before}, before)
+        finally:
+            App.closeDocument(doc.Name)
 
     def test_a_fit_that_cannot_be_set_changes_nothing(self):
         write_rig_csv(self.path("no_normal.csv"))

@@ -185,7 +185,7 @@ class SimilarityControls(QtWidgets.QWidget):
             return "; ".join(found)
         if self.run.stimuli != ss.stimuli(self.study):
             return "its stimuli"
-        if self.run.context != ss.felt_context(self.study):
+        if not ss.same_context(self.run.context, ss.felt_context(self.study)):
             return "the surface or a reference"
         return ""
 
@@ -358,9 +358,10 @@ class SimilarityControls(QtWidgets.QWidget):
         self.slot = None
         self.paused = ""
         name = self.run.participant
-        # "ada" after "Ada" is most likely the same person: said as the same name
+        # "ada" after "Ada" is most likely the same person: counted (ss.participant_key)
+        # and said as the same name
         spelled = [str(r.get("name", "")) for r in ss.runs(self.study)
-                   if str(r.get("name", "")).casefold() == name.casefold()]
+                   if ss.participant_key(r.get("name", "")) == ss.participant_key(name)]
         before = len(spelled)
         other = next((n for n in spelled if n != name), None)
         # a second sitting, or two people under one name: kept either way, but said

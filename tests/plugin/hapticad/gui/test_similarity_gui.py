@@ -308,7 +308,7 @@ class SimilarityGuiTest(unittest.TestCase):
         h.widget(QtWidgets.QPushButton, "similarityStart").click()
         self.answer_in_code(controls, 2)
         controls.run = None  # gone without a word
-        self.plate.StaticFriction = 0.9
+        self.plate.StickSpeed = 3.0  # felt by the texture (its static friction is not, under Device force)
         fresh.load()
         fresh.findChild(QtWidgets.QPushButton, "similarityResume").click()
         self.assertIsNone(fresh.run)
@@ -408,11 +408,11 @@ class SimilarityGuiTest(unittest.TestCase):
 
     def test_an_edit_during_a_run_pauses_it_and_undoing_the_edit_goes_on(self):
         # a friction edit at trial 60 threw the run's answers away, and undoing it did not
-        # bring them back
+        # bring them back (the stick speed: the texture uses it)
         study, controls = self.start_run("Dee")
         self.answer_in_code(controls, 3)
         self.doc.openTransaction("friction")
-        self.plate.StaticFriction = 0.61
+        self.plate.StickSpeed = 2.5
         self.doc.commitTransaction()
         h.process_events()
         self.assertEqual(len(controls.run.answers), 3)  # held, not thrown away
