@@ -262,6 +262,17 @@ def match_face(signature, name, signatures, size, previous=None, loose=True):
     return None, BROKEN
 
 
+# a broken reference keeps its face's name, and FreeCAD may give that name to another
+# face the surface tags (a renumbering edit): the broken one then steps aside as
+# "Face6~1", which names no face; shown_face gives the name it had
+ASIDE = "~"
+
+
+def shown_face(name):
+    """The face name a reference is shown by: "Face6" of a broken "Face6~1"."""
+    return name.split(ASIDE, 1)[0]
+
+
 def _face_index(name):
     try:
         return int(name[4:]) - 1 if name.startswith("Face") else -1

@@ -277,7 +277,8 @@ def validate(obj, compile_faces=True):
              if sub.startswith("Face") and not _has_subshape(o, sub) and (o.Name, sub) not in signed]
     if never:
         problems.append(f"no such face: {', '.join(never)}; pick a face the part has")
-    broken = [f"{name}.{face}" for (name, face, status), (o, _) in zip(reference_status(obj), reference_pairs(obj))
+    broken = [f"{name}.{face_references.shown_face(face)}"
+              for (name, face, status), (o, _) in zip(reference_status(obj), reference_pairs(obj))
               if status == face_references.BROKEN and face.startswith("Face") and f"{o.Label}.{face}" not in never]
     if broken:
         problems.append(f"broken face reference(s) {', '.join(broken)}: the model changed and the face "
@@ -574,8 +575,9 @@ def rematch_references(obj):
             loser = i if entries[j]["status"] == face_references.OK else j
             entries[loser] = dict(inputs[loser], status=face_references.BROKEN)
             holder[key] = j + i - loser
+    _step_aside(entries)
     was_broken = {(e["object"], e["face"]) for e in before if e.get("status") == face_references.BROKEN}
-    newly_broken = [f"{e['object']}.{e['face']}" for e in entries
+    newly_broken = [f"{e['object']}.{face_references.shown_face(e['face'])}" for e in entries
                     if e["status"] == face_references.BROKEN and (e["object"], e["face"]) not in was_broken
                     and e["face"].startswith("Face")]  # validate() names what is not a face
     if newly_broken:
@@ -583,7 +585,9 @@ def rematch_references(obj):
             f"{obj.Label}: the reference{'s' if len(newly_broken) > 1 else ''} to {', '.join(newly_broken)} "
             f"{'are' if len(newly_broken) > 1 else 'is'} broken: the model changed and the face cannot be "
             "found unambiguously; left out until you pick it again\n")
-    followed = [f"{e['object']}.{e['face']}" for e in entries if e["status"] == face_references.REMATCHED]
+    # "was" the name it had: a broken reference may be shown by the name a followed one takes
+    followed = [f"{e['object']}.{e['face']}" + (f" (was {was['face']})" if was["face"] != e["face"] else "")
+                for e, was in zip(entries, inputs) if e["status"] == face_references.REMATCHED]
     if followed:
         App.Console.PrintMessage(f"{obj.Label}: face references now follow {', '.join(followed)}\n")
     new_pairs = [(objects[e["object"]], e["face"]) for e in entries]
@@ -591,6 +595,25 @@ def rematch_references(obj):
         obj.References = link_sub_list(new_pairs)
     _write_reference_state(obj, entries)
     _write_reference_shapes(obj, signed)
+
+
+def _step_aside(entries):
+    """Renames, in place, each broken entry whose face name another reference holds (a
+    live one re-matched onto it, or another broken one) to a name of no face ("Face6~1",
+    face_references.ASIDE): References holds each name once, and the two were merged, the
+    live face read as broken and its tag lost at the next edit."""
+    taken = {(e["object"], e["face"]) for e in entries if e["status"] != face_references.BROKEN}
+    for i, e in enumerate(entries):
+        if e["status"] != face_references.BROKEN:
+            continue
+        key = (e["object"], e["face"])
+        if key in taken:
+            base, k = face_references.shown_face(e["face"]), 1
+            while (e["object"], f"{base}{face_references.ASIDE}{k}") in taken:
+                k += 1
+            key = (e["object"], f"{base}{face_references.ASIDE}{k}")
+            entries[i] = dict(e, face=key[1])
+        taken.add(key)
 
 
 def _vec3(v):

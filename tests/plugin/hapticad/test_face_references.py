@@ -189,6 +189,50 @@ class SimpleEditsTest(unittest.TestCase):
     def tearDown(self):
         App.closeDocument(self.doc.Name)
 
+    def test_a_face_renumbered_onto_a_broken_references_name_keeps_its_tag(self):
+        # the notch goes and FreeCAD calls the top face by the notch face's name: the two
+        # references were merged into one, read as broken, and the top's tag was lost
+        box, tool = self.box, self.doc.addObject("Part::Box", "Tool")
+        box.Length, box.Width, box.Height = 20, 20, 10
+        tool.Length = tool.Width = tool.Height = 5
+        tool.Placement.Base = App.Vector(-1, -1, -1)
+        cut = self.doc.addObject("Part::Cut", "Cut")
+        cut.Base, cut.Tool = box, tool
+        self.doc.recompute()
+        (top,) = faces_where(cut.Shape, "Plane", lambda c: abs(c.z - 10) < 1e-6)
+        notch = "Face6"  # a face of the notch, by the name a plain box gives its top
+        self.assertNotEqual(top, notch)
+        self.assertLessEqual(max(cut.Shape.getElement(notch).CenterOfMass[:2]), 4.0)  # in the notch
+        surface = HaptiCAD.make_surface(self.doc, [(cut, top), (cut, notch)], material="Rubber")
+        self.doc.recompute()
+        tool.Placement.Base = App.Vector(-30, -30, -30)  # the notch is gone
+        self.doc.recompute()
+        (new_top,) = faces_where(cut.Shape, "Plane", lambda c: abs(c.z - 10) < 1e-6)
+        self.assertEqual(new_top, notch)  # the trap: the top now has the notch face's name
+        self.assertEqual(HaptiCAD.reference_status(surface),
+                         [("Cut", new_top, "rematched"), ("Cut", f"{notch}~1", "broken")])
+        self.assertEqual(build_document_scene(self.doc).face_material, {f"Cut.{new_top}": "Rubber"})
+        self.assertEqual(surface_object_problems(surface),
+                         [f"broken face reference(s) Cut.{notch}: the model changed and the face cannot be found "
+                          "unambiguously; pick it again"])
+        # through a save and later edits; and the notch back: both tags where they were
+        tmp = tempfile.TemporaryDirectory()
+        self.addCleanup(tmp.cleanup)
+        path = os.path.join(tmp.name, "notch.FCStd")
+        self.doc.saveAs(path)
+        name = surface.Name
+        App.closeDocument(self.doc.Name)
+        self.doc = App.openDocument(path)
+        cut, tool, surface = (self.doc.getObject(n) for n in ("Cut", "Tool", name))
+        self.doc.getObject("Box").Height = 11
+        self.doc.recompute()
+        self.doc.getObject("Box").Height = 10
+        tool.Placement.Base = App.Vector(-1, -1, -1)
+        self.doc.recompute()
+        self.assertEqual([(f, s) for _, f, s in HaptiCAD.reference_status(surface)],
+                         [(top, "rematched"), (notch, "rematched")])
+        self.assertEqual(len(build_document_scene(self.doc).face_material), 2)
+
     def test_a_taller_box_keeps_its_top_face(self):
         surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])
         self.box.Height = 25

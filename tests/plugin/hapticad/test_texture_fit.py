@@ -7,7 +7,6 @@ import sys
 import tempfile
 import unittest
 
-
 import FreeCAD as App
 
 import HaptiCAD

@@ -491,7 +491,7 @@ class SurfaceTaskPanel:
         self.faces.clear()
         for name, state in wanted:
             label = self.doc.getObject(name.split(".")[0]).Label
-            item = QtWidgets.QListWidgetItem(f"{label}.{name.split('.', 1)[1]}" +
+            item = QtWidgets.QListWidgetItem(f"{label}.{face_references.shown_face(name.split('.', 1)[1])}" +
                                              ("" if state == "ok" else f"  ({state})"))
             item.setData(QtCore.Qt.UserRole, name)
             item.setData(QtCore.Qt.UserRole + 1, state)
@@ -788,7 +788,9 @@ class SurfaceTaskPanel:
             Gui.Selection.clearSelection()
             for name in names:
                 obj_name, face = name.split(".", 1)
-                Gui.Selection.addSelection(self.doc.getObject(obj_name), face)
+                part = self.doc.getObject(obj_name)
+                if part is not None and face_references.ASIDE not in face:  # a broken one stepped aside: no face
+                    Gui.Selection.addSelection(part, face)
         finally:
             self.mode = mode
         proxy = getattr(self.obj.ViewObject, "Proxy", None) if self.obj.ViewObject else None
