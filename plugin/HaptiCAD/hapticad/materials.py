@@ -100,8 +100,13 @@ class MaterialDatabase:
     def load_csv(self, path):
         """Reads one CSV file; bad rows go to self.errors, good ones are added."""
         try:
-            with open(path, newline="", encoding="utf-8") as handle:
+            # utf-8-sig: a spreadsheet's "CSV UTF-8" starts with a byte-order mark, which
+            # made the first column "\ufeffname" and refused the whole file
+            with open(path, newline="", encoding="utf-8-sig") as handle:
                 lines = list(enumerate(handle, start=1))
+        except UnicodeDecodeError as exc:
+            self.errors.append(f"{path}: not UTF-8 text ({exc.reason} at byte {exc.start}); save it as CSV UTF-8")
+            return
         except OSError as exc:
             self.errors.append(f"{path}: cannot read: {exc.strerror}")
             return
@@ -180,7 +185,10 @@ FCMAT_KEYS = {
     "HaptiCAD_FrictionSource": "friction_source",
     "HaptiCAD_BulkSource": "bulk_source",
 }
-_QUANTITY = re.compile(r"^\s*([-+0-9.eEinfatINFATN]+)\s*(.*?)\s*$")
+# a number, then its unit with or without a space ("0.3 N/mm", "0.3N/mm": a class of
+# number characters took the N of N/mm)
+_QUANTITY = re.compile(r"^\s*([-+]?(?:(?:\d+\.?\d*|\.\d+)(?:e[-+]?\d+)?|inf(?:inity)?|nan))\s*(.*?)\s*$",
+                       re.IGNORECASE)
 # unit -> how many of it make one of ours (dividing keeps 2300 MPa exactly 2.3 GPa)
 _PRESSURE_IN_GPA = {"": 1e9, "pa": 1e9, "kpa": 1e6, "mpa": 1e3, "gpa": 1.0}
 _DENSITY_IN_KG_M3 = {"": 1.0, "kg/m^3": 1.0, "kg/m3": 1.0, "g/cm^3": 1e-3, "g/cm3": 1e-3}
@@ -206,7 +214,7 @@ def read_fcmat(path):
     """(Material or None, errors) of a FreeCAD material card. None, without errors, for a
     card that carries no HaptiCAD values (one of FreeCAD's own)."""
     try:
-        with open(path, encoding="utf-8") as handle:
+        with open(path, encoding="utf-8-sig") as handle:
             lines = list(enumerate(handle, start=1))
     except (OSError, UnicodeDecodeError) as exc:
         return None, [f"{path}: cannot read: {exc}"]
@@ -326,6 +334,13 @@ def default_database():
     global _DEFAULT
     if _DEFAULT is None:
         _DEFAULT = load_database()
+        try:  # said once, where FreeCAD says things (the panel says it too)
+            import FreeCAD
+
+            for error in _DEFAULT.errors:
+                FreeCAD.Console.PrintWarning(f"HaptiCAD materials: {error}\n")
+        except ImportError:
+            pass
     return _DEFAULT
 
 

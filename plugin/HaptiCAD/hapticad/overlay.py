@@ -76,8 +76,9 @@ def friction_shade(surface):
     listed = database.get(surface.Material)
     for value, base in ((surface.DynamicFriction, listed.dynamic_friction),
                         (surface.StaticFriction, listed.static_friction)):
-        if base > 0 and value > 0 and abs(value - base) > 1e-9 * base:
-            step = min(1.0, abs(math.log2(value / base)))
+        if base > 0 and abs(value - base) > 1e-9 * base:
+            # no friction at all is as far below as it goes (log2 of 0 is -inf: clipped)
+            step = min(1.0, abs(math.log2(value / base))) if value > 0 else 1.0
             return math.copysign(max(0.25, step), value - base)
     return 0.0
 

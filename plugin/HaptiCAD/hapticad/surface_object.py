@@ -865,12 +865,44 @@ def make_surface(doc, references, material="ABS", roughness_category=3, pattern=
             raise ValueError(f"make_surface: unknown property {key!r}")
         if key in ENUMERATIONS and value not in ENUMERATIONS[key]:
             raise ValueError(f"make_surface: {key} must be one of {ENUMERATIONS[key]}, got {value!r}")
+        _check_kind(key, known[key][1], value)
         if known[key][5] is not None:
             _check_range(key, value, known[key][5][0], known[key][5][1])
-        elif known[key][1] == "App::PropertyFloat":
+        elif known[key][1] in ("App::PropertyFloat", "App::PropertyAngle"):
             _check_range(key, value, -math.inf, math.inf)  # any finite number
+    _check_range("pattern_angle_deg", pattern_angle_deg, -math.inf, math.inf)
+    if pattern_center_mm is not None:
+        _check_kind("pattern_center_mm", "App::PropertyVectorDistance", pattern_center_mm)
 
     obj = doc.addObject("App::FeaturePython", name)
+    try:
+        _set_up_surface(obj, links, material, roughness_category, pattern, pattern_angle_deg, pattern_center_mm,
+                        static_friction, dynamic_friction, stiffness_n_per_mm, properties)
+    except Exception as exc:  # what a check above missed: nothing is left behind half made
+        doc.removeObject(obj.Name)
+        raise ValueError(f"make_surface: {exc}") from exc
+    return obj
+
+
+def _check_kind(label, kind, value):
+    """Refuses a value a property of ``kind`` cannot hold (before the object is made)."""
+    if kind == "App::PropertyBool" and not isinstance(value, bool):
+        raise ValueError(f"make_surface: {label} must be True or False, got {value!r}")
+    if kind == "App::PropertyIntegerConstraint" and (isinstance(value, bool) or not isinstance(value, int)):
+        raise ValueError(f"make_surface: {label} must be a whole number, got {value!r}")
+    if kind in ("App::PropertyVector", "App::PropertyVectorDistance"):
+        try:
+            numbers = [float(c) for c in value]
+        except (TypeError, ValueError):
+            numbers = []
+        if len(numbers) != 3 or not all(math.isfinite(c) for c in numbers):
+            raise ValueError(f"make_surface: {label} must be three finite numbers (x, y, z), got {value!r}")
+    if kind.startswith("App::PropertyLink"):
+        raise ValueError(f"make_surface: {label} is a link: set it on the surface once made")
+
+
+def _set_up_surface(obj, links, material, roughness_category, pattern, pattern_angle_deg, pattern_center_mm,
+                    static_friction, dynamic_friction, stiffness_n_per_mm, properties):
     HapticSurface(obj)
     obj.References = links
     obj.Material = material
@@ -890,10 +922,9 @@ def make_surface(doc, references, material="ABS", roughness_category=3, pattern=
         obj.Texture = properties["Texture"]
     for key, value in properties.items():
         if key != "Texture":
-            setattr(obj, key, value)
+            setattr(obj, key, App.Vector(*value) if isinstance(value, (list, tuple)) else value)
     sync_reference_state(obj)
     attach_view_provider(obj)
-    return obj
 
 
 def linked_surface_problems(study, rivals, action, why_one):

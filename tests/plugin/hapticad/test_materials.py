@@ -174,6 +174,28 @@ class FcmatTest(unittest.TestCase):
             handle.write(HEADER + "\nCork,0.7,0.6,0.4,0.9,0.03,240,0.3,own test,own test\n")
         db = materials.load_database(data_dir=self.dir.name)
         self.assertEqual(db.get("Cork").dynamic_friction, 0.6)
+        # as a spreadsheet saves "CSV UTF-8": a byte-order mark first (the whole file was
+        # refused, "header lacks column(s) name")
+        with open(os.path.join(self.dir.name, "HaptiCAD", "materials.csv"), "w", encoding="utf-8-sig") as handle:
+            handle.write(HEADER + "\nCork,0.7,0.5,0.4,0.9,0.03,240,0.3,own test,own test\n")
+        db = materials.load_database(data_dir=self.dir.name)
+        self.assertEqual((db.errors, db.get("Cork").dynamic_friction), ([], 0.5))
+
+    def test_a_cards_unit_may_follow_its_number_without_a_space(self):
+        abs_ = materials.load_database(include_user=False).get("ABS")
+        path = os.path.join(self.cards, "Tight.FCMat")
+        materials.write_fcmat(abs_, path)
+        text = open(path).read()
+        line = next(l for l in text.splitlines() if l.startswith("HaptiCAD_ContactStiffness"))
+        for written, stiffness in (("0.3N/mm", 0.3), ("300N/m", 0.3), ("1e3 N/m", 1.0), ("0.25", 0.25)):
+            with open(path, "w") as handle:
+                handle.write(text.replace(line, f"HaptiCAD_ContactStiffness = {written}"))
+            material, errors = materials.read_fcmat(path)
+            self.assertEqual(errors, [], written)
+            self.assertAlmostEqual(material.stiffness_n_per_mm, stiffness, msg=written)
+        with open(path, "w") as handle:
+            handle.write(text.replace(line, "HaptiCAD_ContactStiffness = N/mm"))
+        self.assertIn("is not a number", materials.read_fcmat(path)[1][0])
 
 
 if __name__ == "__main__":

@@ -83,6 +83,11 @@ class OverlayGeometryTest(unittest.TestCase):
         self.assertIn("(edited: less friction than listed)", rows[2][1])
         (face,) = overlay.overlay_faces(grippy, "Material")
         self.assertEqual(face.colour, darker)  # the faces are drawn as the legend says
+        # no friction at all: the palest, and said (it had the listed swatch, unmarked)
+        slick.StaticFriction = slick.DynamicFriction = 0.0
+        self.assertEqual(overlay.friction_shade(slick), -1.0)
+        self.assertTrue(overlay.legend_entries([slick], "Material")[0][1].endswith(
+            "(edited: less friction than listed)"))
         # a material missing from the database is not a grey beside the table's own grey
         self.assertNotEqual(overlay.material_colour("Birch ply"), (0.6, 0.6, 0.6))
         self.assertGreater(max(overlay.material_colour("Birch ply")) - min(overlay.material_colour("Birch ply")), 0.2)

@@ -118,6 +118,16 @@ class MakeSurfaceTest(unittest.TestCase):
             ([(self.box, "Face1")], {"TextureDC": float("nan")}, "TextureDC = nan is not a finite number"),
             ([(self.box, "Face1")], {"TextureAlpha": float("inf")}, "TextureAlpha = inf is not a finite number"),
             ([(self.box, "Face1")], {"static_friction": float("nan")}, "static_friction = nan is not a finite"),
+            # these were set on an object already added: FreeCAD's own error, and a surface
+            # left tagging the face, so the corrected call was refused as a second tag
+            ([(self.box, "Face1")], {"pattern_angle_deg": "thirty"}, "pattern_angle_deg = 'thirty' is not a number"),
+            ([(self.box, "Face1")], {"pattern_angle_deg": float("nan")}, "pattern_angle_deg = nan is not a finite"),
+            ([(self.box, "Face1")], {"pattern_center_mm": (1, 2, 3, 4)}, "pattern_center_mm must be three finite"),
+            ([(self.box, "Face1")], {"PatternAxis": "z"}, "PatternAxis must be three finite numbers (x, y, z)"),
+            ([(self.box, "Face1")], {"PatternAngle": float("inf")}, "PatternAngle = inf is not a finite number"),
+            ([(self.box, "Face1")], {"FeelRoughness": "no"}, "FeelRoughness must be True or False"),
+            ([(self.box, "Face1")], {"CurveTableSize": 2.5}, "CurveTableSize must be a whole number"),
+            ([(self.box, "Face1")], {"PatternCurve": (self.box, ["Edge1"])}, "PatternCurve is a link"),
         ]
         for refs, kwargs, message in cases:
             with self.subTest(message=message):
@@ -125,6 +135,10 @@ class MakeSurfaceTest(unittest.TestCase):
                     HaptiCAD.make_surface(self.doc, refs, **kwargs)
                 self.assertIn(message, str(caught.exception))
         self.assertEqual([o.Name for o in self.doc.Objects], ["Box"])
+        # good values of those kinds, as a script gives them
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face1")], pattern_center_mm=App.Vector(1, 2, 3),
+                                  PatternAxis=(0, 0, 1), FeelRoughness=False, CurveTableSize=64)
+        self.assertEqual((s.PatternCenter, s.PatternAxis), (App.Vector(1, 2, 3), App.Vector(0, 0, 1)))
 
     def test_validation_names_the_property_or_reference_that_is_wrong(self):
         s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])

@@ -51,8 +51,9 @@ GROUP_TITLES = [("Surface", "Material"), ("Friction", "Friction and stiffness"),
                 ("Pattern", "Friction pattern"), ("Texture", "Viscous texture")]
 # widgets shown only when they apply
 RELEVANT = {
-    # the angle turns the linear stripes and the roughness grid (surface_compile.face_frame)
-    "PatternAngle": lambda o: o.Pattern == "Linear" or o.FeelRoughness,
+    # the angle turns the linear stripes, the roughness grid and the texture's grating
+    # (surface_compile.face_frame): hidden with a texture, an old angle turned it unseen
+    "PatternAngle": lambda o: o.Pattern == "Linear" or o.FeelRoughness or o.Texture != "None",
     "PatternCenter": lambda o: o.Pattern == "Circular",
     "PatternAxis": lambda o: o.Pattern == "Circular",
     "PatternBlendRadius": lambda o: o.Pattern == "Circular",
@@ -84,6 +85,13 @@ def _dspin(low, high, step, suffix="", decimals=FLOAT_DECIMALS):
     box.setSuffix(suffix)
     box.setKeyboardTracking(False)  # one edit per finished number, not per keystroke
     return box
+
+
+def _with_component(vector, axis, value):
+    """``vector`` (an App.Vector) with its ``axis`` ("x", "y" or "z") set to ``value``."""
+    out = App.Vector(vector)
+    setattr(out, axis, float(value))
+    return out
 
 
 class _Picker:
@@ -367,7 +375,7 @@ class SurfaceTaskPanel:
                 spin = _dspin(-1e6, 1e6, 1.0, "", 3)
                 spin.setObjectName(f"{name}.{axis}")
                 spin.setToolTip(f"{axis}{UNITS.get(name, '')}")
-                spin.valueChanged.connect(lambda _v, n=name: self.set_vector(n))
+                spin.valueChanged.connect(lambda _v, n=name, a=axis: self.set_vector(n, a))
                 spin.setMinimumWidth(SPIN_WIDTH_PX)  # three side by side: narrower than their 1e6 range asks
                 self.widgets[f"{name}.{axis}"] = spin
                 row.addWidget(spin)
@@ -413,7 +421,9 @@ class SurfaceTaskPanel:
         row = QtWidgets.QHBoxLayout(axis)
         row.setContentsMargins(0, 0, 0, 0)
         for c in "xyz":
-            spin = _dspin(-1.0, 1.0, 0.1, "", 3)
+            # a direction: any length, as the property editor and make_vibration take it (a
+            # range of -1..1 clamped the other components of (2, 0, 1) when one was edited)
+            spin = _dspin(-1e6, 1e6, 0.1, "", 3)
             spin.setMinimumWidth(SPIN_WIDTH_PX)
             self.vibration_widgets[f"Axis.{c}"] = spin
             row.addWidget(spin)
@@ -422,7 +432,7 @@ class SurfaceTaskPanel:
             if isinstance(widget, QtWidgets.QCheckBox):
                 widget.toggled.connect(lambda on: self.set_vibration("Powered", bool(on)))
             elif name.startswith("Axis."):
-                widget.valueChanged.connect(lambda _v: self.set_vibration_axis())
+                widget.valueChanged.connect(lambda _v, c=name[-1]: self.set_vibration_axis(c))
             else:
                 widget.valueChanged.connect(lambda v, n=name: self.set_vibration(n, float(v)))
         form.addRow("Frequency", self.vibration_widgets["Frequency"])
@@ -521,13 +531,19 @@ class SurfaceTaskPanel:
                                        "the values below are the document's.")
             return
         m = database.get(obj.Material)
+        unread = ""
+        if database.errors:  # the designer's own materials missing from the list, said why
+            more = len(database.errors) - 1
+            unread = (f"<br><span style='color:#b00000'>Not read from your material files: "
+                      f"{html.escape(database.errors[0])}" + (f" (and {more} more, in the Report view)" if more else "")
+                      + "</span>")
         overridden = (abs(m.static_friction - obj.StaticFriction) > 1e-9 or
                       abs(m.dynamic_friction - obj.DynamicFriction) > 1e-9 or
                       abs(m.stiffness_n_per_mm - obj.Stiffness) > 1e-9)
         self.material_info.setText(
             f"Database: μs {m.static_friction:g}, μd {m.dynamic_friction:g} "
             f"(plausible {m.friction_min:g}–{m.friction_max:g}), {m.stiffness_n_per_mm:g} N/mm"
-            + ("; <b>overridden below</b>" if overridden else ""))
+            + ("; <b>overridden below</b>" if overridden else "") + unread)
         self.material_info.setToolTip(f"Friction: {m.friction_source}\nBulk: {m.bulk_source}")
 
     def vibration(self):
@@ -592,11 +608,13 @@ class SurfaceTaskPanel:
             return
         self.load()
 
-    def set_vector(self, name):
+    def set_vector(self, name, axis):
+        """One component edited: only it changes (the others kept to the last digit, not
+        as the boxes round them)."""
         if self._loading:
             return
-        value = App.Vector(*(self.widgets[f"{name}.{c}"].value() for c in "xyz"))
-        self.set_property(name, value)
+        self.set_property(name, _with_component(getattr(self.obj, name), axis,
+                                                self.widgets[f"{name}.{axis}"].value()))
 
     def reset_to_material(self):
         database = materials.default_database()
@@ -710,11 +728,11 @@ class SurfaceTaskPanel:
         setattr(vib, name, value)
         self.load()
 
-    def set_vibration_axis(self):
+    def set_vibration_axis(self, component):
         vib = self.vibration()
         if self._loading or vib is None:
             return
-        axis = App.Vector(*(self.vibration_widgets[f"Axis.{c}"].value() for c in "xyz"))
+        axis = _with_component(vib.Axis, component, self.vibration_widgets[f"Axis.{component}"].value())
         vib.Axis = axis
         self.load()
         if axis.Length == 0:

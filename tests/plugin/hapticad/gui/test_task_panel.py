@@ -3,6 +3,7 @@
 create and edit as one undo step, Cancel reverts, faces picked with synthetic clicks in
 the 3D view, live validation, curve and circular-centre picking, vibration, broken
 references shown. Run through gui_test_runner.py."""
+import json
 import os
 import sys
 import tempfile
@@ -127,6 +128,13 @@ class TaskPanelTest(unittest.TestCase):
         vibrates.setChecked(True)
         self.assertEqual({v.Part.Name: v.Frequency for v in HaptiCAD.vibrations_of(self.doc)},
                          {"Box": 100.0, "Lid": 240.0})
+        # one component edited: the others stay as they are (a -1..1 range clamped (2, 0, 1))
+        box_vibration = next(v for v in HaptiCAD.vibrations_of(self.doc) if v.Part == self.box)
+        box_vibration.Axis = App.Vector(2, 0, 1.23456789)
+        part.setCurrentIndex(1)
+        part.setCurrentIndex(0)
+        h.widget(QtWidgets.QDoubleSpinBox, "VibrationAxis.y").setValue(0.1)
+        self.assertEqual(box_vibration.Axis, App.Vector(2, 0.1, 1.23456789))
         h.widen_panel()
         h.scroll_to(part)
         h.grab_screen("task_panel_vibration_parts.png")
@@ -148,10 +156,12 @@ class TaskPanelTest(unittest.TestCase):
         h.process_events()
         status = h.widget(QtWidgets.QLabel, "status")
         self.assertNotIn("no longer pooled", status.text())
-        h.widget(QtWidgets.QDoubleSpinBox, "StaticFriction").setValue(0.9)  # what Ada felt changed
+        h.widget(QtWidgets.QDoubleSpinBox, "StaticFriction").setValue(0.9)  # not felt with a Device force texture
+        self.assertNotIn("no longer pooled", status.text())
+        h.widget(QtWidgets.QDoubleSpinBox, "StickSpeed").setValue(5.0)  # what Ada felt changed
         self.assertIn("SimilarityStudy: 1 run felt on the surface as it was is no longer pooled", status.text())
-        h.widget(QtWidgets.QDoubleSpinBox, "StaticFriction").setValue(0.6)  # ABS's, as Ada felt it
-        self.assertAlmostEqual(surface.StaticFriction, 0.6)
+        h.widget(QtWidgets.QDoubleSpinBox, "StickSpeed").setValue(2.0)  # as Ada felt it
+        self.assertAlmostEqual(surface.StickSpeed, 2.0)
         self.assertNotIn("no longer pooled", status.text())  # back as it was: pooled again
 
     def test_the_texture_is_fitted_to_recordings_and_cancel_reverts_it(self):
@@ -299,6 +309,10 @@ class TaskPanelTest(unittest.TestCase):
         h.widget(QtWidgets.QCheckBox, "FeelRoughness").setChecked(True)
         self.assertTrue(angle.isVisibleTo(Gui.getMainWindow()))  # it turns the roughness grid
         h.widget(QtWidgets.QCheckBox, "FeelRoughness").setChecked(False)
+        h.widget(QtWidgets.QComboBox, "Texture").setCurrentIndex(1)  # it turns the grating too
+        self.assertTrue(angle.isVisibleTo(Gui.getMainWindow()))
+        h.widget(QtWidgets.QComboBox, "Texture").setCurrentText("None")
+        self.assertFalse(angle.isVisibleTo(Gui.getMainWindow()))
         h.widget(QtWidgets.QComboBox, "Pattern").setCurrentText("Linear")
         self.assertTrue(angle.isVisibleTo(Gui.getMainWindow()))
         # no texture yet: the fit to recordings is offered, and the period it reads is shown
@@ -570,6 +584,21 @@ class TaskPanelTest(unittest.TestCase):
         item = h.widget(QtWidgets.QListWidget, "faces").item(0)
         self.assertIn("broken", item.text())
         self.assertIn("broken face reference", h.widget(QtWidgets.QLabel, "status").text())
+        h.press_task_button("Cancel")
+        # a broken reference stepped aside for a face FreeCAD renamed onto its name: shown
+        # by the name it had, selected without a highlight of a face it is not
+        top = [f"Face{i + 1}" for i, f in enumerate(cut.Shape.Faces) if abs(f.CenterOfMass.z - 20) < 1e-6][0]
+        other = HaptiCAD.make_surface(self.doc, [(cut, top)], material="Steel")
+        other.References = [(cut, (top, f"{top}~1"))]
+        other.ReferenceState = json.dumps([dict(e, face=f"{top}~1", status="broken") if i else e for i, e in
+                                           enumerate(json.loads(other.ReferenceState) * 2)])
+        Gui.ActiveDocument.setEdit(other.Name, 0)
+        h.process_events()
+        faces = h.widget(QtWidgets.QListWidget, "faces")
+        self.assertEqual([faces.item(i).text() for i in range(faces.count())],
+                         [f"Cut.{top}", f"Cut.{top}  (broken)"])
+        faces.item(1).setSelected(True)
+        self.assertEqual(Gui.Selection.getSelectionEx(), [])
         h.press_task_button("Cancel")
 
 
