@@ -123,6 +123,7 @@ ServoLoop::ServoLoop(Device& device, std::shared_ptr<ForceRenderer> renderer, Se
       trace_(config_.trace_capacity),
       latest_(TraceSample{}) {
   if (!renderer) throw std::invalid_argument("servo loop: no renderer");
+  renderer_scale_ = renderer->limits().workspace_scale;
   renderers_.Publish(std::move(renderer));
   current_ = renderers_.Take();  // no servo thread yet
   effective_mapping_.Write(mapping_);
@@ -132,7 +133,26 @@ ServoLoop::~ServoLoop() { Stop(); }
 
 void ServoLoop::Start() { Launch(std::numeric_limits<double>::infinity()); }
 
+namespace {
+
+bool SameScale(double a, double b) { return std::abs(a - b) <= 1e-12 * std::max(a, b); }
+
+std::string ScaleMismatch(double renderer_scale, double mapping_scale) {
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "servo loop: the renderer was built for workspace scale %g and the mapping's is "
+                "%g: the hand would feel %g times its stiffness; build the renderer with the "
+                "mapping's limits (render_limits_for)",
+                renderer_scale, mapping_scale, mapping_scale / renderer_scale);
+  return text;
+}
+
+}  // namespace
+
 void ServoLoop::BeginTicks() {
+  if (!SameScale(renderer_scale_, mapping_scale_)) {
+    throw std::logic_error(ScaleMismatch(renderer_scale_, mapping_scale_));
+  }
   device_.BeginSession();  // may throw DeviceError
   ResetStats();
   safety_.BeginSession(0.0);
@@ -150,10 +170,12 @@ void ServoLoop::Launch(double stop_at_s) {
   stop_requested_.store(false);
   session_end_.store(SessionEnd::kRunning, std::memory_order_release);
   running_.store(true, std::memory_order_release);
+  scheduled_.store(false, std::memory_order_relaxed);
   thread_ = std::thread(&ServoLoop::Run, this, stop_at_s);
   const RealtimeReport report = RequestRealtime(thread_.native_handle(), config_.realtime_priority);
   realtime_.store(report.realtime, std::memory_order_relaxed);
   realtime_report_ = report.message;
+  scheduled_.store(true, std::memory_order_release);
 }
 
 void ServoLoop::Stop() {
@@ -173,6 +195,12 @@ std::string ServoLoop::realtime_report() const { return realtime_report_; }
 
 void ServoLoop::SetRenderer(std::shared_ptr<ForceRenderer> renderer) {
   if (!renderer) throw std::invalid_argument("servo loop: no renderer");
+  // its stiffness is divided by the scale it was built for (ForceRenderer): another
+  // scale than the mapping's is felt stiffer or softer than the device's stable limit
+  if (!SameScale(renderer->limits().workspace_scale, mapping_scale_)) {
+    throw std::invalid_argument(ScaleMismatch(renderer->limits().workspace_scale, mapping_scale_));
+  }
+  renderer_scale_ = renderer->limits().workspace_scale;
   // the servo thread (or the next Tick() when none runs) takes it from the handoff
   renderers_.Publish(std::move(renderer));
 }
@@ -184,6 +212,12 @@ std::size_t ServoLoop::ReleaseReplacedRenderers() {
 
 void ServoLoop::SetMapping(const WorkspaceMapping& mapping) {
   ValidateWorkspaceMapping(mapping);
+  // the first mapping of a loop may set the scale its renderer was built for (the loop
+  // starts with the identity); after that the two change together only in a new loop
+  if (!SameScale(mapping.scale, renderer_scale_)) {
+    throw std::invalid_argument(ScaleMismatch(renderer_scale_, mapping.scale));
+  }
+  mapping_scale_ = mapping.scale;
   mapping_updates_.Write(mapping);
 }
 
@@ -319,6 +353,9 @@ void ServoLoop::CountFlags(std::uint32_t flags) {
 }
 
 void ServoLoop::Run(double stop_at_s) {
+  // no tick before the thread's scheduling is settled: the HID writer copies it from the
+  // first tick's command, once (on one CPU it copied the normal policy, then kept it)
+  while (!scheduled_.load(std::memory_order_acquire)) std::this_thread::yield();
   // a sleeping normal thread wakes up to 50 us late by default; ask for 1 us
   prctl(PR_SET_TIMERSLACK, 1000UL, 0, 0, 0);
   const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / config_.rate_hz));
@@ -434,6 +471,11 @@ void ServoLoop::ResetStats() {
   last_faults_ = 0;
   had_proxy_ = false;
   reset_from_proxy_ = false;  // a renderer adopted in the last session starts at the hand
+  // the last session's samples not drained: the trace starts afresh (no servo thread
+  // runs now, so this thread may take the consumer's side)
+  TraceSample stale;
+  while (trace_.Pop(&stale)) {
+  }
 }
 
 std::size_t ServoLoop::DrainTrace(std::vector<TraceSample>* out) {

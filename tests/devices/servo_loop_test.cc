@@ -315,6 +315,47 @@ TEST_F(HandOnBox, ForceRampsInAtTheStartOfASession) {
   EXPECT_GT(max_ratio_before, 0.5);
 }
 
+TEST_F(HandOnBox, AMappingScaleTheRendererWasNotBuiltForIsRefused) {
+  // a renderer divides the stiffness by the scale it was built for: a mapping of 4 on a
+  // renderer of 1 was felt at 4 times the device's stable stiffness
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 12));
+  WorkspaceMapping scaled;
+  scaled.scale = 4.0;
+  try {
+    loop.SetMapping(scaled);
+    FAIL() << "a mapping of another scale was taken";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("the hand would feel 4 times its stiffness"),
+              std::string::npos)
+        << e.what();
+  }
+  // a renderer built for 4 is refused while the mapping is 1, taken once it is 4
+  RenderLimits four{limits_.max_force_n, limits_.max_stiffness_n_per_m};
+  four.workspace_scale = 4.0;
+  auto scene =
+      HapticScene::Build(testing::MakeBoxSoup(Vec3(-50, -50, -50), Vec3(50, 50, 50)), 1e-3);
+  auto made_for_four =
+      std::make_shared<ForceRenderer>(scene, std::make_shared<SurfaceTable>(), four);
+  EXPECT_THROW(loop.SetRenderer(made_for_four), std::invalid_argument);
+  ServoLoop other(*hand_, made_for_four, Config(1000.0, 1 << 12));
+  EXPECT_THROW(other.BeginTicks(), std::logic_error);  // scale 4 with the identity mapping
+  EXPECT_NO_THROW(other.SetMapping(scaled));
+  EXPECT_NO_THROW(other.BeginTicks());
+  EXPECT_THROW(other.SetRenderer(renderer_), std::invalid_argument);
+}
+
+TEST_F(HandOnBox, ASessionsTraceStartsAfresh) {
+  // samples of the last session left undrained came first in the next one's trace
+  ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 12));
+  loop.BeginTicks();
+  for (int i = 0; i < 101; ++i) loop.Tick(i * 1e-3, i == 0 ? 0.0 : 1e-3);
+  loop.BeginTicks();
+  for (int i = 0; i < 21; ++i) loop.Tick(i * 1e-3, i == 0 ? 0.0 : 1e-3);
+  std::vector<TraceSample> trace;
+  EXPECT_EQ(loop.DrainTrace(&trace), 21u);
+  EXPECT_EQ(trace.front().time_s, 0.0);
+}
+
 TEST_F(HandOnBox, TickWithHandMappingClutchAndSwapDoesNotAllocate) {
   ServoLoop loop(*hand_, renderer_, Config(1000.0, 1 << 12));
   auto other = BoxRenderer(limits_, 10.0);
@@ -324,8 +365,8 @@ TEST_F(HandOnBox, TickWithHandMappingClutchAndSwapDoesNotAllocate) {
   trace.reserve(4096);
   loop.Tick(0.0);
   loop.SetRenderer(other);  // allocates here, on the control thread, not in the tick
-  WorkspaceMapping scaled;
-  scaled.scale = 1.2;
+  WorkspaceMapping scaled;  // moved (a new scale needs a renderer made for it: a new loop)
+  scaled.offset_w = Vec3(0.001, 0.0, 0.0);
   testing::AllocationCounter counter;
   for (int i = 1; i < 800; ++i) {
     t = i * 1e-3;
@@ -348,8 +389,8 @@ TEST_F(HandOnBox, TickWithHandMappingClutchAndSwapMakesNoSystemCall) {
   loop.BeginTicks();
   loop.Tick(0.0);
   loop.SetRenderer(BoxRenderer(limits_, 10.0));
-  WorkspaceMapping scaled;
-  scaled.scale = 1.2;
+  WorkspaceMapping scaled;  // moved (a new scale needs a renderer made for it: a new loop)
+  scaled.offset_w = Vec3(0.001, 0.0, 0.0);
   const long calls = testing::CountSystemCalls([&] {
     for (int i = 1; i < 800; ++i) {
       if (i == 100) hand_->SetTarget(Vec3(0, 0, 0.04));
@@ -667,8 +708,9 @@ TEST(ServoLoopFaults, ATickTheRendererRefusesIsAFaultCountedAndTheForceRampsBack
   // the world, over the renderer's 1 km/s bound
   auto scene =
       HapticScene::Build(testing::MakeBoxSoup(Vec3(-5e4, -5e4, -5e4), Vec3(5e4, 5e4, 1e4)), 1e-3);
-  auto renderer = std::make_shared<ForceRenderer>(scene, std::make_shared<SurfaceTable>(),
-                                                  RenderLimits{8.0, 3000.0 / 200});
+  RenderLimits render{8.0, 3000.0};
+  render.workspace_scale = 200.0;  // the face's 400 N/m at the handle: 2 N/m in the world
+  auto renderer = std::make_shared<ForceRenderer>(scene, std::make_shared<SurfaceTable>(), render);
   ServoLoop loop(device, renderer, Config(1000.0, 1 << 12));
   WorkspaceMapping scaled;
   scaled.scale = 200.0;
@@ -677,7 +719,7 @@ TEST(ServoLoopFaults, ATickTheRendererRefusesIsAFaultCountedAndTheForceRampsBack
   device.position = Vec3(0, 0, 0.06);  // 12 m: above the top
   int i = 0;
   for (; i < 50; ++i) loop.Tick(i * 1e-3, 1e-3);
-  device.position = Vec3(0, 0, 0.049);  // 9.8 m: 0.2 m in, 3 N at 15 N/m
+  device.position = Vec3(0, 0, 0.0425);  // 8.5 m: 1.5 m in, 3 N at 2 N/m
   for (; i < 400; ++i) loop.Tick(i * 1e-3, 1e-3);
   ASSERT_NEAR(loop.latest().force_n[2], 3.0, 1e-4);
   const ServoStats before = loop.CalcStats();

@@ -193,9 +193,30 @@ void HidDevice::BeginSession() {
                       " is not taking commands: a write to it has waited " + waited +
                       " in the USB stack. Unplug it, plug it in again and open it again");
   }
-  // old reports say nothing about now
-  for (int i = 0; i < 4096 && hid_read_timeout(handle_, buffer_, sizeof buffer_, 0) > 0; ++i) {
+  // old reports say nothing about now, but for the last force command the device applied:
+  // it applies only commands newer than that one, which may be another session's (a
+  // device left plugged in between two Feel sessions), so the sequence goes on from there
+  bool echo_known = false;
+  std::uint16_t echo = 0;
+  for (int i = 0; i < 4096; ++i) {
+    const int n = hid_read_timeout(handle_, buffer_, sizeof buffer_, 0);
+    if (n <= 0) break;
+    hid::InputReport r;
+    if (hid::DecodeInput(buffer_, static_cast<std::size_t>(n), &r)) {
+      echo = r.output_sequence_echo;
+      echo_known = true;
+    }
   }
+  // none queued (the handle opened just now): the device sends one within its report period
+  for (int waited_ms = 0; !echo_known && waited_ms < kEchoWaitMs; waited_ms += 5) {
+    const int n = hid_read_timeout(handle_, buffer_, sizeof buffer_, 5);
+    hid::InputReport r;
+    if (n > 0 && hid::DecodeInput(buffer_, static_cast<std::size_t>(n), &r)) {
+      echo = r.output_sequence_echo;
+      echo_known = true;
+    }
+  }
+  if (echo_known) output_sequence_ = echo;  // the next command is echo + 1: newer
   // the session request goes through the writer's handle, this thread waiting a bounded
   // time: a device that does not answer held it 5 s per request in usbhid (Start froze)
   hid::SessionReport session;
@@ -218,6 +239,10 @@ void HidDevice::BeginSession() {
   have_report_ = false;
   have_good_ = false;
   verdict_ = ReadStatus::kNoData;
+  first_posted_ = static_cast<std::uint16_t>(output_sequence_ + 1);
+  posted_ = false;
+  echo_applied_ = false;
+  commands_ignored_.store(false, std::memory_order_relaxed);
   velocity_filter_.Reset();
   last_now_s_ = clock_();
   command_delay_s_.store(0.0, std::memory_order_relaxed);
@@ -274,6 +299,7 @@ ReadStatus HidDevice::ReadState(double /*loop_time_s*/, DeviceState* state) {
     MarkLost(Lost::kCommandsStuck, nullptr);
     return ReadStatus::kUnplugged;
   }
+  bool fault_seen = false;  // a fault reported between two ticks is this tick's fault
   for (int i = 0; i < kMaxReadsPerTick; ++i) {
     errno = 0;  // hidapi 0.13 leaves errno alone when poll() reports a hang-up
     const int n = hid_read_timeout(handle_, buffer_, sizeof buffer_, 0);
@@ -316,6 +342,11 @@ ReadStatus HidDevice::ReadState(double /*loop_time_s*/, DeviceState* state) {
       device_time_s_ += dt_us * 1e-6;
     }
     have_report_ = true;
+    echo_read_s_ = now;
+    if (posted_ && static_cast<std::int16_t>(r.output_sequence_echo - first_posted_) >= 0 &&
+        static_cast<std::int16_t>(output_sequence_ - r.output_sequence_echo) >= 0) {
+      echo_applied_ = true;  // a command of this session got through (not one of an older one)
+    }
     last_sequence_ = r.sequence;
     last_device_time_us_ = r.device_time_us;
     last_status_.store(r.status, std::memory_order_relaxed);
@@ -330,6 +361,7 @@ ReadStatus HidDevice::ReadState(double /*loop_time_s*/, DeviceState* state) {
     // back when commands get through
     if (r.status & (hid::kStatusFault | hid::kStatusNotHomed | hid::kStatusWatchdog)) {
       Count(device_faults_);
+      fault_seen = true;
       verdict_ = ReadStatus::kDeviceFault;
     } else if (!(p.array() >= allowed_min_d_.array()).all() ||
                !(p.array() <= allowed_max_d_.array()).all()) {
@@ -355,12 +387,26 @@ ReadStatus HidDevice::ReadState(double /*loop_time_s*/, DeviceState* state) {
       verdict_ = ReadStatus::kOk;
     }
   }
+  // the force was zero for a while since the last tick (a fault that came and went
+  // between two ticks): the newest report's position stands, but the force ramps in again
+  if (fault_seen && verdict_ == ReadStatus::kOk) verdict_ = ReadStatus::kDeviceFault;
   // commands that waited over the device's watchdog: it has dropped the force by itself;
   // zero force here too, and a ramp-in once they flow again
   if (command_delay_s > command_stall_s_) {
     Count(commands_late_ticks_);
     return ReadStatus::kDeviceFault;
   }
+  // commands written but none applied: the device ignores them (it applies only newer
+  // sequences than its last, which may be one the host cannot know): zero force, and a
+  // ramp-in once one gets through (the ENABLE the host sends is not what the device does)
+  // (said by a report read that long after the first command: a silent device is no data)
+  if (posted_ && !echo_applied_ && have_report_ &&
+      echo_read_s_ - first_post_s_ > kCommandsIgnoredS) {
+    Count(commands_ignored_ticks_);
+    commands_ignored_.store(true, std::memory_order_relaxed);
+    return ReadStatus::kDeviceFault;
+  }
+  if (echo_applied_) commands_ignored_.store(false, std::memory_order_relaxed);
   if (!have_good_) return verdict_ == ReadStatus::kOk ? ReadStatus::kNoData : verdict_;
   if (verdict_ != ReadStatus::kOk) return verdict_;
   state->time_s = device_time_s_;
@@ -377,6 +423,10 @@ void HidDevice::WriteForce(const Vec3& force_d) {
   r.flags = session_open_ ? hid::kOutputEnable : 0;
   r.sequence = ++output_sequence_;
   r.input_sequence = last_sequence_;
+  if (session_open_ && !posted_) {
+    posted_ = true;
+    first_post_s_ = last_now_s_;
+  }
   for (int a = 0; a < 3; ++a) r.force_un[a] = hid::ForceToWire(force_d[a]);
   HidOutputWriter::Report out;
   hid::EncodeOutput(r, out.data());
@@ -415,6 +465,11 @@ std::string HidDevice::DescribeFault() const {
     std::snprintf(ms, sizeof ms, "%.0f ms", delay_ms);
     text = std::string("force commands are not getting through: one has waited ") + ms +
            " in the USB stack";
+  } else if (commands_ignored_.load(std::memory_order_relaxed)) {
+    std::snprintf(ms, sizeof ms, "%.0f ms", kCommandsIgnoredS * 1e3);
+    text = std::string("the device applied none of the force commands sent in ") + ms +
+           " (it reports the last it applied, and it is none of them): its firmware may not "
+           "follow the protocol's sequence rule; update it";
   } else if (status & hid::kStatusFault) {
     text = "the device reports a fault (amplifier, encoder or temperature)";
   } else if (status & hid::kStatusNotHomed) {
@@ -449,6 +504,7 @@ HidLinkStats HidDevice::CalcLinkStats() const {
   s.writes_failed = w.writes_failed;
   s.writes_superseded = w.superseded;
   s.commands_late_ticks = get(commands_late_ticks_);
+  s.commands_ignored_ticks = get(commands_ignored_ticks_);
   s.write_max_us = w.write_max_s * 1e6;
   s.round_trip_last_us = round_trip_last_us_.load(std::memory_order_relaxed);
   s.round_trip_p50_us = round_trip_.Percentile(0.5) * 1e-3;

@@ -389,6 +389,88 @@ TEST_F(HidOnEmulator, TheDeviceWatchdogZeroesTheForceWhenTheHostFallsSilent) {
   EXPECT_EQ(link.device_faults, link.watchdog_reports);  // each counted once as a fault
 }
 
+TEST_F(HidOnEmulator, ASecondSessionOnADeviceLeftPluggedInHasItsForceAtOnce) {
+  // Each Feel session opens the device anew. Its sequences started again at 1 while the
+  // device remembered the last session's: it ignored every command for 3 s, the host
+  // none the wiser, then the force jumped in from zero.
+  const int id = hidemu::AddDevice(FirmwareConfig{});
+  DeviceState s;
+  double t = 0.0;
+  for (int session = 0; session < 2; ++session) {
+    hidemu::SetTime(kPlugTime + t);  // the time between: the device reports on
+    auto d = HidDevice::Open("emu:0");
+    d->set_clock(&hidemu::Now);
+    d->BeginSession();
+    const hidemu::Snapshot before = hidemu::GetSnapshot(id);
+    for (int i = 0; i < 3000; ++i, t += 1e-3) {
+      const ReadStatus status = Tick(*d, t, &s, Vec3(0, 0, 1.0));
+      if (i > 2) ASSERT_EQ(status, ReadStatus::kOk) << "session " << session << " tick " << i;
+    }
+    const hidemu::Snapshot after = hidemu::GetSnapshot(id);
+    EXPECT_NEAR(after.applied_force_n.z(), 1.0, 1e-9) << session;
+    EXPECT_EQ(after.outputs_rejected, before.outputs_rejected) << session;
+    EXPECT_GE(after.outputs_applied - before.outputs_applied, 2999u)
+        << session;  // the last in flight
+    d->EndSession();
+    t += 0.5;
+  }
+}
+
+TEST_F(HidOnEmulator, CommandsTheDeviceIgnoresAreAFaultAndSaidSo) {
+  // A firmware that does not echo what it applied (offset 26 reads 0 when the second
+  // session begins): the host cannot go on from the device's last sequence, its commands
+  // are older, and the device applies none. Zero force after kCommandsIgnoredS, said.
+  FirmwareConfig c;
+  c.faults.push_back(FaultWindow{Fault::kZeroEcho, 2.01, 2.7});
+  const int id = hidemu::AddDevice(c);
+  DeviceState s;
+  {
+    auto first = HidDevice::Open("emu:0");
+    first->set_clock(&hidemu::Now);
+    first->BeginSession();
+    for (int i = 0; i < 2000; ++i) Tick(*first, i * 1e-3, &s, Vec3(0, 0, 1.0));
+    first->EndSession();
+  }
+  hidemu::SetTime(kPlugTime + 2.5);
+  auto d = HidDevice::Open("emu:0");
+  d->set_clock(&hidemu::Now);
+  d->BeginSession();
+  const hidemu::Snapshot before = hidemu::GetSnapshot(id);
+  std::vector<ReadStatus> status;
+  for (int i = 0; i < 300; ++i) status.push_back(Tick(*d, 2.5 + i * 1e-3, &s, Vec3(0, 0, 1.0)));
+  const hidemu::Snapshot after = hidemu::GetSnapshot(id);
+  EXPECT_EQ(after.outputs_applied, before.outputs_applied);  // the device took none
+  EXPECT_EQ(after.applied_force_n, Vec3::Zero());
+  // kOk while it may still be the link's delay; then a fault, also once the device's
+  // echo (2001, the last session's close) comes back at 2.7 s: it is no command of this one
+  // (the reports the host reads first are the oldest queued, from 2.0 s: hidraw keeps those)
+  EXPECT_EQ(status[40], ReadStatus::kOk);
+  for (int i = 52; i < 300; ++i) ASSERT_EQ(status[i], ReadStatus::kDeviceFault) << i;
+  EXPECT_GT(d->CalcLinkStats().commands_ignored_ticks, 240u);
+  EXPECT_TRUE(
+      Contains(d->DescribeFault(), "the device applied none of the force commands sent in 50 ms"))
+      << d->DescribeFault();
+}
+
+TEST_F(HidOnEmulator, AFaultBetweenTwoTicksIsThatTicksFault) {
+  // a device reporting at 4 kHz whose amplifier faults for 0.6 ms between two ticks: the
+  // reports after it were clean, and the tick said kOk, the force back at once
+  FirmwareConfig c;
+  c.report_rate_hz = 4000;
+  c.faults.push_back(FaultWindow{Fault::kDeviceFault, 0.1002, 0.1008});
+  hidemu::AddDevice(c);
+  auto d = HidDevice::Open("emu:0");
+  d->set_clock(&hidemu::Now);
+  d->BeginSession();
+  DeviceState s;
+  std::vector<ReadStatus> status;
+  for (int i = 0; i <= 103; ++i) status.push_back(Tick(*d, i * 1e-3, &s, Vec3(0, 0, 0.5)));
+  EXPECT_EQ(status[100], ReadStatus::kOk);
+  EXPECT_EQ(status[101], ReadStatus::kDeviceFault);  // reads the reports of 100.2-101 ms
+  EXPECT_EQ(status[102], ReadStatus::kOk);
+  EXPECT_GT(d->CalcLinkStats().device_faults, 0u);
+}
+
 // Runs 300 ticks with `window` over [100, 150) ms; returns the statuses and ages.
 struct FaultRun {
   std::vector<ReadStatus> status;

@@ -7,8 +7,13 @@
 //
 // Most tests drive the loop tick by tick on the emulator's manual clock (deterministic
 // and fast); the last ones run the real servo thread on the real clock.
+#include <dirent.h>
+#include <sched.h>
+
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 #include <string>
 #include <thread>
 
@@ -387,6 +392,57 @@ class HidServoRealTime : public ::testing::Test {
   void SetUp() override { hidemu::Reset(); }
   void TearDown() override { hidemu::Reset(); }
 };
+
+// The scheduling policy of this process's thread named `name` (-1 if none is).
+int PolicyOfThread(const std::string& name) {
+  DIR* tasks = opendir("/proc/self/task");
+  int policy = -1;
+  while (dirent* e = tasks ? readdir(tasks) : nullptr) {
+    if (e->d_name[0] == '.') continue;
+    std::ifstream comm(std::string("/proc/self/task/") + e->d_name + "/comm");
+    std::string text;
+    std::getline(comm, text);
+    if (text == name) policy = sched_getscheduler(std::atoi(e->d_name));
+  }
+  if (tasks) closedir(tasks);
+  return policy;
+}
+
+TEST_F(HidServoRealTime, TheWriterThreadRunsAsTheServoThreadDoesEvenOnOneCpu) {
+  // The servo thread got SCHED_FIFO after it started; on one CPU its first tick ran
+  // before that, and the writer copied the normal policy from that tick's command, once.
+  cpu_set_t all, one;
+  ASSERT_EQ(sched_getaffinity(0, sizeof all, &all), 0);
+  CPU_ZERO(&one);
+  CPU_SET(sched_getcpu(), &one);
+  ASSERT_EQ(sched_setaffinity(0, sizeof one, &one), 0);  // the threads made now inherit it
+  int realtime_runs = 0;
+  for (int round = 0; round < 5; ++round) {
+    hidemu::Reset();
+    FirmwareConfig c = PressingDevice();
+    hidemu::AddDevice(c);
+    auto device = HidDevice::Open(c.path);
+    ServoConfig config;
+    config.realtime_priority = 10;
+    ServoLoop loop(*device, Box(), config);
+    loop.Start();
+    if (loop.CalcStats().realtime) {
+      ++realtime_runs;
+      // the writer takes the policy with the first command it writes: wait for that (it
+      // copies once, so a wrong copy stays wrong however long this waits)
+      int policy = -1;
+      for (int i = 0; i < 100 && policy != SCHED_FIFO; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        policy = PolicyOfThread("hid-writer");
+      }
+      EXPECT_EQ(policy, SCHED_FIFO) << "round " << round;
+    }
+    loop.Stop();
+  }
+  sched_setaffinity(0, sizeof all, &all);
+  if (realtime_runs == 0)
+    GTEST_SKIP() << "SCHED_FIFO not granted here: nothing for the writer to copy";
+}
 
 TEST_F(HidServoRealTime, ADeviceThatDoesNotAnswerTheSessionRequestIsRefusedWithinItsBound) {
   // from 0.3 s every feature-report request blocks 5 s and times out: BeginSession (the

@@ -157,6 +157,11 @@ class ServoLoop {
   // calls it from its polling, so an old scene does not wait for the next swap.
   // Returns how many renderers are still kept (the one in use and any set since).
   std::size_t ReleaseReplacedRenderers();
+  // The renderer's RenderLimits::workspace_scale and the mapping's scale must agree (the
+  // renderer divides the stiffness by the one it was built for; another scale is felt that
+  // many times stiffer, beyond the device's stable limit): SetRenderer() and SetMapping()
+  // throw std::invalid_argument for one that differs from the other's, and Start() throws
+  // std::logic_error while they differ (a renderer of scale s and no mapping given yet).
   // Replaces the mapping (validated; throws std::invalid_argument). Taken at the next
   // tick; any clutch offset is dropped, the proxy restarts at the tool's new position
   // (as at the start of a session: ForceRenderer::Reset); the force sent stops and the
@@ -202,6 +207,9 @@ class ServoLoop {
   // mapping and clutch: the servo thread's copy, updated through mailboxes
   WorkspaceMapping mapping_;
   Mailbox<WorkspaceMapping> mapping_updates_;
+  // control thread's: the scales of the renderer and the mapping last given (must agree)
+  double renderer_scale_ = 1.0;
+  double mapping_scale_ = 1.0;
   Mailbox<WorkspaceMapping> effective_mapping_;
   std::atomic<bool> clutch_requested_{false};
   Clutch clutch_;
@@ -219,6 +227,7 @@ class ServoLoop {
   Mailbox<TraceSample> latest_;
   std::atomic<bool> running_{false};
   std::atomic<bool> stop_requested_{false};
+  std::atomic<bool> scheduled_{false};  // Launch() has set the servo thread's scheduling
   std::atomic<SessionEnd> session_end_{SessionEnd::kNotStarted};
   SessionEnd end_requested_ = SessionEnd::kRunning;  // servo thread's
   // written before running_ turns false, cleared when a session begins; off the tick,

@@ -224,7 +224,7 @@ void Firmware::SendInputReport(double t) {
   }
   Put32(d + 20, 0);  // buttons
   Put16(d + 24, round_trip_us_);
-  Put16(d + 26, last_output_sequence_);
+  Put16(d + 26, Active(Fault::kZeroEcho, t) ? 0 : last_output_sequence_);
   Put16(d + 30, Crc(d, 30));
   p.length = 32;
   sent_at_s_[sequence_ & 255] = t;

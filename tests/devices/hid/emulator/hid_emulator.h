@@ -59,6 +59,9 @@ enum class Fault {
   // (emulator clock) and then fails with ETIMEDOUT: a control transfer the device never
   // answers, which usbhid gives up on after 5 s
   kSlowFeature,
+  // [start, end): input reports give 0 as the last output sequence applied (offset 26), as a
+  // firmware that does not fill it in
+  kZeroEcho,
 };
 
 struct FaultWindow {

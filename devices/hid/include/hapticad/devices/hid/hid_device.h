@@ -16,6 +16,17 @@
 // kDeviceFault (after a device watchdog trip the force must ramp in, not jump back), and never
 // reach the velocity filter.
 //
+// A fault reported between two ticks (FAULT, NOT_HOMED or WATCHDOG in a report followed by
+// clean ones before the tick reads them) makes that tick kDeviceFault: the device's force
+// was zero meanwhile, so it ramps in again; the newest report's position is kept.
+//
+// Sequences. The device applies a command only if its sequence is newer than the last it
+// applied, and that may be another session's (the device stayed plugged in between two
+// sessions, each with a HidDevice of its own): BeginSession() goes on from the sequence the
+// device echoes as applied (input report offset 26). Commands written for
+// kCommandsIgnoredS with none echoed as applied are ignored by the device: kDeviceFault
+// (zero force; a ramp-in once one gets through) and DescribeFault() says so.
+//
 // Commands that do not get through. When a force command has waited longer than the
 // device watchdog in effect (the session's watchdog_ms, or the device's default) without
 // the writer finishing a write, the device has dropped the force by itself: ReadState()
@@ -77,10 +88,11 @@ struct HidLinkStats {
   std::uint64_t writes = 0;
   std::uint64_t writes_failed = 0;
   // the writer thread (hid_output_writer.h: writes counts its hid_write() calls), and reads
-  std::uint64_t writes_superseded = 0;    // commands replaced by a newer one before written
-  std::uint64_t commands_late_ticks = 0;  // ticks a command had waited over the watchdog
-  double write_max_us = 0.0;              // the longest a hid_write() took
-  std::uint64_t reads_interrupted = 0;    // reads that returned EINTR: no data that tick
+  std::uint64_t writes_superseded = 0;       // commands replaced by a newer one before written
+  std::uint64_t commands_late_ticks = 0;     // ticks a command had waited over the watchdog
+  std::uint64_t commands_ignored_ticks = 0;  // ticks after kCommandsIgnoredS with none applied
+  double write_max_us = 0.0;                 // the longest a hid_write() took
+  std::uint64_t reads_interrupted = 0;       // reads that returned EINTR: no data that tick
   // round trip as measured by the device (input sent -> answering output received)
   double round_trip_last_us = 0.0;
   double round_trip_p50_us = 0.0;
@@ -99,6 +111,14 @@ class HidDevice final : public Device {
   // A force command waiting this long for the USB stack (the writer's hid_write has not
   // returned) means the device stopped taking commands: it is lost, as if unplugged.
   static constexpr double kCommandTimeoutS = 0.25;
+  // Commands written this long in a session without the device echoing one of them as
+  // applied (input report offset 26): it ignores them, zero force (ReadState says
+  // kDeviceFault) until one gets through. Dozens of commands and reports at any rate the
+  // protocol allows.
+  static constexpr double kCommandsIgnoredS = 0.05;
+  // How long BeginSession() waits for an input report, to go on from the last command the
+  // device applied (its report period is 2.5 ms at most).
+  static constexpr int kEchoWaitMs = 50;
   // The longest EndSession() and BeginSession() wait for the writer thread.
   static constexpr double kEndSessionWaitS = 0.1;
   // How long BeginSession() waits for the device to answer its session request (a
@@ -188,8 +208,13 @@ class HidDevice final : public Device {
   std::uint32_t buttons_ = 0;
   std::atomic<std::uint8_t> last_status_{0};  // of the newest report used; DescribeFault reads it
   VelocityFilter velocity_filter_{40.0};
-  std::uint16_t output_sequence_ = 0;
-  double last_now_s_ = 0.0;  // host clock at the last ReadState() (or BeginSession())
+  std::uint16_t output_sequence_ = 0;  // the last sent; a session goes on from the device's echo
+  std::uint16_t first_posted_ = 0;     // this session's first command's sequence
+  bool posted_ = false;                // a command of this session was handed to the writer
+  double first_post_s_ = 0.0;          // host clock then
+  bool echo_applied_ = false;          // the device echoed one of this session's commands
+  double echo_read_s_ = 0.0;           // host clock when the newest report was read
+  double last_now_s_ = 0.0;            // host clock at the last ReadState() (or BeginSession())
   std::uint8_t buffer_[64] = {};
 
   // hidapi's reason, taken on the servo thread before unplugged_ turns true (hid_error is
@@ -201,7 +226,8 @@ class HidDevice final : public Device {
   std::atomic<bool> unplugged_{false};
   std::atomic<std::uint64_t> reports_read_{0}, reports_used_{0}, malformed_{0}, not_newer_{0},
       dropped_{0}, out_of_range_{0}, device_faults_{0}, watchdog_reports_{0}, reads_interrupted_{0},
-      commands_late_ticks_{0};
+      commands_late_ticks_{0}, commands_ignored_ticks_{0};
+  std::atomic<bool> commands_ignored_{false};  // DescribeFault reads it
   std::atomic<double> round_trip_last_us_{0.0};
   LatencyHistogram round_trip_;
 };
