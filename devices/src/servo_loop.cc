@@ -170,12 +170,18 @@ void ServoLoop::Launch(double stop_at_s) {
   stop_requested_.store(false);
   session_end_.store(SessionEnd::kRunning, std::memory_order_release);
   running_.store(true, std::memory_order_release);
-  scheduled_.store(false, std::memory_order_relaxed);
+  {
+    std::lock_guard<std::mutex> lock(start_mutex_);
+    scheduled_ = false;
+  }
   thread_ = std::thread(&ServoLoop::Run, this, stop_at_s);
-  const RealtimeReport report = RequestRealtime(thread_.native_handle(), config_.realtime_priority);
-  realtime_.store(report.realtime, std::memory_order_relaxed);
-  realtime_report_ = report.message;
-  scheduled_.store(true, std::memory_order_release);
+  // the servo thread asks for its own scheduling before its first tick (the HID writer
+  // copies it from that tick's command, once); this thread waits, blocked: a spin here
+  // would hold the one CPU the real-time servo thread wants to hand back
+  std::unique_lock<std::mutex> lock(start_mutex_);
+  start_cv_.wait(lock, [this] { return scheduled_; });
+  realtime_.store(start_report_.realtime, std::memory_order_relaxed);
+  realtime_report_ = start_report_.message;
 }
 
 void ServoLoop::Stop() {
@@ -354,8 +360,15 @@ void ServoLoop::CountFlags(std::uint32_t flags) {
 
 void ServoLoop::Run(double stop_at_s) {
   // no tick before the thread's scheduling is settled: the HID writer copies it from the
-  // first tick's command, once (on one CPU it copied the normal policy, then kept it)
-  while (!scheduled_.load(std::memory_order_acquire)) std::this_thread::yield();
+  // first tick's command, once (on one CPU it copied the normal policy, then kept it).
+  // Asked here, by the thread itself, and handed to Launch() (off the ticks: it allocates)
+  {
+    RealtimeReport report = RequestRealtime(pthread_self(), config_.realtime_priority);
+    std::lock_guard<std::mutex> lock(start_mutex_);
+    start_report_ = std::move(report);
+    scheduled_ = true;
+  }
+  start_cv_.notify_one();
   // a sleeping normal thread wakes up to 50 us late by default; ask for 1 us
   prctl(PR_SET_TIMERSLACK, 1000UL, 0, 0, 0);
   const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / config_.rate_hz));

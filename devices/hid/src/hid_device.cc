@@ -465,15 +465,16 @@ std::string HidDevice::DescribeFault() const {
     std::snprintf(ms, sizeof ms, "%.0f ms", delay_ms);
     text = std::string("force commands are not getting through: one has waited ") + ms +
            " in the USB stack";
+  } else if (status &
+             hid::kStatusFault) {  // the device's own word first: it may apply nothing then
+    text = "the device reports a fault (amplifier, encoder or temperature)";
+  } else if (status & hid::kStatusNotHomed) {
+    text = "the device is not calibrated (homed) yet";
   } else if (commands_ignored_.load(std::memory_order_relaxed)) {
     std::snprintf(ms, sizeof ms, "%.0f ms", kCommandsIgnoredS * 1e3);
     text = std::string("the device applied none of the force commands sent in ") + ms +
            " (it reports the last it applied, and it is none of them): its firmware may not "
            "follow the protocol's sequence rule; update it";
-  } else if (status & hid::kStatusFault) {
-    text = "the device reports a fault (amplifier, encoder or temperature)";
-  } else if (status & hid::kStatusNotHomed) {
-    text = "the device is not calibrated (homed) yet";
   } else if (status & hid::kStatusWatchdog) {
     text = "the device's watchdog cut the force (no command reached it in time)";
   }

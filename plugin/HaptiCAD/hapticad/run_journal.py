@@ -60,7 +60,7 @@ def write(study, run):
     state = {"document": os.path.abspath(study.Document.FileName), "study": study.Name,
              "name": run.participant, "seed": run.seed, "started": run.started,
              "trials": [[t.kind, t.first, t.second] for t in run.trials], "answers": list(run.answers),
-             "stimuli": run.stimuli, "context": run.context, "protocol": protocol_of(study)}
+             "stimuli": run.stimuli, "context": run.context, "protocol": run.protocol}
     _write_atomically(path, state)
 
 

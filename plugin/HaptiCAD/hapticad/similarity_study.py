@@ -130,7 +130,7 @@ class SimilarityStudy(SchemaState):
         self.setup(obj)
         try:  # documents saved before it counted people counted runs
             obj.Participants = count_participants(runs(obj))
-        except ValueError:
+        except (ValueError, KeyError, TypeError, AttributeError):
             pass  # unreadable runs: said by validate at the next recompute
         from .surface_object import attach_view_provider
 
@@ -476,6 +476,8 @@ class Run:
         self.felt_with = {}  # what rendered it: {"device": name, "servo_rate_hz": rate}, kept with it
         self.stimuli = stimuli(study)
         self.steps = int(study.RatingSteps)
+        # the settings the trials are drawn and rated with, as the run began (run_journal)
+        self.protocol = {"RatingSteps": self.steps, "WarmUps": int(study.WarmUps), "Repeats": int(study.Repeats)}
         self.has_references = len(references(study)) == 2
         self.context = felt_context(study)
         rng = random.Random(self.seed)
@@ -678,8 +680,9 @@ def by_participant(records):
     """The runs grouped by participant_key, each group oldest first, groups in order of
     their first run."""
     groups = {}
-    for record in records:
-        groups.setdefault(participant_key(record["name"]), []).append(record)
+    for record in records:  # a damaged record (validate says so) is no one's
+        if isinstance(record, dict) and participant_key(record.get("name", "")):
+            groups.setdefault(participant_key(record["name"]), []).append(record)
     return list(groups.values())
 
 

@@ -886,7 +886,8 @@ def make_surface(doc, references, material="ABS", roughness_category=3, pattern=
 
 def _check_kind(label, kind, value):
     """Refuses a value a property of ``kind`` cannot hold (before the object is made)."""
-    if kind == "App::PropertyBool" and not isinstance(value, bool):
+    # True or False, or what scripts write for them (1 and 0, numpy's booleans)
+    if kind == "App::PropertyBool" and not (type(value).__name__ in ("bool", "int", "bool_") and value in (0, 1)):
         raise ValueError(f"make_surface: {label} must be True or False, got {value!r}")
     if kind == "App::PropertyIntegerConstraint" and (isinstance(value, bool) or not isinstance(value, int)):
         raise ValueError(f"make_surface: {label} must be a whole number, got {value!r}")
@@ -922,7 +923,9 @@ def _set_up_surface(obj, links, material, roughness_category, pattern, pattern_a
         obj.Texture = properties["Texture"]
     for key, value in properties.items():
         if key != "Texture":
-            setattr(obj, key, App.Vector(*value) if isinstance(value, (list, tuple)) else value)
+            kind = next(p[1] for p in PROPERTIES if p[0] == key)
+            setattr(obj, key, App.Vector(*value) if isinstance(value, (list, tuple))
+                    else bool(value) if kind == "App::PropertyBool" else value)
     sync_reference_state(obj)
     attach_view_provider(obj)
 

@@ -425,7 +425,12 @@ TEST_F(HidServoRealTime, TheWriterThreadRunsAsTheServoThreadDoesEvenOnOneCpu) {
     ServoConfig config;
     config.realtime_priority = 10;
     ServoLoop loop(*device, Box(), config);
+    const auto start = std::chrono::steady_clock::now();
     loop.Start();
+    // a start flag spun on at SCHED_FIFO held the one CPU from the thread that was to set
+    // it: Start() took the kernel's real-time throttling's 0.95 s, or never returned
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0.5)
+        << "round " << round;
     if (loop.CalcStats().realtime) {
       ++realtime_runs;
       // the writer takes the policy with the first command it writes: wait for that (it

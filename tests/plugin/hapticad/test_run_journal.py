@@ -197,6 +197,13 @@ class RunJournalTest(unittest.TestCase):
             setattr(self.study, name, before)
         again = run_journal.resume(self.study, state)  # set back, it goes on
         self.assertEqual((again.steps, again.answers), (7, [4] * 5))
+        # the scale changed while the run went on (on the scale it began with): the journal
+        # still says 7, so a resume on 5 is refused
+        self.study.RatingSteps = 5
+        run_journal.write(self.study, again)
+        self.assertEqual(run_journal.resumable(self.study, run_journal.read(self.study)),
+                         "the study's Rating steps 5 (it was 7: set it back to go on)")
+        self.study.RatingSteps = 7
         # a journal written before the protocol was: resumed as before, on what the trials show
         del state["protocol"]
         self.assertEqual(run_journal.resumable(self.study, state), "")

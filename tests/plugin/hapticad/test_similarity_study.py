@@ -339,6 +339,8 @@ class StudyTest(unittest.TestCase):
         self.assertIn("runs of one participant are averaged before pooling, so each participant weighs the same: "
                       "Ida (2)", result["notes"])
         self.assertIn("9 stimuli, 2 participants in 3 runs", ss.describe(study, result))
+        # a damaged stored record (no name) is no one's: keeping and counting go on
+        self.assertEqual(ss.count_participants([*ss.runs(study), {"steps": 7}, "not a run"]), 2)
         # removing a run recounts the people, and so does opening a document that counted runs
         ss.remove_run(study, 1)
         self.assertEqual(study.Participants, 1)

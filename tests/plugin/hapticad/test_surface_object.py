@@ -137,8 +137,9 @@ class MakeSurfaceTest(unittest.TestCase):
         self.assertEqual([o.Name for o in self.doc.Objects], ["Box"])
         # good values of those kinds, as a script gives them
         s = HaptiCAD.make_surface(self.doc, [(self.box, "Face1")], pattern_center_mm=App.Vector(1, 2, 3),
-                                  PatternAxis=(0, 0, 1), FeelRoughness=False, CurveTableSize=64)
+                                  PatternAxis=(0, 0, 1), FeelRoughness=0, CurveTableSize=64)
         self.assertEqual((s.PatternCenter, s.PatternAxis), (App.Vector(1, 2, 3), App.Vector(0, 0, 1)))
+        self.assertIs(s.FeelRoughness, False)  # 0, as scripts write it, is False
 
     def test_validation_names_the_property_or_reference_that_is_wrong(self):
         s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])

@@ -26,6 +26,7 @@
 #pragma once
 
 #include <atomic>
+#include <condition_variable>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -40,6 +41,7 @@
 #include "hapticad/devices/device.h"
 #include "hapticad/devices/latency_histogram.h"
 #include "hapticad/devices/mailbox.h"
+#include "hapticad/devices/realtime.h"
 #include "hapticad/devices/safety.h"
 #include "hapticad/devices/spsc_ring.h"
 #include "hapticad/devices/trace_sample.h"
@@ -227,7 +229,11 @@ class ServoLoop {
   Mailbox<TraceSample> latest_;
   std::atomic<bool> running_{false};
   std::atomic<bool> stop_requested_{false};
-  std::atomic<bool> scheduled_{false};  // Launch() has set the servo thread's scheduling
+  // the servo thread's scheduling, asked by itself before its first tick, for Launch()
+  std::mutex start_mutex_;
+  std::condition_variable start_cv_;
+  bool scheduled_ = false;
+  RealtimeReport start_report_;
   std::atomic<SessionEnd> session_end_{SessionEnd::kNotStarted};
   SessionEnd end_requested_ = SessionEnd::kRunning;  // servo thread's
   // written before running_ turns false, cleared when a session begins; off the tick,

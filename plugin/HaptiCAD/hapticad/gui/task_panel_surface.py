@@ -526,17 +526,17 @@ class SurfaceTaskPanel:
         self.reset_material.setToolTip("" if known else f"{obj.Material} is not in this machine's material "
                                        "database (a card of the colleague who made the document?): the "
                                        "values below stay as the document has them")
-        if not known:
-            self.material_info.setText(f"{obj.Material} is not in the material database on this machine; "
-                                       "the values below are the document's.")
-            return
-        m = database.get(obj.Material)
         unread = ""
         if database.errors:  # the designer's own materials missing from the list, said why
             more = len(database.errors) - 1
             unread = (f"<br><span style='color:#b00000'>Not read from your material files: "
                       f"{html.escape(database.errors[0])}" + (f" (and {more} more, in the Report view)" if more else "")
                       + "</span>")
+        if not known:
+            self.material_info.setText(f"{html.escape(obj.Material)} is not in the material database on this "
+                                       "machine; the values below are the document's." + unread)
+            return
+        m = database.get(obj.Material)
         overridden = (abs(m.static_friction - obj.StaticFriction) > 1e-9 or
                       abs(m.dynamic_friction - obj.DynamicFriction) > 1e-9 or
                       abs(m.stiffness_n_per_mm - obj.Stiffness) > 1e-9)
