@@ -50,6 +50,15 @@ class HidOnEmulator : public ::testing::Test {
     return status;
   }
 
+  // Plugs in a device made by `c`, opens it on the emulator's clock and begins a session.
+  static std::unique_ptr<HidDevice> OpenInSession(const FirmwareConfig& c) {
+    hidemu::AddDevice(c);
+    auto d = HidDevice::Open(c.path);
+    d->set_clock(&hidemu::Now);
+    d->BeginSession();
+    return d;
+  }
+
   std::string OpenError(const FirmwareConfig& c) {
     hidemu::AddDevice(c);
     try {
@@ -202,10 +211,7 @@ TEST_F(HidOnEmulator, AnInterruptedReadIsNoDataForThatTickNotAnUnplug) {
   // session as "unplugged"; the device is fine: that tick just has no new report
   FirmwareConfig c;
   c.faults.push_back(FaultWindow{Fault::kInterruptRead, 0.1, 0.1005});
-  hidemu::AddDevice(c);
-  auto d = HidDevice::Open("emu:0");
-  d->set_clock(&hidemu::Now);
-  d->BeginSession();
+  auto d = OpenInSession(c);
   DeviceState s;
   Tick(*d, 0.0, &s);
   for (int i = 1; i < 200; ++i) {
@@ -458,10 +464,7 @@ TEST_F(HidOnEmulator, AFaultBetweenTwoTicksIsThatTicksFault) {
   FirmwareConfig c;
   c.report_rate_hz = 4000;
   c.faults.push_back(FaultWindow{Fault::kDeviceFault, 0.1002, 0.1008});
-  hidemu::AddDevice(c);
-  auto d = HidDevice::Open("emu:0");
-  d->set_clock(&hidemu::Now);
-  d->BeginSession();
+  auto d = OpenInSession(c);
   DeviceState s;
   std::vector<ReadStatus> status;
   for (int i = 0; i <= 103; ++i) status.push_back(Tick(*d, i * 1e-3, &s, Vec3(0, 0, 0.5)));
