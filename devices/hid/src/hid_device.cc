@@ -61,27 +61,57 @@ hid_device* OpenPath(const std::string& path) {
   return handle;
 }
 
-// The session report's exchange on `handle`: empty if the device accepted, else why not.
-std::string ExchangeSession(hid_device* handle, const hid::SessionReport& session) {
+// The session report's exchange on `handle` (PROTOCOL.md section 3.4), and its outcome.
+struct SessionAnswer {
+  bool taken = false;       // the device took the version, the session flag and the watchdog
+  bool unanswered = false;  // the exchange itself failed (USB), not the device's answer
+  int watchdog_ms = 0;      // the watchdog the device took (its default for 0), when answered
+  std::string why_not;      // when not taken
+};
+
+SessionAnswer ExchangeSession(hid_device* handle, const hid::SessionReport& session,
+                              int default_watchdog_ms) {
+  SessionAnswer answer;
   std::uint8_t out[hid::kSessionReportSize];
   hid::EncodeSession(session, out);
   if (hid_send_feature_report(handle, out, sizeof out) < 0) {
-    return "setting the session report failed: " + hid::ErrorText(handle);
+    answer.unanswered = true;
+    answer.why_not = "setting the session report failed: " + hid::ErrorText(handle);
+    return answer;
   }
   std::uint8_t in[256] = {hid::kSessionReportId};
   const int n = hid_get_feature_report(handle, in, sizeof in);
-  if (n < 0) return "reading the session report back failed: " + hid::ErrorText(handle);
+  if (n < 0) {
+    answer.unanswered = true;
+    answer.why_not = "reading the session report back failed: " + hid::ErrorText(handle);
+    return answer;
+  }
   hid::SessionReport accepted;
   if (!hid::DecodeSession(in, static_cast<std::size_t>(n), &accepted)) {
-    return "its session report (" + std::to_string(n) + " bytes) is malformed";
+    answer.why_not = "its session report (" + std::to_string(n) + " bytes) is malformed";
+    return answer;
   }
-  if (accepted.version == session.version &&
-      (accepted.flags & hid::kSessionOpen) == session.flags) {
-    return {};
+  if (accepted.version != session.version ||
+      (accepted.flags & hid::kSessionOpen) != session.flags) {
+    answer.why_not =
+        "it answered version " +
+        (accepted.version == 0 ? std::string("0") : hid::VersionString(accepted.version)) +
+        ((accepted.flags & hid::kSessionOpen) ? " with a session open" : " with no session");
+    return answer;
   }
-  return "it answered version " +
-         (accepted.version == 0 ? std::string("0") : hid::VersionString(accepted.version)) +
-         ((accepted.flags & hid::kSessionOpen) ? " with a session open" : " with no session");
+  answer.watchdog_ms = accepted.watchdog_ms ? accepted.watchdog_ms : default_watchdog_ms;
+  const int asked_ms = session.watchdog_ms ? session.watchdog_ms : default_watchdog_ms;
+  // a longer watchdog than asked keeps pushing with the last force that long after the
+  // host stops (a crashed servo loop): the host's bound on it is a safety limit
+  if (answer.watchdog_ms > asked_ms) {
+    answer.why_not = "it took a watchdog of " + std::to_string(answer.watchdog_ms) + " ms where " +
+                     std::to_string(asked_ms) +
+                     " ms was asked, so it would go on pushing with the last force for " +
+                     std::to_string(answer.watchdog_ms) + " ms after the commands stop";
+    return answer;
+  }
+  answer.taken = true;
+  return answer;
 }
 
 hid::InfoReport ReadInfo(hid_device* handle, const std::string& path) {
@@ -142,17 +172,25 @@ std::unique_ptr<HidDevice> HidDevice::Open(const std::string& path, int watchdog
   device->writer_ = std::make_unique<HidOutputWriter>(writer_guard.handle);
   writer_guard.handle = nullptr;  // the writer owns it now
   device->watchdog_ms_ = watchdog_ms;
-  const int watchdog_in_effect = watchdog_ms > 0 ? watchdog_ms : device->report_.watchdog_ms;
-  device->command_stall_s_ = watchdog_in_effect * 1e-3;
-  const std::string refusal = device->SetSession(false);
-  if (!refusal.empty()) {
-    const hid::InfoReport& info = device->report_;
-    throw DeviceError("the HID device " + path + " refused HaptiCAD HID protocol " +
-                      hid::VersionString(device->version_) + ", which it lists (" +
+  const hid::InfoReport& info = device->report_;
+  hid::SessionReport negotiate;  // SESSION = 0: the version and watchdog, no force yet
+  negotiate.version = device->version_;
+  negotiate.watchdog_ms = static_cast<std::uint16_t>(watchdog_ms);
+  const SessionAnswer answer = ExchangeSession(device->handle_, negotiate, info.watchdog_ms);
+  const std::string protocol = "HaptiCAD HID protocol " + hid::VersionString(device->version_);
+  if (answer.unanswered) {
+    throw DeviceError("the HID device " + path + " did not answer the " + protocol +
+                      " session request: " + answer.why_not +
+                      ". Unplug it, plug it in again and open it again");
+  }
+  if (!answer.taken) {
+    throw DeviceError("the HID device " + path + " refused " + protocol + ", which it lists (" +
                       hid::VersionString(info.version_min) + "-" +
-                      hid::VersionString(info.version_max) + "): " + refusal +
+                      hid::VersionString(info.version_max) + "): " + answer.why_not +
                       ". Its firmware does not follow the protocol; update it");
   }
+  // a device that took a shorter watchdog drops the force sooner: the host's stall bound
+  device->command_stall_s_ = answer.watchdog_ms * 1e-3;
   return device;
 }
 
@@ -171,14 +209,6 @@ HidDevice::~HidDevice() {
   if (session_open_) EndSession();
   writer_.reset();  // at most HidOutputWriter::kAbandonAfterS
   hid_close(handle_);
-}
-
-std::string HidDevice::SetSession(bool open) {
-  hid::SessionReport session;
-  session.flags = open ? hid::kSessionOpen : 0;
-  session.version = version_;
-  session.watchdog_ms = static_cast<std::uint16_t>(watchdog_ms_);
-  return ExchangeSession(handle_, session);
 }
 
 void HidDevice::BeginSession() {
@@ -223,18 +253,24 @@ void HidDevice::BeginSession() {
   session.flags = hid::kSessionOpen;
   session.version = version_;
   session.watchdog_ms = static_cast<std::uint16_t>(watchdog_ms_);
-  auto refusal = std::make_shared<std::string>();  // the job owns what it uses
-  if (!writer_->Run([session, refusal](hid_device* h) { *refusal = ExchangeSession(h, session); },
-                    kBeginSessionWaitS)) {
+  auto answer = std::make_shared<SessionAnswer>();  // the job owns what it uses
+  const int default_watchdog_ms = report_.watchdog_ms;
+  if (!writer_->Run(
+          [session, answer, default_watchdog_ms](hid_device* h) {
+            *answer = ExchangeSession(h, session, default_watchdog_ms);
+          },
+          kBeginSessionWaitS)) {
     char waited[32];
     std::snprintf(waited, sizeof waited, "%.1f s", kBeginSessionWaitS);
     throw DeviceError("the HID device " + info_.path +
                       " did not answer the request to open a session within " + waited +
                       ". Unplug it, plug it in again and open it again");
   }
-  if (!refusal->empty()) {
-    throw DeviceError("the HID device " + info_.path + " did not open a session: " + *refusal);
+  if (!answer->taken) {
+    throw DeviceError("the HID device " + info_.path +
+                      " did not open a session: " + answer->why_not);
   }
+  command_stall_s_ = answer->watchdog_ms * 1e-3;
   session_open_ = true;
   have_report_ = false;
   have_good_ = false;
@@ -269,7 +305,7 @@ void HidDevice::EndSession() {
   writer_->Run(
       [out, closed](hid_device* handle) {
         hid_write(handle, out.data(), out.size());
-        ExchangeSession(handle, closed);
+        ExchangeSession(handle, closed, 0);
       },
       kEndSessionWaitS);
 }

@@ -109,6 +109,80 @@ TEST_F(HidOnEmulator, RefusesAWrongProtocolVersionSayingWhatToUpdate) {
   EXPECT_FALSE(Contains(refused, "()")) << refused;
 }
 
+TEST_F(HidOnEmulator, RefusesADeviceThatTakesALongerWatchdogThanAsked) {
+  // a firmware with a fixed 1000 ms watchdog answered the host's 5 ms with 1000 and was
+  // used as if it cut the force 5 ms after the servo loop stops: it would push for 1 s
+  FirmwareConfig slow;
+  slow.path = "emu:slow-watchdog";
+  slow.fixed_watchdog_ms = 1000;
+  const std::string refused = OpenError(slow);
+  EXPECT_TRUE(Contains(refused,
+                       "it took a watchdog of 1000 ms where 5 ms was asked, so it would go on "
+                       "pushing with the last force for 1000 ms after the commands stop"))
+      << refused;
+  EXPECT_TRUE(Contains(refused, "update it")) << refused;
+  // asked for its default (0): its stated 20 ms is what it may take
+  FirmwareConfig stated;
+  stated.path = "emu:stated";
+  stated.fixed_watchdog_ms = 20;
+  hidemu::AddDevice(stated);
+  EXPECT_NO_THROW(HidDevice::Open(stated.path, 0));
+  FirmwareConfig over;
+  over.path = "emu:over-default";
+  over.fixed_watchdog_ms = 21;
+  hidemu::AddDevice(over);
+  try {
+    HidDevice::Open(over.path, 0);
+    ADD_FAILURE() << "a device that took 21 ms where its default says 20 ms was opened";
+  } catch (const DeviceError& e) {
+    EXPECT_TRUE(Contains(e.what(), "it took a watchdog of 21 ms where 20 ms was asked"))
+        << e.what();
+  }
+}
+
+TEST_F(HidOnEmulator, AShorterWatchdogTheDeviceTookIsTheHostsStallBound) {
+  // it drops the force 3 ms after the last command, not the 5 ms asked: the host says
+  // zero force from then on too, and says 3 ms
+  FirmwareConfig c;
+  c.path = "emu:quick-watchdog";
+  c.fixed_watchdog_ms = 3;
+  c.faults.push_back(FaultWindow{Fault::kSlowWrite, 0.1, 1e9, 5.0});
+  auto d = OpenInSession(c);
+  DeviceState s;
+  std::vector<ReadStatus> status(400, ReadStatus::kNoData);
+  for (int i = 0; i < 400; ++i) {
+    hidemu::SetTime(kPlugTime + i * 1e-3);
+    status[i] = d->ReadState(i * 1e-3, &s);
+    d->WriteForce(Vec3(0, 0, 1.0));
+    if (i < 100) d->WaitUntilWritten();
+    if (i == 100) {  // the writer is now stuck in the first write of the window
+      while (hidemu::BlockedWrites() == 0) std::this_thread::yield();
+    }
+  }
+  // (with the 5 ms bound, ticks 104 and 105 were still kOk)
+  for (int i = 100; i <= 101; ++i) EXPECT_EQ(status[i], ReadStatus::kOk) << i;
+  for (int i = 104; i < 350; ++i) EXPECT_EQ(status[i], ReadStatus::kDeviceFault) << i;
+  EXPECT_TRUE(Contains(d->DescribeFault(), "its own watchdog drops the force after 3 ms"))
+      << d->DescribeFault();
+}
+
+TEST_F(HidOnEmulator, ASessionRequestThatGoesUnansweredIsNotCalledAFirmwareRefusal) {
+  // it answers its information report, then not the session request (usbhid gives up on
+  // the control transfer): a USB problem to unplug for, not firmware to update
+  hidemu::UseRealClock();
+  FirmwareConfig c;
+  c.path = "emu:mute";
+  c.faults.push_back(FaultWindow{Fault::kSlowSession, 0.0, 1e9, 0.02});
+  const std::string error = OpenError(c);
+  EXPECT_TRUE(Contains(error,
+                       "the HID device emu:mute did not answer the HaptiCAD HID protocol 1.0 "
+                       "session request: setting the session report failed: Connection timed "
+                       "out. Unplug it, plug it in again and open it again"))
+      << error;
+  EXPECT_FALSE(Contains(error, "update it")) << error;
+  EXPECT_FALSE(Contains(error, "refused")) << error;
+}
+
 TEST_F(HidOnEmulator, OpensADeviceThatSpeaksOnlyLaterMinorVersionsOfMajorOne) {
   // minor versions are compatible (PROTOCOL.md section 2): a 1.1-1.2 device is asked for
   // 1.1, the 1.x nearest this host's 1.0 (it used to be asked for 1.0, refuse it, and
@@ -410,7 +484,9 @@ TEST_F(HidOnEmulator, ASecondSessionOnADeviceLeftPluggedInHasItsForceAtOnce) {
     const hidemu::Snapshot before = hidemu::GetSnapshot(id);
     for (int i = 0; i < 3000; ++i, t += 1e-3) {
       const ReadStatus status = Tick(*d, t, &s, Vec3(0, 0, 1.0));
-      if (i > 2) ASSERT_EQ(status, ReadStatus::kOk) << "session " << session << " tick " << i;
+      if (i > 2) {
+        ASSERT_EQ(status, ReadStatus::kOk) << "session " << session << " tick " << i;
+      }
     }
     const hidemu::Snapshot after = hidemu::GetSnapshot(id);
     EXPECT_NEAR(after.applied_force_n.z(), 1.0, 1e-9) << session;

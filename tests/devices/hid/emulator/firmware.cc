@@ -303,9 +303,13 @@ double Firmware::WriteBlockS(double now_s, bool* fails) const {
   return 0.0;
 }
 
-double Firmware::FeatureBlockS(double now_s) const {
+double Firmware::FeatureBlockS(double now_s, std::uint8_t report_id) const {
   double param = 0.0;
-  return plugged_ && Active(Fault::kSlowFeature, now_s - plugged_at_s_, &param) ? param : 0.0;
+  if (!plugged_) return 0.0;
+  const double t = now_s - plugged_at_s_;
+  if (Active(Fault::kSlowFeature, t, &param)) return param;
+  if (report_id == 0x04 && Active(Fault::kSlowSession, t, &param)) return param;
+  return 0.0;
 }
 
 bool Firmware::ReadInterrupted(double now_s) const {
@@ -354,7 +358,7 @@ int Firmware::SendFeature(const std::uint8_t* data, std::size_t length) {
       !config_.refuse_sessions) {
     session_open_ = (data[1] & 1) != 0;
     version_ = version;
-    watchdog_ms_ = Get16(data + 4);
+    watchdog_ms_ = config_.fixed_watchdog_ms ? config_.fixed_watchdog_ms : Get16(data + 4);
   } else {
     session_open_ = false;
     version_ = 0;

@@ -39,8 +39,8 @@ class Firmware {
   double WriteBlockS(double now_s, bool* fails) const;
   void CountTimedOut() { ++outputs_timed_out_; }
   // How long a host feature-report request begun at `now_s` blocks before it times out
-  // (kSlowFeature); 0: it does not.
-  double FeatureBlockS(double now_s) const;
+  // (kSlowFeature; kSlowSession for the session report 0x04); 0: it does not.
+  double FeatureBlockS(double now_s, std::uint8_t report_id) const;
   // Whether a host read at `now_s` is interrupted (kInterruptRead).
   bool ReadInterrupted(double now_s) const;
   // Feature reports (data[0] = report ID): bytes, or -1 for an unknown report.

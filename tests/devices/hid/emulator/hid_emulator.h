@@ -62,6 +62,9 @@ enum class Fault {
   // [start, end): input reports give 0 as the last output sequence applied (offset 26), as a
   // firmware that does not fill it in
   kZeroEcho,
+  // [start, end): as kSlowFeature, for the session report (0x04) only: the device answers
+  // its information report and then not the session request
+  kSlowSession,
 };
 
 struct FaultWindow {
@@ -106,6 +109,9 @@ struct FirmwareConfig {
   // refuses every session request (answers SESSION = 0, version 0) although it lists
   // its versions: a faulty firmware
   bool refuse_sessions = false;
+  // takes (and answers) this watchdog whatever the host asks for, ms (0: the host's): a
+  // firmware with a fixed watchdog
+  std::uint16_t fixed_watchdog_ms = 0;
   // hid_open_path fails with EACCES and hidapi 0.13.1's words ("Failed to open a device
   // with path '...': Permission denied"), as without a udev rule; it is still enumerated
   bool deny_open = false;

@@ -424,8 +424,8 @@ static Firmware* BlockLocked(std::unique_lock<std::mutex>& lock, hid_device* dev
 // A feature-report request the device does not answer (kSlowFeature): true, with the
 // error set, after blocking as usbhid would.
 static bool FeatureTimedOut(std::unique_lock<std::mutex>& lock, hid_device* dev, Firmware* d,
-                            double now) {
-  const double block_s = d->FeatureBlockS(now);
+                            double now, std::uint8_t report_id) {
+  const double block_s = d->FeatureBlockS(now, report_id);
   if (block_s <= 0.0) return false;
   BlockLocked(lock, dev, now + block_s);
   SetError(dev->error, L"Connection timed out");
@@ -502,7 +502,7 @@ int HID_API_EXPORT HID_API_CALL hid_send_feature_report(hid_device* dev, const u
     return -1;
   }
   d->AdvanceTo(NowLocked());
-  if (FeatureTimedOut(lock, dev, d, NowLocked())) return -1;
+  if (FeatureTimedOut(lock, dev, d, NowLocked(), data[0])) return -1;
   const int n = d->SendFeature(data, length);
   if (n < 0) SetError(dev->error, L"ioctl (SFEATURE): Broken pipe");
   return n;
@@ -518,7 +518,7 @@ int HID_API_EXPORT HID_API_CALL hid_get_feature_report(hid_device* dev, unsigned
     return -1;
   }
   d->AdvanceTo(NowLocked());
-  if (FeatureTimedOut(lock, dev, d, NowLocked())) return -1;
+  if (FeatureTimedOut(lock, dev, d, NowLocked(), data[0])) return -1;
   const int n = d->GetFeature(data, length);
   if (n < 0) SetError(dev->error, L"ioctl (GFEATURE): Broken pipe");
   return n;

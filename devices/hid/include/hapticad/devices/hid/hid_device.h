@@ -28,8 +28,8 @@
 // (zero force; a ramp-in once one gets through) and DescribeFault() says so.
 //
 // Commands that do not get through. When a force command has waited longer than the
-// device watchdog in effect (the session's watchdog_ms, or the device's default) without
-// the writer finishing a write, the device has dropped the force by itself: ReadState()
+// watchdog the device took (the session's watchdog_ms, or shorter; the device's default for 0)
+// without the writer finishing a write, the device has dropped the force by itself: ReadState()
 // says kDeviceFault (zero force, and a ramp-in once commands flow again). When one has
 // waited kCommandTimeoutS, the device is lost: kUnplugged from then on, and
 // DescribeFault() says that it stopped taking force commands. A failed read, or three
@@ -134,7 +134,11 @@ class HidDevice final : public Device {
   // Opens `path`, checks it as Probe() does and negotiates protocol 1.x (1.0, or the
   // lowest 1.x the device speaks if it does not speak 1.0) with the device watchdog `watchdog_ms`
   // (0: the device's default). The default, 5 ms, makes the device itself drop the force when the
-  // servo loop misses more than 5 ms, even if the loop never runs again. Throws DeviceError.
+  // servo loop misses more than 5 ms, even if the loop never runs again. A device that takes
+  // a longer watchdog than asked (or, asked for 0, answers longer than its stated default)
+  // is refused, at Open and at BeginSession: it would go on pushing that long after the
+  // host stops. A session exchange that fails on USB says so, apart from a firmware that
+  // answers wrongly. Throws DeviceError.
   static std::unique_ptr<HidDevice> Open(const std::string& path, int watchdog_ms = 5);
 
   ~HidDevice() override;
@@ -176,14 +180,12 @@ class HidDevice final : public Device {
 
   HidDevice(hid_device_* handle, HidProbe probe);
   void Count(std::atomic<std::uint64_t>& counter, std::uint64_t n = 1);
-  // Sets and reads back the session report: empty if the device accepted, else why not.
-  std::string SetSession(bool open);
   // Servo thread: the device is gone for `how`, hidapi's `reason` (may be null).
   void MarkLost(Lost how, const wchar_t* reason);
 
   hid_device_* handle_;  // the servo thread's reads (and the control thread's features)
   std::unique_ptr<HidOutputWriter> writer_;  // writes, on a handle of its own
-  double command_stall_s_ = 0.005;           // the device watchdog in effect
+  double command_stall_s_ = 0.005;           // the watchdog the device took
   DeviceInfo info_;
   hid::InfoReport report_;
   std::uint16_t version_;  // asked for and accepted
