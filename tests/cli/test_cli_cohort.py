@@ -86,8 +86,8 @@ class CohortCommandTest(unittest.TestCase):
             self.assertEqual([(r["name"], r["unit"]) for r in csv.DictReader(handle)],
                              [("Steven", "N/mm"), ("Yang", "N/mm"), ("Zhang", "N/mm")])
         self.assertEqual(study["other_note"], "3 made with the bending beam model (N/mm) are kept but not compared "
-                                              "with the operating force; the study's Participants (3) counts every "
-                                              "record")
+                                              "with the operating force; the study's Participants (3) counts everyone "
+                                              "with a record, of any unit")
         text = run_cli("cohort", switched).stdout
         self.assertIn("0 participants (3 made with the bending beam model (N/mm) are kept but not compared", text)
 
@@ -135,6 +135,22 @@ class CohortCommandTest(unittest.TestCase):
         self.assertRegex(run_cli("cohort", one).stdout, r"\n  all +n 1 +mean 4.5 sd - median 4.5 ")
         (alone,) = json.loads(run_cli("cohort", one, "--json").stdout)
         self.assertEqual([row["sd"] for row in alone["statistics"]], [None, None, None])
+        # the same person's second session: still one participant, at the mean of the two
+        doc = App.openDocument(one)
+        try:
+            (neck,) = HaptiCAD.studies_of(doc)
+            (steven,) = json.loads(neck.Cohort)
+            neck.Cohort = json.dumps([steven, dict(steven, value=steven["value"] + 1.0, recorded="")])
+            twice = os.path.join(self.tmp.name, "twice.FCStd")
+            doc.saveAs(twice)
+        finally:
+            App.closeDocument(doc.Name)
+        self.assertIn("Neck (Bending beam): design 0.556 N/mm, 1 participant in 2 records\n",
+                      run_cli("cohort", twice).stdout)
+        (again,) = json.loads(run_cli("cohort", twice, "--json").stdout)
+        self.assertEqual((again["participants"], again["records"]), (1, 2))
+        self.assertEqual((again["statistics"][0]["n"], again["statistics"][0]["records"]), (1, 2))
+        self.assertAlmostEqual(again["statistics"][0]["mean"], 5.0)
 
     def test_a_preference_above_the_force_limit_is_counted_apart_and_said(self):
         doc = App.newDocument("CliCohortForce")

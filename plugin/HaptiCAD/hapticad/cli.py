@@ -377,7 +377,8 @@ def cmd_cohort(args):
             value, unit = stiffness_study.design_value(study)
             # starred: felt beyond the device (cohort.BEYOND_DEVICE says how), as the panel's table marks them
             result.append({"study": study.Label, "model": study.Model, "design_value": value, "unit": unit,
-                           "participants": len(records), "other_unit": len(held) - len(records),
+                           "participants": cohort.count_participants(records), "records": len(records),
+                           "other_unit": len(held) - len(records),
                            "other_note": stiffness_study.others_note(study),
                            # starred as the panel's table marks them; † above the force limit, not counted
                            "beyond_device": sum(1 for r in records if cohort.mark(r) == " *"),
@@ -394,8 +395,9 @@ def cmd_cohort(args):
     for study in result:
         print(f"{study['study']} ({study['model']}): design {cohort.format_value(study['design_value'], study['unit'])}"
               f", {cohort.plural(study['participants'], 'participant')}"
+              + (f" in {study['records']} records" if study["records"] != study["participants"] else "")
               + (f" ({study['other_note']})" if study["other_note"] else ""))
-        for row in study["statistics"]:
+        for row in study["statistics"]:  # n: people (one person's records averaged)
             print(f"  {row['group']:<20} n {row['n']:<3} mean {row['mean']:.3g} sd {cohort.format_sd(row['sd'])} "
                   f"median {row['median']:.3g} range {row['min']:.3g}-{row['max']:.3g}")
         print(f"  this design: {study['design_among_preferences']}")

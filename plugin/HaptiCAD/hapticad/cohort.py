@@ -200,10 +200,53 @@ def format_value(value, unit):
     return f"{unit} {value:.3g}" if unit == "snap ratio" else f"{value:.3g} {unit}"
 
 
+def participant_key(name):
+    """Who a record is of: the name as typed, but for case and spacing ("ida  Berg" is "Ida Berg")."""
+    return " ".join(str(name).split()).casefold()
+
+
 def namesakes(name, records):
-    """How many records already bear ``name`` (case and spaces aside)."""
-    key = " ".join(name.split()).casefold()
-    return sum(1 for r in records if " ".join(r.name.split()).casefold() == key)
+    """How many records already bear ``name`` (participant_key: case and spaces aside)."""
+    key = participant_key(name)
+    return sum(1 for r in records if participant_key(r.name) == key)
+
+
+def person_key(record):
+    """Who a record is of: its name (participant_key), gender and age band. Records that
+    give one name but another gender or age band are two people of one name."""
+    return participant_key(record.name), record.gender, record.age_band
+
+
+def count_participants(records):
+    """How many people the records are of (person_key), whatever they recorded."""
+    return len({person_key(r) for r in records if participant_key(r.name)})
+
+
+@dataclass(frozen=True)
+class Participant:
+    """One person's counted records pooled: their preference is the mean of their records'
+    values (a second session is a second measure of one person, not a second person)."""
+    name: str
+    gender: str
+    age_band: str
+    value: float
+    records: int
+
+
+def participants(records):
+    """The counted records (counted) pooled per person (person_key), in the order of each
+    one's first record. The paper's cohort (Table 3) is one preference per person:
+    statistics and place_design count people, so one person's two sessions do not weigh
+    twice."""
+    groups = {}
+    for r in counted(records):
+        groups.setdefault(person_key(r), []).append(r)
+    people = []
+    for group in groups.values():
+        first = group[0]
+        mean, _ = _mean_sd([r.value for r in group])
+        people.append(Participant(first.name, first.gender, first.age_band, mean, len(group)))
+    return people
 
 
 def _same_number(a, b):
@@ -304,23 +347,25 @@ def from_dict(data):
 
 
 def statistics(records, by=("gender", "age_band")):
-    """Rows of {group, n, mean, sd, median, min, max} of the preferred values: all
-    participants first, then each group of each field in ``by`` (in _group_order). The
-    records counted (counted: not those beyond the force limit). sd is the sample SD,
-    None for a group of one (undefined, not 0: one person does not agree with themself)."""
-    def row(group, values):
+    """Rows of {group, n, records, mean, sd, median, min, max} of the preferred values: all
+    participants first, then each group of each field in ``by`` (in _group_order). ``n``
+    counts people (participants: one person's records averaged), ``records`` the records pooled into them; the records counted (counted: not
+    those beyond the force limit). sd is the sample SD, None for a group of one (undefined,
+    not 0: one person does not agree with themself)."""
+    def row(group, people):
+        values = [p.value for p in people]
         mean, sd = _mean_sd(values)
-        return {"group": group, "n": len(values), "mean": mean, "sd": sd, "median": stats.median(values),
-                "min": min(values), "max": max(values)}
+        return {"group": group, "n": len(values), "records": sum(p.records for p in people), "mean": mean,
+                "sd": sd, "median": stats.median(values), "min": min(values), "max": max(values)}
 
-    records = counted(records)
-    if not records:
+    people = participants(records)
+    if not people:
         return []
-    rows = [row("all", [r.value for r in records])]
+    rows = [row("all", people)]
     for key in by:
         groups = {}
-        for r in records:
-            groups.setdefault(getattr(r, key), []).append(r.value)
+        for p in people:
+            groups.setdefault(getattr(p, key), []).append(p)
         for name in sorted(groups, key=lambda g, k=key: _group_order(k, g)):
             rows.append(row(f"{key.replace('_', ' ')} {name}", groups[name]))
     return rows
@@ -358,9 +403,9 @@ def format_sd(sd):
 
 
 def place_design(value, records):
-    """Where a design value falls among the preferences (counted: not those beyond the
-    force limit): (fraction of participants who preferred less, a sentence)."""
-    values = sorted(r.value for r in counted(records))
+    """Where a design value falls among the preferences (participants: one per person, not
+    those beyond the force limit): (fraction of participants who preferred less, a sentence)."""
+    values = sorted(p.value for p in participants(records))
     if not values:
         return None, "no participant has recorded a preference yet"
     below = sum(v < value for v in values) / len(values)

@@ -46,6 +46,7 @@ import FreeCAD as App
 import numpy as np
 
 from . import _core, textures
+from .cohort import participant_key  # who ran a run
 from .proxy_state import SchemaState, add_hidden_state, add_properties, add_type_tag, is_alive
 from .surface_object import TEXTURE_VALUES
 
@@ -669,11 +670,6 @@ def runs(study):
         return json.loads(study.Responses or "[]")
     except ValueError:
         raise ValueError(f"{study.Label}: the stored runs are not readable JSON") from None
-
-
-def participant_key(name):
-    """Who ran a run: the name as typed, but for case and spacing ("ida  Berg" is "Ida Berg")."""
-    return " ".join(str(name).split()).casefold()
 
 
 def by_participant(records):

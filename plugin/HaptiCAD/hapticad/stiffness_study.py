@@ -68,9 +68,9 @@ PROPERTIES = [
      None, None),
     ("AdjustMin", "App::PropertyFloat", "Customise", "The slider's low end, in the parameter's unit", 2.0, None),
     ("AdjustMax", "App::PropertyFloat", "Customise", "The slider's high end, in the parameter's unit", 8.0, None),
-    ("Participants", "App::PropertyInteger", "Cohort", "Records of participants' preferences, all kept: those "
-     "of another unit (what the slider moved before, or the other model) too, which the panel does not compare",
-     0, None),
+    ("Participants", "App::PropertyInteger", "Cohort", "Participants with a preference kept (one person's records "
+     "count once): those of another unit (what the slider moved before, or the other model) too, which the panel "
+     "does not compare", 0, None),
 ]
 HIDDEN_STATE = [("Cohort", "The participants' records (JSON)"),
                 ("AdjustRanges", "The slider's range over each parameter it moved before (JSON), given back when "
@@ -148,6 +148,10 @@ class StiffnessStudy(SchemaState):
 
     def onDocumentRestored(self, obj):
         self.setup(obj)
+        try:  # documents saved before it counted people counted records
+            obj.Participants = cohort.count_participants(records(obj))
+        except (ValueError, TypeError, AttributeError):
+            pass  # an unreadable cohort: the panel says so when opened
         from .surface_object import attach_view_provider
 
         attach_view_provider(obj)
@@ -471,7 +475,7 @@ def records(study):
 
 def _write_records(study, kept):
     study.Cohort = json.dumps([r.as_dict() for r in kept])
-    study.Participants = len(kept)
+    study.Participants = cohort.count_participants(kept)
 
 
 def comparable_records(study):
@@ -549,7 +553,8 @@ def others_note(study):
             parts.append(f"{count} in {other}")
     total = sum(counts.values())
     return (f"{', '.join(parts)} {'is' if total == 1 else 'are'} kept but not compared with the "
-            f"{UNIT_SOURCES[unit][0]}; the study's Participants ({len(held)}) counts every record")
+            f"{UNIT_SOURCES[unit][0]}; the study's Participants ({study.Participants}) counts everyone with a "
+            "record, of any unit")
 
 
 class Imported(tuple):

@@ -32,6 +32,31 @@ class CohortTest(unittest.TestCase):
         self.assertEqual(list(rows)[:3], ["all", "gender F", "gender M"])
         self.assertEqual(cohort.statistics([]), [])
 
+    def test_one_persons_records_count_once_at_their_mean(self):
+        # Steven pressed twice (his second session, his name typed otherwise): one person of
+        # Table 3's three, at the mean of his 4.5 and 6.5; he used to count as two (n 4, mean 4.5)
+        again = cohort.Record("  steven ", "M", "26-40", 70, 1700, 6.5, "N/mm", "Bending beam")
+        rows = {r["group"]: r for r in cohort.statistics(TABLE_3 + [again])}
+        self.assertEqual((rows["all"]["n"], rows["all"]["records"]), (3, 4))
+        self.assertAlmostEqual(rows["all"]["mean"], (5.5 + 3.5 + 3.5) / 3)
+        self.assertEqual(rows["all"]["max"], 5.5)
+        self.assertEqual((rows["gender M"]["n"], rows["gender M"]["records"]), (2, 3))
+        self.assertAlmostEqual(rows["gender M"]["mean"], (5.5 + 3.5) / 2)
+        self.assertIn("of the 3 participants", cohort.place_design(5.0, TABLE_3 + [again])[1])
+        self.assertEqual(cohort.place_design(5.0, TABLE_3 + [again])[0], 2 / 3)
+        self.assertEqual(cohort.count_participants(TABLE_3 + [again]), 3)
+        self.assertEqual(cohort.namesakes("STEVEN", TABLE_3 + [again]), 2)
+        # one name but another gender or age band: two people of one name, counted apart
+        other = dataclass_replace(again, gender="F")
+        rows = {r["group"]: r for r in cohort.statistics(TABLE_3 + [other])}
+        self.assertEqual((rows["all"]["n"], rows["gender F"]["n"], rows["gender M"]["mean"]), (4, 2, 4.0))
+        self.assertEqual(cohort.count_participants(TABLE_3 + [other, dataclass_replace(again, age_band="41-60")]),
+                         5)
+        # a record left out (above the force limit) is not pooled into its person's mean
+        unfelt = dataclass_replace(again, design={"BeyondForceLimit": 1.0, "ForceLimit": 3.0})
+        rows = {r["group"]: r for r in cohort.statistics(TABLE_3 + [unfelt])}
+        self.assertEqual((rows["all"]["n"], rows["all"]["records"], rows["all"]["max"]), (3, 3, 4.5))
+
     def test_a_design_is_placed_among_the_preferences(self):
         more = TABLE_3 + [cohort.Record(f"P{i}", "F", "18-25", 60, 1600, v, "N/mm", "Bending beam")
                           for i, v in enumerate((2.0, 5.0, 6.0))]

@@ -241,6 +241,26 @@ class StudyTest(unittest.TestCase):
             study.Adjust = "SnapRatio"  # a button whose snap the participants choose records the snap
             self.assertEqual(stiffness_study.design_value(study), (study.SnapRatio, "snap ratio"))
 
+    def test_one_persons_second_session_is_one_participant_and_old_documents_are_recounted(self):
+        study = HaptiCAD.make_study(self.doc, self.head, BeamThickness=4)
+        HaptiCAD.record_preference(study, *PARTICIPANT)
+        first = study.BendingStiffness
+        study.BeamThickness = 6
+        HaptiCAD.record_preference(study, "Zhang", "F", "26-40", 52, 1650)
+        HaptiCAD.record_preference(study, "steven", "M", "26-40", 71, 1700)  # his second session
+        self.assertEqual(study.Participants, 2)
+        (everyone, *_) = cohort.statistics(stiffness_study.comparable_records(study))
+        self.assertEqual((everyone["n"], everyone["records"]), (2, 3))
+        self.assertAlmostEqual(everyone["mean"], ((first + study.BendingStiffness) / 2 + study.BendingStiffness) / 2)
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "study.FCStd")
+            study.Participants = 3  # what a document saved when it counted records holds
+            self.doc.saveAs(path)
+            App.closeDocument(self.doc.Name)
+            self.doc = App.openDocument(path)
+            (study,) = HaptiCAD.studies_of(self.doc)
+            self.assertEqual(study.Participants, 2)
+
     def test_the_cohorts_preference_ranges_hold_what_the_button_model_can_record(self):
         # cohort cannot import the model (it is imported by it): the ranges are checked here
         ranges = {p[0]: p[5][:2] for p in stiffness_study.PROPERTIES if p[5]}
@@ -317,7 +337,8 @@ class StudyTest(unittest.TestCase):
                     out.writerow(dict(r, value=f"{float(r['value']):.15g}", weight_kg=r["weight_kg"] and
                                       f"{float(r['weight_kg']):.15g}"))
             self.assertEqual(stiffness_study.import_records(study, saved), (0, 9, 0))
-            self.assertEqual(study.Participants, 9)
+            # nine records of eight people: the Wang F 41-60 without a height is her second session
+            self.assertEqual((len(stiffness_study.records(study)), study.Participants), (9, 8))
 
     def test_a_button_whose_slider_moved_another_parameter_keeps_says_and_round_trips_its_records(self):
         study = HaptiCAD.make_study(self.doc, self.head, model="Push button")
@@ -331,7 +352,7 @@ class StudyTest(unittest.TestCase):
         # what differs is the slider's parameter, not the model; and Participants counts all four
         self.assertEqual(stiffness_study.others_note(study),
                          "3 recorded while the slider moved the operating force (N) are kept but not compared with "
-                         "the snap ratio; the study's Participants (4) counts every record")
+                         "the snap ratio; the study's Participants (4) counts everyone with a record, of any unit")
         with tempfile.TemporaryDirectory() as tmp:
             path = os.path.join(tmp, "export.csv")
             cohort.write_csv(path, stiffness_study.records(study))  # what Export CSV... writes
@@ -352,8 +373,8 @@ class StudyTest(unittest.TestCase):
         study.Model = "Bending beam"
         self.assertEqual(stiffness_study.others_note(study),
                          "3 made with the push button model (N), 1 made with the push button model (snap ratio) are "
-                         "kept but not compared with the bending stiffness; the study's Participants (4) counts every "
-                         "record")
+                         "kept but not compared with the bending stiffness; the study's Participants (4) counts everyone "
+                         "with a record, of any unit")
 
     def test_the_slider_takes_the_range_of_what_it_moves_however_that_is_chosen(self):
         self.doc.UndoMode = 1
@@ -659,7 +680,8 @@ class StudyTest(unittest.TestCase):
             with open(later, "w", newline="") as handle:
                 handle.write(re.sub(r":(\d\d)\r\n", lambda m: f":{(int(m[1]) + 2) % 60:02d}\r\n", text))
             self.assertEqual(stiffness_study.import_records(study, later), (3, 0, 0))
-            self.assertEqual(study.Participants, 6)
+            # six records: the three people's second sessions
+            self.assertEqual((len(stiffness_study.records(study)), study.Participants), (6, 3))
 
 
 if __name__ == "__main__":

@@ -37,6 +37,25 @@ def _optional_spin(name, value_range, suffix, decimals):
     return spin
 
 
+def _namesake_note(record, before):
+    """What recording ``record`` after ``before`` did to the count, when its name was there
+    already (as HTML, or ""): averaged with the same person's records (one name, gender and
+    age band), or counted apart as another person of that name."""
+    same = sum(1 for r in before if cohort.person_key(r) == cohort.person_key(record))
+    namesakes = cohort.namesakes(record.name, before) - same
+    if same:
+        said = (f"{escape(record.name)} was recorded before ({cohort.plural(same, 'time')}): one person's records "
+                "(one name, gender and age band) are averaged, as one participant, in the statistics; if this is "
+                "someone else, remove this record and give another name.")
+    elif namesakes:
+        said = (f"{cohort.plural(namesakes, 'record')} of another {escape(record.name)} (another gender or age "
+                f"band) {'is' if namesakes == 1 else 'are'} held: counted as another participant; if this is the same person, remove this record "
+                "and record it again with the gender and age band given before.")
+    else:
+        return ""
+    return f"<br><span style='color:#a06000'>Note: {said}</span>"
+
+
 class _OptionalSpin(QtWidgets.QDoubleSpinBox):
     """A step up from "not given" goes to the plausible range's ``low`` end, a step down
     from there back to "not given" (not through 1, 2, 3 kg)."""
@@ -240,9 +259,9 @@ class StudyControls(QtWidgets.QWidget):
     def record(self):
         """Records the participant's preference for the design as it is now."""
         doc = self.study.Document
-        # the same name again is noted, not refused: a second session of one person, or two
-        # people of one name, is the coordinator's call (Remove undoes a slip)
-        earlier = cohort.namesakes(self.name.text(), stiffness_study.comparable_records(self.study))
+        # the same name again is noted, not refused: a second session of one person (averaged
+        # with the first), or two people of one name, is the coordinator's call
+        before = stiffness_study.comparable_records(self.study)
         doc.openTransaction("Record a participant's preference")
         try:
             record = stiffness_study.record_preference(self.study, self.name.text(), self.gender.currentText(),
@@ -260,11 +279,9 @@ class StudyControls(QtWidgets.QWidget):
             beyond = f" Marked *: {cohort.BEYOND_DEVICE.get(record.unit, 'beyond what the device renders')}."
         else:
             beyond = ""
-        again = (f"<br><span style='color:#a06000'>Note: {escape(record.name)} was recorded before "
-                 f"({earlier} time{'s' if earlier != 1 else ''}): each record counts as a participant in the "
-                 "statistics; remove one if it was a slip.</span>" if earlier else "")
-        # the count the table and statistics show; the records kept of another unit said apart
-        compared = len(stiffness_study.comparable_records(self.study))
+        again = _namesake_note(record, before)
+        # the people the statistics count; those with records only of another unit said apart
+        compared = cohort.count_participants(stiffness_study.comparable_records(self.study))
         held = self.study.Participants
         count = cohort.plural(compared, "participant") + (f" compared, {held} in all" if held != compared else "")
         self.show_message(f"Recorded {escape(record.name)}: {cohort.format_value(record.value, record.unit)} "

@@ -309,9 +309,15 @@ class StudyTaskPanel(CloseOnlyPanel):
                                + aside)
             return
         # the spread labelled as the sample SD (a bare ± reads as a range or an error); a group of one has none
-        lines = [f"{s['group']}: n 1, {cohort.format_value(s['mean'], records[0].unit)}" if s["n"] == 1 else  # one
-                 f"{s['group']}: n {s['n']}, mean {s['mean']:.3g} (SD {cohort.format_sd(s['sd'])}), median "
+        def n(s):  # people, and the records pooled into them when more
+            return f"n {s['n']}" + (f" ({s['records']} records)" if s["records"] != s["n"] else "")
+
+        lines = [f"{s['group']}: {n(s)}, {cohort.format_value(s['mean'], records[0].unit)}" if s["n"] == 1 else  # one
+                 f"{s['group']}: {n(s)}, mean {s['mean']:.3g} (SD {cohort.format_sd(s['sd'])}), median "
                  f"{s['median']:.3g}, range {s['min']:.3g}-{s['max']:.3g} {records[0].unit}" for s in rows]
+        if rows[0]["records"] != rows[0]["n"]:
+            lines.append("A participant recorded more than once (one name, case and spacing aside) counts once, "
+                         "at the mean of their records.")
         value, _ = stiffness_study.design_value(self.obj)
         lines.append("This design: " + cohort.place_design(value, records)[1])
         self.stats.setText(notice + "<br>".join(lines) + aside)
@@ -393,7 +399,7 @@ class StudyTaskPanel(CloseOnlyPanel):
         # a spreadsheet's re-save: which records were known by a time it rewrote, and how the file was read
         retimed = (f" ({result.retimed} of them known by their time to the precision the file gives it, as a "
                    "spreadsheet rewrites it)" if result.retimed else "")
-        self.say(f"Imported {added} participant{'s' if added != 1 else ''}"
+        self.say(f"Imported {cohort.plural(added, 'record')}"
                  + (f"; {held} already held were left out{retimed}" if held else "")
                  + (f"; {repeated} listed again in the file {'was' if repeated == 1 else 'were'} taken once"
                     if repeated else "") + "."

@@ -164,17 +164,17 @@ class StudyGuiTest(unittest.TestCase):
         h.widget(QtWidgets.QPushButton, "removeParticipant").click()
         self.assertEqual([r.name for r in stiffness_study.records(study)], ["Yang", "Zhang"])
         self.assertEqual(panel.import_from(path), 1)  # Steven back; the two still held are left out
-        self.assertIn("Imported 1 participant; 2 already held were left out",
+        self.assertIn("Imported 1 record; 2 already held were left out",
                       h.widget(QtWidgets.QLabel, "cohortStats").text())
         # and it stays over the reload the study's change brings a turn later, with the statistics
         h.process_events()
-        self.assertIn("Imported 1 participant; 2 already held were left out",
+        self.assertIn("Imported 1 record; 2 already held were left out",
                       h.widget(QtWidgets.QLabel, "cohortStats").text())
         self.assertIn("all: n 3", h.widget(QtWidgets.QLabel, "cohortStats").text())
         # the file again, read back as exported: nobody added, every star as it was
         self.assertEqual(panel.import_from(path), 0)
         h.process_events()
-        self.assertIn("Imported 0 participants; 3 already held were left out",
+        self.assertIn("Imported 0 records; 3 already held were left out",
                       h.widget(QtWidgets.QLabel, "cohortStats").text())
         self.assertEqual([table.item(r, 1).text().endswith("*") for r in range(3)], [False, False, True])
         self.assertEqual(study.Participants, 3)
@@ -224,7 +224,7 @@ class StudyGuiTest(unittest.TestCase):
                          + "Zed,M,18-25,70,1700,0.9,N/mm,Bending beam,,2024-01-01T00:00:00\n" * 2)
         self.assertEqual(_open_panel().import_from(path), 1)
         h.process_events()
-        self.assertIn("Imported 1 participant; 1 listed again in the file was taken once",
+        self.assertIn("Imported 1 record; 1 listed again in the file was taken once",
                       h.widget(QtWidgets.QLabel, "cohortStats").text())
         self.assertEqual(study.Participants, 2)
 
@@ -235,10 +235,20 @@ class StudyGuiTest(unittest.TestCase):
         self.assertNotIn("recorded before", h.widget(QtWidgets.QLabel, "studyMessage").text())
         fill_participant(" ann ")  # a second session, or a slip: the coordinator decides
         h.widget(QtWidgets.QPushButton, "recordPreference").click()
-        self.assertEqual(study.Participants, 2)
+        # two records of one person: one participant, at the mean of the two
+        self.assertEqual((len(stiffness_study.records(study)), study.Participants), (2, 1))
         message = h.widget(QtWidgets.QLabel, "studyMessage").text()
         self.assertIn("Recorded ann", message)
-        self.assertIn("Note: ann was recorded before (1 time)", message)
+        self.assertIn("Note: ann was recorded before (1 time): one person's records (one name, gender and age "
+                      "band) are averaged, as one participant", message)
+        self.assertIn("all: n 1 (2 records)", h.widget(QtWidgets.QLabel, "cohortStats").text())
+        self.assertIn("counts once, at the mean of their records", h.widget(QtWidgets.QLabel, "cohortStats").text())
+        # another gender: another person of that name, counted apart and said so
+        fill_participant("Ann", gender="F")
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        self.assertEqual(study.Participants, 2)
+        self.assertIn("2 records of another Ann (another gender or age band) are held: counted as another "
+                      "participant", h.widget(QtWidgets.QLabel, "studyMessage").text())
 
     def test_removing_a_shown_participant_removes_that_one_not_one_kept_from_the_other_model(self):
         study = self.open_study()
@@ -423,7 +433,7 @@ class StudyGuiTest(unittest.TestCase):
         self.assertTrue(value.startswith("<b>snap ratio 0.5</b>. "), value)  # not "snap ratio 0.5 → 0.5 snap ratio"
         stats = h.widget(QtWidgets.QLabel, "cohortStats").text()
         self.assertIn("2 recorded while the slider moved the operating force (N) are kept but not compared with the "
-                      "snap ratio; the study's Participants (2) counts every record", stats)
+                      "snap ratio; the study's Participants (2) counts everyone with a record, of any unit", stats)
         self.assertNotIn("other model", stats)
         fill_participant("Snap0")
         h.widget(QtWidgets.QPushButton, "recordPreference").click()
@@ -435,7 +445,7 @@ class StudyGuiTest(unittest.TestCase):
         self.assertTrue(panel.export_to(path))
         self.assertEqual(panel.import_from(path), 0)  # its own export: taken back whole, nobody added
         h.process_events()
-        self.assertIn("Imported 0 participants; 3 already held were left out",
+        self.assertIn("Imported 0 records; 3 already held were left out",
                       h.widget(QtWidgets.QLabel, "cohortStats").text())
         self.assertEqual(study.Participants, 3)
 
@@ -577,7 +587,7 @@ class StudyGuiTest(unittest.TestCase):
             handle.write(";;;;;;;;;\r\n")
         self.assertEqual(panel.import_from(saved), 0)
         h.process_events()
-        self.assertIn("Imported 0 participants; 4 already held were left out (4 of them known by their time to the "
+        self.assertIn("Imported 0 records; 4 already held were left out (4 of them known by their time to the "
                       "precision the file gives it, as a spreadsheet rewrites it). Read as semicolon-separated.",
                       h.widget(QtWidgets.QLabel, "cohortStats").text())
         self.assertEqual(study.Participants, 4)
