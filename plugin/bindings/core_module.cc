@@ -116,7 +116,14 @@ void DefinePatterns(py::module_& m) {
            py::arg("origin_w"), py::arg("e1_w"), py::arg("e2_w"))
       .def_readwrite("origin_w", &SurfaceFrame::origin_w)
       .def_readwrite("e1_w", &SurfaceFrame::e1_w)
-      .def_readwrite("e2_w", &SurfaceFrame::e2_w);
+      .def_readwrite("e2_w", &SurfaceFrame::e2_w)
+      .def_readwrite("radius_m", &SurfaceFrame::radius_m)
+      .def_readwrite("axis_point_w", &SurfaceFrame::axis_point_w)
+      .def_readwrite("axis_w", &SurfaceFrame::axis_w);
+  m.def("frame_coordinates", [](const SurfaceFrame& f, const Vec3& p) {
+    const FrameCoordinates c = CalcFrameCoordinates(f, p);
+    return py::make_tuple(c.x, c.y, c.e1_w, c.e2_w);
+  });
   py::class_<StripeFrame>(m, "StripeFrame")
       .def_readonly("stripe", &StripeFrame::stripe)
       .def_readonly("weight", &StripeFrame::weight);

@@ -22,9 +22,9 @@ RoughnessGrid MakeRoughnessGrid(int category, const SurfaceFrame& frame, double 
 }
 
 RoughnessSample SampleRoughness(const RoughnessGrid& grid, const Vec3& point_w) {
-  const Vec3 local = point_w - grid.frame.origin_w;
-  const double x = local.dot(grid.frame.e1_w);
-  const double y = local.dot(grid.frame.e2_w);
+  const FrameCoordinates at = CalcFrameCoordinates(grid.frame, point_w);
+  const double x = at.x;
+  const double y = at.y;
   if (!std::isfinite(x) || !std::isfinite(y)) return {0.0, Vec3::Zero(), 1.0};
   const double k = 2.0 * kPi / grid.spacing_m;
   // fmod keeps the phase accurate far from the frame's origin
@@ -39,7 +39,7 @@ RoughnessSample SampleRoughness(const RoughnessGrid& grid, const Vec3& point_w) 
   s.height_m = a * (bx * by - 0.25);
   const double dhdx = -0.5 * a * k * sx * by;
   const double dhdy = -0.5 * a * k * sy * bx;
-  s.gradient_w = dhdx * grid.frame.e1_w + dhdy * grid.frame.e2_w;
+  s.gradient_w = dhdx * at.e1_w + dhdy * at.e2_w;
   s.friction_scale = 1.0 + grid.friction_modulation * (bx * by - 0.25) * (4.0 / 3.0);
   return s;
 }

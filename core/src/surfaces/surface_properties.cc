@@ -24,10 +24,9 @@ void RequireUnit(const Vec3& v, const char* field) {
 }
 
 void ValidateFrame(const SurfaceFrame& f, const char* what) {
-  if (!f.origin_w.allFinite())
-    throw std::invalid_argument(std::string("surface: ") + what + " origin is not finite");
-  RequireUnit(f.e1_w, what);
-  RequireUnit(f.e2_w, what);
+  const std::string problem = DescribeFrameProblem(f);
+  if (!problem.empty())
+    throw std::invalid_argument(std::string("surface: ") + what + ": " + problem);
 }
 
 bool NonNegative(double x) { return std::isfinite(x) && x >= 0.0; }
@@ -74,7 +73,7 @@ double GratingCoordinate(const SurfaceProperties& s, const Vec3& point_w) {
   if (const auto* curve = std::get_if<std::shared_ptr<const CurvePattern>>(&s.pattern)) {
     return (*curve)->MemberOffset(point_w);
   }
-  return (point_w - s.texture->frame.origin_w).dot(s.texture->frame.e2_w);
+  return CalcFrameCoordinates(s.texture->frame, point_w).y;
 }
 
 void ValidateSurfaceProperties(const SurfaceProperties& s) {

@@ -242,22 +242,49 @@ def texture_notes(surface):
     if texture["TextureAlpha"] < 0:
         notes.append(f"alpha_h {texture['TextureAlpha']:g} makes each harmonic stronger than the one before "
                      "(the paper's decay is 2.5)")
-    from .surface_object import reference_pairs
-
-    curved = sorted({f"{o.Label}.{sub}" for o, sub in reference_pairs(surface)
-                     if _is_curved(o, sub)})
-    if curved:  # the grating runs along the face frame's e2, a straight line (surfaces.h)
-        notes.append(f"on curved {', '.join(curved)} the grating is laid out on the face's tangent plane at its "
-                     f"centre: its period is felt as given near there and longer away from it (twice as long 60° "
-                     f"round a cylinder)")
     return notes
 
 
-def _is_curved(obj, sub):
+def curved_face_notes(surface):
+    """Faces of ``surface`` on which its roughness grid or grating is laid out flat, as a
+    sentence: curved faces that are neither planes nor cylinders (a cylinder's frame is
+    unrolled on it, surface_frame.h; a circular or curve pattern lays the grating out
+    itself), where the period is felt as given near the face's centre and longer away
+    from it (1/cos of the angle the face has turned)."""
+    flat_laid = [what for what, on in (("roughness grid", surface.FeelRoughness),
+                                       ("grating", surface.Texture != "None" and surface.Pattern not in
+                                        ("Circular", "Curve"))) if on]
+    if not flat_laid:
+        return []
+    from .surface_object import reference_pairs
+
+    curved = sorted({f"{o.Label}.{sub}" for o, sub in reference_pairs(surface)
+                     if _surface_type(o, sub) not in (None, "Part::GeomPlane", "Part::GeomCylinder")})
+    if not curved:
+        return []
+    return [f"on curved {', '.join(curved)} the {' and the '.join(flat_laid)} {'is' if len(flat_laid) == 1 else 'are'}"
+            f" laid out on the face's tangent plane at its centre: felt as given near there and coarser away from it "
+            f"(twice as coarse where the face has turned 60°; on cylinders they are laid round the face)"]
+
+
+def _surface_type(obj, sub):
+    """The TypeId of the surface under ``obj``'s face ``sub`` (None when it is gone)."""
     try:
-        return obj.Shape.getElement(sub).Surface.TypeId != "Part::GeomPlane"
+        return obj.Shape.getElement(sub).Surface.TypeId
     except Exception:  # noqa: BLE001 (a face gone: validate() says so)
-        return False
+        return None
+
+
+def _cylinder_of(face):
+    """(radius m, a point on the axis m, the unit axis) of a face on a cylinder, else None."""
+    try:
+        cylinder = face.Surface
+    except Exception:  # noqa: BLE001 (a face with no surface: laid out flat)
+        return None
+    if cylinder.TypeId != "Part::GeomCylinder":
+        return None
+    axis = _vec(cylinder.Axis)
+    return cylinder.Radius * MM, _vec(cylinder.Center, MM), axis / np.linalg.norm(axis)
 
 
 def compile_surface(surface, face, uv=None):
@@ -282,6 +309,9 @@ def compile_surface(surface, face, uv=None):
     frame = face_frame(face, float(surface.PatternAngle), uv)
     origin, e1, e2, n = frame
     surface_frame = _core.SurfaceFrame(origin, e1, e2)
+    cylinder = _cylinder_of(face)
+    if cylinder is not None:  # the grid and the grating laid round it, not on a tangent plane
+        surface_frame.radius_m, surface_frame.axis_point_w, surface_frame.axis_w = cylinder
     anisotropy = props.anisotropy
     anisotropy.across_factor = surface.AcrossFriction
     anisotropy.backward_factor = surface.BackwardFriction

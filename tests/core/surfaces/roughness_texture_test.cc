@@ -88,5 +88,30 @@ TEST(RoughnessGrid, NonFinitePointsAreFlat) {
   EXPECT_EQ(s.friction_scale, 1.0);
 }
 
+TEST(RoughnessGrid, KeepsItsSpacingAllRoundACylinder) {
+  // a category 3 grid (0.6 mm) on a 15 mm handle: a ball every 0.6 mm of arc all round
+  // it (laid on the centre's tangent plane, the balls were 1.2 mm apart 60 degrees round)
+  SurfaceFrame frame;
+  frame.radius_m = 0.015;
+  frame.axis_point_w = Vec3(0.0, 0.0, 0.0);
+  frame.axis_w = Vec3::UnitZ();
+  frame.origin_w = Vec3(0.015, 0.0, 0.0);
+  frame.e1_w = Vec3::UnitY();
+  frame.e2_w = Vec3::UnitX().cross(frame.e1_w);
+  const RoughnessGrid g = MakeRoughnessGrid(3, frame);
+  for (int node : {-78, -60, 17, 60, 78}) {  // (the seam, opposite the origin, is at 78.5)
+    const double angle = node * 0.6e-3 / 0.015;
+    const Vec3 on = Vec3(0.015 * std::cos(angle), 0.015 * std::sin(angle), 2 * 0.6e-3);
+    const RoughnessSample s = SampleRoughness(g, on);
+    EXPECT_NEAR(s.height_m, 0.75 * g.amplitude_m, 1e-15) << node;
+    // between two balls round the handle: the slope lies in the tangent plane there
+    const double half = angle + 0.5 * 0.3e-3 / 0.015;
+    const Vec3 between = Vec3(0.015 * std::cos(half), 0.015 * std::sin(half), 2 * 0.6e-3);
+    const RoughnessSample b = SampleRoughness(g, between);
+    EXPECT_GT(b.gradient_w.norm(), 0.1) << node;
+    EXPECT_NEAR(b.gradient_w.dot(Vec3(std::cos(half), std::sin(half), 0)), 0.0, 1e-12) << node;
+  }
+}
+
 }  // namespace
 }  // namespace hapticad

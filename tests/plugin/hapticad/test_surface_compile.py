@@ -12,7 +12,9 @@ import Part
 
 import HaptiCAD
 from hapticad import _core
-from hapticad.surface_compile import _as_bspline, compile_surface, face_frame, friction_notes, texture_notes
+from hapticad.document_scene import build_document_scene
+from hapticad.surface_compile import (_as_bspline, compile_surface, curved_face_notes, face_frame, friction_notes,
+                                     texture_notes)
 
 V = App.Vector
 
@@ -255,14 +257,62 @@ class CompileTest(unittest.TestCase):
         s.TextureBeta, s.TextureAlpha = 0.125, -50.0
         self.assertTrue(any("alpha_h -50 makes each harmonic stronger" in n for n in texture_notes(s)))
 
-    def test_a_texture_on_a_curved_face_is_said_to_be_laid_flat(self):
+    def test_the_grid_and_grating_are_laid_round_a_cylinder_and_said_flat_on_other_curved_faces(self):
         cylinder = self.doc.addObject("Part::Cylinder", "Handle")
+        cylinder.Radius = 10
+        cylinder.Placement = App.Placement(V(100, 50, 7), App.Rotation(V(1, 0, 0), 30))
+        sphere = self.doc.addObject("Part::Sphere", "Knob")
         self.doc.recompute()
         s = HaptiCAD.make_surface(self.doc, [(cylinder, "Face1")], Texture="Paper f_DC 0.325 f_vis -0.2")
-        self.assertTrue(any("on curved Handle.Face1 the grating is laid out on the face's tangent plane" in n
-                            for n in texture_notes(s)), texture_notes(s))
+        self.assertEqual(texture_notes(s) + curved_face_notes(s), [])
+        p = compile_surface(s, cylinder.Shape.Faces[0])
+        for frame in (p.roughness.frame, p.texture.frame):
+            self.assertAlmostEqual(frame.radius_m, 0.01)
+            self.assertLess(np.linalg.norm(np.cross(np.asarray(frame.axis_w), [0, -0.5, math.sqrt(3) / 2])), 1e-12)
+            np.testing.assert_allclose(frame.axis_point_w, [0.1, 0.05, 0.007], atol=1e-15)
+        knob = HaptiCAD.make_surface(self.doc, [(sphere, "Face1")], Texture="Paper f_DC 0.325 f_vis -0.2")
+        (note,) = curved_face_notes(knob)
+        self.assertIn("on curved Knob.Face1 the roughness grid and the grating are laid out on the face's tangent "
+                      "plane", note)
+        self.assertEqual(compile_surface(knob, sphere.Shape.Faces[0]).roughness.frame.radius_m, 0.0)
+        knob.Texture = "None"
+        self.assertIn("the roughness grid is laid out", curved_face_notes(knob)[0])
+        knob.FeelRoughness = False
+        self.assertEqual(curved_face_notes(knob), [])
         flat = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], Texture="Paper f_DC 0.325 f_vis -0.2")
-        self.assertEqual(texture_notes(flat), [])
+        self.assertEqual(curved_face_notes(flat), [])
+
+    def test_a_category_3_grid_is_felt_every_0_6_mm_all_round_a_handle(self):
+        # seed 000 Table 2: category 3 is a 0.6 mm grid. Stroked through the renderer round a
+        # 15 mm handle from the face's centre and from 60 and 80 degrees round it (laid on the
+        # centre's tangent plane, the rows there were 1.2 and 3.5 mm apart)
+        handle = self.doc.addObject("Part::Cylinder", "Handle")
+        handle.Radius, handle.Height = 15, 100
+        self.doc.recompute()
+        HaptiCAD.make_surface(self.doc, [(handle, "Face1")], material="ABS", RoughnessCategory=3,
+                              RoughnessFrictionModulation=0.0)
+        scene = build_document_scene(self.doc)
+        centre = np.asarray(scene.surfaces.surface(scene.face_id("Handle.Face1")).roughness.frame.origin_w)
+        limits = _core.RenderLimits()
+        limits.max_force_n, limits.max_stiffness_n_per_m = 100.0, 1000.0
+        for turned in (0.0, 60.0, 80.0):
+            start = math.atan2(centre[1], centre[0]) + math.radians(turned)
+            arc = np.linspace(0.0, 0.006, 12000)  # 6 mm round the handle, 0.3 mm deep
+            angle = start + arc / 0.015
+            radial = np.c_[np.cos(angle), np.sin(angle), np.zeros(len(arc))]
+            path = np.vstack([[0.02 * math.cos(start), 0.02 * math.sin(start), 0.05],
+                              np.c_[0.0147 * radial[:, :2], np.full(len(arc), 0.05)]])
+            velocity = np.c_[-np.sin(np.r_[start, angle]), np.cos(np.r_[start, angle]), np.zeros(len(arc) + 1)]
+            renderer = _core.ForceRenderer(scene.scene, scene.surfaces, limits, scene.contact_options())
+            out = _core.run_stroke(renderer, path, 0.005 * velocity, list(np.arange(len(arc) + 1) * 1e-3))
+            pressed = (np.asarray(out["force_w"])[1:] * radial).sum(axis=1)
+            rows = [i for i in range(1, len(arc) - 1) if pressed[i] > pressed[i - 1] and pressed[i] >= pressed[i + 1]
+                    and pressed[i] > pressed.mean()]
+            spacing = np.diff(arc[rows]) * 1e3
+            self.assertEqual(len(rows), 10, (turned, spacing))
+            # (each row a little off where the tessellation's facets meet: the press varies with them)
+            self.assertAlmostEqual((arc[rows[-1]] - arc[rows[0]]) * 1e3 / 9, 0.6, delta=0.005, msg=(turned, spacing))
+            np.testing.assert_allclose(spacing, 0.6, atol=0.05, err_msg=f"{turned} degrees round")
 
     def test_roughness_and_texture(self):
         p = compile_surface(self.surface(RoughnessCategory=6, RoughnessHeight=0.1,

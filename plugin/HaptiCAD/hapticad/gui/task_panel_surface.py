@@ -827,6 +827,7 @@ class SurfaceTaskPanel:
             n = len(surface_object.reference_pairs(self.obj))
             notes = surface_object.hidden_part_notes(self.obj) + surface_compile.friction_notes(self.obj)
             notes += surface_compile.texture_notes(self.obj) + surface_compile.curve_notes(self.obj)
+            notes += surface_compile.curved_face_notes(self.obj)
             notes += similarity_study.unpooling_notes(self.doc, self.pooled_at_open)
             rate_hz = preferences.load().servo_rate_hz  # the servo rate Feel will run at
             notes += [n for n in [surface_object.rate_note(self.obj, rate_hz)] if n]
