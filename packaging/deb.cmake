@@ -9,7 +9,7 @@
 # `cmake --install` (setup.sh, into the user's Mod folder) does not run them.
 
 set(HAPTICAD_DEB_MOD_DIR share/freecad/Mod/HaptiCAD)
-install(DIRECTORY ${HAPTICAD_STAGE_DIR}/ DESTINATION ${HAPTICAD_DEB_MOD_DIR}
+install(DIRECTORY ${HAPTICAD_STAGE_DIR}/ DESTINATION ${HAPTICAD_DEB_MOD_DIR} USE_SOURCE_PERMISSIONS
         COMPONENT deb EXCLUDE_FROM_ALL PATTERN "__pycache__" EXCLUDE PATTERN "*.FCStd1" EXCLUDE)
 
 set(HAPTICAD_MOD_PATH /usr/${HAPTICAD_DEB_MOD_DIR})

@@ -10,7 +10,7 @@ build="$top/build"
 [ -f "$build/CMakeCache.txt" ] || { echo "run packaging/setup.sh first" >&2; exit 2; }
 
 cmake --build "$build" -j "$(nproc)"
-ctest --test-dir "$build" -j "$(nproc)" --output-on-failure
+ctest --test-dir "$build" -j "$(nproc)" --output-on-failure --no-tests=error
 
 # the installed command, as a user runs it
 out=$(mktemp -d)

@@ -17,18 +17,22 @@ if [ "$(id -u)" -ne 0 ]; then
   exec sudo "$0" "$@"
 fi
 
-"$top/packaging/install-deps.sh"
-
 user=${SUDO_USER:-root}
 home=$(getent passwd "$user" | cut -d: -f6)
 mod_dir="$home/.local/share/FreeCAD/Mod/HaptiCAD"
 as_user=()
 [ "$user" = root ] || as_user=(sudo -u "$user" -H)
+# before anything is installed: a checkout in the Mod folder would be replaced below
+"$top/packaging/check-install-folder.sh" "$top" "$mod_dir"
+
+"$top/packaging/install-deps.sh"
 
 "${as_user[@]}" cmake -S "$top" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DHAPTICAD_MOD_DIR="$mod_dir" -DCMAKE_INSTALL_PREFIX=/usr/local
+  -DHAPTICAD_MOD_DIR="$mod_dir" -DCMAKE_INSTALL_PREFIX=/usr/local -DHAPTICAD_BUILD_TESTS=ON
 "${as_user[@]}" cmake --build "$build" -j "$(nproc)"
 
+# the Mod folder's parents made as the user (a root install would leave ~/.local root's)
+"${as_user[@]}" mkdir -p "$(dirname "$mod_dir")"
 rm -rf "$mod_dir"
 cmake --install "$build"
 if [ "$user" != root ]; then

@@ -67,6 +67,16 @@ class DebTest(unittest.TestCase):
         self.assertIn('"/usr/share/freecad/Mod/HaptiCAD"', script)
         self.assertTrue(mode & 0o111)
 
+    def test_the_benchmark_program_stays_executable(self):
+        # `hapticad bench-mesh` runs it: packaged 0644 it said the program "is missing"
+        import io
+        import tarfile
+
+        text = subprocess.run(["dpkg-deb", "--fsys-tarfile", self.deb], check=True, capture_output=True).stdout
+        with tarfile.open(fileobj=io.BytesIO(text)) as tar:
+            mode = tar.getmember(MOD + "hapticad/hapticad-bench-mesh").mode
+        self.assertEqual(mode & 0o111, 0o111, oct(mode))
+
     def test_udev_rules_of_the_tree_are_installed(self):
         rules = sorted(os.path.basename(p) for d in ("packaging", "packaging/udev", "devices/udev", "resources/udev")
                        for p in glob.glob(os.path.join(SOURCE, d, "*.rules")))
