@@ -629,6 +629,10 @@ def main(argv=None):
     except RuntimeError as exc:
         print(f"hapticad {args.command}: {exc}", file=sys.stderr)
         return 1
+    except MemoryError:  # a scene too fine for this computer: said, not a traceback
+        print(f"hapticad {args.command}: not enough memory for this scene: choose a coarser --accuracy or a longer "
+              f"--refine-edge", file=sys.stderr)
+        return 1
     status = 0
     if isinstance(result, Finished):
         result, status = result.result, result.status

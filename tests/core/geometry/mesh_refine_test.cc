@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hapticad/core/geometry/mesh_refine.h"
 
+#include <chrono>
 #include <map>
 #include <stdexcept>
 
@@ -65,6 +66,33 @@ TEST(MeshRefine, RejectsBadLengthsAndRunawayRefinement) {
   EXPECT_THROW(RefineSoup(box, 0.0), std::invalid_argument);
   EXPECT_THROW(RefineSoup(box, std::nan("")), std::invalid_argument);
   EXPECT_THROW(RefineSoup(box, 1e-4, 100000), std::invalid_argument);
+}
+
+TEST(MeshRefine, ARefinementThatCannotFitIsRefusedBeforeAnythingIsSplit) {
+  // a 100 mm box at 0.01 mm: at least 1.4e9 triangles (its area, 6e4 mm^2, over 4.3e-5
+  // mm^2 each); it used to split for a minute and gigabytes before the cap stopped it
+  const TriangleSoup box = testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(100, 100, 100));
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    RefineSoup(box, 0.01);
+    FAIL() << "refined";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(),
+                 "mesh refinement: an edge length of 0.01 makes at least 1.39e+09 triangles of "
+                 "this part's area (at most 4000000 are built): give an edge length of 0.186 or "
+                 "more");
+  }
+  // refused from the area alone: nothing was split (the cap, reached splitting, took seconds)
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0.5);
+  // what the bound lets through and still grows past the cap is refused when it does
+  try {
+    RefineSoup(box, 1.5, 100000);  // at least 61584: passes the bound
+    FAIL() << "refined";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(),
+                 "mesh refinement: more than 100000 triangles at an edge length of 1.5: give a "
+                 "longer one");
+  }
 }
 
 TEST(MeshRefine, TheSceneRefinesWhenAsked) {

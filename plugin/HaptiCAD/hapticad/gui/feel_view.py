@@ -89,7 +89,10 @@ class FeelView:
         self.arrow_coords.point.setValues(0, 5, [tuple(map(float, p)) for p in points])
 
     def remove(self):
-        graph = self.view.getSceneGraph()
+        try:
+            graph = self.view.getSceneGraph()
+        except RuntimeError:  # the view was closed (the document still open in another)
+            return  # its scene graph, with the probe's nodes, went with it
         if graph.findChild(self.root) >= 0:
             graph.removeChild(self.root)
 

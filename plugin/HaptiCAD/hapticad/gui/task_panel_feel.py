@@ -45,6 +45,20 @@ DEPTH_RANGE_MM = (0.0, 15.0)  # a 0.4 N/mm hand aimed 15 mm in pushes 6 N: past 
 DEPTH_STEP_MM = 0.25
 
 
+def _view_3d(doc):
+    """The 3D view Feel draws in: the document's active view, or its 3D view brought to
+    the front when another (a spreadsheet) is active; None when it has none open."""
+    gui_doc = Gui.getDocument(doc.Name)
+    if hasattr(gui_doc.ActiveView, "getSceneGraph"):
+        return gui_doc.ActiveView
+    if not gui_doc.mdiViewsOfType("Gui::View3DInventor"):
+        return None
+    if Gui.ActiveDocument is gui_doc:
+        Gui.activateView("Gui::View3DInventor", False)
+        if hasattr(gui_doc.ActiveView, "getSceneGraph"):
+            return gui_doc.ActiveView
+    return gui_doc.mdiViewsOfType("Gui::View3DInventor")[0]
+
 class FeelTaskPanel:
     def __init__(self, doc):
         self.doc = doc
@@ -194,6 +208,11 @@ class FeelTaskPanel:
         from ..document_scene import build_document_scene
 
         self.show_message("")
+        view = _view_3d(self.doc)  # before anything is built: the probe is drawn there
+        if view is None:
+            self.show_message(f"Feel draws the probe in a 3D view of {self.doc.Label}, and it has none open: open "
+                              "one (View > Create new view) and press Start.", error=True)
+            return False
         try:
             with busy_cursor():  # tessellating and building a large part's scene takes seconds
                 self.doc_scene = build_document_scene(self.doc, preferences.scene_accuracy(preferences.load()))
@@ -203,7 +222,12 @@ class FeelTaskPanel:
             self.session = None
             self.show_message(str(exc), error=True)
             return False
-        view = Gui.getDocument(self.doc.Name).ActiveView
+        except MemoryError:  # a scene too fine for this computer (a custom accuracy)
+            self.session = None
+            self.doc_scene = None
+            self.show_message("Not enough memory to build the part's scene at this accuracy: choose a coarser one "
+                              "in Preferences (HaptiCAD > Accuracy).", error=True)
+            return False
         low, high = feel_session.scene_box_m(self.doc_scene)
         radius = max(float(np.linalg.norm(high - low)) / feel_session.MM / 45.0, 0.3)
         self.view_nodes = FeelView(view, radius)

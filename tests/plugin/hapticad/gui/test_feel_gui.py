@@ -92,6 +92,52 @@ class FeelGuiTest(unittest.TestCase):
         self.assertFalse(panel.timer.isActive())
         self.assertIsNone(panel.session)
 
+    def test_feel_runs_in_the_3d_view_when_a_spreadsheet_is_active_and_says_when_there_is_none(self):
+        from hapticad.gui import task_panel_feel
+
+        sheet = self.doc.addObject("Spreadsheet::Sheet", "Params")
+        self.doc.recompute()
+        sheet.ViewObject.doubleClicked()  # its view active: Feel raised AttributeError (getSceneGraph)
+        h.process_events()
+        gui_doc = Gui.getDocument(self.doc.Name)
+        self.assertFalse(hasattr(gui_doc.ActiveView, "getSceneGraph"))
+        panel = self.open_feel()
+        self.assertTrue(hasattr(gui_doc.ActiveView, "getSceneGraph"))  # brought to the front
+        self.assertTrue(panel.session.running)
+        h.press_task_button("Close")
+        h.process_events()
+        # the 3D view closed, the spreadsheet's left: said, nothing built
+        for window in Gui.getMainWindow().findChild(QtWidgets.QMdiArea).subWindowList():
+            if "3D" in window.windowTitle() or "FeelGui : 1" in window.windowTitle():
+                window.close()
+        h.process_events()
+        self.assertFalse(gui_doc.mdiViewsOfType("Gui::View3DInventor"))
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        panel = task_panel_feel.active_panel()
+        self.assertIsNone(panel.session)
+        self.assertIn("Feel draws the probe in a 3D view of FeelGui, and it has none open",
+                      h.widget(QtWidgets.QLabel, "feelMessage").text())
+
+    def test_closing_the_view_feel_runs_in_leaves_a_panel_that_stops_and_closes(self):
+        from hapticad.gui import task_panel_feel
+
+        Gui.runCommand("Std_ViewCreate")  # a second 3D view of the document, active
+        h.process_events()
+        panel = self.start_feeling()
+        session = panel.session
+        Gui.getMainWindow().findChild(QtWidgets.QMdiArea).activeSubWindow().close()
+        h.process_events()
+        h.widget(QtWidgets.QPushButton, "feelStop").click()  # raised: its scene graph was deleted
+        h.process_events()
+        self.assertFalse(session.running)
+        self.assertIsNone(panel.session)
+        self.assertTrue(h.widget(QtWidgets.QPushButton, "feelStart").isEnabled())
+        h.press_task_button("Close")
+        h.process_events()
+        self.assertIsNone(task_panel_feel.active_panel())
+        self.assertFalse(Gui.Control.activeDialog())
+
     def test_a_simulated_session_follows_the_mouse_and_charts_the_forces(self):
         Gui.runCommand("HaptiCAD_Feel")
         h.process_events()
