@@ -9,6 +9,9 @@
 namespace hapticad {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
+// e^50: a harmonic 5e21 times the fundamental, which the level's clamp to 0..1 makes a
+// square wave long before; finite for any finite beta up to 1e280
+constexpr double kMaxHarmonicExponent = 50.0;
 }  // namespace
 
 double ViscousTextureLevel(const ViscousTextureParams& p, double x, double speed) {
@@ -28,7 +31,9 @@ double ViscousTextureLevel(const ViscousTextureParams& p, double x, double speed
     const double s_next = c2 * s_current - s_previous;
     s_previous = s_current;
     s_current = s_next;
-    harmonics += std::exp(-alpha * kLog[i]) * s_current;
+    // a harmonic may grow with its order (alpha < 0) but not to inf: inf - inf is NaN,
+    // which took the whole force off (the push too) at half of a period at alpha -650
+    harmonics += std::exp(std::min(-alpha * kLog[i], kMaxHarmonicExponent)) * s_current;
   }
   return p.f_dc + v * p.f_vis + (p.beta_h + v * p.beta_vis) * harmonics;
 }
@@ -46,7 +51,9 @@ Vec3 CalcViscousTextureForce(const ViscousTextureParams& params, double full_ran
                              const Vec3& v_t, double stick_speed_mps) {
   const double s = v_t.norm();
   if (!std::isfinite(s) || !(s > 0.0)) return Vec3::Zero();
-  const double level = std::clamp(ViscousTextureLevel(params, x_m, s), 0.0, 1.0);
+  const double raw = ViscousTextureLevel(params, x_m, s);
+  // (NaN only from parameters beyond any texture: beta * 5e21 overflowing; nothing felt)
+  const double level = std::isnan(raw) ? 0.0 : std::clamp(raw, 0.0, 1.0);
   // magnitude level * range, ramped over the static band; divide by max(s, eps) once
   const double per_speed = level * full_range_n / std::max(s, stick_speed_mps);
   return -per_speed * v_t;

@@ -77,5 +77,27 @@ TEST(ViscousTextureForce, IsZeroAtRestAndFiniteForTinyAndBadInputs) {
   EXPECT_EQ(CalcViscousTextureForce(p, 3.3, 0.0, Vec3(nan, 0, 0), 0.002), Vec3::Zero());
 }
 
+TEST(ViscousTexture, HarmonicsGrowingWithTheirOrderStayFinite) {
+  // alpha_h -650 or -1100 (a typo, or a fit gone wild): i^650 overflowed to inf and
+  // inf - inf made the force NaN at half the positions, and the renderer then dropped the
+  // whole force, the push with it. Now a square wave of the strongest harmonic, 0 or full.
+  for (double alpha : {-650.0, -1100.0, -1e6}) {
+    ViscousTextureParams p;
+    p.alpha_h = alpha;
+    p.beta_h = 0.125;
+    p.f_dc = 0.5;
+    int full = 0, none = 0;
+    for (int k = 0; k < 1000; ++k) {
+      const Vec3 f =
+          CalcViscousTextureForce(p, 2.0, k * p.period_m / 1000.0, Vec3(0.1, 0, 0), 1e-3);
+      ASSERT_TRUE(f.allFinite()) << alpha << " at " << k;
+      if (std::abs(f.x() + 2.0) < 1e-12) ++full;
+      if (f.norm() == 0.0) ++none;
+    }
+    EXPECT_GT(full, 300) << alpha;
+    EXPECT_GT(none, 300) << alpha;
+  }
+}
+
 }  // namespace
 }  // namespace hapticad
