@@ -433,19 +433,33 @@ def spreadsheet_safe(text):
 
 
 def write_csv(path, records):
-    with open(path, "w", newline="") as handle:
-        out = csv.writer(handle)
-        out.writerow(CSV_COLUMNS)
-        for r in records:
-            d = r.as_dict()
-            # repr: the shortest text that reads back as the same float
-            d["design"] = ";".join(f"{k}={v!r}" if isinstance(v, float) else f"{k}={v}" for k, v in r.design.items())
-            for key in TEXT_COLUMNS:  # every text cell: a model or time imported as "=HYPERLINK(...)" too
-                d[key] = spreadsheet_safe(str(d[key]))
-            for key in ("weight_kg", "height_mm"):  # not given: an empty cell
-                if d[key] is None:
-                    d[key] = ""
-            out.writerow([d[c] for c in CSV_COLUMNS])
+    """Writes ``records`` to ``path`` as UTF-8 (what read_csv reads, whatever the system's
+    encoding: a Windows FreeCAD wrote cp1252 and stopped at the first name it had no
+    character for, the file cut short). All or nothing: written beside it, then moved in."""
+    part = f"{path}.part"
+    try:
+        with open(part, "w", newline="", encoding="utf-8") as handle:
+            _write_rows(handle, records)
+        os.replace(part, path)
+    except BaseException:
+        if os.path.exists(part):
+            os.remove(part)
+        raise
+
+
+def _write_rows(handle, records):
+    out = csv.writer(handle)
+    out.writerow(CSV_COLUMNS)
+    for r in records:
+        d = r.as_dict()
+        # repr: the shortest text that reads back as the same float
+        d["design"] = ";".join(f"{k}={v!r}" if isinstance(v, float) else f"{k}={v}" for k, v in r.design.items())
+        for key in TEXT_COLUMNS:  # every text cell: a model or time imported as "=HYPERLINK(...)" too
+            d[key] = spreadsheet_safe(str(d[key]))
+        for key in ("weight_kg", "height_mm"):  # not given: an empty cell
+            if d[key] is None:
+                d[key] = ""
+        out.writerow([d[c] for c in CSV_COLUMNS])
 
 
 # a number written with a decimal comma (1,5 or -0,25e3), read from a ';' file only: with

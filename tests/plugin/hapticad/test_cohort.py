@@ -57,6 +57,25 @@ class CohortTest(unittest.TestCase):
         rows = {r["group"]: r for r in cohort.statistics(TABLE_3 + [unfelt])}
         self.assertEqual((rows["all"]["n"], rows["all"]["records"], rows["all"]["max"]), (3, 3, 4.5))
 
+    def test_the_export_is_utf_8_whatever_the_systems_encoding(self):
+        # a system whose encoding has no Chinese characters (cp1252 on a Windows FreeCAD; an
+        # ASCII locale here) stopped at Zhang's name, leaving the file cut short
+        import json
+        import subprocess
+
+        names = ["Zhang Wei 张伟", "Zoë Müller"]
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "cohort.csv")
+            code = ("import json, sys; from hapticad import cohort; "  # the names as ASCII escapes (json)
+                    "cohort.write_csv(sys.argv[1], [cohort.Record(n, 'F', '26-40', None, None, 3.5, 'N/mm', 'Beam') "
+                    f"for n in json.loads({json.dumps(json.dumps(names))})])")
+            env = dict(os.environ, LC_ALL="C", LANG="C", PYTHONUTF8="0", PYTHONIOENCODING="ascii",
+                       PYTHONPATH=os.path.dirname(os.path.dirname(cohort.__file__)))
+            done = subprocess.run(["/usr/bin/python3", "-c", code, path], env=env, capture_output=True, text=True)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            self.assertEqual([r.name for r in cohort.read_csv(path)], names)
+            self.assertEqual(os.listdir(tmp), ["cohort.csv"])  # nothing left beside it
+
     def test_a_design_is_placed_among_the_preferences(self):
         more = TABLE_3 + [cohort.Record(f"P{i}", "F", "18-25", 60, 1600, v, "N/mm", "Bending beam")
                           for i, v in enumerate((2.0, 5.0, 6.0))]

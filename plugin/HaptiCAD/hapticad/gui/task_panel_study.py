@@ -373,7 +373,7 @@ class StudyTaskPanel(CloseOnlyPanel):
     def export_to(self, path):
         try:
             cohort.write_csv(path, stiffness_study.records(self.obj))
-        except OSError as exc:
+        except (OSError, ValueError) as exc:  # (ValueError: an unreadable stored cohort)
             self.say(f"<span style='color:#b00000'>Not exported: {escape(str(exc))}</span>")
             return False
         return True
