@@ -79,7 +79,8 @@ def run_headless(out_dir, document=None, speed_mm_s=50.0, depth_mm=1.0, rate_hz=
     from .document_scene import build_document_scene
     from .face_strokes import plan_face_stroke, vector_tuple
     from .feel import Stroke, feel_document
-    from .surface_object import reference_pairs, surfaces_of
+    from .face_references import shown_face
+    from .surface_object import active_reference_pairs, reference_pairs, surfaces_of
 
     if document is None:
         document, _ = working_copy(out_dir)
@@ -88,8 +89,14 @@ def run_headless(out_dir, document=None, speed_mm_s=50.0, depth_mm=1.0, rate_hz=
         doc_scene = build_document_scene(doc)
         strokes = []
         for surface in surfaces_of(doc):
+            active = active_reference_pairs(surface)
             for obj, sub in reference_pairs(surface):
                 name = f"{obj.Name}.{sub}"
+                if (obj, sub) not in active:  # a model edit took its face: the scene has it untagged
+                    strokes.append({"face": f"{obj.Name}.{shown_face(sub)}",
+                                    "skipped": f"{surface.Label}'s face {shown_face(sub)} is broken by a model edit: "
+                                               "pick it again in the surface's panel"})
+                    continue
                 ends = plan_face_stroke(doc_scene.face_shape(name))
                 if ends is None:
                     strokes.append({"face": name, "skipped": "no straight stroke fits on this face"})

@@ -326,6 +326,26 @@ TEST(MeshRepair, SplitsANonManifoldEdgeAndSaysSo) {
       TriangleMesh::Build(out.vertices, out.triangles, out.cad_faces, out.corner_normals));
 }
 
+TEST(MeshRepair, TwoClosedPartsTouchingAlongAnEdgeAreClosedAfterTheSplit) {
+  // two tagged blocks sharing one edge: the edge is split, every edge then has two
+  // triangles, and the report says closed in both its words and watertight()
+  TriangleSoup s = testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(1, 1, 1));
+  const TriangleSoup b = testing::MakeBoxSoup(Vec3(1, 1, 0), Vec3(2, 2, 1));
+  const auto offset = static_cast<std::int32_t>(s.vertices.size());
+  s.vertices.insert(s.vertices.end(), b.vertices.begin(), b.vertices.end());
+  for (std::size_t t = 0; t < b.triangles.size(); ++t) {
+    s.triangles.push_back(
+        {b.triangles[t][0] + offset, b.triangles[t][1] + offset, b.triangles[t][2] + offset});
+    s.cad_faces.push_back(b.cad_faces[t] + 6);
+  }
+  TriangleSoup out;
+  const RepairReport r = Repair(s, &out);
+  EXPECT_EQ(r.non_manifold_edges, 1u) << r.Describe();
+  EXPECT_EQ(r.boundary_edges, 0u) << r.Describe();
+  EXPECT_TRUE(r.watertight()) << r.Describe();
+  EXPECT_NE(r.Describe().find("; closed"), std::string::npos) << r.Describe();
+}
+
 TEST(MeshRepair, DropsNonFiniteTrianglesAndRejectsWhatCannotBeRepaired) {
   TriangleSoup s = testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(1, 1, 1));
   s.vertices.push_back(Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0));

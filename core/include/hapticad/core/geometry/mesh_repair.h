@@ -61,8 +61,11 @@ struct RepairReport {
   std::size_t boundary_edges = 0;  // edges of one triangle after repair: holes, cracks
   std::size_t output_triangles = 0;
 
-  // Whether every edge has exactly two triangles (a closed, manifold surface).
-  bool watertight() const { return boundary_edges == 0 && non_manifold_edges == 0; }
+  // Whether every edge of the repaired soup has exactly two triangles (a closed, manifold
+  // surface): the non-manifold edges of the input were split, so what is left open are
+  // the boundary edges. Two closed parts touching along an edge are closed (Describe()
+  // says so too; a warning said "not closed" of them).
+  bool watertight() const { return boundary_edges == 0; }
   // One line for the user: what was repaired and what was not.
   std::string Describe() const;
 };
