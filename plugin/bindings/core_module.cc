@@ -120,10 +120,6 @@ void DefinePatterns(py::module_& m) {
       .def_readwrite("radius_m", &SurfaceFrame::radius_m)
       .def_readwrite("axis_point_w", &SurfaceFrame::axis_point_w)
       .def_readwrite("axis_w", &SurfaceFrame::axis_w);
-  m.def("frame_coordinates", [](const SurfaceFrame& f, const Vec3& p) {
-    const FrameCoordinates c = CalcFrameCoordinates(f, p);
-    return py::make_tuple(c.x, c.y, c.e1_w, c.e2_w);
-  });
   py::class_<StripeFrame>(m, "StripeFrame")
       .def_readonly("stripe", &StripeFrame::stripe)
       .def_readonly("weight", &StripeFrame::weight);
