@@ -349,9 +349,10 @@ def from_dict(data):
 def statistics(records, by=("gender", "age_band")):
     """Rows of {group, n, records, mean, sd, median, min, max} of the preferred values: all
     participants first, then each group of each field in ``by`` (in _group_order). ``n``
-    counts people (participants: one person's records averaged), ``records`` the records pooled into them; the records counted (counted: not
-    those beyond the force limit). sd is the sample SD, None for a group of one (undefined,
-    not 0: one person does not agree with themself)."""
+    counts people (participants: one person's records averaged), ``records`` the records
+    pooled into them; the records counted (counted: not those beyond the force limit). sd
+    is the sample SD, None for a group of one (undefined, not 0: one person does not agree
+    with themself)."""
     def row(group, people):
         values = [p.value for p in people]
         mean, sd = _mean_sd(values)

@@ -49,8 +49,8 @@ def _namesake_note(record, before):
                 "someone else, remove this record and give another name.")
     elif namesakes:
         said = (f"{cohort.plural(namesakes, 'record')} of another {escape(record.name)} (another gender or age "
-                f"band) {'is' if namesakes == 1 else 'are'} held: counted as another participant; if this is the same person, remove this record "
-                "and record it again with the gender and age band given before.")
+                f"band) {'is' if namesakes == 1 else 'are'} held: counted as another participant; if this is the "
+                "same person, remove this record and record it again with the gender and age band given before.")
     else:
         return ""
     return f"<br><span style='color:#a06000'>Note: {said}</span>"
