@@ -316,8 +316,8 @@ class StudyTaskPanel(CloseOnlyPanel):
                  f"{s['group']}: {n(s)}, mean {s['mean']:.3g} (SD {cohort.format_sd(s['sd'])}), median "
                  f"{s['median']:.3g}, range {s['min']:.3g}-{s['max']:.3g} {records[0].unit}" for s in rows]
         if rows[0]["records"] != rows[0]["n"]:
-            lines.append("A participant recorded more than once (one name, case and spacing aside) counts once, "
-                         "at the mean of their records.")
+            lines.append("A participant recorded more than once (one name, case and spacing aside, one gender "
+                         "and age band) counts once, at the mean of their records.")
         value, _ = stiffness_study.design_value(self.obj)
         lines.append("This design: " + cohort.place_design(value, records)[1])
         self.stats.setText(notice + "<br>".join(lines) + aside)

@@ -249,6 +249,9 @@ class StudyGuiTest(unittest.TestCase):
         self.assertEqual(study.Participants, 2)
         self.assertIn("2 records of another Ann (another gender or age band) are held: counted as another "
                       "participant", h.widget(QtWidgets.QLabel, "studyMessage").text())
+        h.widen_panel(520)
+        _scroll_panel_to_end()
+        h.grab_screen("study_namesake.png")
 
     def test_removing_a_shown_participant_removes_that_one_not_one_kept_from_the_other_model(self):
         study = self.open_study()
