@@ -45,6 +45,12 @@ groupadd --force hapticad
 install -d /etc/security/limits.d
 printf '# HaptiCAD servo loop (packaging/setup.sh)\n@hapticad - rtprio 70\n' \
   > /etc/security/limits.d/hapticad.conf
+# the limit above starts at the next login; the shell that ran sudo (and the run-tests.sh
+# or hapticad it starts next) gets it now
+if [ "$user" != root ]; then
+  "$top/packaging/grant-rtprio.sh" "$user" 70 "$PPID" ||
+    echo "setup.sh: real-time priority for $user from the next login only" >&2
+fi
 if command -v udevadm > /dev/null && [ -d /run/udev ]; then
   udevadm control --reload-rules && udevadm trigger --subsystem-match=hidraw || true
 fi
