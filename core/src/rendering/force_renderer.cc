@@ -336,10 +336,15 @@ void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
     const Vibration& vibration = surfaces_->vibration(surface.vibration);
     const Vec3 shake = CalcVibrationForce(vibration, input.time_s);
     out->vibration_force_n = shake.dot(vibration.axis_w);
-    force += shake;
-    // a face only pushes: the shake may take its push away, never pull the hand in
-    const double pushed = force.dot(normal);
-    if (pushed < 0.0) force -= pushed * normal;
+    // The shake loads and unloads the contact, and what acts across the face (friction,
+    // a texture, a bump's tilt) follows the load, as seed 000's f_t = mu f_n: a shake that
+    // takes the push away takes the drag with it. A face only pushes: the shake may take
+    // its push away, never pull the hand in.
+    const double before = force.dot(normal);
+    const Vec3 across = force - before * normal;
+    const double pushed = std::max(before + shake.dot(normal), 0.0);
+    const double load = before > 0.0 ? pushed / before : 0.0;
+    force = pushed * normal + load * across + (shake - shake.dot(normal) * normal);
   }
 
   const double magnitude = force.norm();

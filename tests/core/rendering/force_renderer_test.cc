@@ -880,6 +880,28 @@ TEST_F(ScaledWorkspace, ANonPositiveOrNonFiniteScaleIsRefused) {
   }
 }
 
+// Stroked 2 mm deep (1 N) at 50 mm/s with mu_d 0.3: a 1.5 N vibration along the normal
+// loads and unloads the contact, and the friction follows the load it leaves: never a drag
+// without a push (it was 0.3 N of drag with no push at all, where the shake took it away).
+TEST_F(EffectsOnBox, FrictionFollowsTheLoadAVibrationLeaves) {
+  top_.vibration = 0;
+  auto r = Make({Vibration{100.0, 1.5, Vec3::UnitZ(), true}});
+  int unloaded = 0, loaded = 0;
+  for (const RenderOutput& out : Stroke(r, Vec3::UnitX(), 0.05, 200)) {
+    if (!(out.flags & kContact)) continue;
+    EXPECT_LE(out.tangential_force_n, 0.3 * out.normal_force_n + 1e-9);
+    if (out.normal_force_n == 0.0) {
+      ++unloaded;
+      EXPECT_EQ(out.tangential_force_n, 0.0);
+    } else if (out.normal_force_n > 1.2) {  // pushed harder: the drag grows with it
+      ++loaded;
+      EXPECT_NEAR(out.tangential_force_n, 0.3 * out.normal_force_n, 1e-6);
+    }
+  }
+  EXPECT_GT(unloaded, 20);
+  EXPECT_GT(loaded, 20);
+}
+
 // The top's 500 N/m pressed 0.2 mm pushes 0.1 N; a 0.3 N vibration rides on it.
 TEST_F(EffectsOnBox, AVibrationStrongerThanThePushIsFeltAsItsHalfWaveNeverPullingIn) {
   top_.vibration = 0;

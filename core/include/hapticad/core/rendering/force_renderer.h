@@ -27,7 +27,9 @@
 //              then held at or above zero: a vibration stronger than the push is felt
 //              as the push's half-wave (the push plus the vibration where that pushes,
 //              nothing where it would pull the hand into the part), whatever it does
-//              across the face is kept
+//              across the face is kept; the lateral force follows the load it leaves
+//              (scaled by the push with the shake over the push without it), so where
+//              the shake takes the push away it takes the drag too
 //   total      scaled down to the device's maximum force
 // The touched face is the one whose triangle first constrained the proxy this tick.
 // A face runs only the effects it compiled into (SurfaceTable::effects).
