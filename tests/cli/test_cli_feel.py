@@ -108,6 +108,42 @@ class FeelCommandTest(unittest.TestCase):
                        "--out", os.path.join(self.tmp.name, "razor"))
         self.assertEqual(proc.returncode, 0, proc.stderr)
         self.assertIn("700 Hz is felt at 300 Hz instead at the 1000 Hz servo rate", proc.stderr)
+        self.assertIn("raise the servo rate with --rate", proc.stderr)  # the CLI's rate, not Preferences'
+        self.assertNotIn("Preferences", proc.stderr)
+
+    def test_the_preferences_force_limit_holds_the_stroke_as_in_the_feel_panel(self):
+        # Steel (10 N/mm, felt at the probe's 1 N/mm) pressed 2 mm deep: 2 N, held to the
+        # force limit set in HaptiCAD's Preferences (the panel's simulated hand is held so)
+        path = os.path.join(self.tmp.name, "steel.FCStd")
+        doc = App.newDocument("CliSteel")
+        box = doc.addObject("Part::Box", "Box")
+        box.Length, box.Width, box.Height = 80, 40, 20
+        doc.recompute()
+        HaptiCAD.make_surface(doc, [(box, "Face6")], material="Steel", FeelRoughness=False)
+        doc.saveAs(path)
+        App.closeDocument(doc.Name)
+        config = os.path.join(self.tmp.name, "config")
+        env = dict(os.environ, XDG_CONFIG_HOME=config)
+        code = ("import FreeCAD as App\n"
+                "App.ParamGet('User parameter:BaseApp/Preferences/Mod/HaptiCAD').SetFloat('ForceLimitN', 1.5)\n"
+                "App.saveParameter()\n")
+        subprocess.run(["freecadcmd", "-c", code], env=env, check=True, capture_output=True, timeout=120)
+        felt = {}
+        for name, environment in (("set", env), ("default", dict(env, XDG_CONFIG_HOME=config + "-fresh"))):
+            proc = subprocess.run([CLI, "feel", path, "--stroke", "10,20,20:70,20,20", "--depth", "2",
+                                   "--out", os.path.join(self.tmp.name, f"steel-{name}")],
+                                  capture_output=True, text=True, timeout=120, env=environment)
+            self.assertEqual(proc.returncode, 0, proc.stderr)
+            felt[name] = (json.loads(proc.stdout), proc.stderr)
+        summary, said = felt["set"]
+        self.assertEqual(summary["force_limit_n"], 1.5)
+        self.assertAlmostEqual(summary["expected_normal_force_n"], 2.0, delta=1e-6)
+        self.assertLessEqual(summary["max_normal_force_n"], 1.5 + 1e-9)
+        self.assertIn("2 mm deep the face pushes back with 2.00 N, more than the 1.5 N force limit", said)
+        summary, said = felt["default"]
+        self.assertEqual(summary["force_limit_n"], 3.0)  # Preferences' default, under the probe's 8.9 N
+        self.assertAlmostEqual(summary["max_normal_force_n"], 2.0, delta=0.1)
+        self.assertNotIn("force limit", said)
 
     def test_a_custom_accuracy_is_built_and_said(self):
         # a cylinder: its side's tessellation is where deflection shows (coarser values,

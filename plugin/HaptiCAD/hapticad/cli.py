@@ -102,22 +102,35 @@ def _feel_accuracy(args, prefs):
     return preferences.scene_accuracy(chosen)
 
 
+RATE_OPTION = "with --rate"  # where `hapticad feel` sets the servo rate (the GUI: in Preferences)
+
+
 def cmd_feel(args):
     App = ensure_freecad()
     from . import preferences, surface_object, vibration_object
     from .document_scene import build_document_scene
-    from .feel import Stroke, feel_document
+    from .feel import Stroke, feel_document, probe_limits
 
     doc = _open_document(App, args.file)
     try:
-        doc_scene = build_document_scene(doc, _feel_accuracy(args, preferences.load()))
+        prefs = preferences.load()
+        doc_scene = build_document_scene(doc, _feel_accuracy(args, prefs))
+        limits = probe_limits(prefs)  # the force limit the Feel panel renders with
         if not doc_scene.watertight:
             print(f"hapticad feel: the scene is not closed: {doc_scene.repair}", file=sys.stderr)
-        for note in vibration_object.rate_notes(doc, args.rate) + surface_object.rate_notes(doc, args.rate):
+        notes = (vibration_object.rate_notes(doc, args.rate, where=RATE_OPTION)
+                 + vibration_object.force_notes(doc, limits.max_force_n)
+                 + surface_object.rate_notes(doc, args.rate, where=RATE_OPTION))
+        for note in notes:
             print(f"hapticad feel: {note}", file=sys.stderr)
         p0, p1 = args.stroke
         stroke = Stroke(p0, p1, args.speed, args.depth, args.rate)
-        return feel_document(doc_scene, stroke, args.out)
+        summary = feel_document(doc_scene, stroke, args.out, limits=limits)
+        if summary["expected_normal_force_n"] > limits.max_force_n:
+            print(f"hapticad feel: {args.depth:g} mm deep the face pushes back with "
+                  f"{summary['expected_normal_force_n']:.2f} N, more than the {limits.max_force_n:g} N force limit "
+                  "(HaptiCAD's Preferences): the stroke is felt at the limit", file=sys.stderr)
+        return summary
     finally:
         App.closeDocument(doc.Name)
 

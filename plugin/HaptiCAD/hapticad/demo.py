@@ -78,7 +78,8 @@ def run_headless(out_dir, document=None, speed_mm_s=50.0, depth_mm=1.0, rate_hz=
 
     from .document_scene import build_document_scene
     from .face_strokes import plan_face_stroke, vector_tuple
-    from .feel import Stroke, feel_document
+    from . import preferences
+    from .feel import Stroke, feel_document, probe_limits
     from .face_references import shown_face
     from .surface_object import active_reference_pairs, reference_pairs, surfaces_of
 
@@ -87,6 +88,7 @@ def run_headless(out_dir, document=None, speed_mm_s=50.0, depth_mm=1.0, rate_hz=
     doc = App.openDocument(document)
     try:
         doc_scene = build_document_scene(doc)
+        limits = probe_limits(preferences.load())  # the force limit the Feel panel renders with
         strokes = []
         for surface in surfaces_of(doc):
             active = active_reference_pairs(surface)
@@ -107,7 +109,7 @@ def run_headless(out_dir, document=None, speed_mm_s=50.0, depth_mm=1.0, rate_hz=
                 title = (f"{surface.Label} on {name}: {surface.Material}, roughness category "
                          f"{surface.RoughnessCategory}; stroked at {speed_mm_s:g} mm/s, {depth_mm:g} mm deep, "
                          f"{rate_hz / 1000:g} kHz")
-                summary = feel_document(doc_scene, stroke, os.path.join(out_dir, name), title)
+                summary = feel_document(doc_scene, stroke, os.path.join(out_dir, name), title, limits)
                 summary["face"] = name
                 strokes.append(summary)
     finally:

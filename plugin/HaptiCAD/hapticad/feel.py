@@ -104,6 +104,15 @@ class FeelResult:
     limits: object  # _core.DeviceLimits
 
 
+def probe_limits(prefs):
+    """The simulated probe's limits as a Feel session with ``prefs`` (preferences.Preferences)
+    renders them: its force held to the Preferences' force limit, as the Feel panel holds the
+    simulated hand's, so a scripted stroke presses as hard as the designer would feel."""
+    limits = _core.simulated_probe_limits()
+    limits.max_force_n = min(limits.max_force_n, prefs.force_limit_n)
+    return limits
+
+
 def run_stroke_in_servo_loop(doc_scene, stroke, limits=None):
     """Plans ``stroke`` (plan_stroke: approach, dwell, slide, retreat) and runs it in real
     time through the real servo loop, the simulated probe following the plan; returns a
@@ -174,7 +183,8 @@ def summarize(result, doc_scene):
     for face in sorted(set(int(f) for f in trace["cad_face"][contact])):
         name = doc_scene.face_names[face]
         on_face = trace["cad_face"] == face
-        slide = sliding & on_face
+        # a vibration may take the push away on some ticks (a face only pushes): no ratio there
+        slide = sliding & on_face & (trace["normal_force_n"] > 0)
         props = doc_scene.surface_properties(face)
         fn = trace["normal_force_n"][slide]
         ft = trace["tangential_force_n"][slide]
@@ -202,6 +212,7 @@ def summarize(result, doc_scene):
         "tick_us": _percentiles(tick_us),
         "contact_tick_us": _percentiles(contact_us),
         "rate_hz": result.stroke.rate_hz,
+        "force_limit_n": float(result.limits.max_force_n),
         "accuracy": _accuracy_summary(doc_scene),
         "overruns": int(result.stats.overruns),
         "skipped_ticks": int(result.stats.skipped_ticks),
@@ -267,12 +278,13 @@ def distance_along_stroke_mm(result):
     return (np.asarray(result.trace["device_m"]) - result.plan.p0_m) @ direction / MM
 
 
-def feel_document(doc_scene, stroke, out_dir, title=""):
-    """Runs a stroke, writes out_dir/trace.csv and out_dir/trace.png, returns the summary."""
+def feel_document(doc_scene, stroke, out_dir, title="", limits=None):
+    """Runs a stroke with the probe's ``limits`` (probe_limits; by default the simulated
+    probe's own), writes out_dir/trace.csv and out_dir/trace.png, returns the summary."""
     from .trace_plot import plot_trace
 
     os.makedirs(out_dir, exist_ok=True)
-    result = run_stroke_in_servo_loop(doc_scene, stroke)
+    result = run_stroke_in_servo_loop(doc_scene, stroke, limits)
     summary = summarize(result, doc_scene)
     csv_path = os.path.join(out_dir, "trace.csv")
     png_path = os.path.join(out_dir, "trace.png")

@@ -500,34 +500,34 @@ def _grid_beyond_rate(surface, rate_hz):
     return (category, grid_mm, fastest) if fastest < FASTEST_STROKE_MM_S else None
 
 
-_RAISE_RATE = ("Stroke slower, or raise the servo rate in Preferences (5-10 kHz for the finest "
-               "categories)")
+def _raise_rate(where):
+    return f"Stroke slower, or raise the servo rate {where} (5-10 kHz for the finest categories)"
 
 
-def rate_note(surface, rate_hz):
+def rate_note(surface, rate_hz, where="in Preferences"):
     """What a servo loop at ``rate_hz`` makes of ``surface``'s roughness grid: "" when a
     stroke at FASTEST_STROKE_MM_S samples each ball of it at least twice, else up to what
     speed it is felt as it is. Faster, the grid's v / g Hz passes half the rate and is felt
     as a coarser ripple than the part has (category 1 at 1 kHz and 120 mm/s: 200 Hz, not
-    1200)."""
+    1200). ``where`` says where the rate is set."""
     beyond = _grid_beyond_rate(surface, rate_hz)
     if beyond is None:
         return ""
     category, grid_mm, fastest = beyond
     return (f"{surface.Label}: roughness category {category}'s {grid_mm:g} mm grid is felt as it is up to "
             f"{fastest:.0f} mm/s at the {float(rate_hz):g} Hz servo rate; stroked faster it is felt as a coarser "
-            f"ripple than the part has. {_RAISE_RATE}")
+            f"ripple than the part has. {_raise_rate(where)}")
 
 
-def rate_notes(doc, rate_hz):
+def rate_notes(doc, rate_hz, where="in Preferences"):
     """What a loop at ``rate_hz`` makes of doc's roughness grids: rate_note for one
     surface it cannot follow, one sentence naming them all for more."""
     beyond = [(s, b) for s in surfaces_of(doc) for b in [_grid_beyond_rate(s, rate_hz)] if b]
     if len(beyond) <= 1:
-        return [rate_note(s, rate_hz) for s, _ in beyond]
+        return [rate_note(s, rate_hz, where) for s, _ in beyond]
     each = ", ".join(f"{s.Label} (category {c}, {g:g} mm) up to {v:.0f} mm/s" for s, (c, g, v) in beyond)
     return [f"At the {float(rate_hz):g} Hz servo rate these roughness grids are felt as they are only when "
-            f"stroked slowly: {each}; faster, they are felt as a coarser ripple than the part has. {_RAISE_RATE}"]
+            f"stroked slowly: {each}; faster, they are felt as a coarser ripple than the part has. {_raise_rate(where)}"]
 
 
 def hidden_part_notes(surface):

@@ -47,7 +47,9 @@ def plot_trace(path, result, doc_scene, summary, title=""):
     x = distance_along_stroke_mm(result)
     fn = np.where(contact, trace["normal_force_n"], np.nan)
     ft = np.where(contact, trace["tangential_force_n"], np.nan)
-    ratio = np.where(sliding, trace["tangential_force_n"] / np.maximum(trace["normal_force_n"], 1e-12), np.nan)
+    # where a vibration takes the push away (a face only pushes) there is no ratio to plot
+    pushed = sliding & (trace["normal_force_n"] > 0)
+    ratio = np.where(pushed, trace["tangential_force_n"] / np.where(pushed, trace["normal_force_n"], 1.0), np.nan)
     window = zoom_window(x, ratio)
     rows = 3 if window else 2
     fig = plt.figure(figsize=(8, 8.4 if window else 6), constrained_layout=True)
@@ -57,6 +59,9 @@ def plot_trace(path, result, doc_scene, summary, title=""):
     top.plot(x, ft, color="tab:red", lw=1.2, label="tangential force $F_t$")
     top.axhline(summary["expected_normal_force_n"], color="tab:blue", ls=":", lw=1,
                 label=f"$k\\cdot$depth = {summary['expected_normal_force_n']:.3f} N")
+    limit = summary.get("force_limit_n")
+    if limit is not None and limit < summary["expected_normal_force_n"]:  # the push is cut there
+        top.axhline(limit, color="black", ls="--", lw=1, label=f"force limit {limit:g} N")
     top.set_ylabel("force (N)")
     _legend_above_data(top)
     top.grid(alpha=0.3)

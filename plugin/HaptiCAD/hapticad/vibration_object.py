@@ -109,30 +109,31 @@ def vibrations_of(doc):
 EVEN_SHARE = 0.25
 
 
-def rate_note(vibration, rate_hz):
+def rate_note(vibration, rate_hz, where="in Preferences"):
     """What a servo loop at ``rate_hz`` makes of ``vibration``'s frequency: "" when it
     renders it evenly (under EVEN_SHARE of the rate), else what is felt. From a quarter to
     half the rate its few samples a cycle meet its peaks in some cycles and miss them in
     others: at 1 kHz a 450 Hz vibration's size beats at 100 Hz. At or above half the rate
     the force's samples alias: at 1 kHz a 0.5 N vibration at 700 Hz was felt at 300 Hz, at
-    500 or 1000 Hz not at all (sampled at its zero crossings, or once a cycle)."""
+    500 or 1000 Hz not at all (sampled at its zero crossings, or once a cycle). ``where``
+    says where the rate is set."""
     f = float(vibration.Frequency)
     if f < EVEN_SHARE * rate_hz or not vibration.Powered:
         return ""
     if f < 0.5 * rate_hz:  # rendered, but with few samples a cycle its peaks are hit or missed
         return (f"{vibration.Label}: {f:g} Hz gets {rate_hz / f:.2g} samples a cycle at the {rate_hz:g} Hz servo "
                 f"rate, so its size swings from cycle to cycle (a beat, not an even buzz); keep it under "
-                f"{EVEN_SHARE * rate_hz:g} Hz or raise the servo rate in Preferences")
+                f"{EVEN_SHARE * rate_hz:g} Hz or raise the servo rate {where}")
     alias = abs(f - rate_hz * round(f / rate_hz))
     felt = (f"felt at {alias:.0f} Hz instead" if 0 < alias < 0.5 * rate_hz
             else "not felt at all")
     return (f"{vibration.Label}: {f:g} Hz is {felt} at the {rate_hz:g} Hz servo rate; keep it under "
-            f"{0.5 * rate_hz:g} Hz (half the rate) or raise the servo rate in Preferences")
+            f"{0.5 * rate_hz:g} Hz (half the rate) or raise the servo rate {where}")
 
 
-def rate_notes(doc, rate_hz):
+def rate_notes(doc, rate_hz, where="in Preferences"):
     """rate_note of every vibration of doc that a loop at ``rate_hz`` cannot render."""
-    return [n for n in (rate_note(v, rate_hz) for v in vibrations_of(doc)) if n]
+    return [n for n in (rate_note(v, rate_hz, where) for v in vibrations_of(doc)) if n]
 
 
 def force_note(vibration, force_limit_n):
