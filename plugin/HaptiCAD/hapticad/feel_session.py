@@ -279,9 +279,18 @@ class LiveSession:
         friction = props.friction
         what = f"{self.doc_scene.face_material.get(name)}" if surface else "untagged"
         law = props.force_travel
+        # what is felt: the renderer holds stiffness and damping to the device's (render_limits)
+        k_most, b_most = self.render_limits.max_stiffness_n_per_m, self.render_limits.max_damping_n_s_per_m
+        k_set, b_set = props.stiffness_n_per_m, props.damping_n_s_per_m
         # a stiffness study's mechanism gives instead of the material: say which
-        give = (f"{props.stiffness_n_per_m * MM:.2f} N/mm" if law is None else
+        give = (f"{min(k_set, k_most) * MM:.2f} N/mm" if law is None else
                 f"{law.max_slope() * MM:.2f} N/mm bending" if law.points == 1 else
                 f"button, operating force {law.force_n[0]:.2f} N")
+        if law is None and k_set > k_most:
+            give += f", the device's most ({k_set * MM:.2f} set)"
+        if b_set > 0:
+            give += f", damping {min(b_set, b_most):.2f} N s/m"
+            if b_set > b_most:
+                give += f", the device's most ({b_set:.2f} set)"
         return (f"{name}: {surface or 'no surface'} ({what}, μs {friction.static_coefficient:.2f}, "
                 f"μd {friction.dynamic_coefficient:.2f}, {give})")

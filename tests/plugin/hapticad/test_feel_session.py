@@ -71,6 +71,28 @@ class FeelSessionTest(unittest.TestCase):
             session.stop()
             raise
 
+    def test_the_face_line_says_what_is_felt_where_the_device_holds_it(self):
+        # the simulated hand renders at most 3 N/mm and 0.5 N s/m: a face set stiffer or
+        # more damped is felt at those, and the line under the view says so
+        surface = self.doc.getObject("HapticSurface")
+        face = self.scene.face_id("Box.Face6")
+        prefs = preferences.Preferences(servo_rate_hz=1000, force_limit_n=3.0)
+        within = feel_session.LiveSession(self.scene, prefs=prefs).describe_face(face)
+        self.assertIn(f"{surface.Stiffness:.2f} N/mm)", within)
+        self.assertNotIn("damping", within)  # none set
+        surface.Stiffness, surface.Damping = 8.0, 5.0
+        self.doc.recompute()
+        scene = build_document_scene(self.doc)
+        session = feel_session.LiveSession(scene, prefs=prefs)
+        self.assertEqual(session.render_limits.max_stiffness_n_per_m, 3000.0)
+        self.assertEqual(session.render_limits.max_damping_n_s_per_m, 0.5)
+        self.assertIn("3.00 N/mm, the device's most (8.00 set), damping 0.50 N s/m, the device's most (5.00 set)",
+                      session.describe_face(face))
+        surface.Damping = 0.2
+        self.doc.recompute()
+        self.assertIn("damping 0.20 N s/m)",
+                      feel_session.LiveSession(build_document_scene(self.doc), prefs=prefs).describe_face(face))
+
     def test_device_choices_start_with_the_simulated_probe(self):
         choices = feel_session.device_choices()
         self.assertEqual(choices[0].path, "simulated")
