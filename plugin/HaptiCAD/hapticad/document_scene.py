@@ -22,7 +22,7 @@ from . import _core
 from . import accuracy as accuracy_presets
 from .surface_compile import compile_surface, compile_vibration, global_shape, point_on_face  # noqa: F401 (re-exported)
 from .surface_object import active_reference_pairs, deleted_parts, surfaces_of
-from .vibration_object import vibrations_of
+from .vibration_object import faceless_note, vibrations_of
 
 MM = 1e-3  # metres per FreeCAD length unit
 
@@ -168,6 +168,9 @@ def _tagging(doc):
             if obj not in objects:
                 objects.append(obj)
     for vibration in vibrating:
+        # a model edit can leave a vibrating part without faces (make_vibration refuses one)
+        if faceless_note(vibration.Part):
+            raise ValueError(f"{vibration.Label}: {faceless_note(vibration.Part)}, or delete {vibration.Label}")
         if vibration.Part not in objects:
             objects.append(vibration.Part)
     return tagged, vibrating, objects

@@ -72,6 +72,14 @@ class HapticVibration(SchemaState):
 
 
 
+def faceless_note(part):
+    """"" when ``part`` has faces, else why a vibration on it is felt nowhere."""
+    if part.Shape.Faces:
+        return ""
+    return (f"{part.Label} has no faces, so the probe touches nothing of it: make a solid or a surface "
+            "vibrate")
+
+
 def validate(obj):
     """Problems with a vibration's current values, as sentences (empty when fine)."""
     problems = []
@@ -79,6 +87,8 @@ def validate(obj):
         problems.append("no part to vibrate")
     elif not hasattr(obj.Part, "Shape") or obj.Part.Shape.isNull():
         problems.append(f"{obj.Part.Label} has no shape to vibrate")
+    elif faceless_note(obj.Part):
+        problems.append(faceless_note(obj.Part))
     axis = [obj.Axis.x, obj.Axis.y, obj.Axis.z]
     if not all(math.isfinite(a) for a in axis):
         problems.append(f"the axis {tuple(axis)} is not three finite numbers")
@@ -175,6 +185,8 @@ def make_vibration(doc, part, frequency_hz=100.0, amplitude_n=0.3, axis=(0.0, 0.
         part = found
     if part.Document != doc or not hasattr(part, "Shape"):
         raise ValueError(f"make_vibration: {part.Name} is not a part of document {doc.Name}")
+    if faceless_note(part):
+        raise ValueError(f"make_vibration: {faceless_note(part)}")
     for label, value, (low, high) in (("frequency_hz", frequency_hz, FREQUENCY_RANGE_HZ),
                                       ("amplitude_n", amplitude_n, AMPLITUDE_RANGE_N)):
         if not (isinstance(value, (int, float)) and low <= value <= high):

@@ -12,6 +12,26 @@ from hapticad.document_scene import build_document_scene
 
 
 class VibrationTest(unittest.TestCase):
+    def test_a_part_without_faces_is_refused_and_one_that_loses_them_is_said(self):
+        import Part
+
+        wire = self.doc.addObject("Part::Feature", "Wire")
+        wire.Shape = Part.makePolygon([App.Vector(0, 0, 0), App.Vector(10, 0, 0), App.Vector(10, 10, 0)])
+        self.doc.recompute()
+        with self.assertRaisesRegex(ValueError, "Wire has no faces, so the probe touches nothing of it"):
+            HaptiCAD.make_vibration(self.doc, wire)
+        self.assertEqual(vibration_object.vibrations_of(self.doc), [])
+        # a part that had faces and lost them in an edit
+        plate = self.doc.addObject("Part::Feature", "Plate")
+        plate.Shape = Part.makeBox(10, 10, 1)
+        self.doc.recompute()
+        v = HaptiCAD.make_vibration(self.doc, plate)
+        plate.Shape = wire.Shape.copy()
+        self.doc.recompute()
+        self.assertIn("Plate has no faces", " ".join(vibration_object.validate(v)))
+        with self.assertRaisesRegex(ValueError, f"{v.Label}: Plate has no faces.*or delete {v.Label}"):
+            build_document_scene(self.doc)
+
     def setUp(self):
         self.doc = App.newDocument("VibrationTest")
         self.razor = self.doc.addObject("Part::Box", "Razor")
