@@ -40,6 +40,7 @@ class DocumentScene:
     face_names: list  # CAD face id -> "Object.FaceN"
     face_surface: dict  # "Object.FaceN" -> name of the HapticSurface tagging it
     face_material: dict  # "Object.FaceN" -> material name
+    face_surface_label: dict = field(default_factory=dict)  # "Object.FaceN" -> the surface's Label, as shown
     shapes: dict = field(default_factory=dict)  # object name -> shape, global placement
     accuracy: object = None  # the accuracy.Accuracy it was built with
     repair: str = ""  # what the core's repair did and left undone, one line
@@ -219,6 +220,7 @@ def recompile_surfaces(doc, doc_scene):
         surfaces=_surface_table(tagged, vibrating, doc_scene.face_names, doc_scene.shapes, doc_scene.face_points),
         face_surface={name: s.Name for name, s in tagged.items()},
         face_material={name: s.Material for name, s in tagged.items()},
+        face_surface_label={name: s.Label for name, s in tagged.items()},
     )
 
 
@@ -280,6 +282,7 @@ def build_document_scene(doc, accuracy=None):
         face_names=face_names,
         face_surface={name: s.Name for name, s in tagged.items()},
         face_material={name: s.Material for name, s in tagged.items()},
+        face_surface_label={name: s.Label for name, s in tagged.items()},
         shapes=shapes,
         accuracy=accuracy,
         repair=report.describe(),

@@ -270,11 +270,11 @@ class LiveSession:
         return surface_object.rate_notes(doc, self.rate_hz)
 
     def describe_face(self, cad_face):
-        """"Object.FaceN: surface (material, mu_s, mu_d, roughness)" of a face, or ""."""
+        """"Object.FaceN: surface label (material, mu_s, mu_d, stiffness) of a face, or ""."""
         if cad_face is None or cad_face < 0 or cad_face >= len(self.doc_scene.face_names):
             return ""
         name = self.doc_scene.face_names[cad_face]
-        surface = self.doc_scene.face_surface.get(name)
+        surface = self.doc_scene.face_surface_label.get(name)  # as the tree shows it
         props = self.doc_scene.surface_properties(cad_face)
         friction = props.friction
         what = f"{self.doc_scene.face_material.get(name)}" if surface else "untagged"

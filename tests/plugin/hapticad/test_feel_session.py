@@ -75,6 +75,7 @@ class FeelSessionTest(unittest.TestCase):
         # the simulated hand renders at most 3 N/mm and 0.5 N s/m: a face set stiffer or
         # more damped is felt at those, and the line under the view says so
         surface = self.doc.getObject("HapticSurface")
+        surface.Label = "Chrome trim"
         face = self.scene.face_id("Box.Face6")
         prefs = preferences.Preferences(servo_rate_hz=1000, force_limit_n=3.0)
         within = feel_session.LiveSession(self.scene, prefs=prefs).describe_face(face)
@@ -88,6 +89,7 @@ class FeelSessionTest(unittest.TestCase):
         self.assertEqual(session.render_limits.max_damping_n_s_per_m, 0.5)
         self.assertIn("3.00 N/mm, the device's most (8.00 set), damping 0.50 N s/m, the device's most (5.00 set)",
                       session.describe_face(face))
+        self.assertTrue(session.describe_face(face).startswith("Box.Face6: Chrome trim (Steel"))  # as the tree names it
         surface.Damping = 0.2
         self.doc.recompute()
         self.assertIn("damping 0.20 N s/m)",
