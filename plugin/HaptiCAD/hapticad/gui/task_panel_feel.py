@@ -276,6 +276,7 @@ class FeelTaskPanel:
             # at once, without running other events in the middle of the edit)
             self.show_message("The part changed: building it again...")
             self.message.repaint()
+        held = set(self.doc_scene.shapes)  # the parts felt until now, by name
         try:
             with busy_cursor():
                 applied = self.session.apply_edit(self.doc, geometry)
@@ -289,8 +290,10 @@ class FeelTaskPanel:
         if applied == "surfaces":
             self.show_message("Surface edited: you feel the change now." + self.session_notes())
         elif geometry:
-            self.show_message("Geometry edited: you feel the new shape now." + _note(self.session.reach_note)
-                              + self.session_notes())
+            gone = sorted(held - set(self.doc_scene.shapes))  # deleted, or their last tag removed
+            lead = (f"{', '.join(gone)} left the scene (deleted, or no longer tagged): you feel the rest now."
+                    if gone else "Geometry edited: you feel the new shape now.")
+            self.show_message(lead + _note(self.session.reach_note) + self.session_notes())
         else:
             self.show_message("Surface edited on a part the session did not hold: the scene was "
                               "built again and you feel it now." + _note(self.session.reach_note)

@@ -492,6 +492,13 @@ class FeelGuiTest(unittest.TestCase):
         h.wait(0.3)
         self.assertIn("built again", h.widget(QtWidgets.QLabel, "feelMessage").text())
         self.assertIn("Other", task_panel_feel_scene().shapes)
+        # deleted while feeling: said as such, not as an edit of its shape
+        self.doc.removeObject("Other")
+        self.doc.recompute()
+        h.wait(0.5)
+        self.assertIn("Other left the scene (deleted, or no longer tagged)",
+                      h.widget(QtWidgets.QLabel, "feelMessage").text())
+        self.assertNotIn("Other", task_panel_feel_scene().shapes)
         self.assertTrue(stop.isEnabled())
         stop.click()
         h.process_events()
