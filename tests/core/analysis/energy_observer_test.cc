@@ -61,7 +61,8 @@ TEST(ColgateBound, IsTwiceTheSpareDampingOverThePeriod) {
 // the servo period jittering by +-30 %. The hand pushes with a constant 0.5 N after
 // striking the wall at 0.2 m/s. The wall is the real renderer on a real scene.
 struct WallRun {
-  double lowest_energy_j;  // the observer's minimum
+  double lowest_energy_j;  // the observer's minimum, crediting the device's damping
+  double lowest_port_j;    // ... of the environment's port alone (b = 0)
   double stored_scale_j;   // k d^2 / 2 at the deepest point: the run's energy scale
   double early_swing_m;    // largest distance from equilibrium, first fifth of contact
   double late_swing_m;     // ... last fifth
@@ -88,8 +89,9 @@ WallRun PressIntoWall(double requested_k, double device_max_k) {
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> jitter(-0.3, 0.3);
   EnergyObserver observer(kDamping);
+  EnergyObserver port;
   double z = 0.002, v = -0.2, t = 0.0, measured_before = z;
-  WallRun run{0.0, 0.0, 0.0, 0.0, false, 0.0};
+  WallRun run{0.0, 0.0, 0.0, 0.0, 0.0, false, 0.0};
   std::vector<double> contact_z;
   double deepest = 0.0;
   for (int tick = 0; tick < 20000; ++tick) {
@@ -110,6 +112,7 @@ WallRun PressIntoWall(double requested_k, double device_max_k) {
     const double decay = std::exp(-kDamping / kMass * period);
     const double z_after = z + v_inf * period + (v - v_inf) * (kMass / kDamping) * (1.0 - decay);
     observer.Observe(out.force_w, Vec3(0, 0, z), Vec3(0, 0, z_after), period);
+    port.Observe(out.force_w, Vec3(0, 0, z), Vec3(0, 0, z_after), period);
     v = v_inf + (v - v_inf) * decay;
     z = z_after;
     t += period;
@@ -124,6 +127,7 @@ WallRun PressIntoWall(double requested_k, double device_max_k) {
         std::max(run.late_swing_m, std::abs(contact_z[contact_z.size() - 1 - i] - equilibrium));
   }
   run.lowest_energy_j = observer.lowest_j();
+  run.lowest_port_j = port.lowest_j();
   run.stored_scale_j = 0.5 * k * deepest * deepest;
   return run;
 }
@@ -135,8 +139,16 @@ TEST(Passivity, TheStiffnessPolicyKeepsAJitteryQuantisedDeviceOnAWallPassive) {
     const WallRun run = PressIntoWall(factor * limit, limit);
     EXPECT_EQ(run.clamped, factor > 1.0) << factor;
     EXPECT_NEAR(run.rendered_k, std::min(factor, 1.0) * limit, 0.02 * limit) << factor;
-    // never made energy beyond a thousandth of what the run stores
+    // never made energy beyond a thousandth of what the run stores. The observer credits
+    // the device's own damping (the least it dissipates, b dx^2 / T): a sampled spring
+    // held by a zero-order hold gives out k dx^2 / 2 a step at its port whatever its
+    // stiffness, so the port alone (Hannaford and Ryu's observer with b = 0) goes negative:
+    // 0 at 0.1x the limit (it settles within an encoder step), -0.04 of the stored energy at
+    // 0.3x, -0.26 from 1x on. What keeps the display passive is the device's damping
+    // beating K T / 2 (Colgate), which the policy's clamp ensures
     EXPECT_GE(run.lowest_energy_j, -1e-3 * run.stored_scale_j) << "factor " << factor;
+    if (factor >= 0.3)
+      EXPECT_LT(run.lowest_port_j, -1e-2 * run.stored_scale_j) << "factor " << factor;
     // the bounce dies down: no oscillation grows
     EXPECT_LT(run.late_swing_m, run.early_swing_m) << factor;
     EXPECT_LT(run.late_swing_m, 2 * 55e-6) << factor;  // settled to the encoder's step
