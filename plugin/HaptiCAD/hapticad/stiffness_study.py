@@ -324,6 +324,15 @@ def device_stiffness_n_per_m(doc, prefs=None):
     LiveSession.render_limits holds it, so a record made in the study's panel keeps the
     stiffness and mark the Feel panel's would. The simulated hand's when the preferences
     choose it, or a device that is not connected now."""
+    return device_render_limits(doc, prefs)[0].max_stiffness_n_per_m
+
+
+def device_render_limits(doc, prefs=None):
+    """(limits, known): the _core.RenderLimits a Feel session on ``doc`` renders with the
+    preferences' device and workspace mapping (device_stiffness_n_per_m's), before the
+    preferences' force limit, and whether they are that device's: False for a device not
+    connected now, whose limits are not known (the simulated hand's stand in). Probes the
+    HID devices: ask once, and rendered_force_limit_n as the preference changes."""
     from . import feel_session, preferences
 
     prefs = prefs or preferences.load()
@@ -335,8 +344,18 @@ def device_stiffness_n_per_m(doc, prefs=None):
             except ValueError:  # nothing tagged: the mapping a session would fit is unknown
                 low, high = np.zeros(3), np.full(3, 0.1)
             mapping = feel_session.workspace_mapping(limits, low, high, prefs)
-            return _core.render_limits_for(limits, mapping).max_stiffness_n_per_m
-    return _core.render_limits_for(_core.simulated_hand_limits(), _core.WorkspaceMapping()).max_stiffness_n_per_m
+            return _core.render_limits_for(limits, mapping), True
+        return _core.render_limits_for(_core.simulated_hand_limits(), _core.WorkspaceMapping()), False
+    return _core.render_limits_for(_core.simulated_hand_limits(), _core.WorkspaceMapping()), True
+
+
+def rendered_force_limit_n(device_limits, force_limit_n):
+    """The largest force a Feel session renders (N), as LiveSession.render_limits holds it:
+    the preferences' ``force_limit_n`` under the device's own limit (``device_limits``:
+    device_render_limits'), the preference alone when the device's limit is not known. A
+    preference above what the device gives is not what is felt: the device's limit is."""
+    limits, known = device_limits
+    return min(float(limits.max_force_n), float(force_limit_n)) if known else float(force_limit_n)
 
 
 def _listed_limits(path):

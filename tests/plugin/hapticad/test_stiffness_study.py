@@ -373,8 +373,8 @@ class StudyTest(unittest.TestCase):
         study.Model = "Bending beam"
         self.assertEqual(stiffness_study.others_note(study),
                          "3 made with the push button model (N), 1 made with the push button model (snap ratio) are "
-                         "kept but not compared with the bending stiffness; the study's Participants (4) counts everyone "
-                         "with a record, of any unit")
+                         "kept but not compared with the bending stiffness; the study's Participants (4) counts "
+                         "everyone with a record, of any unit")
 
     def test_the_slider_takes_the_range_of_what_it_moves_however_that_is_chosen(self):
         self.doc.UndoMode = 1
@@ -472,6 +472,41 @@ class StudyTest(unittest.TestCase):
         # a device of 1.5 N/mm does not hold it: marked so
         record = HaptiCAD.record_preference(study, "Yang", "F", "41-60", 60, 1600, k / 2)
         self.assertEqual((record.design["DeviceStiffness"], cohort.beyond_device(record)), (k / 2 * 1e-3, True))
+
+    def test_the_study_judges_by_the_force_a_feel_session_renders(self):
+        from hapticad import feel_session, preferences
+
+        HaptiCAD.make_study(self.doc, self.head, model="Push button")
+        self.doc.recompute()
+        scene = build_document_scene(self.doc)
+        base = preferences.load()
+        hand = _core.simulated_hand_limits().max_force_n  # 8.9 N
+        # the Preferences' limit under the device's own, as a session renders it: 20 N in the Preferences is the
+        # hand's 8.9 N, 3 N is 3 N, through the workspace mapping too (it scales travel, not force)
+        for device, mapping in (("simulated", "Fit part"), ("sim:hand", "Fixed scale"), ("sim:hand", "Fit part")):
+            for limit in (3.0, 20.0):
+                prefs = dataclasses.replace(base, device=device, workspace_mapping=mapping, workspace_scale=2.0,
+                                            force_limit_n=limit)
+                with self.subTest(device=device, mapping=mapping, limit=limit):
+                    session = feel_session.LiveSession(scene, device=device, prefs=prefs)
+                    try:
+                        rendered = session.render_limits.max_force_n
+                    finally:
+                        session.stop()
+                    limits = stiffness_study.device_render_limits(self.doc, prefs)
+                    self.assertTrue(limits[1])
+                    self.assertEqual(stiffness_study.rendered_force_limit_n(limits, limit), rendered)
+                    self.assertAlmostEqual(rendered, min(hand, limit))
+                    self.assertEqual(limits[0].max_stiffness_n_per_m,
+                                     stiffness_study.device_stiffness_n_per_m(self.doc, prefs))
+        # a device not connected now: its limit is not known, the Preferences' alone is said (its stiffness the
+        # simulated hand's, as before)
+        absent = dataclasses.replace(base, device="hid:not-connected", force_limit_n=20.0)
+        limits = stiffness_study.device_render_limits(self.doc, absent)
+        self.assertFalse(limits[1])
+        self.assertEqual(stiffness_study.rendered_force_limit_n(limits, 20.0), 20.0)
+        self.assertEqual(stiffness_study.device_stiffness_n_per_m(self.doc, absent),
+                         _core.simulated_hand_limits().max_stiffness_n_per_m)
 
     def test_a_stored_implausible_preference_is_still_summarised(self):
         # saved before the range was checked: the study still gives its statistics (the CLI, the panel)

@@ -85,14 +85,16 @@ class StudyTaskPanel(CloseOnlyPanel):
         self.widgets = {}
         self._loading = False
         # asked once (it probes HID devices): what a Feel session renders, the Feel panel's
-        self.device_k = stiffness_study.device_stiffness_n_per_m(self.doc)
+        self.device_limits = stiffness_study.device_render_limits(self.doc)
+        self.device_k = self.device_limits[0].max_stiffness_n_per_m
         self.controls = None
         self.controls_model = None
         # an import's or export's outcome, with the cohort it was said of: kept over the
         # reloads that follow (the study observer's, a turn later) until the cohort changes
         # or the next edit
         self.notice = None
-        self.form = [self._status_box("Stiffness study", "studyStatus"), self._model_box(), self._customise_box(), self._cohort_box()]
+        self.form = [self._status_box("Stiffness study", "studyStatus"), self._model_box(), self._customise_box(),
+                     self._cohort_box()]
         self.watch_closing(self.doc)
         self.load()
         for box in self.form:
@@ -175,6 +177,7 @@ class StudyTaskPanel(CloseOnlyPanel):
         layout = QtWidgets.QVBoxLayout(box)
         self.table = QtWidgets.QTableWidget(0, len(TABLE_COLUMNS))
         self.table.setObjectName("cohortTable")
+        self.table_rows = []  # what each row shows, (texts, tooltip): _show_rows writes what differs
         self.table.setHorizontalHeaderLabels(TABLE_COLUMNS)
         self.table.setEditTriggers(QtWidgets.QAbstractItemView.NoEditTriggers)
         self.table.setSelectionBehavior(QtWidgets.QAbstractItemView.SelectRows)
@@ -249,7 +252,7 @@ class StudyTaskPanel(CloseOnlyPanel):
                f"{obj.Pretravel:g} mm, returning at {obj.OperatingForce * (1 - obj.SnapRatio):.3g} N; bottoms "
                f"out at {obj.TotalTravel:g} mm on its housing, {obj.HousingStiffness:g} N/mm")
         notes = [n for n in (stiffness_study.device_note(obj, self.device_k),
-                             stiffness_study.force_note(obj, preferences.load().force_limit_n),
+                             stiffness_study.force_note(obj, self.force_limit()),
                              stiffness_study.ergonomic_note(obj)) if n]
         override = stiffness_study.material_override(obj)  # the combo still names the material
         self.law_label.setText(law + (f"<br>Modulus edited: {override}." if override else "")
@@ -260,7 +263,7 @@ class StudyTaskPanel(CloseOnlyPanel):
                 self.controls.deleteLater()
             # the researcher's panel: the design among the cohort's preferences shown (not in Feel's)
             self.controls = StudyControls(obj, lambda: self.device_k,
-                                          force_limit=lambda: preferences.load().force_limit_n, show_cohort=True)
+                                          force_limit=self.force_limit, show_cohort=True)
             self.controls.changed.connect(self.load)
             self.controls_holder.addWidget(self.controls)
             let_narrow(self.controls)
@@ -275,21 +278,23 @@ class StudyTaskPanel(CloseOnlyPanel):
             self.status.setText(f"<span style='color:#006000'>✓ {obj.Model} under "
                                 f"{obj.Surface.Label}: {cohort.format_value(value, unit)}. Close, then Feel it.</span>")
 
+    def force_limit(self):
+        """The largest force a Feel session renders (N): the Preferences' limit (read each
+        time: it may change while the panel is open), under the device's own when known."""
+        return stiffness_study.rendered_force_limit_n(self.device_limits, preferences.load().force_limit_n)
+
     def _load_cohort(self):
         records = stiffness_study.comparable_records(self.obj)
         others = len(stiffness_study.records(self.obj)) - len(records)
-        self.table.setRowCount(len(records))
-        for row, r in enumerate(records):
+        shown = []
+        for r in records:
             beyond = cohort.mark(r)  # * felt at the device's limit, † its click never felt
             wrong = "; ".join(cohort.problems(r))  # saved before its range was checked
             tip = "; ".join(t for t in (wrong, cohort.force_limit_meaning([r]) + ": not counted in the statistics"
                                         if cohort.beyond_force_limit(r) else "") if t)
-            for column, text in enumerate((r.name, f"{r.value:.3g} {r.unit}{beyond}{' ⚠' if wrong else ''}", r.gender,
-                                           r.age_band, *("-" if v is None else f"{v:g}" for v in (r.weight_kg,
-                                                                                                  r.height_mm)))):
-                item = QtWidgets.QTableWidgetItem(text)
-                item.setToolTip(tip)
-                self.table.setItem(row, column, item)
+            shown.append(((r.name, f"{r.value:.3g} {r.unit}{beyond}{' ⚠' if wrong else ''}", r.gender, r.age_band,
+                           *("-" if v is None else f"{v:g}" for v in (r.weight_kg, r.height_mm))), tip))
+        self._show_rows(shown)
         rows = cohort.statistics(records)  # not those beyond the force limit (cohort.counted)
         aside = f"<br>{escape(stiffness_study.others_note(self.obj), quote=False)}." if others else ""
         starred = cohort.beyond_device_note(records)  # what the star means for this unit
@@ -321,6 +326,32 @@ class StudyTaskPanel(CloseOnlyPanel):
         value, _ = stiffness_study.design_value(self.obj)
         lines.append("This design: " + cohort.place_design(value, records)[1])
         self.stats.setText(notice + "<br>".join(lines) + aside)
+
+    def _show_rows(self, shown):
+        """Puts ``shown`` (each row's texts and tooltip) in the table, writing only the rows
+        that differ from what it shows: a slider step, which changes no record, writes none.
+        The header stops sizing to contents while cells are written: in a shown table each
+        cell replaced made it measure every row again, quadratic in the cohort (26 s a
+        slider step at 400 participants); it measures once, after."""
+        table = self.table
+        changed = [row for row, cells in enumerate(shown) if row >= len(self.table_rows)
+                   or self.table_rows[row] != cells]
+        if not changed and len(shown) == len(self.table_rows):
+            return
+        header = table.horizontalHeader()
+        header.setSectionResizeMode(QtWidgets.QHeaderView.Fixed)
+        try:
+            table.setRowCount(len(shown))
+            for row in changed:
+                texts, tip = shown[row]
+                for column, text in enumerate(texts):
+                    item = QtWidgets.QTableWidgetItem(text)
+                    item.setToolTip(tip)
+                    table.setItem(row, column, item)
+        finally:
+            # sized to what it holds now, a removed row's text too (a turn later, once)
+            header.setSectionResizeMode(QtWidgets.QHeaderView.ResizeToContents)
+        self.table_rows = shown
 
     def say(self, text):
         """Shows ``text`` above the statistics until the cohort changes or the next edit."""

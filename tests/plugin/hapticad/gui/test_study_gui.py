@@ -152,8 +152,6 @@ class StudyGuiTest(unittest.TestCase):
         h.widen_panel(520)
         h.grab_screen("study_panel.png")
 
-        from hapticad.gui import task_panel_study  # noqa: F401  (the open panel's module)
-
         panel = _open_panel()
         path = os.path.join(self.tmp.name, "cohort.csv")
         self.assertTrue(panel.export_to(path))
@@ -596,6 +594,103 @@ class StudyGuiTest(unittest.TestCase):
         self.assertEqual(study.Participants, 4)
         _scroll_panel_to_end()
         h.grab_screen("study_table_whole.png")
+
+    def test_a_slider_step_rewrites_no_cell_of_the_cohort_table_however_many_participants(self):
+        # each cell replaced in the shown table made its header, sized to its contents, measure every row again:
+        # a step rewrote every cell, twice, in time quadratic in the cohort (26 s a step at 400 participants).
+        # Counted, not timed: a step writes no cell, and a change of the cohort writes with the header held
+        import json
+        import random
+
+        from hapticad import cohort
+
+        study = self.open_study()
+        table = h.widget(QtWidgets.QTableWidget, "cohortTable")
+        header = table.horizontalHeader()
+        writes = []  # how the column was sized as each cell was written
+        write = table.setItem
+
+        def counted(row, column, item):
+            writes.append(header.sectionResizeMode(column))
+            write(row, column, item)
+
+        table.setItem = counted
+        slider = h.widget(QtWidgets.QSlider, "studySlider")
+        rng = random.Random(7)
+        per_step = {}
+        for size in (10, 40, 160):
+            held = [cohort.Record(f"{rng.choice(('Ann', 'Bo', 'Cy'))} {i}", rng.choice(cohort.GENDERS),
+                                  rng.choice(cohort.AGE_BANDS), rng.choice((None, 60.0)), rng.choice((None, 1700.0)),
+                                  round(rng.uniform(0.2, 3.0), 3), "N/mm", stiffness_study.BEAM, {},
+                                  "2026-11-24T15:17:03") for i in range(size)]
+            study.Cohort = json.dumps([r.as_dict() for r in held])
+            h.process_events()
+            self.assertEqual([table.item(row, 0).text() for row in range(table.rowCount())], [r.name for r in held])
+            del writes[:]
+            slider.setValue(40 + size // 10)
+            h.process_events()
+            per_step[size] = len(writes)
+            self.assertAlmostEqual(study.BeamThickness, 2 + 6 * (40 + size // 10) / 200)
+            # what the panel shows is the step's and the cohort's all the same
+            self.assertEqual([(table.item(row, 0).text(), table.item(row, 1).text()) for row in range(size)],
+                             [(r.name, f"{r.value:.3g} N/mm") for r in held])
+            self.assertIn(f"of the {size} participants preferred less",
+                          h.widget(QtWidgets.QLabel, "studyValue").text())
+            self.assertIn(f"all: n {size}, mean", h.widget(QtWidgets.QLabel, "cohortStats").text())
+        self.assertEqual(per_step, {10: 0, 40: 0, 160: 0})
+        # the first removed: every row moves up, each written once, none while the header sizes to contents
+        table.selectRow(0)
+        h.widget(QtWidgets.QPushButton, "removeParticipant").click()
+        h.process_events()
+        self.assertEqual(len(writes), 6 * 159)
+        self.assertEqual(writes.count(QtWidgets.QHeaderView.ResizeToContents), 0)
+        self.assertEqual([table.item(row, 0).text() for row in range(table.rowCount())], [r.name for r in held[1:]])
+        # and the columns sized to what they hold after: a long name removed, its column narrows again
+        held = [r.name for r in stiffness_study.records(study)]
+        HaptiCAD.record_preference(study, "Maximiliane Zu Hohenlohe-Langenburg", "F", "26-40", None, None)
+        h.process_events()
+        wide = table.columnWidth(0)
+        table.selectRow(table.rowCount() - 1)
+        h.widget(QtWidgets.QPushButton, "removeParticipant").click()
+        h.process_events()
+        self.assertEqual([table.item(row, 0).text() for row in range(table.rowCount())], held)
+        self.assertEqual(header.sectionResizeMode(0), QtWidgets.QHeaderView.ResizeToContents)
+        self.assertLess(table.columnWidth(0), wide)
+        self.assertEqual(table.columnWidth(0), max(table.sizeHintForColumn(0), header.sectionSizeHint(0)))
+        h.widen_panel(560)
+        _scroll_panel_to_end()
+        h.grab_screen("study_large_cohort.png")
+
+    def test_the_force_limit_is_the_devices_when_the_preference_is_above_it(self):
+        # the simulated hand renders 8.9 N at most: with 20 N in the Preferences a 12 N click is still never felt,
+        # as a Feel session holds it (LiveSession.render_limits), not judged by the preference alone
+        from hapticad import _core
+
+        hand = _core.simulated_hand_limits().max_force_n
+        self.addCleanup(preferences.update, force_limit_n=preferences.load().force_limit_n)
+        preferences.update(force_limit_n=20.0)
+        study = self.open_study()
+        h.widget(QtWidgets.QComboBox, "Model").setCurrentText("Push button")
+        h.widget(QtWidgets.QDoubleSpinBox, "OperatingForce").setValue(12.0)
+        h.process_events()
+        said = f"the operating force, 12 N, is above the force limit, {hand:.3g} N"
+        self.assertIn(said, h.widget(QtWidgets.QLabel, "studyLaw").text())
+        self.assertIn(said, h.widget(QtWidgets.QLabel, "studyValue").text())
+        fill_participant("Ann")
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        self.assertIn(f"Marked †: above the force limit ({hand:.3g} N)",
+                      h.widget(QtWidgets.QLabel, "studyMessage").text())
+        ann = stiffness_study.records(study)[-1]
+        self.assertEqual((ann.design["ForceLimit"], ann.design["BeyondForceLimit"]), (hand, 1.0))
+        # a preference under the device's limit is the limit, as before
+        preferences.update(force_limit_n=3.0)
+        h.widget(QtWidgets.QDoubleSpinBox, "OperatingForce").setValue(4.0)
+        h.process_events()
+        self.assertIn("the operating force, 4 N, is above the force limit, 3 N",
+                      h.widget(QtWidgets.QLabel, "studyLaw").text())
+        h.widget(QtWidgets.QDoubleSpinBox, "OperatingForce").setValue(2.0)
+        h.process_events()
+        self.assertNotIn("above the force limit", h.widget(QtWidgets.QLabel, "studyLaw").text())
 
     def test_undoing_the_studys_creation_with_its_panel_open_leaves_no_traceback(self):
         self.open_study()
