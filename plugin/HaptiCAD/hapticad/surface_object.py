@@ -527,7 +527,8 @@ def rate_notes(doc, rate_hz, where="in Preferences"):
         return [rate_note(s, rate_hz, where) for s, _ in beyond]
     each = ", ".join(f"{s.Label} (category {c}, {g:g} mm) up to {v:.0f} mm/s" for s, (c, g, v) in beyond)
     return [f"At the {float(rate_hz):g} Hz servo rate these roughness grids are felt as they are only when "
-            f"stroked slowly: {each}; faster, they are felt as a coarser ripple than the part has. {_raise_rate(where)}"]
+            f"stroked slowly: {each}; faster, they are felt as a coarser ripple than the part has. "
+            f"{_raise_rate(where)}"]
 
 
 def hidden_part_notes(surface):

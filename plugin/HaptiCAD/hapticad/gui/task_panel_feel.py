@@ -258,8 +258,8 @@ class FeelTaskPanel:
 
     def session_notes(self):
         """As notes: what the servo rate and the force limit keep a vibration from being
-        felt as set, the roughness grids the servo rate cannot follow, and tagged parts hidden behind what is shown (a fillet made after
-        tagging)."""
+        felt as set, the roughness grids the servo rate cannot follow, and tagged parts hidden
+        behind what is shown (a fillet made after tagging)."""
         # one part under two surfaces is said once
         hidden = list(dict.fromkeys(n for s in surfaces_of(self.doc) for n in hidden_part_notes(s)))
         return "".join(_note(n) for n in self.session.vibration_notes(self.doc)
