@@ -190,17 +190,73 @@ std::string DescribeCutAsciiStl(const std::string& bytes) {
          " with no 'endsolid'" + kTruncated;
 }
 
-std::string DescribeCutStl(const std::string& path) {
-  // as CGAL reads it: ASCII when the first word is "solid"; but a binary file's title may
-  // start with "solid" too, and its data has NULs where ASCII STL has none
-  const std::string head = ReadBytes(path, 4096);
+// As CGAL reads it: ASCII when the first word is "solid"; but a binary file's title may
+// start with "solid" too, and its data has NULs where ASCII STL has none.
+bool IsAsciiStl(const std::string& head) {
   const std::vector<std::string> first = Words(head.substr(0, 64));
-  if (!first.empty() && first[0] == "solid" && head.find('\0') == std::string::npos) {
-    return DescribeCutAsciiStl(ReadBytes(path));
-  }
+  return !first.empty() && first[0] == "solid" && head.find('\0') == std::string::npos;
+}
+
+std::string DescribeCutStl(const std::string& path) {
+  const std::string head = ReadBytes(path, 4096);
+  if (IsAsciiStl(head)) return DescribeCutAsciiStl(ReadBytes(path));
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(path, error);
   return error ? std::string() : DescribeCutBinaryStl(head, size);
+}
+
+// "PATH: face 3 has a vertex that is not finite (0, nan, 1); every vertex needs ..."
+std::string NonFiniteVertex(const std::string& path, std::uint64_t face, const Vec3& v) {
+  std::ostringstream where;
+  where << path << ": face " << face << " has a vertex that is not finite (" << v.x() << ", "
+        << v.y() << ", " << v.z() << "); " << kFiniteVertices;
+  return where.str();
+}
+
+// Binary STL has no shared vertices: CGAL merges equal corners into one, and a NaN corner,
+// which compares neither less nor greater, can be merged into another and vanish, leaving
+// a mesh quietly different from the file. So the file is checked before CGAL reads it:
+// every corner finite, and no more triangles after the count than the count says (CGAL
+// reads the count and drops the rest; some exporters write a count of 0). A file shorter
+// than its count is left to CGAL, which refuses it (DescribeCutBinaryStl says why).
+void CheckBinaryStl(const std::string& path) {
+  constexpr std::size_t kHeader = 84, kTriangle = 50;
+  const std::string head = ReadBytes(path, 4096);
+  if (IsAsciiStl(head) || head.size() < kHeader) return;
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(80);
+  unsigned char count[4];
+  in.read(reinterpret_cast<char*>(count), 4);
+  const std::uint64_t claimed = std::uint64_t{count[0]} | std::uint64_t{count[1]} << 8 |
+                                std::uint64_t{count[2]} << 16 | std::uint64_t{count[3]} << 24;
+  std::error_code error;
+  const std::uint64_t size = std::filesystem::file_size(path, error);
+  if (error) return;
+  const std::uint64_t whole = (size - kHeader) / kTriangle;
+  if (whole > claimed) {
+    throw std::runtime_error(
+        path + ": binary STL claims " + std::to_string(claimed) + " triangle" +
+        (claimed == 1 ? "" : "s") + " but holds " + std::to_string(whole) + " (" +
+        std::to_string(size) + " bytes, where " + std::to_string(claimed) + " take " +
+        std::to_string(kHeader + kTriangle * claimed) +
+        "); its header's count is wrong or the file was joined to another, and reading the "
+        "count would drop the rest");
+  }
+  // the corners of the triangles CGAL will read, a block at a time
+  std::vector<char> block(kTriangle * 4096);
+  for (std::uint64_t first = 0; first < std::min(claimed, whole); first += 4096) {
+    const std::uint64_t n = std::min<std::uint64_t>(4096, std::min(claimed, whole) - first);
+    in.read(block.data(), static_cast<std::streamsize>(n * kTriangle));
+    if (!in) return;
+    for (std::uint64_t t = 0; t < n; ++t) {
+      float xyz[9];  // after the facet's normal (3 floats)
+      std::memcpy(xyz, block.data() + t * kTriangle + 12, sizeof xyz);
+      for (int c = 0; c < 3; ++c) {
+        const Vec3 v(xyz[3 * c], xyz[3 * c + 1], xyz[3 * c + 2]);
+        if (!v.allFinite()) throw std::runtime_error(NonFiniteVertex(path, first + t + 1, v));
+      }
+    }
+  }
 }
 
 // OFF: "OFF", the vertex, face and edge counts, then a vertex a line (3 coordinates, or
@@ -561,6 +617,7 @@ TriangleSoup ReadMeshFile(const std::string& path) {
   if (std::filesystem::file_size(path, error) == 0 && !error) {
     throw std::runtime_error(path + ": the file is empty");
   }
+  if (Extension(path) == "stl") CheckBinaryStl(path);
   using Point = CGAL::Simple_cartesian<double>::Point_3;
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> polygons;
@@ -602,11 +659,7 @@ TriangleSoup ReadMeshFile(const std::string& path) {
     // a binary file reads any bit pattern as a number: said as the text formats say it
     for (const std::size_t v : polygon) {
       if (v < soup.vertices.size() && !soup.vertices[v].allFinite()) {
-        std::ostringstream where;
-        where << path << ": face " << f + 1 << " has a vertex that is not finite ("
-              << soup.vertices[v].x() << ", " << soup.vertices[v].y() << ", "
-              << soup.vertices[v].z() << "); " << kFiniteVertices;
-        throw std::runtime_error(where.str());
+        throw std::runtime_error(NonFiniteVertex(path, f + 1, soup.vertices[v]));
       }
     }
     for (std::size_t k = 1; k + 1 < polygon.size(); ++k) {

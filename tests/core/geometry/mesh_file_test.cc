@@ -270,6 +270,52 @@ TEST_F(MeshFile, ABinaryStlCutShortSaysHowManyTrianglesItHolds) {
   EXPECT_EQ(ReadMeshFile(Write("solid_title_whole.stl", solid_title)).triangles.size(), 12u);
 }
 
+TEST_F(MeshFile, ABinaryStlHoldingMoreThanItsCountIsRefusedNotCut) {
+  // CGAL reads the count and drops the rest: the cube's 12 triangles under a count of 6
+  // read as half a cube, under a count of 0 (some exporters write that) as no mesh
+  EXPECT_EQ(ErrorFor("six.stl", CubeBinaryStl(6)),
+            "binary STL claims 6 triangles but holds 12 (684 bytes, where 6 take 384); its "
+            "header's count is wrong or the file was joined to another, and reading the count "
+            "would drop the rest");
+  EXPECT_EQ(ErrorFor("zero.stl", CubeBinaryStl(0)),
+            "binary STL claims 0 triangles but holds 12 (684 bytes, where 0 take 84); its "
+            "header's count is wrong or the file was joined to another, and reading the count "
+            "would drop the rest");
+  // bytes after the last triangle, fewer than one more, are padding: read as before
+  EXPECT_EQ(
+      ReadMeshFile(Write("padded.stl", CubeBinaryStl() + std::string(49, '\0'))).triangles.size(),
+      12u);
+}
+
+TEST_F(MeshFile, ABinaryStlNanCornerIsRefusedBeforeCgalCanMergeItAway) {
+  // every use of the cube's corner (1, 1, 1) made (nan, nan, nan): CGAL merged it into
+  // another corner and the repair got 9 triangles of a different solid
+  std::string stl = CubeBinaryStl();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::uint64_t first = 0;
+  for (std::size_t t = 0; t < kCubeTriangles.size(); ++t) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (kCubeTriangles[t][c] != 6) continue;
+      if (first == 0) first = t + 1;
+      for (std::size_t k = 0; k < 3; ++k) {
+        std::memcpy(&stl[84 + 50 * t + 12 + 12 * c + 4 * k], &nan, sizeof nan);
+      }
+    }
+  }
+  ASSERT_GT(first, 0u);
+  EXPECT_EQ(ErrorFor("nan_corner.stl", stl),
+            "face " + std::to_string(first) +
+                " has a vertex that is not finite (nan, nan, nan); every vertex needs three "
+                "finite coordinates");
+  // an infinite coordinate alike, in the last triangle
+  std::string inf = CubeBinaryStl();
+  const float infinity = std::numeric_limits<float>::infinity();
+  std::memcpy(&inf[84 + 50 * 11 + 12 + 24 + 8], &infinity, sizeof infinity);
+  const std::string said = ErrorFor("inf_corner.stl", inf);
+  EXPECT_EQ(said.rfind("face 12 has a vertex that is not finite (", 0), 0u) << said;
+  EXPECT_NE(said.find("inf)"), std::string::npos) << said;
+}
+
 TEST_F(MeshFile, AnAsciiStlCutShortSaysWhichFacetItEndsIn) {
   const std::string stl = CubeAsciiStl();
   // cut after the 2nd vertex of the 6th facet

@@ -19,6 +19,8 @@ namespace hapticad {
 // its header ...", "ASCII STL ends inside its 6th facet ..."). OBJ declares no counts: an
 // OBJ cut between two lines reads as a smaller mesh; one cut inside its last line (a
 // vertex or face left short) is refused, and one cut before its faces is named as such.
+// A binary STL holding more whole triangles than its count says is refused too ("binary
+// STL claims 0 triangles but holds 12 ..."): reading the count would drop the rest.
 TriangleSoup ReadMeshFile(const std::string& path);
 
 }  // namespace hapticad
