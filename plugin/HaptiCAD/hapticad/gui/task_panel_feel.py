@@ -69,6 +69,7 @@ class FeelTaskPanel:
         self.doc_scene = None
         self.frames = 0  # display updates with new samples
         self.last_sample = None
+        self._limits_for = self._limits = None  # device_limits' answer, and what it was for
         self.main = self._build()
         # a stiffness study's slider and participant form, next to the session (seed 000 Fig. 10)
         self.study_controls = [StudyControls(study, self.device_stiffness, force_limit=self.force_limit)
@@ -104,6 +105,7 @@ class FeelTaskPanel:
         form = QtWidgets.QFormLayout()
         self.device = QtWidgets.QComboBox()
         self.device.setObjectName("feelDevice")
+        self.device.currentIndexChanged.connect(self._device_chosen)
         form.addRow("Device", self.device)
         self.depth = QtWidgets.QSlider(QtCore.Qt.Horizontal)
         self.depth.setObjectName("feelDepth")
@@ -150,13 +152,25 @@ class FeelTaskPanel:
         keeps its device mark)."""
         if self.session is not None:
             return self.session.render_limits.max_stiffness_n_per_m
-        return stiffness_study.device_stiffness_n_per_m(self.doc)
+        return self.device_limits()[0].max_stiffness_n_per_m
 
     def force_limit(self):
-        """The largest force rendered (N): the running session's, or the preferences' limit."""
+        """The largest force rendered (N): the running session's, or with none running, the
+        one a session started now would have: the preferences' limit under the chosen
+        device's (a 20 N preference on the 8.9 N simulated hand renders 8.9 N)."""
         if self.session is not None:
             return self.session.render_limits.max_force_n
-        return preferences.load().force_limit_n
+        return stiffness_study.rendered_force_limit_n(self.device_limits(), preferences.load().force_limit_n)
+
+    def device_limits(self):
+        """stiffness_study.device_render_limits for the device chosen above and the
+        preferences as they are now; asked again only when either changes (it probes the
+        HID devices, and the study controls ask at every slider step)."""
+        prefs = preferences.load().replace(device=self.device.currentData() or feel_session.SIMULATED)
+        if self._limits_for != prefs:
+            self._limits = stiffness_study.device_render_limits(self.doc, prefs)
+            self._limits_for = prefs
+        return self._limits
 
     def _study_box(self, controls, kind="Stiffness study", icon_name="HaptiCAD_Study"):
         box = QtWidgets.QWidget()
@@ -177,6 +191,12 @@ class FeelTaskPanel:
                 item.setToolTip(choice.problem)
         index = self.device.findData(preferences.load().device)
         self.device.setCurrentIndex(max(index, 0))
+
+    def _device_chosen(self, _index):
+        """Another device: the study notes judge its limits (a session runs on the one it started with)."""
+        if self.session is None:
+            for controls in getattr(self, "study_controls", ()):
+                controls.load()
 
     def depth_mm(self):
         return self.depth.value() * DEPTH_STEP_MM
@@ -384,6 +404,8 @@ class FeelTaskPanel:
         self.set_running(False)
         for controls in self.similarity_controls:  # nothing is felt now: no trial counts as felt
             controls.session_stopped()
+        for controls in self.study_controls:  # their notes now judge what a session started now would render
+            controls.load()
 
     def update_display_final(self):
         trace = self.session.drain()

@@ -221,6 +221,36 @@ class FeelGuiTest(unittest.TestCase):
         self.assertIn(f"{vibration.Label}: 10 N alone it reaches the {limit:g} N force limit",
                       h.widget(QtWidgets.QLabel, "feelMessage").text())
 
+    def test_a_study_is_judged_by_the_devices_force_limit_after_stop_too(self):
+        # the simulated hand renders 8.9 N at most: with 20 N in the Preferences a 12 N click is never felt,
+        # while the session runs and after Stop (the panel then judged by the preference alone, and a
+        # participant recorded after Stop kept 20 N and no mark)
+        from hapticad import _core, stiffness_study
+
+        hand = _core.simulated_hand_limits().max_force_n
+        self.addCleanup(preferences.update, force_limit_n=preferences.load().force_limit_n)
+        preferences.update(force_limit_n=20.0)
+        study = HaptiCAD.make_study(self.doc, HaptiCAD.surfaces_of(self.doc)[0], model="Push button",
+                                    OperatingForce=12.0)
+        panel = self.open_feel()
+        said = f"the operating force, 12 N, is above the force limit, {hand:.3g} N"
+        self.assertIn(said, h.widget(QtWidgets.QLabel, "studyValue").text())
+        h.widget(QtWidgets.QPushButton, "feelStop").click()
+        h.process_events()
+        self.assertIsNone(panel.session)
+        self.assertEqual(panel.force_limit(), hand)
+        self.assertIn(said, h.widget(QtWidgets.QLabel, "studyValue").text())
+        h.widget(QtWidgets.QLineEdit, "participantName").setText("Ann")
+        h.widget(QtWidgets.QComboBox, "participantGender").setCurrentText("F")
+        h.widget(QtWidgets.QComboBox, "participantAge").setCurrentText("26-40")
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        h.process_events()
+        ann = stiffness_study.records(study)[-1]
+        self.assertEqual((ann.design["ForceLimit"], ann.design["BeyondForceLimit"]), (hand, 1.0))
+        # a preference under the device's is the limit, as before
+        preferences.update(force_limit_n=3.0)
+        self.assertEqual(panel.force_limit(), 3.0)
+
     def test_a_vibration_along_the_face_is_drawn_in_the_chart_while_touching(self):
         HaptiCAD.make_vibration(self.doc, self.box, frequency_hz=150.0, amplitude_n=0.3, axis=(1.0, 0.0, 0.0))
         _, chart = self.press_on_the_top()
