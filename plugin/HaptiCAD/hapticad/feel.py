@@ -64,19 +64,28 @@ class StrokePlan:
     p1_m: np.ndarray
 
 
+def _closest_on_surface(doc_scene, point_m, name, fix):
+    """The scene's closest point to a stroke's end ``name`` ("P0", "P1"); raises
+    ValueError saying ``fix`` when it is farther than MAX_START_DISTANCE_MM."""
+    closest = doc_scene.scene.calc_closest_point(point_m)
+    if closest.distance_m > MAX_START_DISTANCE_MM * MM:
+        raise ValueError(
+            f"stroke: {name} is {closest.distance_m / MM:.3f} mm from the nearest surface of the "
+            f"tagged parts (closest point {np.round(np.asarray(closest.point_w) / MM, 3).tolist()} mm "
+            f"on {doc_scene.face_names[closest.cad_face]}); {fix}"
+        )
+    return closest
+
+
 def plan_stroke(doc_scene, stroke):
-    """Waypoints of the scripted probe for a stroke. Raises ValueError if P0 is off the
-    surface."""
+    """Waypoints of the scripted probe for a stroke. Raises ValueError if P0 or P1 is off
+    the surface: the slide runs from P0 to P1 pressed in by the depth, so a P1 off it (a
+    mistyped coordinate) would drive the probe deep into the part or off it into the air."""
     stroke.validate()
     p0 = np.asarray(stroke.p0_mm, float) * MM
     p1 = np.asarray(stroke.p1_mm, float) * MM
-    start = doc_scene.scene.calc_closest_point(p0)
-    if start.distance_m > MAX_START_DISTANCE_MM * MM:
-        raise ValueError(
-            f"stroke: P0 is {start.distance_m / MM:.3f} mm from the nearest surface of the "
-            f"tagged parts (closest point {np.round(np.asarray(start.point_w) / MM, 3).tolist()} mm "
-            f"on {doc_scene.face_names[start.cad_face]}); start the stroke on the surface"
-        )
+    start = _closest_on_surface(doc_scene, p0, "P0", "start the stroke on the surface")
+    _closest_on_surface(doc_scene, p1, "P1", "end the stroke on the surface")
     n = np.asarray(start.normal_w, float)
     clearance = stroke.clearance_mm * MM
     depth = stroke.depth_mm * MM

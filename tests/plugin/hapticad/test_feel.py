@@ -73,7 +73,10 @@ class FeelTest(unittest.TestCase):
 
     def test_bad_strokes_are_refused_with_a_reason(self):
         cases = [
-            (Stroke((10, 20, 35), (50, 20, 35)), "from the nearest surface"),
+            (Stroke((10, 20, 35), (50, 20, 35)), "stroke: P0 is 15.000 mm from the nearest surface"),
+            # a mistyped end: the slide would run 10 mm into the part, or off it into the air
+            (Stroke((10, 20, 20), (50, 20, 10)), "stroke: P1 is 10.000 mm from the nearest surface"),
+            (Stroke((10, 20, 20), (50, 20, 30)), "stroke: P1 is 10.000 mm from the nearest surface"),
             (Stroke((10, 20, 20), (10, 20, 20)), "coincide"),
             (Stroke((10, 20, 20), (50, 20, 20), speed_mm_s=0), "speed"),
             (Stroke((10, 20, 20), (50, 20, 20), depth_mm=-1), "depth"),
