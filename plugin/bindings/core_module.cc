@@ -213,6 +213,7 @@ void DefineTextures(py::module_& m) {
       .def_readwrite("alpha_vis", &ViscousTextureParams::alpha_vis)
       .def_readwrite("period_m", &ViscousTextureParams::period_m);
   m.attr("VISCOUS_SPEED_UNIT_MPS") = kViscousSpeedUnitMps;
+  m.attr("VISCOUS_HARMONICS") = kViscousHarmonics;
   m.attr("PAPER_DC_LEVELS") = kPaperDcLevels;
   m.attr("PAPER_VISCOSITIES") = kPaperViscosities;
   m.def("paper_preset", &PaperPreset, py::arg("dc"), py::arg("vis"));

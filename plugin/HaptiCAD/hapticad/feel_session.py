@@ -263,8 +263,8 @@ class LiveSession:
                 + vibration_object.force_notes(doc, self.render_limits.max_force_n))
 
     def roughness_notes(self, doc):
-        """The roughness grids of doc's surfaces this session's servo rate cannot follow
-        at a brisk stroke (surface_object.rate_note), as sentences."""
+        """The roughness grids and texture gratings of doc's surfaces this session's servo
+        rate cannot follow at a brisk stroke (surface_object.rate_notes), as sentences."""
         from . import surface_object  # FreeCAD's: only when used
 
         return surface_object.rate_notes(doc, self.rate_hz)

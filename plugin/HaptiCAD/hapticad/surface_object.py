@@ -509,26 +509,68 @@ def rate_note(surface, rate_hz, where="in Preferences"):
     stroke at FASTEST_STROKE_MM_S samples each ball of it at least twice, else up to what
     speed it is felt as it is. Faster, the grid's v / g Hz passes half the rate and is felt
     as a coarser ripple than the part has (category 1 at 1 kHz and 120 mm/s: 200 Hz, not
-    1200). ``where`` says where the rate is set."""
+    1200). Then texture_rate_note's sentence for its grating, if any. ``where`` says where
+    the rate is set."""
     beyond = _grid_beyond_rate(surface, rate_hz)
-    if beyond is None:
-        return ""
+    notes = [_grid_note(surface, beyond, rate_hz, where) if beyond else "",
+             texture_rate_note(surface, rate_hz, where)]
+    return " ".join(n for n in notes if n)
+
+
+def _grid_note(surface, beyond, rate_hz, where):
     category, grid_mm, fastest = beyond
     return (f"{surface.Label}: roughness category {category}'s {grid_mm:g} mm grid is felt as it is up to "
             f"{fastest:.0f} mm/s at the {float(rate_hz):g} Hz servo rate; stroked faster it is felt as a coarser "
             f"ripple than the part has. {_raise_rate(where)}")
 
 
+def texture_rate_note(surface, rate_hz, where="in Preferences"):
+    """What a servo loop at ``rate_hz`` makes of ``surface``'s viscous grating (seed 001
+    eq. 2): "" when its highest harmonic, kViscousHarmonics v / lambda Hz, stays under half
+    the rate up to FASTEST_STROKE_MM_S, else up to what speed it is felt as designed.
+    Faster, the harmonics (and past lambda rate / 2, the grating itself) are sampled too
+    rarely and felt at a lower, wrong pitch: a 1 mm grating at 1 kHz is felt as designed
+    up to 125 mm/s, and its fundamental aliases past 500 mm/s."""
+    from . import _core
+    from .preferences import SERVO_RATE_RANGE_HZ
+
+    if surface.Texture == "None":
+        return ""
+    period_mm = float(surface.TexturePeriod)
+    harmonics = _core.VISCOUS_HARMONICS
+    fastest = period_mm * float(rate_hz) / (2 * harmonics)
+    if fastest >= FASTEST_STROKE_MM_S:
+        return ""
+    fundamental = period_mm * float(rate_hz) / 2
+    itself = (f", and beyond {fundamental:.0f} mm/s the grating itself," if fundamental < FASTEST_STROKE_MM_S
+              else "")
+    needed = math.ceil(2 * harmonics * FASTEST_STROKE_MM_S / period_mm)
+    raise_to = (f"raise the servo rate {where} ({needed} Hz follows it to {FASTEST_STROKE_MM_S:.0f} mm/s)"
+                if needed <= SERVO_RATE_RANGE_HZ[1] else
+                f"lengthen the period (at {SERVO_RATE_RANGE_HZ[1]} Hz, "
+                f"{2 * harmonics * FASTEST_STROKE_MM_S / SERVO_RATE_RANGE_HZ[1]:.3g} mm follows it to "
+                f"{FASTEST_STROKE_MM_S:.0f} mm/s)")
+    return (f"{surface.Label}: its {period_mm:g} mm texture grating is felt as designed up to {fastest:.0f} mm/s at "
+            f"the {float(rate_hz):g} Hz servo rate (there its {_ordinal(harmonics)} harmonic reaches half the "
+            f"rate); stroked faster its harmonics{itself} are felt at a lower, wrong pitch. Stroke slower, or "
+            f"{raise_to}")
+
+
+def _ordinal(n):
+    return {1: "1st", 2: "2nd", 3: "3rd"}.get(n, f"{n}th")
+
+
 def rate_notes(doc, rate_hz, where="in Preferences"):
-    """What a loop at ``rate_hz`` makes of doc's roughness grids: rate_note for one
-    surface it cannot follow, one sentence naming them all for more."""
+    """What a loop at ``rate_hz`` makes of doc's roughness grids: one sentence naming all
+    it cannot follow (rate_note's for one); then texture_rate_note's of each grating."""
     beyond = [(s, b) for s in surfaces_of(doc) for b in [_grid_beyond_rate(s, rate_hz)] if b]
+    textures = [n for n in (texture_rate_note(s, rate_hz, where) for s in surfaces_of(doc)) if n]
     if len(beyond) <= 1:
-        return [rate_note(s, rate_hz, where) for s, _ in beyond]
+        return [_grid_note(s, b, rate_hz, where) for s, b in beyond] + textures
     each = ", ".join(f"{s.Label} (category {c}, {g:g} mm) up to {v:.0f} mm/s" for s, (c, g, v) in beyond)
     return [f"At the {float(rate_hz):g} Hz servo rate these roughness grids are felt as they are only when "
             f"stroked slowly: {each}; faster, they are felt as a coarser ripple than the part has. "
-            f"{_raise_rate(where)}"]
+            f"{_raise_rate(where)}"] + textures
 
 
 def hidden_part_notes(surface):

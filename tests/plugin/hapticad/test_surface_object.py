@@ -285,6 +285,70 @@ class MakeSurfaceTest(unittest.TestCase):
         self.assertIn("Lid (category 1, 0.1 mm) up to 50 mm/s, Grip (category 2, 0.3 mm) up to 150 mm/s",
                       surface_object.rate_notes(self.doc, 1000)[0])
 
+    def test_a_grating_the_servo_rate_cannot_follow_says_up_to_what_speed_it_is_felt_as_designed(self):
+        # the paper's 2.5 mm grating at 1 kHz: its 4th harmonic stays under 500 Hz up to 312 mm/s, said nothing
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS", FeelRoughness=False,
+                                  Texture="Custom")
+        s.Label = "Grip"
+        self.assertEqual(surface_object.rate_note(s, 1000), "")
+        s.TexturePeriod = 1.0
+        note = surface_object.rate_note(s, 1000)
+        self.assertEqual(note, "Grip: its 1 mm texture grating is felt as designed up to 125 mm/s at the 1000 Hz servo "
+                               "rate (there its 4th harmonic reaches half the rate); stroked faster its harmonics are "
+                               "felt at a lower, wrong pitch. Stroke slower, or raise the servo rate in Preferences "
+                               "(2160 Hz follows it to 270 mm/s)")
+        self.assertEqual(surface_object.rate_notes(self.doc, 1000), [note])
+        self.assertEqual(surface_object.rate_note(s, 2160), "")
+        s.TexturePeriod = 0.4  # the grating itself aliases past 200 mm/s
+        self.assertIn("up to 50 mm/s", surface_object.rate_note(s, 1000))
+        self.assertIn("its harmonics, and beyond 200 mm/s the grating itself, are felt",
+                      surface_object.rate_note(s, 1000))
+        self.assertIn("(5400 Hz follows it", surface_object.rate_note(s, 1000, where="with --rate"))
+        s.TexturePeriod = 0.1  # no servo rate in Preferences follows it: the period must change
+        self.assertIn("or lengthen the period (at 10000 Hz, 0.216 mm follows it to 270 mm/s)",
+                      surface_object.rate_note(s, 1000))
+        s.Texture = "None"
+        self.assertEqual(surface_object.rate_note(s, 1000), "")
+        # both a grid and a grating: both said
+        s.Texture, s.TexturePeriod, s.FeelRoughness, s.RoughnessCategory = "Custom", 1.0, True, 1
+        both = surface_object.rate_note(s, 1000)
+        self.assertIn("Grip: roughness category 1's 0.1 mm grid", both)
+        self.assertIn("Grip: its 1 mm texture grating", both)
+        self.assertEqual(len(surface_object.rate_notes(self.doc, 1000)), 2)
+
+    def test_a_grating_past_half_the_servo_rate_is_felt_at_its_alias(self):
+        # what texture_rate_note says, measured: a 0.4 mm grating stroked at 250 mm/s is 625 Hz; the 1 kHz loop
+        # renders it at 1000 - 625 = 375 Hz, the 5 kHz loop at 625 Hz
+        import numpy as np
+        from hapticad.document_scene import build_document_scene
+        from hapticad.feel import Stroke, run_stroke_in_servo_loop
+
+        self.box.Length, self.box.Width, self.box.Height = 40, 100, 10
+        self.doc.recompute()
+        HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS", FeelRoughness=False,
+                              Texture="Custom", TexturePeriod=0.4, TextureDC=0.5, TextureBeta=0.4, TextureAlpha=3.0,
+                              TextureFullRange=2.0)
+        scene = build_document_scene(self.doc)
+        peaks = {}
+        for rate in (1000, 5000):
+            # across the grating: its coordinate runs along the face frame's e2, +y on this face
+            result = run_stroke_in_servo_loop(scene, Stroke((20, 10, 10), (20, 90, 10), speed_mm_s=250.0,
+                                                            depth_mm=1.0, rate_hz=rate))
+            trace = result.trace
+            slide = (trace["time_s"] > result.plan.slide_start_s + 0.02) & (trace["time_s"] < result.plan.slide_end_s)
+            lateral = np.linalg.norm(np.asarray(trace["force_n"])[slide][:, :2], axis=1)
+            times = np.asarray(trace["time_s"])[slide]
+            self.assertGreater(len(times), 0.25 * rate)
+            # evenly resampled at the loop's own period (a late tick shifts a sample, not the tone)
+            grid = np.arange(times[0], times[-1], 1.0 / rate)
+            samples = np.interp(grid, times, lateral)
+            spectrum = np.abs(np.fft.rfft((samples - samples.mean()) * np.hanning(len(samples))))
+            peaks[rate] = float(np.fft.rfftfreq(len(samples), 1.0 / rate)[np.argmax(spectrum)])
+        self.assertAlmostEqual(peaks[5000], 625.0, delta=10.0)
+        self.assertAlmostEqual(peaks[1000], 375.0, delta=10.0)
+        self.assertIn("beyond 200 mm/s the grating itself", surface_object.rate_note(HaptiCAD.surfaces_of(self.doc)[0],
+                                                                                     1000))
+
     def test_a_circular_pattern_copied_with_its_part_is_centred_on_the_copy(self):
         # Edit > Duplicate selection with the part: the copy's circles stayed on the
         # original part's hole and moved with the original

@@ -278,7 +278,7 @@ class FeelTaskPanel:
 
     def session_notes(self):
         """As notes: what the servo rate and the force limit keep a vibration from being
-        felt as set, the roughness grids the servo rate cannot follow, and tagged parts hidden
+        felt as set, the roughness grids and gratings the servo rate cannot follow, and tagged parts hidden
         behind what is shown (a fillet made after tagging)."""
         # one part under two surfaces is said once
         hidden = list(dict.fromkeys(n for s in surfaces_of(self.doc) for n in hidden_part_notes(s)))
