@@ -22,7 +22,10 @@ def run_cli(*args, emulate=None):
     env = dict(os.environ)
     env.pop("LD_PRELOAD", None)
     if emulate is not None:
-        env["LD_PRELOAD"] = PRELOAD
+        # LD_PRELOAD splits on spaces: the library by name, found in its folder (a checkout path may have spaces)
+        env["LD_PRELOAD"] = os.path.basename(PRELOAD)
+        env["LD_LIBRARY_PATH"] = os.pathsep.join(p for p in (os.path.dirname(PRELOAD), env.get("LD_LIBRARY_PATH"))
+                                                 if p)
         env["HAPTICAD_HIDEMU"] = emulate
     return subprocess.run([CLI, *args], capture_output=True, text=True, timeout=60, env=env)
 
