@@ -324,6 +324,29 @@ class TaskPanelTest(unittest.TestCase):
         self.assertFalse(h.widget(QtWidgets.QDoubleSpinBox, "TextureDC").isVisibleTo(Gui.getMainWindow()))
         h.press_task_button("Cancel")
 
+    def test_a_grating_finer_than_the_servo_rate_follows_is_said_in_the_status(self):
+        from hapticad import preferences
+
+        self.addCleanup(preferences.update, servo_rate_hz=preferences.load().servo_rate_hz)
+        preferences.update(servo_rate_hz=1000)
+        surface = self.open_new_surface()
+        surface.Label = "Grip"
+        h.widget(QtWidgets.QCheckBox, "FeelRoughness").setChecked(False)
+        h.widget(QtWidgets.QComboBox, "Texture").setCurrentText("Custom")
+        h.process_events()
+        status = h.widget(QtWidgets.QLabel, "status")
+        self.assertNotIn("texture grating", status.text())  # the paper's 2.5 mm: followed to 312 mm/s
+        h.widget(QtWidgets.QDoubleSpinBox, "TexturePeriod").setValue(1.0)
+        h.process_events()
+        self.assertIn("Note: Grip: its 1 mm texture grating is felt as designed up to 125 mm/s at the 1000 Hz servo "
+                      "rate", status.text())
+        h.widen_panel()
+        h.grab_screen("task_panel_grating_rate.png")
+        h.widget(QtWidgets.QDoubleSpinBox, "TexturePeriod").setValue(2.5)
+        h.process_events()
+        self.assertNotIn("texture grating", status.text())
+        h.press_task_button("Cancel")
+
     def test_cancel_on_a_new_surface_removes_it(self):
         self.open_new_surface()
         h.press_task_button("Cancel")
