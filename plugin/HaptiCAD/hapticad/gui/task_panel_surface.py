@@ -24,6 +24,7 @@ from PySide2 import QtCore, QtGui, QtWidgets
 
 from .. import (_core, face_references, icon, materials, preferences, similarity_study, surface_compile,
                surface_object, texture_fit, vibration_object)
+from ..other_edits import OtherEdits
 from ..proxy_state import is_alive
 from ..roughness_text import ra_band
 from .busy_cursor import busy_cursor
@@ -133,6 +134,8 @@ class SurfaceTaskPanel:
         # the document closing under the open panel: stop listening to clicks (it went on
         # asking the deleted surface for its name at every later click) and close
         self.closing = DocumentClosingObserver(self.doc, self.document_closing)
+        # Cancel aborts the transaction, and with it whatever else was done meanwhile: asked first
+        self.other_edits = OtherEdits(self.doc, lambda o: o == self.obj or vibration_object.is_haptic_vibration(o))
         self.set_mode(self.mode)  # the hint and the Add button say whether clicks add faces
         self.load()
         for box in self.form:
@@ -858,6 +861,9 @@ class SurfaceTaskPanel:
     def reject(self):
         if getattr(self, "document_gone", False):
             return True
+        others = self.other_edits.describe() if self.other_edits is not None else ""
+        if others and not self._undo_others_too(others):
+            return False  # the panel stays open
         self._stop_picking()
         # abort before leaving edit mode: resetEdit commits any open transaction
         self.doc.abortTransaction()
@@ -870,7 +876,25 @@ class SurfaceTaskPanel:
             self.obj.ViewObject.Proxy.refresh()
         return True
 
+    def _undo_others_too(self, others):
+        """Asks whether Cancel may undo ``others`` (OtherEdits.describe) with the surface's edits."""
+        box = QtWidgets.QMessageBox(QtWidgets.QMessageBox.Warning, "Cancel the surface's edits",
+                                    f"While this panel was open you also {others}.\n\nCancel undoes everything "
+                                    "done since the panel opened: those too.", parent=Gui.getMainWindow())
+        box.setInformativeText("To keep them, keep editing and press OK (the surface's edits are kept too).")
+        undo = box.addButton("Undo those too", QtWidgets.QMessageBox.DestructiveRole)
+        keep = box.addButton("Keep editing", QtWidgets.QMessageBox.RejectRole)
+        box.setDefaultButton(keep)
+        box.exec_()
+        return box.clickedButton() is undo
+
+    def _stop_watching_others(self):
+        if self.other_edits is not None:
+            self.other_edits.remove()
+            self.other_edits = None
+
     def _stop_picking(self):
+        self._stop_watching_others()
         Gui.Selection.removeObserver(self.picker)
         if self.closing is not None:
             self.closing.remove()
@@ -882,6 +906,7 @@ class SurfaceTaskPanel:
         """The document and the surface are going: nothing of them is touched any more."""
         self.closing = None
         self.document_gone = True
+        self._stop_watching_others()
         Gui.Selection.removeObserver(self.picker)
         if Gui.Control.activeDialog():
             Gui.Control.closeDialog()

@@ -97,10 +97,13 @@ class MessageBoxes:
 
         with h.MessageBoxes() as boxes:
             Gui.runCommand("Std_CloseActiveWindow")
-        boxes.seen  # [("Document not closable", "The document is not closable ...")]"""
+        boxes.seen  # [("Document not closable", "The document is not closable ...")]
 
-    def __init__(self):
+    ``press``: the text of the button to click instead (a box without it is rejected)."""
+
+    def __init__(self, press=None):
         self.seen = []
+        self.press = press
         self.timer = QtCore.QTimer()
         self.timer.setInterval(50)
         self.timer.timeout.connect(self._close)
@@ -109,7 +112,11 @@ class MessageBoxes:
         for box in QtWidgets.QApplication.topLevelWidgets():
             if isinstance(box, QtWidgets.QMessageBox) and box.isVisible():
                 self.seen.append((box.windowTitle(), box.text()))
-                box.reject()
+                chosen = [b for b in box.buttons() if self.press is not None and b.text() == self.press]
+                if chosen:
+                    chosen[0].click()
+                else:
+                    box.reject()
 
     def __enter__(self):
         self.timer.start()

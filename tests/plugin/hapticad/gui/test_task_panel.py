@@ -33,7 +33,8 @@ class TaskPanelTest(unittest.TestCase):
 
     def tearDown(self):
         if Gui.Control.activeDialog():
-            h.press_task_button("Cancel")
+            with h.MessageBoxes(press="Undo those too"):  # a test that failed with other edits made: no hang
+                h.press_task_button("Cancel")
         Gui.Selection.clearSelection()
         App.closeDocument(self.doc.Name)
 
@@ -369,6 +370,39 @@ class TaskPanelTest(unittest.TestCase):
         self.assertNotIn("Touched", surface.State)
         self.assertNotIn("Touched", self.box.State)
 
+    def test_cancel_asks_before_it_undoes_what_was_done_elsewhere_meanwhile(self):
+        # FreeCAD puts every change made while the panel is open into its transaction: Cancel took the box's new
+        # length (set in the property editor meanwhile) with the surface's edits, and said nothing
+        surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS")
+        self.doc.recompute()
+        Gui.ActiveDocument.setEdit(surface.Name, 0)
+        h.process_events()
+        h.widget(QtWidgets.QComboBox, "Material").setCurrentText("Rubber")
+        self.box.Length = 55  # as the property editor sets it
+        self.doc.recompute()
+        with h.MessageBoxes() as boxes:  # Keep editing: the panel stays, nothing is undone
+            h.press_task_button("Cancel")
+        self.assertEqual(len(boxes.seen), 1)
+        self.assertEqual(boxes.seen[0], ("Cancel the surface's edits", "While this panel was open you also changed Box "
+                                         "(Length).\n\nCancel undoes everything done since the panel opened: those "
+                                         "too."))
+        self.assertTrue(Gui.Control.activeDialog())
+        self.assertEqual((surface.Material, float(self.box.Length)), ("Rubber", 55.0))
+        h.widen_panel()
+        with h.MessageBoxes(press="Undo those too") as boxes:
+            h.press_task_button("Cancel")
+        self.assertEqual(len(boxes.seen), 1)
+        self.assertFalse(Gui.Control.activeDialog())
+        self.assertEqual((surface.Material, float(self.box.Length)), ("ABS", 40.0))
+        # nothing else done: Cancel asks nothing, as before
+        Gui.ActiveDocument.setEdit(surface.Name, 0)
+        h.process_events()
+        h.widget(QtWidgets.QComboBox, "Material").setCurrentText("Rubber")
+        with h.MessageBoxes() as boxes:
+            h.press_task_button("Cancel")
+        self.assertEqual(boxes.seen, [])
+        self.assertEqual(surface.Material, "ABS")
+
     def test_faces_are_picked_in_the_3d_view_listed_highlighted_and_removed(self):
         surface = self.open_new_surface()
         h.widget(QtWidgets.QPushButton, "addFaces").setChecked(True)
@@ -533,7 +567,13 @@ class TaskPanelTest(unittest.TestCase):
         self.assertIn("no faces", status.text())
         h.press_task_button("OK")
         self.assertTrue(Gui.Control.activeDialog())
-        h.press_task_button("Cancel")
+        # Guide was made before the panel opened, Stub while it was: Cancel takes Stub with it, and asks
+        with h.MessageBoxes(press="Undo those too") as boxes:
+            h.press_task_button("Cancel")
+        self.assertEqual([text.split(".")[0] for _, text in boxes.seen],
+                         ["While this panel was open you also added Stub"])
+        self.assertIsNone(self.doc.getObject("Stub"))
+        self.assertIsNotNone(self.doc.getObject("Guide"))
 
     def test_the_circular_centre_is_picked_in_the_3d_view(self):
         surface = self.open_new_surface()
