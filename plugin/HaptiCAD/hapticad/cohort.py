@@ -68,33 +68,43 @@ class Record:
 
 def problems(record):
     """What is wrong with a record, as sentences (empty when it can be kept)."""
+    return [sentence for _, sentence in field_problems(record)]
+
+
+def field_problems(record):
+    """problems, each with the field it is about: (field, sentence), the field a Record's
+    and so a CSV column's name (CSV_COLUMNS), for a reader to say which cell is wrong."""
     found = []
     if not record.name.strip():
-        found.append("a participant needs a name (or an alias)")
+        found.append(("name", "a participant needs a name (or an alias)"))
     elif any(unicodedata.category(c) == "Cc" for c in record.name):  # a line break, tab or NUL: shown raw
-        found.append(f"the name {record.name!r} holds a control character (a line break, tab or NUL): "
-                     "give it on one line, of printable characters")
-    for label, text in (("model", record.model), ("time recorded", record.recorded)):  # shown raw too
-        if isinstance(text, str) and any(unicodedata.category(c) == "Cc" for c in text):
-            found.append(f"the {label} {text!r} holds a control character (a line break, tab or NUL)")
+        found.append(("name", f"the name {record.name!r} holds a control character (a line break, tab or NUL): "
+                      "give it on one line, of printable characters"))
+    for column, label, text in (("model", "model", record.model), ("recorded", "time recorded", record.recorded)):
+        if isinstance(text, str) and any(unicodedata.category(c) == "Cc" for c in text):  # shown raw too
+            found.append((column, f"the {label} {text!r} holds a control character (a line break, tab or NUL)"))
     if record.gender not in GENDERS:
-        found.append(f"gender {record.gender!r} is not one of {', '.join(GENDERS)}")
+        found.append(("gender", f"gender {record.gender!r} is not one of {', '.join(GENDERS)}"))
     if record.age_band not in AGE_BANDS:
-        found.append(f"age band {record.age_band!r} is not one of {', '.join(AGE_BANDS)}")
-    for label, value, (low, high), unit in (("weight", record.weight_kg, WEIGHT_RANGE_KG, "kg"),
-                                            ("height", record.height_mm, HEIGHT_RANGE_MM, "mm")):
+        found.append(("age_band", f"age band {record.age_band!r} is not one of {', '.join(AGE_BANDS)}"))
+    for column, label, value, (low, high), unit in (
+            ("weight_kg", "weight", record.weight_kg, WEIGHT_RANGE_KG, "kg"),
+            ("height_mm", "height", record.height_mm, HEIGHT_RANGE_MM, "mm")):
         if value is not None and not (isinstance(value, (int, float)) and low <= value <= high):
-            found.append(f"{label} {value} {unit} is outside {low:g}..{high:g} {unit}"
-                         f"{_other_unit_hint(label, value, low, high)}")
+            found.append((column, f"{label} {value} {unit} is outside {low:g}..{high:g} {unit}"
+                           f"{_other_unit_hint(label, value, low, high)}"))
     if not (isinstance(record.value, (int, float)) and math.isfinite(record.value) and record.value > 0):
-        found.append(f"the preferred value {record.value} must be a number > 0")
+        found.append(("value", f"the preferred value {record.value} must be a number > 0"))
     elif record.unit not in PREFERENCE_RANGES:
-        found.append(f"unit {record.unit!r} is not one of {', '.join(PREFERENCE_RANGES)}")
+        found.append(("unit", f"unit {record.unit!r} is not one of {', '.join(PREFERENCE_RANGES)}"))
     else:
         low, high = PREFERENCE_RANGES[record.unit]
         if not low <= record.value <= high:
-            found.append(f"the preferred value {record.value:g} {record.unit} is outside the plausible "
-                         f"{low:g}..{high:g} {record.unit}")
+            # a stiffness written in N/m under N/mm: said, where a thousandth of it is one
+            per_m = (f": in N/m? that is {record.value / 1000:g} N/mm" if record.unit == "N/mm"
+                     and low <= record.value / 1000 <= high else "")
+            found.append(("value", f"the preferred value {record.value:g} {record.unit} is outside the plausible "
+                          f"{low:g}..{high:g} {record.unit}{per_m}"))
     return found
 
 
@@ -522,9 +532,26 @@ def _separator(header_line):
     return max(split, key=lambda sep: len(split[sep])), False
 
 
+def _where(line, row):
+    """Where a record is, as its file's line, and the spreadsheet's row when that differs
+    (a cell above held line breaks): "line 4 (row 3 in a spreadsheet)"."""
+    return f"line {line}" + (f" (row {row} in a spreadsheet)" if row != line else "")
+
+
+def _column_letter(index):
+    """A spreadsheet's letter of the column at ``index`` (0: A, 25: Z, 26: AA)."""
+    letters = ""
+    index += 1
+    while index:
+        index, rest = divmod(index - 1, 26)
+        letters = chr(ord("A") + rest) + letters
+    return letters
+
+
 def read_csv(path):
     """Records from a CSV written by write_csv (or by hand with its columns). Raises
-    ValueError naming the line of a record that cannot be kept; nothing is returned then."""
+    ValueError naming the line and column of a cell that cannot be kept (read_csv_as_read);
+    nothing is returned then."""
     return read_csv_as_read(path)[0]
 
 
@@ -535,19 +562,22 @@ def read_csv_as_read(path):
     empty cells are skipped as blank lines are. Text cells are kept as given, without the
     apostrophe write_csv guards a formula with (spreadsheet_safe): they are data, shown as
     plain text and never run here; every export guards them again. Raises ValueError
-    naming the line of a record that cannot be kept; nothing is returned then."""
+    naming the line of a record that cannot be kept (and its row in a spreadsheet, when a
+    cell above held line breaks) and the column, by name and letter, of each cell that is
+    wrong; nothing is returned then."""
     name = os.path.basename(path)
     try:
         with open(path, newline="", encoding="utf-8-sig") as handle:  # a spreadsheet's BOM too
             text = handle.read()
         separator, found = _separator(re.split(r"\r\n|\r|\n", text, maxsplit=1)[0])
         reader = csv.DictReader(io.StringIO(text, newline=""), delimiter=separator)
-        rows, after = [], 1
+        rows, after, inside = [], 1, 0
         for row in reader:  # each with the line it starts on (a quoted field may hold line breaks)
             breaks = sum(len(re.findall(r"\r\n|\r|\n", v)) for v in row.values() if isinstance(v, str))
-            if not _blank(row):
-                rows.append((max(after + 1, reader.line_num - breaks), row))
-            after = reader.line_num
+            start = max(after + 1, reader.line_num - breaks)
+            if not _blank(row):  # and the row a spreadsheet shows it on: a cell's line breaks are no rows
+                rows.append((_where(start, start - inside), row))
+            after, inside = reader.line_num, inside + breaks
         header = reader.fieldnames or []
     except UnicodeDecodeError:
         raise ValueError(f"{name}: not UTF-8 text; save it from the spreadsheet as CSV UTF-8") from None
@@ -558,25 +588,42 @@ def read_csv_as_read(path):
                          f"or tabs; its header is {', '.join(header) or 'empty'}")
     numbers = _Numbers(decimal_comma=separator == ";")
     records = []
-    for line, row in rows:
-        missing = [c for c in CSV_COLUMNS[:7] if not row.get(c) and c not in OPTIONAL_COLUMNS]
-        if missing:
-            raise ValueError(f"{name}, line {line}: no {', '.join(missing)}")
-        if any(c.strip() for c in row.get(None) or ()):  # the cells after would be read into the wrong columns
-            raise ValueError(f"{name}, line {line}: more cells than the header has columns (a cell holding a "
-                             f"{SEPARATORS[separator]} without quotes around it?)")
+
+    def cell(column):  # a column as a spreadsheet shows it: its name and letter
+        return f"{column} ({_column_letter(header.index(column))})" if column in header else column
+
+    def number(where, row, column):
+        text = row.get(column)
         try:
-            design = {key: numbers.design_value(text) for key, text in
-                      (item.split("=", 1) for item in _unguarded(row.get("design") or "").split(";") if "=" in item)}
-            record = Record(_unguarded(row["name"]), _unguarded(row["gender"]), _unguarded(row["age_band"]),
-                            numbers.number_or_none(row["weight_kg"]), numbers.number_or_none(row["height_mm"]),
-                            numbers.number(row["value"]), _unguarded(row["unit"]), _unguarded(row.get("model") or ""),
-                            design, _unguarded(row.get("recorded") or ""))
+            return numbers.number_or_none(text) if column in OPTIONAL_COLUMNS else numbers.number(text)
         except ValueError:
-            raise ValueError(f"{name}, line {line}: weight, height and value must be numbers") from None
-        wrong = problems(record)
+            given = (text or "").strip()
+            hint = (": give it with a decimal point (a comma-separated file takes no decimal commas)"
+                    if _DECIMAL_COMMA.fullmatch(given) else " (or empty: not given)" if column in OPTIONAL_COLUMNS
+                    else "")
+            raise ValueError(f"{name}, {where}, column {cell(column)}: {given!r} is not a number{hint}") from None
+
+    for where, row in rows:
+        missing = sorted((c for c in CSV_COLUMNS[:7] if not row.get(c) and c not in OPTIONAL_COLUMNS),
+                         key=header.index)  # left to right, as the file has them
+        if missing:
+            raise ValueError(f"{name}, {where}, column{'s' if len(missing) > 1 else ''} "
+                             f"{', '.join(cell(c) for c in missing)}: empty")
+        extra = [c for c in row.get(None) or () if c.strip()]
+        if extra:  # the cells after would be read into the wrong columns
+            raise ValueError(f"{name}, {where}: more cells than the header has columns, from column "
+                             f"{_column_letter(len(header))} on (a cell holding a {SEPARATORS[separator]} without "
+                             "quotes around it?)")
+        design = {key: numbers.design_value(text) for key, text in
+                  (item.split("=", 1) for item in _unguarded(row.get("design") or "").split(";") if "=" in item)}
+        record = Record(_unguarded(row["name"]), _unguarded(row["gender"]), _unguarded(row["age_band"]),
+                        number(where, row, "weight_kg"), number(where, row, "height_mm"),
+                        number(where, row, "value"), _unguarded(row["unit"]), _unguarded(row.get("model") or ""),
+                        design, _unguarded(row.get("recorded") or ""))
+        wrong = sorted(field_problems(record), key=lambda found: header.index(found[0]) if found[0] in header
+                       else len(header))  # left to right
         if wrong:
-            raise ValueError(f"{name}, line {line}: {'; '.join(wrong)}")
+            raise ValueError(f"{name}, {where}, " + "; ".join(f"column {cell(c)}: {said}" for c, said in wrong))
         records.append(record)
     how = "" if separator == "," else f"{SEPARATORS[separator]}-separated"
     if numbers.read_comma:

@@ -18,7 +18,8 @@ While a study holds, its law replaces the surface's contact stiffness in the Fee
 session (surface_compile), so a slider moving one design parameter (``Adjust``, between
 ``AdjustMin`` and ``AdjustMax``) is felt at the next servo tick. When a participant
 finds the design right, :func:`record_preference` keeps their personal data and the
-value they chose (cohort.Record), saved with the document. App-only.
+value they chose (cohort.Record), saved with the document, and written to disk as it
+comes until the document is saved (study_journal). App-only.
 """
 import json
 import math
@@ -28,7 +29,7 @@ from datetime import datetime
 import FreeCAD as App
 import numpy as np
 
-from . import _core, cohort, materials
+from . import _core, cohort, materials, study_journal
 from .proxy_state import SchemaState, add_hidden_state, add_properties, add_type_tag, is_restoring
 
 TYPE = "HaptiCAD::StiffnessStudy"
@@ -106,6 +107,7 @@ class StiffnessStudy(SchemaState):
         self.setup(obj, new=True)
 
     def setup(self, obj, new=False):
+        study_journal.watch_saves()  # records written to disk until a save holds them
         add_type_tag(obj, TYPE)
         add_properties(obj, PROPERTIES)
         add_hidden_state(obj, HIDDEN_STATE, "Cohort")
@@ -130,6 +132,9 @@ class StiffnessStudy(SchemaState):
                 self._adjust_before = None
 
     def onChanged(self, obj, prop):
+        if prop == "Cohort" and not ("Restore" in obj.State or obj.Document.Restoring):
+            # written to disk until the document is saved, an Undo or Redo too (study_journal)
+            study_journal.cohort_changed(obj)
         if is_restoring(obj):
             return
         if prop == "BeamMaterial" and obj.BeamMaterial in materials.default_database():
@@ -147,6 +152,7 @@ class StiffnessStudy(SchemaState):
             _update_stiffness(obj)
 
     def onDocumentRestored(self, obj):
+        study_journal.opened(obj)  # first: what the file holds is what is saved
         self.setup(obj)
         try:  # documents saved before it counted people counted records
             obj.Participants = cohort.count_participants(records(obj))
@@ -547,6 +553,13 @@ def remove_record(study, index):
     _write_records(study, kept)
 
 
+def add_records(study, more):
+    """Adds ``more`` (cohort.Record) after the study's records, as they are: records made
+    before (put back from study_journal.lost), not judged again. Raises ValueError, adding
+    none, if the stored cohort cannot be read."""
+    _write_records(study, [*records(study), *more])
+
+
 def others_note(study):
     """What the records not compared now (comparable_records) are, naming what differs,
     as a sentence without its full stop, or "": "4 recorded while the slider moved the
@@ -597,8 +610,8 @@ def import_records(study, path):
     does not compare now are kept as its own are (others_note): those its model records
     (a button's operating force or snap ratio) or that it holds already (made before its
     model changed), so its own export comes back whole. Raises ValueError, adding none, on
-    a bad line or on records of a unit this study neither records nor holds (a beam's
-    cohort into a button study)."""
+    a bad line, on records of a unit this study neither records nor holds (a beam's cohort
+    into a button study), or on stiffnesses that read as N/m given as N/mm (per_m_problem)."""
     read, read_as = cohort.read_csv_as_read(path)
     held = records(study)
     _, unit = design_value(study)
@@ -609,6 +622,9 @@ def import_records(study, path):
         of = f" (a {model.lower()}'s {label})" if model else ""
         raise ValueError(f"{path}: {len(other)} record(s) are in {other[0].unit}{of}, this study's preferences "
                          f"in {unit}")
+    per_m = per_m_problem(study, [r for r in read if not any(cohort.same_record(r, h) for h in held)])
+    if per_m:
+        raise ValueError(f"{path}: {per_m}")
 
     def key(r):  # same_record compares within these (numbers with a tolerance, times to a precision)
         return r.name, r.unit
@@ -629,6 +645,79 @@ def import_records(study, path):
         seen.append(r)
     _write_records(study, [*held, *added])
     return Imported(len(added), len(read) - len(added) - repeated, repeated, retimed, read_as)
+
+
+# A stiffness written in N/m under an N/mm unit reads 1000 times too stiff, and up to 1000
+# (a 1 N/mm neck) passes cohort.PREFERENCE_RANGES. Such a value is told from a stiffness of
+# the study's product by how far it lies above the stiffest design the study makes (its
+# slider's range, its design now, what it holds): 30 times, the middle on a log scale of
+# the factor 1000 (sqrt(1000) = 32). A cohort of the product in N/mm lies within the
+# slider's reach give or take what another setup of it makes (seed 000 Table 3's necks,
+# 3.5-4.5 N/mm, and the field notes' toothbrush, 0.56 N/mm, are a factor 8 apart), far
+# under 30 times its stiffest; the stiffest device of the field notes renders 3 N/mm. One
+# in N/m lies 1000 times above its own values, so above 30 times the stiffest for each
+# value over 1/33 of it: a toothbrush slider over h 2-8 mm makes 0.069-4.4 N/mm, so every
+# N/m value of 0.13 N/mm and up is told (400 and 800 for 0.4 and 0.8). A stiffer product's
+# cohort is not refused for good: a slider widened to reach it takes it. Records whose
+# design holds the value as its BendingStiffness were computed by a study (an export):
+# they are what they say.
+PER_M_FACTOR = 30.0
+
+
+def design_reach(study):
+    """(lowest, highest) bending stiffness, N/mm, a beam study's slider makes over its
+    range, the other parameters as they are now, with the design now; None for a button,
+    or when the law cannot be made."""
+    if study.Model != BEAM:
+        return None
+    values = {name: float(getattr(study, name)) for name in ("YoungsModulus", "BeamWidth", "BeamThickness",
+                                                              "BeamLength")}
+    found = [float(study.BendingStiffness)]
+    if study.Adjust in values and float(study.AdjustMin) < float(study.AdjustMax):
+        for end in (float(study.AdjustMin), float(study.AdjustMax)):
+            at = {**values, study.Adjust: end}
+            try:
+                found.append(_core.cantilever_stiffness(at["YoungsModulus"] * 1e9, at["BeamWidth"] * MM,
+                                                        at["BeamThickness"] * MM, at["BeamLength"] * MM) * MM)
+            except ValueError:  # an end the law refuses (a length of 0): slider_problems says so
+                pass
+    found = [k for k in found if math.isfinite(k) and k > 0]
+    return (min(found), max(found)) if found else None
+
+
+def per_m_problem(study, read):
+    """A sentence when stiffnesses among ``read`` (cohort.Record, given as N/mm) read as
+    N/m (PER_M_FACTOR times the stiffest the study makes or holds, and their design does
+    not hold them as its BendingStiffness), else ""."""
+    reach = design_reach(study)
+    if reach is None:
+        return ""
+    held = [r.value for r in records(study) if r.unit == "N/mm" and isinstance(r.value, (int, float))
+            and math.isfinite(r.value)]
+    stiffest = max([reach[1], *held])
+    suspect = [r for r in read if r.unit == "N/mm" and r.value > PER_M_FACTOR * stiffest
+               and not _computed_by_a_study(r)]
+    if not suspect:
+        return ""
+    label, unit = adjust_info(study)
+    shown = ", ".join(f"{r.name} {r.value:g}" for r in suspect[:5]) + (f" and {len(suspect) - 5} more"
+                                                                      if len(suspect) > 5 else "")
+    as_n_per_mm = ", ".join(f"{r.value / 1000:.3g}" for r in suspect[:5]) + (", ..." if len(suspect) > 5 else "")
+    many = len(suspect) != 1
+    they, are = ("they", "are") if many else ("it", "is")
+    return (f"{cohort.plural(len(suspect), 'preference')} given in N/mm ({shown}) {are} over {PER_M_FACTOR:g} "
+            f"times the stiffest this study makes or holds ({stiffest:.3g} N/mm; its slider over the {label} "
+            f"{study.AdjustMin:g}-{study.AdjustMax:g} {unit} makes {reach[0]:.3g}-{reach[1]:.3g} N/mm): {are} "
+            f"{they} in N/m? As N/mm {they} {are} {as_n_per_mm}: divide the value column by 1000 and import again "
+            f"(if {they} {are} N/mm, widen the slider's range to reach {'them' if many else 'it'})")
+
+
+def _computed_by_a_study(record):
+    """Whether a record's design holds its value as the BendingStiffness a study computed."""
+    try:
+        return math.isclose(float(record.design.get("BendingStiffness")), record.value, rel_tol=1e-9)
+    except (TypeError, ValueError):
+        return False
 
 
 # the unit each constrained property is in (its tooltip's), for what is typed into it
@@ -705,15 +794,36 @@ def adjust_expression(study):
     return expression_of(study, study.Adjust)
 
 
-def make_study(doc, surface, model=BEAM, name="StiffnessStudy", **properties):
-    """A study of how ``surface``'s faces give. Properties may be given by name. Raises
-    ValueError on bad input, adding nothing."""
+# what setting a property sets of others (StiffnessStudy.onChanged), in the order make_study
+# sets them, each before what it sets, so that every value given stays as given: the model
+# the slider's parameter (Adjust) when it does not use it, and with it the slider's range;
+# the material the modulus; the slider's parameter its range (AdjustMin, AdjustMax)
+SETS_OTHERS = ("Model", "BeamMaterial", "Adjust")
+# what make_study does not take as a property, and why
+NOT_GIVEN = {"Surface": "give the surface as make_study's second argument",
+             "BendingStiffness": "it is computed from YoungsModulus, BeamWidth, BeamThickness and BeamLength",
+             "Participants": "it counts the participants recorded"}
+
+
+def make_study(doc, surface, model=None, name="StiffnessStudy", **properties):
+    """A study of how ``surface`` (a haptic surface, or its name or label) gives, of
+    ``model`` (MODELS; a bending beam when not given; ``Model=`` is the same). Properties
+    may be given by name, in their units (PROPERTIES' tooltips), in any order: each ends
+    up as given (SETS_OTHERS are set first). Raises ValueError on bad input (an unknown or
+    computed property, a value outside a property's range, a slider parameter the model
+    does not use), adding nothing."""
     from .surface_object import attach_view_provider, is_haptic_surface
 
     if isinstance(surface, str):
         surface = doc.getObject(surface) or next(iter(doc.getObjectsByLabel(surface)), None)
     if surface is None or not is_haptic_surface(surface) or surface.Document != doc:
         raise ValueError("make_study: give a haptic surface of this document")
+    properties = dict(properties)
+    if "Model" in properties:
+        if model is not None and model != properties["Model"]:
+            raise ValueError(f"make_study: model {model!r} and Model {properties['Model']!r} differ: give one")
+        model = properties.pop("Model")
+    model = BEAM if model is None else model
     if model not in MODELS:
         raise ValueError(f"make_study: model {model!r} is not one of {', '.join(MODELS)}")
     existing = study_of(surface)
@@ -722,16 +832,55 @@ def make_study(doc, surface, model=BEAM, name="StiffnessStudy", **properties):
     unknown = [k for k in properties if k not in {p[0] for p in PROPERTIES}]
     if unknown:
         raise ValueError(f"make_study: unknown properties {', '.join(unknown)}")
+    computed = [f"{k} ({why})" for k, why in NOT_GIVEN.items() if k in properties]
+    if computed:
+        raise ValueError(f"make_study: not to be given: {'; '.join(computed)}")
+    wrong = _given_problems(model, properties)
+    if wrong:
+        raise ValueError(f"make_study: {'; '.join(wrong)}")
     obj = doc.addObject("App::FeaturePython", name)
     StiffnessStudy(obj)
     obj.Surface = surface
     obj.Model = model
-    try:  # Adjust first: it sets AdjustMin and AdjustMax to its defaults
-        for key, value in sorted(properties.items(), key=lambda item: item[0] != "Adjust"):
+    try:
+        # what sets others first, in SETS_OTHERS' order; the rest as given (a stable sort)
+        for key, value in sorted(properties.items(), key=lambda item: SETS_OTHERS.index(item[0])
+                                 if item[0] in SETS_OTHERS else len(SETS_OTHERS)):
             setattr(obj, key, value)
+        changed = [f"{key} {value!r} became {getattr(obj, key)!r}" for key, value in properties.items()
+                   if not _holds(getattr(obj, key), value)]
+        if changed:  # the order above keeps them all: a safety net, never silent
+            raise ValueError(", ".join(changed))
     except Exception as exc:  # a value the property refuses: no half-made study
         doc.removeObject(obj.Name)
         raise ValueError(f"make_study: {exc}") from None
     attach_view_provider(obj)
     obj.recompute()
     return obj
+
+
+def _given_problems(model, properties):
+    """What is wrong with values given to make_study, as sentences: a number that is not
+    finite or is outside its property's range (FreeCAD would clamp it, unsaid), a slider
+    parameter the model does not use."""
+    found = []
+    for name, _, _, _, _, constraint in PROPERTIES:
+        if name not in properties or not isinstance(properties[name], (int, float)):
+            continue  # not given, or not a number: the property refuses it when set
+        value = float(properties[name])
+        unit = f" {UNITS[name]}" if UNITS.get(name) else ""
+        if not math.isfinite(value):
+            found.append(f"{name} {value} is not a finite number")
+        elif constraint is not None and not constraint[0] <= value <= constraint[1]:
+            found.append(f"{name} {value:g}{unit} is outside {constraint[0]:g}..{constraint[1]:g}{unit}")
+    adjust = properties.get("Adjust")
+    if adjust is not None and adjust not in ADJUSTABLE[model]:
+        found.append(f"the {model.lower()} model's slider moves {', '.join(ADJUSTABLE[model])}, not {adjust!r}")
+    return found
+
+
+def _holds(now, given):
+    """Whether a property reads back as given (numbers to a relative 1e-12)."""
+    if isinstance(given, (int, float)) and isinstance(now, (int, float)):
+        return math.isclose(float(now), float(given), rel_tol=1e-12, abs_tol=1e-300)
+    return now == given

@@ -139,13 +139,60 @@ class CohortTest(unittest.TestCase):
                 handle.write("Bo,M,26-40,heavy,1800,2.0,N/mm,Bending beam,,\n")
             with self.assertRaises(ValueError) as caught:
                 cohort.read_csv(path)
-            self.assertIn("line 6: weight, height and value must be numbers", str(caught.exception))
+            self.assertIn("cohort.csv, line 6, column weight_kg (D): 'heavy' is not a number (or empty: not given)",
+                          str(caught.exception))
+
+    def test_every_bad_cell_is_named_by_its_line_and_column_as_a_spreadsheet_shows_them(self):
+        # a cell that was no number said "weight, height and value must be numbers", and a value out of range
+        # named no column: a spreadsheet user hunted through the row. Each cell's column is named, with its
+        # letter in this file (the columns here in another order than the export's)
+        columns = ("unit", "value", "name", "gender", "age_band", "weight_kg", "height_mm", "model", "design",
+                   "recorded")
+        good = {"unit": "N/mm", "value": "0.5", "name": "Ann", "gender": "F", "age_band": "18-25", "weight_kg": "58",
+                "height_mm": "1620", "model": "Bending beam", "design": "", "recorded": "2026-11-24T10:00:00"}
+        cases = [({"weight_kg": "heavy"}, "column weight_kg (F): 'heavy' is not a number (or empty: not given)"),
+                 ({"height_mm": "tall"}, "column height_mm (G): 'tall' is not a number (or empty: not given)"),
+                 ({"value": "soft"}, "column value (B): 'soft' is not a number"),
+                 ({"value": ""}, "column value (B): empty"),
+                 ({"name": "", "unit": ""}, "columns unit (A), name (C): empty"),
+                 ({"gender": "X"}, "column gender (D): gender 'X' is not one of F, M, other, not given"),
+                 ({"age_band": "young"}, "column age_band (E): age band 'young' is not one of"),
+                 ({"weight_kg": "5"}, "column weight_kg (F): weight 5.0 kg is outside 10..300 kg"),
+                 ({"height_mm": "90000"}, "column height_mm (G): height 90000.0 mm is outside 500..2500 mm"),
+                 ({"value": "0"}, "column value (B): the preferred value 0.0 must be a number > 0"),
+                 ({"value": "nan"}, "column value (B): the preferred value nan must be a number > 0"),
+                 ({"value": "2000"}, "column value (B): the preferred value 2000 N/mm is outside the plausible "
+                                     "0.0001..1000 N/mm: in N/m? that is 2 N/mm"),
+                 ({"unit": "kN"}, "column unit (A): unit 'kN' is not one of N/mm, N, snap ratio"),
+                 ({"name": " "}, "column name (C): a participant needs a name"),
+                 ({"name": "Ze\x00d"}, "column name (C): the name 'Ze\\x00d' holds a control character"),
+                 ({"model": "Beam\x07"}, "column model (H): the model 'Beam\\x07' holds a control character"),
+                 ({"recorded": "2026\x00"}, "column recorded (J): the time recorded '2026\\x00' holds a control "
+                                            "character"),
+                 ({"gender": "X", "weight_kg": "5"}, "column gender (D): gender 'X' is not one of F, M, other, "
+                                                     "not given; column weight_kg (F): weight 5.0 kg is outside")]
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "cells.csv")
+            for bad, said in cases:
+                with self.subTest(bad=bad):
+                    with open(path, "w", newline="", encoding="utf-8") as handle:
+                        out = csv.writer(handle)
+                        out.writerow(columns)
+                        out.writerow([good[c] for c in columns])
+                        out.writerow([{**good, "design": "x=1\ny=2"}[c] for c in columns])  # a cell over two lines
+                        out.writerow([{**good, **bad}[c] for c in columns])
+                    with self.assertRaises(ValueError) as caught:
+                        cohort.read_csv(path)
+                    self.assertIn(f"cells.csv, line 5 (row 4 in a spreadsheet), {said}", str(caught.exception))
+        self.assertEqual([cohort._column_letter(i) for i in (0, 25, 26, 27, 51, 52, 701, 702)],
+                         ["A", "Z", "AA", "AB", "AZ", "BA", "ZZ", "AAA"])
 
     def test_a_preference_beyond_what_a_hand_can_mean_is_refused_by_its_unit(self):
         def found(value, unit):
             return " | ".join(cohort.problems(cohort.Record("Zed", "M", "18-25", 70, 1700, value, unit, "")))
 
-        self.assertIn("the preferred value 1e+308 N/mm is outside the plausible 0.0001..1000 N/mm", found(1e308, "N/mm"))
+        self.assertIn("the preferred value 1e+308 N/mm is outside the plausible 0.0001..1000 N/mm",
+                      found(1e308, "N/mm"))
         self.assertIn("outside the plausible 0.05..50 N", found(60.0, "N"))
         self.assertIn("outside the plausible 0.01..0.99 snap ratio", found(1.0, "snap ratio"))
         self.assertIn("unit 'kN' is not one of", found(1.0, "kN"))
@@ -158,7 +205,8 @@ class CohortTest(unittest.TestCase):
                 handle.write("Zed,M,18-25,70,1700,1.5e308,N/mm,Bending beam,,\n")
             with self.assertRaises(ValueError) as caught:
                 cohort.read_csv(path)
-            self.assertIn("huge.csv, line 5: the preferred value 1.5e+308 N/mm is outside", str(caught.exception))
+            self.assertIn("huge.csv, line 5, column value (F): the preferred value 1.5e+308 N/mm is outside",
+                          str(caught.exception))
 
     def test_statistics_never_raise_on_stored_values(self):
         # a document saved before the range was checked may hold these: its cohort is still summarised
@@ -215,15 +263,17 @@ class CohortTest(unittest.TestCase):
         good = "Zed,M,18-25,70,1700,0.5,N/mm,Bending beam,,2024\n"
         with tempfile.TemporaryDirectory() as tmp:
             path = os.path.join(tmp, "names.csv")
-            for rows, line in (('"Ze\nd",M,18-25,70,1700,0.5,N/mm,Bending beam,,2024\n', 2),
-                               (good + '"Ze\nd",M,18-25,70,1700,0.5,N/mm,Bending beam,,2024\n', 3),
-                               # a design cell over two lines: the next record starts on line 4
-                               ('Ann,F,18-25,,,0.5,N/mm,Bending beam,"x=1\ny=2",2024\n' + "Ze\x00d" + good[3:], 4)):
+            for rows, line in (('"Ze\nd",M,18-25,70,1700,0.5,N/mm,Bending beam,,2024\n', "line 2"),
+                               (good + '"Ze\nd",M,18-25,70,1700,0.5,N/mm,Bending beam,,2024\n', "line 3"),
+                               # a design cell over two lines: the next record starts on line 4, a
+                               # spreadsheet's row 3
+                               ('Ann,F,18-25,,,0.5,N/mm,Bending beam,"x=1\ny=2",2024\n' + "Ze\x00d" + good[3:],
+                                "line 4 (row 3 in a spreadsheet)")):
                 with open(path, "w", newline="") as handle:
                     handle.write(header + rows)
                 with self.assertRaises(ValueError) as caught:
                     cohort.read_csv(path)
-                self.assertIn(f"names.csv, line {line}: the name", str(caught.exception))
+                self.assertIn(f"names.csv, {line}, column name (A): the name", str(caught.exception))
                 self.assertIn("holds a control character", str(caught.exception))
         self.assertEqual(cohort.namesakes(" ann ", [TABLE_3[0], cohort.Record("Ann", "F", "18-25", None, None, 1.0,
                                                                                "N/mm", "")]), 1)
@@ -347,13 +397,14 @@ class CohortTest(unittest.TestCase):
                 handle.write("Cy,F,18-25,58,1620,0.9,N/mm,Bending beam,,\r\n,,,,,,,,,\r\nDi,X,18-25,,,0.9,N/mm,,,\r\n")
             with self.assertRaises(ValueError) as caught:
                 cohort.read_csv(path)
-            self.assertIn("blank.csv, line 9: gender 'X'", str(caught.exception))
+            self.assertIn("blank.csv, line 9, column gender (B): gender 'X'", str(caught.exception))
             # a row with some cells given is not blank: what it lacks is said
             with open(path, "w", newline="") as handle:
                 handle.write(header + ann + ",,,,,0.9,,,,\r\n")
             with self.assertRaises(ValueError) as caught:
                 cohort.read_csv(path)
-            self.assertIn("blank.csv, line 3: no name, gender, age_band, unit", str(caught.exception))
+            self.assertIn("blank.csv, line 3, columns name (A), gender (B), age_band (C), unit (G): empty",
+                          str(caught.exception))
 
     def test_semicolon_and_tab_files_are_read_and_said_with_their_decimal_commas(self):
         people = [cohort.Record("Smith, John", "M", "26-40", 70.5, 1700, 0.5555555555555556, "N/mm", "Bending beam",
@@ -381,7 +432,8 @@ class CohortTest(unittest.TestCase):
                 handle.write('Bo,M,26-40,"70,5",1700,"1,5",N/mm,Bending beam,,\r\n')
             with self.assertRaises(ValueError) as caught:
                 cohort.read_csv(comma)
-            self.assertIn("comma.csv, line 4: weight, height and value must be numbers", str(caught.exception))
+            self.assertIn("comma.csv, line 4, column weight_kg (D): '70,5' is not a number: give it with a decimal "
+                          "point (a comma-separated file takes no decimal commas)", str(caught.exception))
             # a ';' inside an unquoted cell shifts the cells after it: refused, not read into the wrong columns
             path = os.path.join(tmp, "shifted.csv")
             with open(path, "w", newline="") as handle:
@@ -389,8 +441,8 @@ class CohortTest(unittest.TestCase):
                                                             "BeamThickness=4,5;BendingStiffness=0,9;2026-01-01\n")
             with self.assertRaises(ValueError) as caught:
                 cohort.read_csv(path)
-            self.assertIn("shifted.csv, line 2: more cells than the header has columns (a cell holding a semicolon "
-                          "without quotes around it?)", str(caught.exception))
+            self.assertIn("shifted.csv, line 2: more cells than the header has columns, from column K on (a cell "
+                          "holding a semicolon without quotes around it?)", str(caught.exception))
 
     def test_heights_in_inches_and_weights_in_pounds_say_what_to_give(self):
         def found(weight, height):

@@ -15,7 +15,7 @@ import numpy as np
 import FreeCAD as App
 
 import HaptiCAD
-from hapticad import cohort, stiffness_study
+from hapticad import cohort, stiffness_study, study_journal
 from hapticad.document_scene import build_document_scene, recompile_surfaces
 from hapticad import _core
 from hapticad.feel import Stroke, expected_normal_force_n, run_stroke_in_servo_loop
@@ -46,6 +46,10 @@ class StudyTest(unittest.TestCase):
         self.head = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="PP", FeelRoughness=False)
 
     def tearDown(self):
+        for study in HaptiCAD.studies_of(self.doc):  # records left unsaved are journaled in the test's home
+            path = study_journal.path_for(study)
+            if path is not None and os.path.exists(path):
+                os.remove(path)
         App.closeDocument(self.doc.Name)
 
     def test_a_toothbrush_neck_gives_its_bending_stiffness(self):
@@ -304,7 +308,7 @@ class StudyTest(unittest.TestCase):
                 handle.write("Zed,M,18-25,70,1700,1e308,N/mm,Bending beam,,\n")
             with self.assertRaises(ValueError) as caught:
                 stiffness_study.import_records(study, path)
-            self.assertIn("line 8: the preferred value 1e+308 N/mm is outside", str(caught.exception))
+            self.assertIn("line 8, column value (F): the preferred value 1e+308 N/mm is outside", str(caught.exception))
             self.assertEqual(study.Participants, 5)
 
     def test_an_import_keeps_namesakes_apart_and_a_spreadsheets_save_adds_nobody(self):
@@ -404,6 +408,91 @@ class StudyTest(unittest.TestCase):
             self.doc = App.openDocument(path)
             made = self.doc.getObject(name)
             self.assertEqual((made.Adjust, made.AdjustMin, made.AdjustMax), ("BeamLength", 40.0, 100.0))
+
+    def test_make_study_keeps_every_value_given_in_any_order(self):
+        # the model set after the slider's range gave the slider another parameter and reset its range to that
+        # one's default (AdjustMin 1 became 0.5); the material set after the modulus reset the modulus to its own
+        import itertools
+
+        cases = [{"AdjustMin": 1.0, "AdjustMax": 3.0, "Model": stiffness_study.BUTTON},
+                 {"YoungsModulus": 2.0, "BeamMaterial": "ABS"},
+                 {"AdjustMin": 0.3, "AdjustMax": 0.6, "Adjust": "SnapRatio", "Model": stiffness_study.BUTTON},
+                 {"AdjustMin": 3.0, "AdjustMax": 5.0, "Adjust": "BeamThickness", "BeamMaterial": "ABS",
+                  "YoungsModulus": 1.8}]
+        for case in cases:
+            for order in itertools.permutations(case):
+                given = {key: case[key] for key in order}
+                study = HaptiCAD.make_study(self.doc, self.head, **given)
+                self.assertEqual({key: getattr(study, key) for key in given}, given, f"given in the order {order}")
+                self.doc.removeObject(study.Name)
+        study = HaptiCAD.make_study(self.doc, self.head, model=stiffness_study.BUTTON, AdjustMin=1.0, AdjustMax=3.0)
+        self.assertEqual((study.Adjust, study.AdjustMin, study.AdjustMax), ("OperatingForce", 1.0, 3.0))
+        self.doc.removeObject(study.Name)
+        # what cannot be as given is refused, saying why, and nothing is added (FreeCAD clamped 5000 GPa to
+        # 1000 unsaid; the computed stiffness was overwritten unsaid; a slider parameter the model does not use
+        # was replaced by the model's first)
+        for given, said in (({"YoungsModulus": 5000.0}, "YoungsModulus 5000 GPa is outside 0.001..1000 GPa"),
+                            ({"BeamThickness": float("nan")}, "BeamThickness nan is not a finite number"),
+                            ({"BendingStiffness": 3.0}, "not to be given: BendingStiffness (it is computed from"),
+                            ({"Participants": 3}, "Participants (it counts the participants recorded)"),
+                            ({"Surface": self.head}, "give the surface as make_study's second argument"),
+                            ({"Adjust": "BeamLength", "Model": stiffness_study.BUTTON},
+                             "the push button model's slider moves OperatingForce, SnapRatio, not 'BeamLength'"),
+                            ({"model": stiffness_study.BEAM, "Model": stiffness_study.BUTTON},
+                             "model 'Bending beam' and Model 'Push button' differ: give one")):
+            with self.assertRaises(ValueError) as caught:
+                HaptiCAD.make_study(self.doc, self.head, **given)
+            self.assertIn(said, str(caught.exception))
+            self.assertEqual(HaptiCAD.studies_of(self.doc), [])
+
+    def test_stiffnesses_in_n_per_m_given_as_n_per_mm_are_refused_and_the_products_own_are_not(self):
+        # 400 and 800 (N/m: 0.4 and 0.8 N/mm) under N/mm passed, 1000 N/mm being the plausible top; the toothbrush's
+        # slider over h 2-8 mm makes 0.0694-4.44 N/mm
+        def cohort_file(name, *values, design=None):
+            path = os.path.join(tmp, name)
+            cohort.write_csv(path, [cohort.Record(who, "F", "26-40", None, None, value, "N/mm", stiffness_study.BEAM,
+                                                  dict(design or {}), f"2026-11-24T10:0{i}:00")
+                                    for i, (who, value) in enumerate(zip(("Ann", "Bo", "Cy"), values))])
+            return path
+
+        def fresh_study():
+            for made in HaptiCAD.studies_of(self.doc):
+                self.doc.removeObject(made.Name)
+            return HaptiCAD.make_study(self.doc, self.head)
+
+        with tempfile.TemporaryDirectory() as tmp:
+            study = fresh_study()
+            with self.assertRaises(ValueError) as caught:
+                stiffness_study.import_records(study, cohort_file("per_m.csv", 400.0, 800.0))
+            self.assertIn("per_m.csv: 2 preferences given in N/mm (Ann 400, Bo 800) are over 30 times the stiffest "
+                          "this study makes or holds (4.44 N/mm; its slider over the thickness h 2-8 mm makes "
+                          "0.0694-4.44 N/mm): are they in N/m? As N/mm they are 0.4, 0.8: divide the value column by "
+                          "1000 and import again (if they are N/mm, widen the slider's range to reach them)",
+                          str(caught.exception))
+            self.assertEqual((stiffness_study.records(study), study.Participants), ([], 0))
+            with self.assertRaises(ValueError) as caught:
+                stiffness_study.import_records(study, cohort_file("one.csv", 4.5, 500.0))
+            self.assertIn("1 preference given in N/mm (Bo 500) is over 30 times", str(caught.exception))
+            self.assertIn("is it in N/m? As N/mm it is 0.5: divide", str(caught.exception))
+            self.assertEqual(stiffness_study.records(study), [])  # not Ann's 4.5 either
+            self.assertEqual(stiffness_study.import_records(study, cohort_file("per_mm.csv", 0.4, 0.8)), (2, 0, 0))
+            # the product's own cohorts are not refused: typed by hand, 22 times the slider's stiffest (and Table
+            # 3's 4.5 N/mm); exported by a study of a design set beyond the slider (h 30 mm: 234 N/mm), its design
+            # holding the value it computed
+            study = fresh_study()
+            self.assertEqual(stiffness_study.import_records(study, cohort_file("stiff.csv", 100.0, 4.5)), (2, 0, 0))
+            study = fresh_study()
+            study.BeamThickness = 30.0
+            HaptiCAD.record_preference(study, "Dan", "M", "26-40", None, None)
+            self.assertAlmostEqual(stiffness_study.records(study)[0].value, 0.5556 * 7.5 ** 3, delta=0.1)
+            export = os.path.join(tmp, "export.csv")
+            cohort.write_csv(export, stiffness_study.records(study))
+            study = fresh_study()
+            self.assertEqual(stiffness_study.import_records(study, export), (1, 0, 0))
+            # and a slider widened to reach a stiffer product takes its cohort (h 2-20 mm: up to 69.4 N/mm)
+            study = fresh_study()
+            study.AdjustMax = 20.0
+            self.assertEqual(stiffness_study.import_records(study, cohort_file("per_m.csv", 400.0, 800.0)), (2, 0, 0))
 
     def test_the_slider_ends_say_what_they_do_to_the_design(self):
         study = HaptiCAD.make_study(self.doc, self.head)

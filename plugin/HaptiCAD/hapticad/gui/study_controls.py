@@ -6,7 +6,9 @@ that records their preference with their personal data (Table 3).
 Shown in the study's task panel and, while a Feel session runs on a document with a
 study, in the Feel panel, so the participant presses, moves the slider, presses again,
 and records without stopping. Every change is its own undo step; nothing here waits for
-an OK, so a recorded participant is never lost to a Cancel.
+an OK, so a recorded participant is never lost to a Cancel, and each is written to disk
+as it is recorded until the document is saved (study_journal; a document never saved is
+said to have nowhere to write it).
 """
 from html import escape
 
@@ -14,7 +16,7 @@ import FreeCAD as App
 import shiboken2
 from PySide2 import QtCore, QtWidgets
 
-from .. import cohort, stiffness_study
+from .. import cohort, stiffness_study, study_journal
 from ..proxy_state import is_alive
 from .study_observer import StudyObserver
 
@@ -223,6 +225,9 @@ class StudyControls(QtWidgets.QWidget):
                 + (f"<br><span style='color:#b00000'>Not felt: {'; '.join(problems)}.</span>" if problems else ""))
         finally:
             self._loading = False
+        # shown as it is now: the observer's call for the changes so far (a slider step's
+        # own, a turn later) would load it, and the panel holding it, again
+        self.observer.mark_shown()
 
     def drag_started(self):
         self._dragging = True
@@ -284,8 +289,11 @@ class StudyControls(QtWidgets.QWidget):
         compared = cohort.count_participants(stiffness_study.comparable_records(self.study))
         held = self.study.Participants
         count = cohort.plural(compared, "participant") + (f" compared, {held} in all" if held != compared else "")
+        # a document never saved has nowhere to write its records to as they come (study_journal)
+        unsaved = ("<br><span style='color:#a06000'>The document has never been saved: save it to keep this "
+                   "record on disk.</span>" if study_journal.never_saved(self.study) else "")
         self.show_message(f"Recorded {escape(record.name)}: {cohort.format_value(record.value, record.unit)} "
-                          f"({count}).{beyond}" + again)
+                          f"({count}).{beyond}" + again + unsaved)
         self.clear_participant()  # the next participant starts blank, inheriting nothing
         self.load()
         self.changed.emit()

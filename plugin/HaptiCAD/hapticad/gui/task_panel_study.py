@@ -7,12 +7,17 @@ preferences, CSV export and import.
 Edits go to the study at once, each its own undo step, and the panel has only Close:
 participants recorded during a session are never lost to a Cancel. To feel the design,
 close the panel and press Feel: the Feel panel shows the same slider and form.
+
+Participants recorded since the document was last saved are written to disk as they come
+(study_journal): when the document was closed without saving them, or FreeCAD ended, the
+panel offers them back (Put back, one undo step) or to drop them. A document never saved
+has nowhere to be written from: the panel says its records are on disk only once saved.
 """
 from html import escape
 
 from PySide2 import QtCore, QtGui, QtWidgets
 
-from .. import cohort, preferences, stiffness_study
+from .. import cohort, preferences, stiffness_study, study_journal
 from ..proxy_state import is_alive
 from .narrow import let_narrow
 from .study_controls import StudyControls, set_study_property
@@ -95,6 +100,7 @@ class StudyTaskPanel(CloseOnlyPanel):
         self.notice = None
         self.form = [self._status_box("Stiffness study", "studyStatus"), self._model_box(), self._customise_box(),
                      self._cohort_box()]
+        self._journal_row(self.form[0].layout())
         self.watch_closing(self.doc)
         self.load()
         for box in self.form:
@@ -203,16 +209,42 @@ class StudyTaskPanel(CloseOnlyPanel):
         layout.addWidget(self.stats)
         return box
 
+    def _journal_row(self, layout):
+        """Under the status, at the top where the panel opens: participants recorded and lost
+        unsaved (the document closed, FreeCAD ended), offered back or dropped; a document
+        never saved, said to hold its records nowhere on disk yet."""
+        self.journal_label = QtWidgets.QLabel()
+        self.journal_label.setObjectName("cohortJournal")
+        self.journal_label.setWordWrap(True)
+        layout.addWidget(self.journal_label)
+        lost_row = QtWidgets.QHBoxLayout()
+        self.put_back_button = QtWidgets.QPushButton()
+        self.put_back_button.setObjectName("putBackParticipants")
+        self.put_back_button.setToolTip("Add them to the cohort again (one undo step), then save the document")
+        self.put_back_button.clicked.connect(self.put_back)
+        lost_row.addWidget(self.put_back_button, 1)
+        self.drop_button = QtWidgets.QPushButton("Drop")
+        self.drop_button.setObjectName("dropLostParticipants")
+        self.drop_button.setToolTip("Forget them for good (it asks first)")
+        self.drop_button.clicked.connect(self.drop_lost)
+        lost_row.addWidget(self.drop_button)
+        layout.addLayout(lost_row)
+
     # --- object -> widgets -------------------------------------------------------------
 
-    def load(self):
+    def load(self, controls=True):
+        """Shows the study as it is; ``controls``: the slider and form too (not when they
+        asked, having just shown it themselves)."""
         self._loading = True
         try:
-            self._load()
+            self._load(controls)
         finally:
             self._loading = False
 
-    def _load(self):
+    def _controls_changed(self):
+        self.load(controls=False)
+
+    def _load(self, controls=True):
         obj = self.obj
         self.surface_label.setText(obj.Surface.Label if obj.Surface is not None else "none")
         for name, widget in self.widgets.items():
@@ -259,16 +291,17 @@ class StudyTaskPanel(CloseOnlyPanel):
                                + "".join(f"<br><span style='color:#a06000'>Note: {n}.</span>" for n in notes))
         if self.controls is None or self.controls_model != obj.Model:  # "softer" or "lighter"
             if self.controls is not None:
+                self.controls.observer.remove()  # its call due would load the panel again
                 self.controls.setParent(None)
                 self.controls.deleteLater()
             # the researcher's panel: the design among the cohort's preferences shown (not in Feel's)
             self.controls = StudyControls(obj, lambda: self.device_k,
                                           force_limit=self.force_limit, show_cohort=True)
-            self.controls.changed.connect(self.load)
+            self.controls.changed.connect(self._controls_changed)  # they have shown the change
             self.controls_holder.addWidget(self.controls)
             let_narrow(self.controls)
             self.controls_model = obj.Model
-        else:
+        elif controls:
             self.controls.load()
         self._load_cohort()
         problems = stiffness_study.validate(obj)
@@ -283,7 +316,33 @@ class StudyTaskPanel(CloseOnlyPanel):
         time: it may change while the panel is open), under the device's own when known."""
         return stiffness_study.rendered_force_limit_n(self.device_limits, preferences.load().force_limit_n)
 
+    def _load_journal(self):
+        """What is not on disk: records lost unsaved (offered back), a document never saved,
+        a journal that could not be written."""
+        lost = study_journal.lost(self.obj)
+        self.put_back_button.setVisible(bool(lost))
+        self.drop_button.setVisible(bool(lost))
+        notes = []
+        if lost:
+            many = len(lost) != 1
+            self.put_back_button.setText(f"Put back {cohort.plural(len(lost), 'record')} ({_names(lost)})")
+            notes.append(f"<span style='color:#b00000'>⚠ {cohort.plural(len(lost), 'participant record')} "
+                         f"({escape(_names(lost))}) recorded here after the document was last saved "
+                         f"{'are' if many else 'is'} not in it: it was closed without saving, or FreeCAD ended. "
+                         f"Put {'them' if many else 'it'} back, then save the document.</span>")
+        if study_journal.never_saved(self.obj):
+            notes.append("<span style='color:#a06000'>This document has never been saved: the participants "
+                         "recorded are on disk only once it is saved (from then on, each is written to disk as "
+                         "it is recorded).</span>")
+        failed = study_journal.failure(self.obj)
+        if failed:
+            notes.append(f"<span style='color:#b00000'>⚠ The participants recorded since the last save could not "
+                         f"be written to disk as they came ({escape(failed)}): save the document now.</span>")
+        self.journal_label.setText("<br>".join(notes))
+        self.journal_label.setVisible(bool(notes))
+
     def _load_cohort(self):
+        self._load_journal()
         records = stiffness_study.comparable_records(self.obj)
         others = len(stiffness_study.records(self.obj)) - len(records)
         shown = []
@@ -395,6 +454,44 @@ class StudyTaskPanel(CloseOnlyPanel):
         self.doc.commitTransaction()
         self.load()
 
+    def put_back(self):
+        """Adds the records lost unsaved (study_journal.lost) to the cohort, one undo step;
+        how many were put back."""
+        lost = study_journal.lost(self.obj)
+        if not lost or not self._alive():
+            return 0
+        self.doc.openTransaction("Put back participants recorded unsaved")
+        try:
+            stiffness_study.add_records(self.obj, lost)
+        except ValueError as exc:  # an unreadable stored cohort
+            self.doc.abortTransaction()
+            self.say(f"<span style='color:#b00000'>Not put back: {escape(str(exc))}</span>")
+            return 0
+        self.doc.commitTransaction()
+        many = len(lost) != 1
+        self.say(f"Put back {cohort.plural(len(lost), 'record')} ({escape(_names(lost))}). Save the document to "
+                 f"keep {'them' if many else 'it'} on disk.")
+        return len(lost)
+
+    def drop_lost(self):
+        """Forgets the records lost unsaved, when the designer says so; True if dropped."""
+        lost = study_journal.lost(self.obj)
+        many = len(lost) != 1
+        if not lost or QtWidgets.QMessageBox.question(
+                self.form[-1], "Drop participant records",
+                f"Drop {cohort.plural(len(lost), 'record')} ({_names(lost)}) for good? No saved document holds "
+                f"{'them' if many else 'it'}.",
+                QtWidgets.QMessageBox.Yes | QtWidgets.QMessageBox.No,
+                QtWidgets.QMessageBox.No) != QtWidgets.QMessageBox.Yes:
+            return False
+        try:
+            study_journal.drop(self.obj, lost)
+        except OSError as exc:
+            self.say(f"<span style='color:#b00000'>Not dropped: {escape(str(exc))}</span>")
+            return False
+        self.say(f"Dropped {cohort.plural(len(lost), 'record')} ({escape(_names(lost))}).")
+        return True
+
     def choose_export(self):
         path, _ = QtWidgets.QFileDialog.getSaveFileName(None, "Export the cohort", f"{self.obj.Label}.csv",
                                                         "CSV (*.csv)")
@@ -437,3 +534,9 @@ class StudyTaskPanel(CloseOnlyPanel):
                  + (f" Read as {escape(result.read_as)}." if result.read_as else ""))
         return added
 
+
+def _names(records, shown=5):
+    """Whose ``records`` are, as plain text: "Bo, Cy", "Bo, Cy, Dan, Eve, Fay and 3 more"."""
+    names = [r.name for r in records]
+    more = len(names) - shown
+    return ", ".join(names[:shown]) + (f" and {more} more" if more > 0 else "")

@@ -16,7 +16,7 @@ import FreeCADGui as Gui
 from PySide2 import QtCore, QtGui, QtWidgets
 
 import HaptiCAD
-from hapticad import preferences, stiffness_study
+from hapticad import preferences, stiffness_study, study_journal
 from hapticad.gui import task_panel_feel
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -70,6 +70,10 @@ class StudyGuiTest(unittest.TestCase):
         if Gui.Control.activeDialog():
             h.press_task_button("Close")
         Gui.Selection.clearSelection()
+        for study in HaptiCAD.studies_of(self.doc):  # records left unsaved are journaled in the test's home
+            path = study_journal.path_for(study)
+            if path is not None and os.path.exists(path):
+                os.remove(path)
         App.closeDocument(self.doc.Name)
         self.tmp.cleanup()
 
@@ -213,8 +217,8 @@ class StudyGuiTest(unittest.TestCase):
                          "Zed,M,18-25,70,1700,1e308,N/mm,Bending beam,,2024-01-01T00:00:00\n")
         self.assertEqual(_open_panel().import_from(path), 0)
         h.process_events()
-        self.assertIn("Nothing imported: huge.csv, line 2: the preferred value 1e+308 N/mm is outside",
-                      h.widget(QtWidgets.QLabel, "cohortStats").text())
+        self.assertIn("Nothing imported: huge.csv, line 2, column value (F): the preferred value 1e+308 N/mm is "
+                      "outside", h.widget(QtWidgets.QLabel, "cohortStats").text())
         self.assertEqual(study.Participants, 1)
         # a row listed twice is one participant, and the panel says so
         with open(path, "w") as handle:
@@ -701,6 +705,148 @@ class StudyGuiTest(unittest.TestCase):
         self.assertEqual(HaptiCAD.studies_of(self.doc), [])
         self.assertFalse(Gui.Control.activeDialog())
         self.assertEqual([e for e in errors if "study" in e or "already deleted" in e], [])
+
+    def test_participants_lost_with_an_unsaved_close_are_offered_back_and_put_back_as_one_step(self):
+        # a recorded participant lived only in the document until it was saved: FreeCAD closed
+        # unsaved (or crashed) lost the afternoon's cohort. Now each is written to disk as it comes
+        study = self.open_study()
+        journal = h.widget(QtWidgets.QLabel, "cohortJournal")
+        self.assertIn("This document has never been saved: the participants recorded are on disk only once it "
+                      "is saved", journal.text())
+        slider = h.widget(QtWidgets.QSlider, "studySlider")
+        fill_participant("Ann")
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        self.assertIn("The document has never been saved: save it to keep this record on disk",
+                      h.widget(QtWidgets.QLabel, "studyMessage").text())
+        path = os.path.join(self.tmp.name, "toothbrush.FCStd")
+        self.doc.saveAs(path)
+        h.process_events()
+        self.assertTrue(journal.isHidden())  # saved: nothing to say
+        for name, position in (("Bo", 120), ("Cy", 160)):
+            slider.setValue(position)
+            fill_participant(name, "F")
+            h.widget(QtWidgets.QPushButton, "recordPreference").click()
+            self.assertNotIn("never been saved", h.widget(QtWidgets.QLabel, "studyMessage").text())
+        lost = stiffness_study.records(study)[1:]
+        h.press_task_button("Close")
+        name, surface = study.Name, self.surface.Name
+        App.closeDocument(self.doc.Name)  # unsaved, as a crash leaves it
+        self.doc = App.openDocument(path)
+        self.doc.UndoMode = 1
+        self.surface = self.doc.getObject(surface)
+        study = self.open_study()
+        self.assertEqual(study.Name, name)
+        table = h.widget(QtWidgets.QTableWidget, "cohortTable")
+        self.assertEqual([table.item(r, 0).text() for r in range(table.rowCount())], ["Ann"])
+        journal = h.widget(QtWidgets.QLabel, "cohortJournal")
+        put_back = h.widget(QtWidgets.QPushButton, "putBackParticipants")
+        drop = h.widget(QtWidgets.QPushButton, "dropLostParticipants")
+        self.assertIn("2 participant records (Bo, Cy) recorded here after the document was last saved are not in "
+                      "it: it was closed without saving, or FreeCAD ended. Put them back, then save the document.",
+                      journal.text())
+        self.assertEqual(put_back.text(), "Put back 2 records (Bo, Cy)")
+        self.assertFalse(put_back.isHidden())
+        self.assertFalse(drop.isHidden())
+        h.widen_panel(560)
+        h.scroll_to(put_back)
+        h.grab_screen("study_put_back.png")
+        # put back, one undo step, exactly the records lost (their values and designs as recorded)
+        steps = self.doc.UndoCount
+        put_back.click()
+        h.process_events()
+        self.assertEqual([r.as_dict() for r in stiffness_study.records(study)[1:]], [r.as_dict() for r in lost])
+        self.assertEqual([table.item(r, 0).text() for r in range(table.rowCount())], ["Ann", "Bo", "Cy"])
+        self.assertEqual(study.Participants, 3)
+        self.assertEqual(self.doc.UndoCount, steps + 1)
+        self.assertEqual(self.doc.UndoNames[0], "Put back participants recorded unsaved")
+        self.assertIn("Put back 2 records (Bo, Cy). Save the document to keep them on disk.",
+                      h.widget(QtWidgets.QLabel, "cohortStats").text())
+        self.assertTrue(put_back.isHidden())
+        self.assertTrue(journal.isHidden())
+        self.doc.undo()  # taken back as one: offered again
+        h.process_events()
+        self.assertEqual(table.rowCount(), 1)
+        self.assertFalse(put_back.isHidden())
+        # dropped only when the designer says so
+        with _Answer(QtWidgets.QMessageBox.No) as asked:
+            drop.click()
+        self.assertEqual(asked.seen, ["Drop 2 records (Bo, Cy) for good? No saved document holds them."])
+        self.assertFalse(put_back.isHidden())
+        with _Answer(QtWidgets.QMessageBox.Yes):
+            drop.click()
+        h.process_events()
+        self.assertTrue(put_back.isHidden())
+        self.assertIn("Dropped 2 records (Bo, Cy).", h.widget(QtWidgets.QLabel, "cohortStats").text())
+        self.assertEqual(study_journal.lost(study), [])
+
+    def test_a_slider_step_loads_the_panel_and_its_controls_once(self):
+        # each step loaded the panel at once, then again a turn later through the study observer (and the
+        # slider and form four times): counted, per step, per position of a drag, per edit and per undo
+        study = self.open_study()
+        panel = _open_panel()
+        loads = {"panel": 0, "controls": 0}
+        load_panel, load_controls = panel._load, panel.controls.load
+
+        def counted_panel(*args, **kwargs):
+            loads["panel"] += 1
+            return load_panel(*args, **kwargs)
+
+        def counted_controls():
+            loads["controls"] += 1
+            return load_controls()
+
+        panel._load, panel.controls.load = counted_panel, counted_controls
+        slider = h.widget(QtWidgets.QSlider, "studySlider")
+        value = h.widget(QtWidgets.QLabel, "studyValue")
+        for position in (60, 61, 90):
+            loads.update(panel=0, controls=0)
+            slider.setValue(position)
+            h.process_events()
+            self.assertEqual(loads, {"panel": 1, "controls": 1}, position)
+            self.assertAlmostEqual(study.BeamThickness, 2 + 6 * position / 200)
+            self.assertIn(f"thickness h {study.BeamThickness:.3g} mm", value.text())  # shown all the same
+        loads.update(panel=0, controls=0)
+        slider.sliderPressed.emit()
+        for position in range(100, 110, 2):
+            slider.setValue(position)
+        slider.sliderReleased.emit()
+        h.process_events()
+        self.assertEqual(loads, {"panel": 5, "controls": 5})
+        loads.update(panel=0, controls=0)
+        h.widget(QtWidgets.QDoubleSpinBox, "BeamLength").setValue(70.0)  # an edit in the panel
+        h.process_events()
+        self.assertEqual(loads, {"panel": 1, "controls": 1})
+        loads.update(panel=0, controls=0)
+        self.doc.undo()  # not the panel's: through the observer, once, and shown
+        h.process_events()
+        self.assertEqual(loads, {"panel": 1, "controls": 1})
+        self.assertAlmostEqual(h.widget(QtWidgets.QDoubleSpinBox, "BeamLength").value(), 60.0)
+
+
+class _Answer:
+    """Answers every message box shown while the block runs by clicking its ``button``
+    (a QMessageBox.StandardButton), as the designer would: the box is FreeCAD's own,
+    shown and clicked (a timer, since it runs its own event loop). ``seen``: their texts."""
+
+    def __init__(self, button):
+        self.button, self.seen = button, []
+        self.timer = QtCore.QTimer()
+        self.timer.setInterval(50)
+        self.timer.timeout.connect(self._click)
+
+    def _click(self):
+        for box in QtWidgets.QApplication.topLevelWidgets():
+            if isinstance(box, QtWidgets.QMessageBox) and box.isVisible():
+                self.seen.append(box.text())
+                box.button(self.button).click()
+
+    def __enter__(self):
+        self.timer.start()
+        return self
+
+    def __exit__(self, *_):
+        h.process_events()
+        self.timer.stop()
 
 
 def _scroll_panel_to_end():

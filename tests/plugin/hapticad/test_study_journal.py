@@ -1,0 +1,206 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""A stiffness study's participants recorded since the last save, written to disk as they
+come (study_journal): offered back, exactly those, when the document was closed unsaved
+(as after a crash), kept until put back or dropped, and forgotten once a save holds
+them. Run by freecadcmd (see tests/plugin/CMakeLists.txt)."""
+import json
+import os
+import shutil
+import tempfile
+import unittest
+
+import FreeCAD as App
+
+import HaptiCAD
+from hapticad import cohort, stiffness_study, study_journal
+
+
+class StudyJournalTest(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.path = os.path.join(self.tmp.name, "toothbrush.FCStd")
+        self.doc = App.newDocument("StudyJournal")
+        self.doc.UndoMode = 1
+        box = self.doc.addObject("Part::Box", "Head")
+        self.doc.recompute()
+        surface = HaptiCAD.make_surface(self.doc, [(box, "Face6")], material="PP", FeelRoughness=False)
+        self.study = HaptiCAD.make_study(self.doc, surface)
+        self.written = set()  # journal files to take away after (they live in the test's FreeCAD home)
+
+    def tearDown(self):
+        for path in (self.written | {study_journal.path_for(s) for s in HaptiCAD.studies_of(self.doc)}) - {None}:
+            if os.path.exists(path):
+                os.remove(path)
+        App.closeDocument(self.doc.Name)
+        self.tmp.cleanup()
+
+    def record(self, name, thickness):
+        self.doc.openTransaction(f"Record {name}")
+        self.study.BeamThickness = thickness
+        record = HaptiCAD.record_preference(self.study, name, "F", "26-40", 60, 1650)
+        self.doc.commitTransaction()
+        self.written.add(study_journal.path_for(self.study))
+        return record
+
+    def close_unsaved_and_reopen(self):
+        """Closes the document without saving, as a crash leaves it, and opens its file again."""
+        name = self.study.Name
+        App.closeDocument(self.doc.Name)
+        self.doc = App.openDocument(self.path)
+        self.doc.UndoMode = 1
+        self.study = self.doc.getObject(name)
+
+    def names(self, records):
+        return [r.name for r in records]
+
+    def test_records_lost_with_a_close_unsaved_are_offered_exactly_and_put_back(self):
+        self.doc.saveAs(self.path)
+        ann = self.record("Ann", 4.0)
+        self.doc.save()
+        self.assertFalse(os.path.exists(study_journal.path_for(self.study)))  # Ann is saved
+        bo, cy = self.record("Bo", 5.0), self.record("Cy", 6.0)
+        journal = study_journal.path_for(self.study)
+        self.assertTrue(journal.startswith(App.getUserAppDataDir()))
+        with open(journal, encoding="utf-8") as handle:
+            written = json.load(handle)
+        self.assertEqual([r["name"] for r in written["cohort"]], ["Ann", "Bo", "Cy"])
+        self.assertEqual(study_journal.lost(self.study), [])  # the document holds them
+        self.close_unsaved_and_reopen()
+        self.assertEqual(self.names(stiffness_study.records(self.study)), ["Ann"])
+        lost = study_journal.lost(self.study)
+        self.assertEqual([r.as_dict() for r in lost], [bo.as_dict(), cy.as_dict()])  # exactly, values and all
+        # put back as one undo step: undone, they are offered again; redone, held
+        self.doc.openTransaction("Put back")
+        stiffness_study.add_records(self.study, lost)
+        self.doc.commitTransaction()
+        self.assertEqual(self.names(stiffness_study.records(self.study)), ["Ann", "Bo", "Cy"])
+        self.assertEqual(self.study.Participants, 3)
+        self.assertEqual(study_journal.lost(self.study), [])
+        self.doc.undo()
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Bo", "Cy"])
+        self.doc.redo()
+        self.assertEqual(study_journal.lost(self.study), [])
+        # put back and lost again before a save: still offered
+        self.close_unsaved_and_reopen()
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Bo", "Cy"])
+        stiffness_study.add_records(self.study, study_journal.lost(self.study))
+        # a save holding them lets the file go; opened again, nothing is offered
+        self.doc.save()
+        self.assertFalse(os.path.exists(journal))
+        self.close_unsaved_and_reopen()
+        self.assertEqual(self.names(stiffness_study.records(self.study)), ["Ann", "Bo", "Cy"])
+        self.assertEqual(study_journal.lost(self.study), [])
+        self.assertEqual(ann.as_dict(), stiffness_study.records(self.study)[0].as_dict())
+
+    def test_lost_records_wait_through_new_records_and_saves_until_put_back_or_dropped(self):
+        self.doc.saveAs(self.path)
+        self.record("Bo", 5.0)
+        self.close_unsaved_and_reopen()
+        # the next participant is recorded before Bo is put back, and the document saved: Bo still waits
+        self.record("Dan", 3.0)
+        self.doc.save()
+        self.close_unsaved_and_reopen()
+        self.assertEqual(self.names(stiffness_study.records(self.study)), ["Dan"])
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Bo"])
+        self.record("Eve", 7.0)
+        self.close_unsaved_and_reopen()  # Eve lost too
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Bo", "Eve"])
+        study_journal.drop(self.study, [r for r in study_journal.lost(self.study) if r.name == "Bo"])
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Eve"])
+        self.close_unsaved_and_reopen()
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Eve"])  # dropped for good
+        study_journal.drop(self.study, study_journal.lost(self.study))
+        self.assertFalse(os.path.exists(study_journal.path_for(self.study)))
+
+    def test_an_undone_or_removed_record_and_an_import_are_journaled_as_the_cohort_is(self):
+        self.doc.saveAs(self.path)
+        self.record("Ann", 4.0)
+        self.doc.save()
+        self.record("Bo", 5.0)
+        self.record("Cy", 6.0)
+        self.doc.undo()  # Cy undone: not lost, taken back
+        self.doc.openTransaction("Remove")
+        stiffness_study.remove_record(self.study, 1)  # Bo removed on purpose
+        self.doc.commitTransaction()
+        csv_path = os.path.join(self.tmp.name, "more.csv")
+        cohort.write_csv(csv_path, [cohort.Record("Fay", "F", "18-25", None, None, 0.9, "N/mm",
+                                                  stiffness_study.BEAM, {}, "2026-11-24T10:00:00")])
+        self.doc.openTransaction("Import")
+        self.assertEqual(stiffness_study.import_records(self.study, csv_path), (1, 0, 0))
+        self.doc.commitTransaction()
+        self.close_unsaved_and_reopen()
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Fay"])
+        # an Undo of a removal of a saved record brings back what the file holds: nothing is lost
+        self.doc.openTransaction("Remove")
+        stiffness_study.remove_record(self.study, 0)
+        self.doc.commitTransaction()
+        self.doc.undo()
+        self.assertEqual(self.names(stiffness_study.records(self.study)), ["Ann"])
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Fay"])
+
+    def test_a_record_given_twice_is_offered_as_many_times_as_it_was_lost(self):
+        self.doc.saveAs(self.path)
+        twice = cohort.Record("Gus", "M", "over 60", None, None, 1.0, "N/mm", stiffness_study.BEAM, {},
+                              "2026-11-24T10:00:00")
+        stiffness_study.add_records(self.study, [twice])
+        self.doc.save()
+        stiffness_study.add_records(self.study, [twice])  # the same again, as stored: one held, one not
+        self.written.add(study_journal.path_for(self.study))
+        self.close_unsaved_and_reopen()
+        self.assertEqual(len(stiffness_study.records(self.study)), 1)
+        self.assertEqual([r.as_dict() for r in study_journal.lost(self.study)], [twice.as_dict()])
+
+    def test_a_document_never_saved_writes_nothing_and_says_so(self):
+        self.assertTrue(study_journal.never_saved(self.study))
+        self.assertIsNone(study_journal.path_for(self.study))
+        self.record("Ann", 4.0)
+        self.assertEqual(study_journal.lost(self.study), [])
+        self.doc.saveAs(self.path)  # saved now: Ann is on disk, nothing to journal
+        self.assertFalse(study_journal.never_saved(self.study))
+        self.assertFalse(os.path.exists(study_journal.path_for(self.study)))
+
+    def test_save_as_moves_the_journal_and_a_copy_saved_elsewhere_leaves_it(self):
+        self.doc.saveAs(self.path)
+        self.record("Bo", 5.0)
+        first = study_journal.path_for(self.study)
+        self.assertTrue(os.path.exists(first))
+        self.doc.saveCopy(os.path.join(self.tmp.name, "copy.FCStd"))  # the document is as unsaved as before
+        self.assertTrue(os.path.exists(first))
+        self.path = os.path.join(self.tmp.name, "renamed.FCStd")
+        self.doc.saveAs(self.path)
+        self.assertFalse(os.path.exists(first))
+        self.record("Cy", 6.0)
+        self.close_unsaved_and_reopen()
+        self.assertEqual(self.names(stiffness_study.records(self.study)), ["Bo"])
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Cy"])
+
+    def test_a_deleted_study_is_not_offered_another_of_its_name_records(self):
+        self.doc.saveAs(self.path)
+        self.record("Bo", 5.0)
+        self.close_unsaved_and_reopen()
+        surface, name = self.study.Surface, self.study.Name
+        journal = study_journal.path_for(self.study)
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Bo"])
+        self.assertTrue(os.path.exists(journal))
+        self.doc.removeObject(name)
+        self.study = HaptiCAD.make_study(self.doc, surface)
+        self.assertEqual(self.study.Name, name)
+        self.assertEqual(study_journal.lost(self.study), [])  # another study (another ID)
+        self.doc.save()  # the deleted study's records are in no document now: its file goes
+        self.assertFalse(os.path.exists(journal))
+
+    def test_a_journal_that_cannot_be_written_is_said_and_the_record_still_made(self):
+        self.doc.saveAs(self.path)
+        journal = study_journal.path_for(self.study)
+        os.makedirs(journal + ".part")  # where it is written first: a folder, so the write fails
+        self.addCleanup(shutil.rmtree, journal + ".part", True)
+        self.record("Bo", 5.0)
+        self.assertEqual(self.names(stiffness_study.records(self.study)), ["Bo"])
+        self.assertIn("Is a directory", study_journal.failure(self.study))
+        shutil.rmtree(journal + ".part")
+        self.record("Cy", 6.0)
+        self.assertEqual(study_journal.failure(self.study), "")
+
+
+if __name__ == "__main__":
+    unittest.main()
