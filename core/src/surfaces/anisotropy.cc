@@ -21,11 +21,17 @@ double InterpolateFriction(double mu_a, double mu_n, double theta,
   if (interpolation == AnisotropyInterpolation::kLinear) {
     return mu_a + 2.0 * theta * (mu_n - mu_a) / kPi;  // seed 000 eq. 3
   }
+  if (mu_a == 0.0 || mu_n == 0.0) {
+    // A degenerate ellipse, one axis zero: its coefficient on its axes as the header says
+    // (mu_a at 0, mu_n at pi/2; 0/0 gave 0 along the stripes), 0 off them, where the
+    // ellipse's limit is. The cosine of pi/2 is not 0 in doubles: the end is tested.
+    if (theta == 0.0) return mu_a;
+    if (theta >= 0.5 * kPi) return mu_n;
+    return 0.0;
+  }
   const double c = std::cos(theta);
   const double s = std::sin(theta);
-  const double denominator = std::sqrt(mu_n * mu_n * c * c + mu_a * mu_a * s * s);
-  // both coefficients zero: frictionless in every direction
-  return denominator > 0.0 ? mu_a * mu_n / denominator : 0.0;
+  return mu_a * mu_n / std::sqrt(mu_n * mu_n * c * c + mu_a * mu_a * s * s);
 }
 
 FrictionParams DirectionalFriction(const FrictionParams& along, const AnisotropicFriction& a,

@@ -212,10 +212,26 @@ def friction_notes(surface):
     overcome to start sliding; mu_d above it is felt as typed, but is most often the two
     boxes swapped)."""
     mu_s, mu_d = float(surface.StaticFriction), float(surface.DynamicFriction)
+    notes = []
     if mu_d > mu_s:
-        return [f"dynamic friction μd {mu_d:g} is above static friction μs {mu_s:g}: sliding feels stickier than "
-                f"starting to slide, which few materials do (were the two swapped?)"]
-    return []
+        notes.append(f"dynamic friction μd {mu_d:g} is above static friction μs {mu_s:g}: sliding feels stickier "
+                     f"than starting to slide, which few materials do (were the two swapped?)")
+    return notes + _degenerate_ellipse_notes(surface)
+
+
+def _degenerate_ellipse_notes(surface):
+    """The friction ellipse with a zero axis (AcrossFriction or BackwardFriction 0) has
+    friction only exactly on its other axis and none a hair off it: as a hand strokes,
+    none. Eq. 3 (Linear) goes to 0 over the quarter turn instead."""
+    if surface.Pattern == "None" or surface.Interpolation != "Friction ellipse" or float(surface.StaticFriction) <= 0:
+        return []
+    zero = [(name, what) for name, what in (("AcrossFriction", "across the stripes"),
+                                            ("BackwardFriction", "against the stripe direction"))
+            if float(getattr(surface, name)) == 0]
+    return [f"the friction ellipse with no friction {what} ({name} 0) has friction only exactly "
+            f"{'along the stripes' if name == 'AcrossFriction' else 'across them'}, and none the least bit off: "
+            f"a hand's stroke slides freely; choose Linear interpolation, which fades it over the quarter turn, or "
+            f"give {name} above 0" for name, what in zero]
 
 
 def texture_notes(surface):

@@ -28,6 +28,21 @@ TEST(FrictionEllipse, MatchesHandValues) {
   EXPECT_EQ(InterpolateFriction(0.0, 0.0, 0.7, ellipse), 0.0);  // no 0/0
 }
 
+TEST(FrictionEllipse, ADegenerateEllipseKeepsItsAxesValues) {
+  // mu_n = 0 (no friction across the stripes): 0/0 along them gave 0, not mu_a; as eq. 3,
+  // the ellipse is mu_a at 0 and mu_n at pi/2, and off its one axis 0 (its limit)
+  const auto ellipse = AnisotropyInterpolation::kEllipse;
+  EXPECT_EQ(InterpolateFriction(0.3, 0.0, 0.0, ellipse), 0.3);
+  EXPECT_EQ(InterpolateFriction(0.3, 0.0, 1e-9, ellipse), 0.0);
+  EXPECT_EQ(InterpolateFriction(0.3, 0.0, kPi / 2, ellipse), 0.0);
+  EXPECT_NEAR(InterpolateFriction(0.3, 1e-12, 1e-9, ellipse), 0.3 / std::sqrt(1.0 + 0.09e6), 1e-15);
+  // mu_a = 0 (none along them): mu_n across, and cos(pi/2) = 6e-17 gave 0 there
+  EXPECT_EQ(InterpolateFriction(0.0, 0.9, kPi / 2, ellipse), 0.9);
+  EXPECT_EQ(InterpolateFriction(0.0, 0.9, 0.0, ellipse), 0.0);
+  EXPECT_EQ(InterpolateFriction(0.0, 0.9, kPi / 2 - 1e-9, ellipse), 0.0);
+  EXPECT_EQ(InterpolateFriction(0.0, 0.0, 0.0, ellipse), 0.0);
+}
+
 TEST(FoldAngle, IsEvenPiPeriodicAndExactOnBoundaries) {
   EXPECT_EQ(FoldAngle(0.0), 0.0);
   EXPECT_DOUBLE_EQ(FoldAngle(kPi / 2), kPi / 2);
@@ -71,6 +86,21 @@ TEST_F(Directional, BackwardFactorAppliesAgainstTheStripeDirection) {
   EXPECT_DOUBLE_EQ(MuD(Vec3(0.05, 0, 0)), 0.3);
   EXPECT_DOUBLE_EQ(MuD(Vec3(-0.05, 0, 0)), 0.6);
   EXPECT_DOUBLE_EQ(MuD(Vec3(0, 0.05, 0)), 0.9);  // across: unchanged
+}
+
+TEST_F(Directional, AnEllipseWithoutFrictionAcrossKeepsItAlongTheStripes) {
+  // a stroke exactly along the stripes (a scripted one) felt none of mu_a
+  a_.interpolation = AnisotropyInterpolation::kEllipse;
+  a_.across_factor = 0.0;
+  EXPECT_EQ(MuD(Vec3(0.05, 0, 0)), 0.3);
+  EXPECT_EQ(MuD(Vec3(0.05, 1e-6, 0)), 0.0);
+  EXPECT_EQ(MuD(Vec3(0, 0.05, 0)), 0.0);
+  // none against them either (backward 0): friction across them only
+  a_.across_factor = 3.0;
+  a_.backward_factor = 0.0;
+  EXPECT_EQ(MuD(Vec3(-0.05, 0, 0)), 0.0);
+  EXPECT_DOUBLE_EQ(MuD(Vec3(0, 0.05, 0)), 0.9);  // 3 x 0.3
+  EXPECT_EQ(MuD(Vec3(-1e-6, 0.05, 0)), 0.0);
 }
 
 TEST_F(Directional, ZeroWeightIsTheIsotropicMean) {

@@ -129,6 +129,21 @@ class CompileTest(unittest.TestCase):
         s.DynamicFriction = 0.3  # equal: no peak to overcome, but nothing odd
         self.assertEqual(friction_notes(s), [])
 
+    def test_a_friction_ellipse_with_a_zero_axis_gets_a_note(self):
+        s = self.surface(Pattern="Linear", Interpolation="Friction ellipse", AcrossFriction=1.5)
+        self.assertEqual(friction_notes(s), [])
+        s.AcrossFriction = 0.0
+        (note,) = friction_notes(s)
+        self.assertIn("no friction across the stripes (AcrossFriction 0) has friction only exactly along the stripes",
+                      note)
+        s.Interpolation = "Linear (seed 000 eq. 3)"  # fades to 0 over the quarter turn: nothing odd
+        self.assertEqual(friction_notes(s), [])
+        s.Interpolation, s.AcrossFriction, s.BackwardFriction = "Friction ellipse", 1.5, 0.0
+        (note,) = friction_notes(s)
+        self.assertIn("against the stripe direction (BackwardFriction 0) has friction only exactly across them", note)
+        s.Pattern = "None"  # no stripes: no ellipse
+        self.assertEqual(friction_notes(s), [])
+
     def test_curve_pattern_from_a_sketch_follows_the_curve(self):
         poles = [V(10, 5, 0), V(30, 12, 0), V(10, 25, 0), V(30, 35, 0)]
         sketch = self.sketch([Part.BSplineCurve(poles)])
