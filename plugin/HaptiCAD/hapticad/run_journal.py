@@ -22,6 +22,7 @@ import os
 import FreeCAD as App
 
 from . import similarity_study as ss
+from .atomic_file import write_json
 
 
 def _folder():
@@ -41,16 +42,6 @@ def path_for(study):
     return os.path.join(_folder(), f"{_key(doc_path, study.Name)}.json")
 
 
-def _write_atomically(path, state):
-    os.makedirs(os.path.dirname(path), exist_ok=True)
-    temporary = path + ".part"
-    with open(temporary, "w", encoding="utf-8") as handle:
-        json.dump(state, handle)
-        handle.flush()
-        os.fsync(handle.fileno())
-    os.replace(temporary, path)
-
-
 def write(study, run):
     """Writes ``run`` (answers so far) beside nothing the designer sees; atomically, so
     a crash mid-write leaves the previous answers."""
@@ -61,7 +52,7 @@ def write(study, run):
              "name": run.participant, "seed": run.seed, "started": run.started,
              "trials": [[t.kind, t.first, t.second] for t in run.trials], "answers": list(run.answers),
              "stimuli": run.stimuli, "context": run.context, "protocol": run.protocol}
-    _write_atomically(path, state)
+    write_json(path, state)
 
 
 def read(study):
@@ -145,7 +136,7 @@ def write_kept(study, record):
     _WRITTEN_UNDER.setdefault(study.Document.Name, set()).add(doc_path)
     digest = hashlib.sha1(json.dumps(record, sort_keys=True).encode()).hexdigest()[:12]
     # the study's ID tells it from a later study given the name of a deleted one
-    _write_atomically(_kept_prefix(doc_path, study.Name) + f"{digest}.json",
+    write_json(_kept_prefix(doc_path, study.Name) + f"{digest}.json",
                       {"document": os.path.abspath(doc_path), "study": study.Name, "study_id": study.ID,
                        "kept": record})
 

@@ -29,6 +29,7 @@ import os
 import FreeCAD as App
 
 from . import cohort
+from .atomic_file import write_json
 
 
 def _folder():
@@ -175,13 +176,7 @@ def _write(study, session):
     # (one saved and one not of two alike are one lost, which the unsaved alone would not tell)
     state = {"document": os.path.abspath(study.Document.FileName), "study": study.Name, "study_id": study.ID,
              "label": study.Label, "cohort": [json.loads(t) for t in held], "lost": [json.loads(t) for t in lost]}
-    os.makedirs(os.path.dirname(path), exist_ok=True)
-    temporary = path + ".part"
-    with open(temporary, "w", encoding="utf-8") as handle:
-        json.dump(state, handle)
-        handle.flush()
-        os.fsync(handle.fileno())
-    os.replace(temporary, path)
+    write_json(path, state)
     session.failure = ""
 
 

@@ -99,7 +99,8 @@ class MessageBoxes:
             Gui.runCommand("Std_CloseActiveWindow")
         boxes.seen  # [("Document not closable", "The document is not closable ...")]
 
-    ``press``: the text of the button to click instead (a box without it is rejected)."""
+    ``press``: the button to click instead, by its text or as a QMessageBox.StandardButton
+    (a box without it is rejected)."""
 
     def __init__(self, press=None):
         self.seen = []
@@ -112,7 +113,10 @@ class MessageBoxes:
         for box in QtWidgets.QApplication.topLevelWidgets():
             if isinstance(box, QtWidgets.QMessageBox) and box.isVisible():
                 self.seen.append((box.windowTitle(), box.text()))
-                chosen = [b for b in box.buttons() if self.press is not None and b.text() == self.press]
+                if isinstance(self.press, str):
+                    chosen = [b for b in box.buttons() if b.text() == self.press]
+                else:
+                    chosen = [box.button(self.press)] if self.press is not None and box.button(self.press) else []
                 if chosen:
                     chosen[0].click()
                 else:

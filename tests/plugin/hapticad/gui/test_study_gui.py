@@ -768,11 +768,12 @@ class StudyGuiTest(unittest.TestCase):
         self.assertEqual(table.rowCount(), 1)
         self.assertFalse(put_back.isHidden())
         # dropped only when the designer says so
-        with _Answer(QtWidgets.QMessageBox.No) as asked:
+        with h.MessageBoxes(press=QtWidgets.QMessageBox.No) as asked:
             drop.click()
-        self.assertEqual(asked.seen, ["Drop 2 records (Bo, Cy) for good? No saved document holds them."])
+        self.assertEqual(asked.seen, [("Drop participant records",
+                                       "Drop 2 records (Bo, Cy) for good? No saved document holds them.")])
         self.assertFalse(put_back.isHidden())
-        with _Answer(QtWidgets.QMessageBox.Yes):
+        with h.MessageBoxes(press=QtWidgets.QMessageBox.Yes):
             drop.click()
         h.process_events()
         self.assertTrue(put_back.isHidden())
@@ -821,32 +822,6 @@ class StudyGuiTest(unittest.TestCase):
         h.process_events()
         self.assertEqual(loads, {"panel": 1, "controls": 1})
         self.assertAlmostEqual(h.widget(QtWidgets.QDoubleSpinBox, "BeamLength").value(), 60.0)
-
-
-class _Answer:
-    """Answers every message box shown while the block runs by clicking its ``button``
-    (a QMessageBox.StandardButton), as the designer would: the box is FreeCAD's own,
-    shown and clicked (a timer, since it runs its own event loop). ``seen``: their texts."""
-
-    def __init__(self, button):
-        self.button, self.seen = button, []
-        self.timer = QtCore.QTimer()
-        self.timer.setInterval(50)
-        self.timer.timeout.connect(self._click)
-
-    def _click(self):
-        for box in QtWidgets.QApplication.topLevelWidgets():
-            if isinstance(box, QtWidgets.QMessageBox) and box.isVisible():
-                self.seen.append(box.text())
-                box.button(self.button).click()
-
-    def __enter__(self):
-        self.timer.start()
-        return self
-
-    def __exit__(self, *_):
-        h.process_events()
-        self.timer.stop()
 
 
 def _scroll_panel_to_end():
