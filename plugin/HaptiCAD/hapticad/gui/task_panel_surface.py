@@ -135,7 +135,7 @@ class SurfaceTaskPanel:
         # asking the deleted surface for its name at every later click) and close
         self.closing = DocumentClosingObserver(self.doc, self.document_closing)
         # Cancel aborts the transaction, and with it whatever else was done meanwhile: asked first
-        self.other_edits = OtherEdits(self.doc, lambda o: o == self.obj or vibration_object.is_haptic_vibration(o))
+        self.other_edits = OtherEdits(self.doc, self._edits_itself)
         self.set_mode(self.mode)  # the hint and the Add button say whether clicks add faces
         self.load()
         for box in self.form:
@@ -875,6 +875,15 @@ class SurfaceTaskPanel:
         if is_alive(self.obj):  # an edit, not a creation: show the restored values
             self.obj.ViewObject.Proxy.refresh()
         return True
+
+    def _edits_itself(self, obj):
+        """Whether the panel edits ``obj``: its surface, and the vibration of a part it tags
+        (another part's vibration edited meanwhile is another's edit)."""
+        if obj == self.obj:
+            return True
+        if not vibration_object.is_haptic_vibration(obj) or not is_alive(self.obj):
+            return False
+        return obj.Part is not None and obj.Part.Name in {p.Name for p in self.parts()}
 
     def _undo_others_too(self, others):
         """Asks whether Cancel may undo ``others`` (OtherEdits.describe) with the surface's edits."""

@@ -374,18 +374,24 @@ class TaskPanelTest(unittest.TestCase):
         # FreeCAD puts every change made while the panel is open into its transaction: Cancel took the box's new
         # length (set in the property editor meanwhile) with the surface's edits, and said nothing
         surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS")
+        other = self.doc.addObject("Part::Cylinder", "Handle")
+        self.doc.recompute()
+        motor = HaptiCAD.make_vibration(self.doc, other)
+        motor.Label = "Motor"
         self.doc.recompute()
         Gui.ActiveDocument.setEdit(surface.Name, 0)
         h.process_events()
+        h.widget(QtWidgets.QCheckBox, "vibrates").setChecked(True)  # the panel's own: its part's vibration
         h.widget(QtWidgets.QComboBox, "Material").setCurrentText("Rubber")
         self.box.Length = 55  # as the property editor sets it
+        motor.Frequency = 90.0  # another part's vibration: not the panel's
         self.doc.recompute()
         with h.MessageBoxes() as boxes:  # Keep editing: the panel stays, nothing is undone
             h.press_task_button("Cancel")
         self.assertEqual(len(boxes.seen), 1)
         self.assertEqual(boxes.seen[0], ("Cancel the surface's edits", "While this panel was open you also changed Box "
-                                         "(Length).\n\nCancel undoes everything done since the panel opened: those "
-                                         "too."))
+                                         "(Length) and Motor (Frequency).\n\nCancel undoes everything done since "
+                                         "the panel opened: those too."))
         self.assertTrue(Gui.Control.activeDialog())
         self.assertEqual((surface.Material, float(self.box.Length)), ("Rubber", 55.0))
         h.widen_panel()
@@ -393,7 +399,8 @@ class TaskPanelTest(unittest.TestCase):
             h.press_task_button("Cancel")
         self.assertEqual(len(boxes.seen), 1)
         self.assertFalse(Gui.Control.activeDialog())
-        self.assertEqual((surface.Material, float(self.box.Length)), ("ABS", 40.0))
+        self.assertEqual((surface.Material, float(self.box.Length), motor.Frequency), ("ABS", 40.0, 100.0))
+        self.assertEqual(HaptiCAD.vibrations_of(self.doc), [motor])  # the box's, made in the panel, undone
         # nothing else done: Cancel asks nothing, as before
         Gui.ActiveDocument.setEdit(surface.Name, 0)
         h.process_events()
