@@ -176,8 +176,10 @@ int BlockedWrites();
 // Parses a device list like "path=emu:0,product=My arm;path=emu:1,version=2.0-2.1" and
 // adds the devices. Keys: path, product, version (min-max), max_force (N; the continuous
 // force becomes half of it), rate (Hz),
-// unplug_at (s), stall (start-end s), kind=other (a non-haptic HID device). Throws
-// std::invalid_argument for anything else.
+// unplug_at (s), stall (start-end s), slow_feature and slow_session (s: from the
+// plug-in on, every feature request, or the session request only, blocks that long and
+// then times out), kind=other (a non-haptic HID device). Throws std::invalid_argument
+// for anything else.
 void ConfigureFromSpec(const std::string& spec);
 
 }  // namespace hapticad::hidemu
