@@ -134,9 +134,15 @@ double CurvePattern::LookupAngle(double y) const {
 double CurvePattern::MemberOffset(const Vec3& point_w) const {
   const Vec3 local = point_w - plane_.origin_w;
   if (!local.allFinite()) return 0.0;
+  const double y = local.dot(plane_.y_w);
   Vec2 p, d;
-  curve_.Evaluate(SolveParameter(local.dot(plane_.y_w)), &p, &d);
-  return local.dot(plane_.x_w) - p.x();
+  curve_.Evaluate(SolveParameter(y), &p, &d);
+  // beyond an end the member goes on along the end tangent, as the stripes do; a tangent
+  // parallel to x there would make every member one line: the end's x is kept instead
+  const double beyond = y - std::clamp(y, y_min_, y_max_);
+  const double along =
+      beyond != 0.0 && std::abs(d.y()) > 1e-12 * d.norm() ? beyond * d.x() / d.y() : 0.0;
+  return local.dot(plane_.x_w) - (p.x() + along);
 }
 
 StripeFrame CurvePattern::Evaluate(const Vec3& point_w, const Vec3& normal) const {

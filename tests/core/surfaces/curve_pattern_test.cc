@@ -105,6 +105,29 @@ TEST(CurvePattern, BeyondItsEndsTheEndTangentsContinue) {
   EXPECT_NEAR(p.LookupAngle(1.0), p.LookupAngle(0.04), 1e-12);
 }
 
+// The grating's bars are the family's members: along the stripe direction the member
+// offset does not change, inside the curve's height range and beyond its ends, where the
+// members continue straight along the end tangents as the stripes do.
+TEST(CurvePattern, BeyondItsEndsTheGratingsBarsFollowTheStripes) {
+  const NurbsCurve2 line(1, {0, 0, 1, 1}, {Vec2(0, 0), Vec2(0.005, 0.01)}, {});
+  const auto straight = CurvePattern::Build(kPlane, line, 16, CurvePattern::Evaluation::kExact);
+  for (double y : {-0.02, 0.0, 0.004, 0.01, 0.03}) {  // the member through (x, y): x - y / 2
+    EXPECT_NEAR(straight.MemberOffset(Vec3(0.1, y, 0)), 0.1 - 0.5 * y, 1e-12) << y;
+  }
+  for (auto evaluation :
+       {CurvePattern::Evaluation::kExact, CurvePattern::Evaluation::kLookupTable}) {
+    const auto p = CurvePattern::Build(kPlane, Wave(), 512, evaluation);
+    for (double y : {-0.03, -0.005, 0.001, 0.02, 0.039, 0.045, 0.07}) {
+      const Vec3 point(0.013, y, 0);
+      const Vec3 stripe = p.Evaluate(point, Vec3::UnitZ()).stripe;
+      const double h = 1e-6;  // central difference along the stripe
+      const double slope =
+          (p.MemberOffset(point + h * stripe) - p.MemberOffset(point - h * stripe)) / (2 * h);
+      EXPECT_NEAR(slope, 0.0, 1e-4) << y;
+    }
+  }
+}
+
 TEST(CurvePattern, NonFinitePointsGiveAnIsotropicFrame) {
   const auto p = CurvePattern::Build(kPlane, Wave(), 64, CurvePattern::Evaluation::kExact);
   const double nan = std::numeric_limits<double>::quiet_NaN();

@@ -16,7 +16,9 @@
 // (it spans a height) and y strictly increases or decreases along it. A curve that
 // turns back or touches itself in y gives members that cross each other, so the
 // stripe direction would be ambiguous: it is rejected, never evaluated.
-// Outside the curve's height range the end tangents continue.
+// Outside the curve's height range the end tangents continue: every member goes on
+// straight along them, stripes and grating alike (an end tangent parallel to x, which
+// would make every member there one line, keeps the grating's bars along y instead).
 //
 // Frame and units: pattern frame (origin, x, y) in world metres; the curve in that
 // frame's (x, y) coordinates, metres. Evaluate() is servo-tick safe.
@@ -53,7 +55,7 @@ class CurvePattern {
   double ExactAngle(double y) const;
 
   // Translation of the family member through a point (m along x): the grating
-  // coordinate across the curves.
+  // coordinate across the curves. Constant along Evaluate()'s stripe direction.
   double MemberOffset(const Vec3& point_w) const;
 
   double y_min() const { return y_min_; }
