@@ -6,6 +6,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -379,6 +380,22 @@ TEST(MeshRepair, ToleranceIsRelativeSoMillimetresAndMetresRepairAlike) {
   const RepairReport a = Repair(mm), b = Repair(m), c = Repair(far);
   EXPECT_EQ(a.merged_vertices, b.merged_vertices);
   EXPECT_TRUE(a.watertight() && b.watertight() && c.watertight()) << c.Describe();
+  // Cracks at a fifth and at 3.5 times the weld tolerance (1e-7 of the 37.4 mm diagonal),
+  // in mm, in m and far from the origin: welded, and reported, in all three. No absolute
+  // tolerance can do both in mm and in m, a thousand times apart.
+  for (const auto& [nudge, welds] : {std::pair{3e-7, true}, std::pair{5e-6, false}}) {
+    for (const auto& [scale, shift] :
+         {std::pair{1.0, 0.0}, std::pair{1e-3, 0.0}, std::pair{1.0, 1e6}}) {
+      TriangleSoup soup = FacewiseBox(nudge);
+      for (Vec3& v : soup.vertices) v = v * scale + Vec3::Constant(shift);
+      const RepairReport r = Repair(soup);
+      const std::string where = "nudge " + std::to_string(nudge) + " mm, scale " +
+                                std::to_string(scale) + ", shift " + std::to_string(shift);
+      EXPECT_EQ(r.watertight(), welds) << where << ": " << r.Describe();
+      EXPECT_EQ(r.welded_vertices > 0, welds) << where;
+      if (!welds) EXPECT_EQ(r.boundary_edges, 24u) << where;
+    }
+  }
 }
 
 }  // namespace
