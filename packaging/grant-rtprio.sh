@@ -4,7 +4,7 @@
 # (RLIMIT_RTPRIO, soft and hard) to PRIORITY for the nearest process, from START_PID up
 # through its parents, that runs wholly as USER (real and effective uid), and says which.
 # setup.sh writes the limit to /etc/security/limits.d, which takes effect at the user's
-# next login; it calls this with its parent so the shell that ran `sudo setup.sh` (and
+# next login; it calls this with its parent so the shell that ran setup.sh (and
 # so the run-tests.sh it starts next) has the limit now. sudo itself runs with the
 # user's real uid but root's effective one, and is passed over. Exits 0 when no such
 # process is found (nothing to do), 1 when prlimit fails.
