@@ -34,6 +34,10 @@ as_user=()
 "$top/packaging/check-install-folder.sh" "$top" "$mod_dir"
 
 "$top/packaging/install-deps.sh"
+# a build/ left by an earlier set-up for root is handed over: the user builds in it
+if [ "$user" != root ] && [ -d "$build" ]; then
+  chown -R "$user:" "$build"
+fi
 
 "${as_user[@]}" cmake -S "$top" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DHAPTICAD_MOD_DIR="$mod_dir" -DCMAKE_INSTALL_PREFIX=/usr/local -DHAPTICAD_BUILD_TESTS=ON
