@@ -13,16 +13,29 @@ is kept or stopped. App-only.
 A kept run is in the document, but on disk only once the document is saved: until then
 it is written here too (``write_kept``, one file per kept run), offered back by
 ``unsaved_kept`` if the document was closed or lost without it, and forgotten when the
-document is saved holding it (``SaveWatcher``).
+document is saved holding it (``SaveWatcher``). A kept run removed on purpose
+(similarity_study.remove_run, the study panel's Remove) is forgotten with it
+(``removed_changed``), and written again when an Undo puts it back in the document.
+
+How a kept run was lost is said (``how_lost``) as for a stiffness study's records
+(study_journal): the document closed without saving it (the close is seen, and its time
+written in the run's file), FreeCAD ended without closing it (a crash), or an Undo took
+it out before a save; none forgets it: the designer drops it.
 """
 import hashlib
 import json
 import os
+from datetime import datetime
 
 import FreeCAD as App
 
 from . import similarity_study as ss
 from .atomic_file import write_json
+from .study_journal import ENDED, said_how_lost as _said_how_lost
+
+# how a kept run was lost besides study_journal's (ENDED, a close's time, ""): an Undo
+# took it out of the document, which was saved without it (this session: the document is open)
+UNDONE = "undone"
 
 
 def _folder():
@@ -135,10 +148,11 @@ def write_kept(study, record):
         return
     _WRITTEN_UNDER.setdefault(study.Document.Name, set()).add(doc_path)
     digest = hashlib.sha1(json.dumps(record, sort_keys=True).encode()).hexdigest()[:12]
+    path = _kept_prefix(doc_path, study.Name) + f"{digest}.json"
     # the study's ID tells it from a later study given the name of a deleted one
-    write_json(_kept_prefix(doc_path, study.Name) + f"{digest}.json",
-                      {"document": os.path.abspath(doc_path), "study": study.Name, "study_id": study.ID,
-                       "kept": record})
+    write_json(path, {"document": os.path.abspath(doc_path), "study": study.Name, "study_id": study.ID,
+                      "kept": record, "closes_noted": True})
+    _KEPT_HERE.add(path)
 
 
 def _kept_files(doc_path, study_name):
@@ -150,16 +164,20 @@ def _kept_files(doc_path, study_name):
     return [os.path.join(folder, n) for n in names if n.startswith(prefix) and n.endswith(".json")]
 
 
-def _read_kept(path):
-    """(the study's ID, the record) of a kept file; None for one that cannot be read
-    or holds no run that could be kept."""
+def _read_kept(path, how=False):
+    """(the study's ID, the record) of a kept file, and with ``how`` how it was lost
+    (how_lost); None for one that cannot be read or holds no run that could be kept."""
     try:
         with open(path, encoding="utf-8") as handle:
             state = json.load(handle)
         record = state["kept"]
         if not isinstance(record, dict) or ss.record_problems(record):
             return None
-        return state.get("study_id"), record
+        if not how:
+            return state.get("study_id"), record
+        said = str(state.get("closed") or (UNDONE if path in _KEPT_HERE else ENDED if state.get("closes_noted")
+                                           else ""))
+        return state.get("study_id"), record, said
     except (OSError, ValueError, KeyError, TypeError, AttributeError):
         return None
 
@@ -182,6 +200,25 @@ def unsaved_kept(study):
     return sorted(found, key=lambda r: str(r.get("started", "")))
 
 
+def how_lost(study, records):
+    """How each of ``records`` (of unsaved_kept) was lost, in their order: ENDED (FreeCAD
+    ended without closing the document: a crash), the time (ISO) the document was closed
+    without saving it, UNDONE (an Undo took it out, in this session), or "" (written
+    before closes were noted: either)."""
+    doc_path = study.Document.FileName
+    found = []
+    for path in _kept_files(doc_path, study.Name) if doc_path else []:
+        read = _read_kept(path, how=True)
+        if read is not None and read[0] in (None, study.ID):
+            found.append(read[1:])
+    return [next((how for record, how in found if _same(record, r)), "") for r in records]
+
+
+def said_how_lost(names, hows):
+    """How kept runs were lost, as plain text (study_journal.said_how_lost, UNDONE too)."""
+    return _said_how_lost(names, hows, {UNDONE: "an Undo took it out of the document before it was saved"})
+
+
 def forget_saved(doc_path, study):
     """The document was saved as ``doc_path``: the files of the runs ``study`` holds
     go (they are on disk now); those of runs it does not hold (an Undo took them back)
@@ -200,24 +237,73 @@ def forget_saved(doc_path, study):
 
 def drop_kept(study, records):
     """The files of ``records`` (kept in ``study``, held by no saved document) go: the
-    designer dropped them."""
+    designer dropped them. Raises OSError if one cannot be removed."""
     doc_path = study.Document.FileName
-    if not doc_path:
+    if not doc_path or not records:
         return
     for path in _kept_files(doc_path, study.Name):
         read = _read_kept(path)
         if read is not None and read[0] in (None, study.ID) and any(_same(read[1], r) for r in records):
             os.remove(path)
+            _KEPT_HERE.discard(path)
+
+
+def _has_file(study, record):
+    doc_path = study.Document.FileName
+    return bool(doc_path) and any(
+        read is not None and read[0] in (None, study.ID) and _same(read[1], record)
+        for read in map(_read_kept, _kept_files(doc_path, study.Name)))
+
+
+def removing(study, record):
+    """``record`` (a kept run the study holds, as stored) is being removed on purpose:
+    noted in the study's REMOVED_RUNS property, in the removal's undo step, with whether
+    a file holds it (written and not saved yet), whose file goes then (removed_changed).
+    Called by similarity_study.remove_run."""
+    noted = _removed_runs(getattr(study, ss.REMOVED_RUNS, ""))
+    noted.append({"run": record, "written": _has_file(study, record)})
+    setattr(study, ss.REMOVED_RUNS, json.dumps(noted))
+
+
+def _removed_runs(text):
+    try:
+        data = json.loads(text or "[]")
+    except ValueError:
+        return []
+    return [e for e in data if isinstance(e, dict) and isinstance(e.get("run"), dict)] if isinstance(
+        data, list) else []
+
+
+def removed_changed(study, before, after):
+    """The study's REMOVED_RUNS went from ``before`` to ``after`` (JSON texts): a run
+    removed on purpose (a removal, or its Redo) has its file forgotten, so that it is
+    never offered back as lost; one whose removal was undone, in the document again, is
+    written again if it was before. Called by the study's proxy; a failure is warned of,
+    never raised."""
+    was = [json.dumps(e, sort_keys=True) for e in _removed_runs(before)]
+    now = [json.dumps(e, sort_keys=True) for e in _removed_runs(after)]
+    gone = [json.loads(t) for t in now if t not in was]
+    back = [json.loads(t) for t in was if t not in now]
+    try:
+        drop_kept(study, [e["run"] for e in gone if e.get("written")])
+        for entry in back:
+            if entry.get("written"):
+                write_kept(study, entry["run"])
+    except OSError as exc:
+        App.Console.PrintWarning(f"HaptiCAD: {study.Label}: a removed run's file beside the document could not be "
+                                 f"{'removed' if gone else 'written again'} ({exc})\n")
 
 
 # document name -> the paths its kept runs were written under this session (Save As
 # names it anew, and FreeCAD has taken the new name by the time it says it saves)
 _WRITTEN_UNDER = {}
+# the kept runs' files written in this session (one of them offered was taken out by an Undo)
+_KEPT_HERE = set()
 
 
 class SaveWatcher:
-    """Forgets the files of kept runs once a save holds them. One is enough for all
-    documents: ``watch_saves``."""
+    """Forgets the files of kept runs once a save holds them; notes a document closed
+    without saving them (``closed``). One is enough for all documents: ``watch_saves``."""
 
     def slotFinishSaveDocument(self, doc, path):
         if not doc.FileName or os.path.abspath(path) != os.path.abspath(doc.FileName):
@@ -232,8 +318,37 @@ class SaveWatcher:
                         pass
 
     def slotDeletedDocument(self, doc):
+        closed(doc)
         # a document of the same name opened later is another document
         _WRITTEN_UNDER.pop(doc.Name, None)
+
+
+def closed(doc):
+    """``doc`` is being closed (FreeCAD's Discard, App.closeDocument; it is still whole):
+    the files of the kept runs it loses unsaved (those it holds, and those written in this
+    session that an Undo took out) get the time, so that they are said, when it is opened
+    again, to be lost to a close without saving, not to a crash. Nothing is forgotten."""
+    if not doc.FileName:
+        return
+    now = datetime.now().isoformat(timespec="seconds")
+    for study in [o for o in doc.Objects if ss.is_similarity_study(o)]:
+        try:
+            held = ss.runs(study)
+        except ValueError:
+            held = []
+        for doc_path in {doc.FileName, *_WRITTEN_UNDER.get(doc.Name, ())}:
+            for path in _kept_files(doc_path, study.Name):
+                read = _read_kept(path)
+                if read is None or read[0] not in (None, study.ID):
+                    continue
+                if path in _KEPT_HERE or any(_same(read[1], r) for r in held):
+                    try:
+                        with open(path, encoding="utf-8") as handle:
+                            state = json.load(handle)
+                        write_json(path, {**state, "closed": now})
+                    except (OSError, ValueError, TypeError):
+                        pass  # said as written
+                    _KEPT_HERE.discard(path)  # the document opened again is another session
 
 
 _WATCHER = []

@@ -92,6 +92,9 @@ PROPERTIES = [
 ]
 HIDDEN_STATE = [("Stimuli", "The stimuli: name and eq. 2's values of each (JSON)"),
                 ("Responses", "The participants' runs (JSON)")]
+# the runs removed on purpose since the document was opened (run_journal.removing): not
+# saved, taken back and brought again with the removal by Undo and Redo
+REMOVED_RUNS = "RemovedRuns"
 # the properties that change what the study's face renders (the others are bookkeeping)
 FELT_PROPERTIES = ("Surface", "Stimuli", "ReferenceA", "ReferenceB")
 MAX_STIMULI = 20  # 190 pairs: about what a participant rates in one sitting
@@ -116,16 +119,27 @@ class SimilarityStudy(SchemaState):
         add_type_tag(obj, TYPE)
         add_properties(obj, PROPERTIES)
         add_hidden_state(obj, HIDDEN_STATE, "Cohort")
+        if REMOVED_RUNS not in obj.PropertiesList:
+            obj.addProperty("App::PropertyString", REMOVED_RUNS, "Cohort",
+                            "The runs removed on purpose since the document was opened (JSON, not saved): their "
+                            "files beside the document go with them", 32)  # NoPersist
+            obj.setEditorMode(REMOVED_RUNS, 2)
         obj.setEditorMode("Participants", 1)
         if new:
             obj.Stimuli = json.dumps(paper_stimuli())
             obj.Responses = "[]"
 
     def onChanged(self, obj, prop):
+        loading = obj.Document.Restoring or "Restore" in obj.State
         # an undo too: what was held out may no longer be the study's (not while loading,
         # when nothing is held out yet)
-        if prop in FELT_PROPERTIES and not (obj.Document.Restoring or "Restore" in obj.State):
+        if prop in FELT_PROPERTIES and not loading:
             stop_presenting(obj)
+        if prop == REMOVED_RUNS and not loading:  # a removal, or its Undo or Redo
+            from . import run_journal
+
+            before, self._removed_seen = getattr(self, "_removed_seen", ""), obj.RemovedRuns
+            run_journal.removed_changed(obj, before, obj.RemovedRuns)
 
     def onDocumentRestored(self, obj):
         self.setup(obj)
@@ -699,10 +713,16 @@ def record_run(study, run):
 
 
 def remove_run(study, index):
+    """Removes the kept run at ``index`` (of runs) on purpose: its file beside the document,
+    if the document was not saved with it, goes too, so it is never offered back as lost
+    (run_journal.removing; an Undo of the removal writes it again). Raises ValueError if
+    there is none."""
+    from . import run_journal
+
     kept = runs(study)
     if not 0 <= index < len(kept):
         raise ValueError(f"{study.Label}: no run {index + 1} (it has {len(kept)})")
-    del kept[index]
+    run_journal.removing(study, kept.pop(index))
     study.Responses = json.dumps(kept)
     study.Participants = count_participants(kept)
 

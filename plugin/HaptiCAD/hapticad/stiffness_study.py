@@ -111,6 +111,13 @@ class StiffnessStudy(SchemaState):
         add_type_tag(obj, TYPE)
         add_properties(obj, PROPERTIES)
         add_hidden_state(obj, HIDDEN_STATE, "Cohort")
+        if study_journal.REMOVED not in obj.PropertiesList:
+            # the records removed on purpose since the document was opened (study_journal):
+            # not saved (NoPersist), taken back and brought again with the removal by Undo and Redo
+            obj.addProperty("App::PropertyString", study_journal.REMOVED, "Cohort",
+                            "The participants' records removed on purpose since the document was opened (JSON, "
+                            "not saved): never offered back as lost", 32)
+            obj.setEditorMode(study_journal.REMOVED, 2)
         obj.setEditorMode("BendingStiffness", 1)
         obj.setEditorMode("Participants", 1)
         if new:
@@ -132,7 +139,7 @@ class StiffnessStudy(SchemaState):
                 self._adjust_before = None
 
     def onChanged(self, obj, prop):
-        if prop == "Cohort" and not ("Restore" in obj.State or obj.Document.Restoring):
+        if prop in ("Cohort", study_journal.REMOVED) and not ("Restore" in obj.State or obj.Document.Restoring):
             # written to disk until the document is saved, an Undo or Redo too (study_journal)
             study_journal.cohort_changed(obj)
         if is_restoring(obj):
@@ -546,10 +553,13 @@ def record_preference(study, name, gender, age_band, weight_kg, height_mm, devic
 
 
 def remove_record(study, index):
+    """Removes the record at ``index`` (of records) on purpose: the journal never offers it
+    back as lost (study_journal.removing; an Undo of the removal holds it again). Raises
+    ValueError if there is none."""
     kept = records(study)
     if not 0 <= index < len(kept):
         raise ValueError(f"{study.Label}: no participant {index + 1} (it has {len(kept)})")
-    del kept[index]
+    study_journal.removing(study, kept.pop(index))
     _write_records(study, kept)
 
 

@@ -16,20 +16,46 @@ them lets them go (``SaveWatcher``), and the file goes once nothing in it is uns
 document never saved has no path to tell it from another's: nothing is written for it
 (``never_saved``).
 
+A record the designer removes (``removing``: stiffness_study.remove_record, the panel's
+Remove) is not lost: one put back and removed again is not offered any more, nor written
+as lost. The study keeps what was removed in its ``Removed`` property, which the document
+does not save and Undo and Redo take back and bring again with the removal: an Undo of
+the removal holds the record again, as before, and an Undo of its put back offers it
+again.
+
+How a record was lost is said (``how_lost``): the document closed without saving it
+(FreeCAD's Discard, a script's App.closeDocument: the close is seen, and its time
+written in the file) or FreeCAD ended without closing it (a crash, the machine stopped:
+nothing is seen). Neither forgets the records: a Discard meant for an edit would lose the
+participants with it, who cannot be asked again; the offer says it was a close, and the
+designer drops them. A file written before closes were noted says neither.
+
 What this session knows of a study (the cohort its saved file holds, the records lost
-before it) lives on the study's proxy, which the document does not save: a document
-closed and opened again is a new session. Records are compared as stored (their JSON,
-keys sorted), as many times as they are held. App-only.
+before it and how) lives on the study's proxy, which the document does not save: a
+document closed and opened again is a new session. Records are compared as stored (their
+JSON, keys sorted), as many times as they are held. App-only.
 """
 import collections
 import hashlib
 import json
 import os
+from datetime import datetime
 
 import FreeCAD as App
 
 from . import cohort
 from .atomic_file import write_json
+
+
+# how a record was lost (how_lost): FreeCAD ended without closing the document; else the
+# time (ISO) the document was closed without saving it, or "" (a file written before
+# closes were noted)
+ENDED = "ended"
+# the study's property of the records removed on purpose since its document was opened
+# (JSON, as stored; not saved with the document, taken back and brought again by Undo and Redo)
+REMOVED = "Removed"
+# the files this session wrote (a study deleted since is noted closed with its document)
+_WRITTEN = set()
 
 
 def _folder():
@@ -59,12 +85,15 @@ def never_saved(study):
 class _Session:
     """What this session knows of one study: ``saved``, the records (as stored) its
     document's file holds, counted; ``lost``, those an earlier session recorded and did
-    not save, not dropped; ``path``, the document's path the file was last written for;
-    ``failure``, why the last write failed ("" when it did not)."""
+    not save, not dropped (those removed on purpose since too: an Undo of the removal
+    brings them back); ``how``, how each of those was lost (ENDED, a close's time or "");
+    ``path``, the document's path the file was last written for; ``failure``, why the
+    last write failed ("" when it did not)."""
 
-    def __init__(self, saved=(), lost=(), path=""):
+    def __init__(self, saved=(), lost=(), path="", how=None):
         self.saved = collections.Counter(saved)
         self.lost = list(lost)
+        self.how = dict(how or {})
         self.path = path
         self.failure = ""
 
@@ -109,25 +138,62 @@ def _minus(items, taken):
     return kept
 
 
-def _offered(session, held):
-    """The lost records not put back: those ``held`` (the cohort now, as stored) holds
-    beyond what its file holds are put back (a lost record alike to a saved one is still
+def _put_back(session, held):
+    """What ``held`` (the cohort now, as stored) holds beyond what its file holds, counted:
+    a lost record among them is put back (a lost record alike to a saved one is still
     lost: the file held both)."""
-    return _minus(session.lost, collections.Counter(_minus(held, session.saved)))
+    return collections.Counter(_minus(held, session.saved))
+
+
+def _removed(study):
+    """The records removed on purpose since the document was opened (REMOVED), as stored,
+    counted; none when the property cannot be read."""
+    try:
+        data = json.loads(getattr(study, REMOVED, "") or "[]")
+    except ValueError:
+        return collections.Counter()
+    return collections.Counter(_canonical(d) for d in data if isinstance(d, dict)) if isinstance(
+        data, list) else collections.Counter()
+
+
+def _offered(session, held, removed):
+    """The lost records offered: not put back, and not removed on purpose (``removed``,
+    counted) after they were."""
+    return _minus(_minus(session.lost, _put_back(session, held)), removed)
+
+
+def removing(study, record):
+    """``record`` (a cohort.Record the study holds) is being removed on purpose: noted in
+    the study's REMOVED property, in the removal's undo step. Called by
+    stiffness_study.remove_record before the cohort changes: the file written between the
+    two still holds the record in the cohort, never as lost."""
+    try:
+        before = json.loads(getattr(study, REMOVED, "") or "[]")
+    except ValueError:
+        before = []
+    setattr(study, REMOVED, json.dumps([*(before if isinstance(before, list) else []), record.as_dict()]))
 
 
 def _read(path):
-    """(study ID, the records the file at ``path`` holds, as stored); (None, []) when
-    there is no file or it cannot be read (cut off by a crash mid-write: it is written
-    beside and moved in, so only by hand)."""
+    """What the file at ``path`` holds: (study ID, the records as stored, the older first,
+    how each was lost); (None, [], {}) when there is no file or it cannot be read (cut off
+    by a crash mid-write: it is written beside and moved in, so only by hand)."""
     try:
         with open(path, encoding="utf-8") as handle:
             state = json.load(handle)
+        lost = [d for d in state.get("lost", []) if isinstance(d, dict)]
+        cohort_ = [d for d in state.get("cohort", []) if isinstance(d, dict)]
+        said = state.get("lost_how")
+        said = said if isinstance(said, list) and len(said) == len(lost) else [""] * len(lost)
+        how = {_canonical(d): str(h or "") for d, h in zip(lost, said)}
+        # the cohort as it was last written: what was not saved of it was lost when the
+        # document closed (its time), or when FreeCAD ended without closing it
+        ended = str(state.get("closed") or (ENDED if state.get("closes_noted") else ""))
+        how.update((_canonical(d), ended) for d in cohort_)
         # the older first: lost in an earlier session, then the cohort as it was last
-        texts = [_canonical(d) for d in [*state.get("lost", []), *state.get("cohort", [])] if isinstance(d, dict)]
-        return state.get("study_id"), texts
+        return state.get("study_id"), [_canonical(d) for d in [*lost, *cohort_]], how
     except (OSError, ValueError, AttributeError, TypeError):
-        return None, []
+        return None, [], {}
 
 
 def opened(study):
@@ -135,13 +201,13 @@ def opened(study):
     records its journal holds beyond them were lost unsaved (offered by ``lost``). Called
     by the study's proxy once the document is restored."""
     held = _stored(study) or []
-    lost = []
+    lost, how = [], {}
     path = path_for(study)
     if path is not None:
-        study_id, written = _read(path)
+        study_id, written, how = _read(path)
         if study_id in (None, study.ID):
             lost = _minus(written, collections.Counter(held))
-    study.Proxy._journal_session = _Session(held, lost, study.Document.FileName)
+    study.Proxy._journal_session = _Session(held, lost, study.Document.FileName, how)
 
 
 def cohort_changed(study):
@@ -159,14 +225,16 @@ def cohort_changed(study):
                                  f"not be written to disk ({exc}): save the document\n")
 
 
-def _write(study, session):
+def _write(study, session, closed=""):
     """The file as the study and its session are now: written whole beside it and moved
-    in (a crash mid-write leaves the previous one); removed when it would hold nothing."""
+    in (a crash mid-write leaves the previous one); removed when it would hold nothing.
+    ``closed``: the time (ISO) the document is being closed without saving, written as
+    how what it holds unsaved is lost."""
     path = _path(study.Document.FileName, study)
     held = _stored(study)
     if held is None:  # an unreadable cohort: the file as it was
         return
-    lost = _offered(session, held)
+    lost = _offered(session, held, _removed(study))
     if not _minus(held, session.saved) and not lost:  # nothing that is not on disk
         if os.path.exists(path):
             os.remove(path)
@@ -175,8 +243,12 @@ def _write(study, session):
     # the whole cohort, not only what is unsaved: the records it holds as often as it does
     # (one saved and one not of two alike are one lost, which the unsaved alone would not tell)
     state = {"document": os.path.abspath(study.Document.FileName), "study": study.Name, "study_id": study.ID,
-             "label": study.Label, "cohort": [json.loads(t) for t in held], "lost": [json.loads(t) for t in lost]}
+             "label": study.Label, "cohort": [json.loads(t) for t in held], "lost": [json.loads(t) for t in lost],
+             "lost_how": [session.how.get(t, "") for t in lost], "closes_noted": True}
+    if closed:
+        state["closed"] = closed
     write_json(path, state)
+    _WRITTEN.add(path)
     session.failure = ""
 
 
@@ -185,18 +257,54 @@ def failure(study):
     return _session(study).failure
 
 
-def lost(study):
-    """The records recorded in ``study`` in an earlier session and never saved (the
-    document was closed without saving, or FreeCAD ended) that it does not hold now, as
-    cohort.Record, in the order they were recorded. Put back by adding them to the study
-    (stiffness_study.add_records); forgotten by ``drop``."""
+def _lost(study):
+    """(record, how it was lost) of each record ``lost`` offers."""
+    session = _session(study)
     found = []
-    for text in _offered(_session(study), _stored(study) or []):
+    for text in _offered(session, _stored(study) or [], _removed(study)):
         try:
-            found.append(cohort.from_dict(json.loads(text)))
+            found.append((cohort.from_dict(json.loads(text)), session.how.get(text, "")))
         except (ValueError, TypeError):  # not a record (edited by hand): not offered
             pass
     return found
+
+
+def lost(study):
+    """The records recorded in ``study`` in an earlier session and never saved (the
+    document was closed without saving, or FreeCAD ended) that it does not hold now, as
+    cohort.Record, in the order they were recorded; not those removed on purpose since.
+    Put back by adding them to the study (stiffness_study.add_records); forgotten by ``drop``."""
+    return [record for record, _ in _lost(study)]
+
+
+def how_lost(study):
+    """How each record of ``lost`` was lost, in its order: ENDED (FreeCAD ended without
+    closing the document: a crash), the time (ISO) the document was closed without saving
+    it, or "" (written before closes were noted: either)."""
+    return [how for _, how in _lost(study)]
+
+
+def _said(how):
+    if how == ENDED:
+        return "FreeCAD ended before it was saved"
+    try:
+        return f"it was closed without saving on {datetime.fromisoformat(how):%Y-%m-%d at %H:%M}"
+    except (TypeError, ValueError):
+        return "it was closed without saving, or FreeCAD ended"
+
+
+def said_how_lost(names, hows, also=None):
+    """How records were lost, as a clause of plain text, from whose they are (``names``)
+    and how each was (``hows``, as how_lost gives): "FreeCAD ended before it was saved";
+    "it was closed without saving on 2026-11-24 at 15:20"; when not all alike, whose each
+    is: "Bo: FreeCAD ended ...; Cy: it was closed ...". ``also``: other hows, and their
+    clauses (run_journal's)."""
+    groups = {}
+    for name, how in zip(names, hows):
+        groups.setdefault((also or {}).get(how) or _said(how), []).append(name)
+    if len(groups) == 1:
+        return next(iter(groups))
+    return "; ".join(f"{', '.join(who)}: {said}" for said, who in groups.items())
 
 
 def drop(study, records):
@@ -225,7 +333,9 @@ def saved(study, doc_path):
     if held is None:  # unreadable: nothing is taken as saved
         return
     previous = session.path
-    session.lost = _offered(session, held)  # those put back are saved now
+    # those put back are saved now; one removed on purpose stays known (not offered) until
+    # the session ends: an Undo of its removal, then of its put back, offers it again
+    session.lost = _minus(session.lost, _put_back(session, held))
     session.saved = collections.Counter(held)
     session.path = doc_path
     if previous and os.path.abspath(previous) != os.path.abspath(doc_path):
@@ -247,8 +357,8 @@ def _is_stiffness_study(obj):
 
 class SaveWatcher:
     """Lets the written records go once a save holds them; the files of studies deleted
-    before the save go too (their records are in no document now). One is enough for all
-    documents: ``watch_saves``."""
+    before the save go too (their records are in no document now). Notes a document
+    closed without saving (``closed``). One is enough for all documents: ``watch_saves``."""
 
     def slotFinishSaveDocument(self, doc, path):
         if not doc.FileName or os.path.abspath(path) != os.path.abspath(doc.FileName):
@@ -268,6 +378,44 @@ class SaveWatcher:
                     os.remove(os.path.join(_folder(), name))
                 except OSError:
                     pass
+
+    def slotDeletedDocument(self, doc):
+        closed(doc)
+
+
+def closed(doc):
+    """``doc`` is being closed (FreeCAD's Discard, App.closeDocument; it is still whole):
+    each file this session wrote for its studies is written again as the study is now,
+    with the time, so that what it holds unsaved is said, when the document is opened
+    again, to be lost to a close without saving, not to a crash. Nothing is forgotten. A
+    file this session did not write says what it said (a document only read, by the
+    ``hapticad cohort`` command say, changes nothing); one of a study deleted since gets
+    the time alone."""
+    if not doc.FileName:
+        return
+    now = datetime.now().isoformat(timespec="seconds")
+    prefix = _document_key(doc.FileName) + "-"
+    ours = {p for p in _WRITTEN if os.path.basename(p).startswith(prefix)}
+    for study in [o for o in doc.Objects if _is_stiffness_study(o)]:
+        session = getattr(study.Proxy, "_journal_session", None)
+        path = _path(doc.FileName, study)
+        if session is None or (path not in ours and not session.failure):
+            continue
+        ours.discard(path)
+        try:
+            _write(study, session, closed=now)
+        except OSError as exc:
+            App.Console.PrintWarning(f"HaptiCAD: {study.Label}: the participants recorded since the last save "
+                                     f"could not be written to disk as the document closed ({exc})\n")
+    for path in sorted(ours):
+        try:
+            with open(path, encoding="utf-8") as handle:
+                state = json.load(handle)
+            write_json(path, {**state, "closed": now})
+        except (OSError, ValueError, TypeError):
+            pass  # gone (saved since), or not ours to mend: said as written
+    # the document opened again is another session
+    _WRITTEN.difference_update({p for p in _WRITTEN if os.path.basename(p).startswith(prefix)})
 
 
 _WATCHER = []

@@ -4,9 +4,11 @@ back as it was, resumed on the study as it was and only then, gone once kept or 
 Run by freecadcmd (see tests/plugin/CMakeLists.txt)."""
 import json
 import os
+import subprocess
 import sys
 import tempfile
 import unittest
+from datetime import datetime
 
 import FreeCAD as App
 
@@ -30,6 +32,16 @@ class RunJournalTest(unittest.TestCase):
     def tearDown(self):
         run_journal.forget(self.study)
         App.closeDocument(self.doc.Name)
+        # the kept runs' files written for this test's documents (they live in the test's FreeCAD home)
+        folder = os.path.join(App.getUserAppDataDir(), "HaptiCAD", "runs")
+        for name in os.listdir(folder) if os.path.isdir(folder) else []:
+            try:
+                with open(os.path.join(folder, name), encoding="utf-8") as handle:
+                    ours = json.load(handle).get("document", "").startswith(self.tmp.name + os.sep)
+            except (OSError, ValueError, AttributeError):
+                continue  # another test's, being written
+            if ours:
+                os.remove(os.path.join(folder, name))
         self.tmp.cleanup()
 
     def half_run(self, answers=5):
@@ -132,6 +144,100 @@ class RunJournalTest(unittest.TestCase):
         self.study = HaptiCAD.make_similarity_study(self.doc, self.plate_of(self.doc), WarmUps=2)
         self.assertEqual(self.study.Name, name)
         self.assertEqual(run_journal.unsaved_kept(self.study), [])
+
+    def keep(self, name, seed=7):
+        """Keeps ``name``'s finished run (one undo step), written beside the document as the
+        Feel panel writes it: the record as stored."""
+        run = ss.Run(self.study, name, seed=seed)
+        finish(run)
+        self.doc.openTransaction("Keep a similarity run")
+        record = json.loads(json.dumps(ss.record_run(self.study, run)))
+        self.doc.commitTransaction()
+        run_journal.write_kept(self.study, record)
+        return record
+
+    @staticmethod
+    def forget_kept(path, name):
+        """Takes away the kept runs' files written for the document ``path`` (they live in the
+        test's FreeCAD home)."""
+        for kept in run_journal._kept_files(path, name):
+            os.remove(kept)
+
+    def test_a_kept_run_removed_on_purpose_forgets_its_file_and_an_undo_writes_it_again(self):
+        # a kept run removed before the document was saved left its file: offered back next time as lost
+        run_journal.watch_saves()
+        path = os.path.join(self.tmp.name, "study.FCStd")
+        self.doc.saveAs(path)
+        self.doc.UndoMode = 1
+        name = self.study.Name
+        self.addCleanup(self.forget_kept, path, name)
+        self.keep("Ida")
+        written = run_journal._kept_files(path, name)
+        self.assertEqual(len(written), 1)
+        self.doc.openTransaction("Remove participants' runs")
+        ss.remove_run(self.study, 0)
+        self.doc.commitTransaction()
+        self.assertEqual(run_journal._kept_files(path, name), [])
+        self.doc.undo()  # in the document again, unsaved as it was: written again
+        self.assertEqual(run_journal._kept_files(path, name), written)
+        self.assertEqual(run_journal.unsaved_kept(self.study), [])
+        self.doc.redo()
+        self.assertEqual(run_journal._kept_files(path, name), [])
+        # a run saved, then removed: nothing written, nor after the removal is undone (it is on disk)
+        jo = self.keep("Jo", seed=8)
+        self.doc.save()
+        self.assertEqual(run_journal._kept_files(path, name), [])
+        self.doc.openTransaction("Remove participants' runs")
+        ss.remove_run(self.study, 0)
+        self.doc.commitTransaction()
+        self.doc.undo()
+        self.assertEqual(run_journal._kept_files(path, name), [])
+        self.assertEqual(ss.runs(self.study), [jo])
+        # Ida's removal lost with the document: not offered
+        App.closeDocument(self.doc.Name)
+        self.doc = App.openDocument(path)
+        self.study = self.doc.getObject(name)
+        self.assertEqual(ss.runs(self.study), [jo])
+        self.assertEqual(run_journal.unsaved_kept(self.study), [])
+
+    def test_a_kept_run_lost_to_a_close_without_saving_is_told_from_one_lost_to_a_crash(self):
+        # "the document closed (or FreeCAD ended) before it was saved": a discard on purpose
+        # could not be told from a crash
+        run_journal.watch_saves()
+        path = os.path.join(self.tmp.name, "study.FCStd")
+        self.doc.saveAs(path)
+        name = self.study.Name
+        self.addCleanup(self.forget_kept, path, name)
+        App.closeDocument(self.doc.Name)
+        tests = os.path.dirname(os.path.abspath(__file__))
+        code = (f"import os, sys, json, FreeCAD as App, HaptiCAD\n"
+                f"sys.path.insert(0, {tests!r})\n"
+                "from test_similarity_study import finish\n"
+                "from hapticad import run_journal, similarity_study as ss\n"
+                f"doc = App.openDocument({path!r})\n"
+                f"study = doc.getObject({name!r})\n"
+                "run = finish(ss.Run(study, 'Kim', seed=7))\n"
+                "run_journal.write_kept(study, json.loads(json.dumps(ss.record_run(study, run))))\n"
+                "os._exit(17)\n")
+        try:
+            done = subprocess.run(["freecadcmd", "-c", code], capture_output=True, text=True, timeout=300)
+        finally:
+            self.doc = App.openDocument(path)
+            self.study = self.doc.getObject(name)
+        self.assertEqual(done.returncode, 17, done.stdout[-2000:] + done.stderr[-2000:])
+        (kim,) = run_journal.unsaved_kept(self.study)
+        self.assertEqual(kim["name"], "Kim")
+        self.assertEqual(run_journal.how_lost(self.study, [kim]), [run_journal.ENDED])
+        ss.record_run(self.study, kim)  # put back, and lost again: closed without saving
+        before = datetime.now().replace(microsecond=0)
+        App.closeDocument(self.doc.Name)
+        self.doc = App.openDocument(path)
+        self.study = self.doc.getObject(name)
+        self.assertEqual(run_journal.unsaved_kept(self.study), [kim])  # not forgotten: dropped only when asked
+        (closed,) = run_journal.how_lost(self.study, [kim])
+        self.assertTrue(before <= datetime.fromisoformat(closed) <= datetime.now(), closed)
+        run_journal.drop_kept(self.study, [kim])
+        self.assertEqual(run_journal._kept_files(path, name), [])
 
     @staticmethod
     def plate_of(doc):

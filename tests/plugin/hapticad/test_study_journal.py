@@ -6,8 +6,10 @@ them. Run by freecadcmd (see tests/plugin/CMakeLists.txt)."""
 import json
 import os
 import shutil
+import subprocess
 import tempfile
 import unittest
+from datetime import datetime
 
 import FreeCAD as App
 
@@ -28,10 +30,12 @@ class StudyJournalTest(unittest.TestCase):
         self.written = set()  # journal files to take away after (they live in the test's FreeCAD home)
 
     def tearDown(self):
-        for path in (self.written | {study_journal.path_for(s) for s in HaptiCAD.studies_of(self.doc)}) - {None}:
+        # taken away once the document is closed: a close writes what it holds unsaved
+        paths = (self.written | {study_journal.path_for(s) for s in HaptiCAD.studies_of(self.doc)}) - {None}
+        App.closeDocument(self.doc.Name)
+        for path in paths:
             if os.path.exists(path):
                 os.remove(path)
-        App.closeDocument(self.doc.Name)
         self.tmp.cleanup()
 
     def record(self, name, thickness):
@@ -43,12 +47,40 @@ class StudyJournalTest(unittest.TestCase):
         return record
 
     def close_unsaved_and_reopen(self):
-        """Closes the document without saving, as a crash leaves it, and opens its file again."""
+        """Closes the document without saving (its records lost as a crash loses them; the
+        journal notes the close) and opens its file again."""
         name = self.study.Name
         App.closeDocument(self.doc.Name)
+        self.reopen(name)
+
+    def reopen(self, name):
         self.doc = App.openDocument(self.path)
         self.doc.UndoMode = 1
         self.study = self.doc.getObject(name)
+
+    def crash_elsewhere(self, study_name, name, thickness):
+        """Another FreeCAD opens the saved document, records ``name`` in ``study_name`` and
+        ends without a word (os._exit: no save and no close, as a crash leaves it)."""
+        code = (f"import os, FreeCAD as App, HaptiCAD\n"
+                f"doc = App.openDocument({self.path!r})\n"
+                f"study = doc.getObject({study_name!r})\n"
+                f"study.BeamThickness = {thickness!r}\n"
+                f"HaptiCAD.record_preference(study, {name!r}, 'F', '26-40', 60, 1650)\n"
+                "os._exit(17)\n")
+        done = subprocess.run(["freecadcmd", "-c", code], capture_output=True, text=True, timeout=300)
+        self.assertEqual(done.returncode, 17, done.stdout[-2000:] + done.stderr[-2000:])
+
+    def remove(self, name):
+        """Removes ``name``'s record on purpose, as the panel's Remove does (one undo step)."""
+        index = self.names(stiffness_study.records(self.study)).index(name)
+        self.doc.openTransaction("Remove participants")
+        stiffness_study.remove_record(self.study, index)
+        self.doc.commitTransaction()
+
+    def put_back(self):
+        self.doc.openTransaction("Put back participants recorded unsaved")
+        stiffness_study.add_records(self.study, study_journal.lost(self.study))
+        self.doc.commitTransaction()
 
     def names(self, records):
         return [r.name for r in records]
@@ -137,6 +169,97 @@ class StudyJournalTest(unittest.TestCase):
         self.doc.undo()
         self.assertEqual(self.names(stiffness_study.records(self.study)), ["Ann"])
         self.assertEqual(self.names(study_journal.lost(self.study)), ["Fay"])
+
+    def test_a_record_removed_on_purpose_is_not_offered_back_and_an_undo_brings_it_back_as_before(self):
+        # Cy, lost unsaved and put back, then removed on purpose: offered back at once as lost,
+        # and again each time the document was opened
+        self.doc.saveAs(self.path)
+        self.record("Ann", 4.0)
+        self.record("Bo", 5.0)
+        self.doc.save()
+        # a saved record removed, the removal not saved: the saved document holds him, nothing is offered
+        self.remove("Bo")
+        self.assertEqual(study_journal.lost(self.study), [])
+        self.close_unsaved_and_reopen()
+        self.assertEqual(self.names(stiffness_study.records(self.study)), ["Ann", "Bo"])
+        self.assertEqual(study_journal.lost(self.study), [])
+        self.remove("Bo")
+        self.doc.save()
+        # recorded, lost unsaved, put back, then removed on purpose
+        self.record("Cy", 6.0)
+        self.close_unsaved_and_reopen()
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Cy"])
+        self.put_back()
+        self.record("Dan", 3.0)
+        self.remove("Cy")
+        self.assertEqual(self.names(study_journal.lost(self.study)), [])
+        self.doc.undo()  # the removal undone: Cy held again
+        self.assertEqual(self.names(stiffness_study.records(self.study)), ["Ann", "Cy", "Dan"])
+        self.assertEqual(study_journal.lost(self.study), [])
+        self.doc.undo()
+        self.doc.undo()  # Dan's record and the put back undone: Cy offered again, as before
+        self.assertEqual(self.names(stiffness_study.records(self.study)), ["Ann"])
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Cy"])
+        for _ in range(3):  # the put back, Dan, the removal redone: Cy is not offered
+            self.doc.redo()
+        self.assertEqual(self.names(stiffness_study.records(self.study)), ["Ann", "Dan"])
+        self.assertEqual(study_journal.lost(self.study), [])
+        # lost with the document: Dan, recorded and never saved, is offered; Cy, removed on purpose, is not
+        self.close_unsaved_and_reopen()
+        self.assertEqual(self.names(stiffness_study.records(self.study)), ["Ann"])
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Dan"])
+        # removed on purpose and saved, then the removal undone: Dan is held unsaved, and lost with the document
+        self.put_back()
+        self.remove("Dan")
+        self.doc.save()
+        self.assertEqual(study_journal.lost(self.study), [])
+        self.doc.undo()
+        self.assertEqual(self.names(stiffness_study.records(self.study)), ["Ann", "Dan"])
+        self.close_unsaved_and_reopen()
+        self.assertEqual(self.names(stiffness_study.records(self.study)), ["Ann"])
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Dan"])
+
+    def test_a_close_without_saving_is_told_from_a_crash_and_neither_forgets_the_records(self):
+        # "it was closed without saving, or FreeCAD ended": the designer who discarded the
+        # document on purpose could not tell that from a crash
+        self.doc.saveAs(self.path)
+        self.record("Ann", 4.0)
+        self.doc.save()
+        name = self.study.Name
+        App.closeDocument(self.doc.Name)  # nothing unsaved: nothing noted
+        try:
+            self.crash_elsewhere(name, "Bo", 5.0)
+        finally:
+            self.reopen(name)
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Bo"])
+        self.assertEqual(study_journal.how_lost(self.study), [study_journal.ENDED])
+        with open(study_journal.path_for(self.study), "rb") as handle:
+            written = handle.read()
+        self.close_unsaved_and_reopen()  # closed with nothing new: Bo was lost to the crash all the same
+        self.assertEqual(study_journal.how_lost(self.study), [study_journal.ENDED])
+        with open(study_journal.path_for(self.study), "rb") as handle:
+            self.assertEqual(handle.read(), written)  # a session that wrote nothing leaves the file as it was
+        self.record("Cy", 6.0)
+        before = datetime.now().replace(microsecond=0)
+        self.close_unsaved_and_reopen()  # on purpose: not forgotten (a discard meant for an edit loses nobody)
+        lost = study_journal.lost(self.study)
+        self.assertEqual(self.names(lost), ["Bo", "Cy"])
+        ended, closed = study_journal.how_lost(self.study)
+        self.assertEqual(ended, study_journal.ENDED)
+        self.assertTrue(before <= datetime.fromisoformat(closed) <= datetime.now(), closed)
+        when = datetime.fromisoformat(closed).strftime("%Y-%m-%d at %H:%M")
+        self.assertEqual(study_journal.said_how_lost(["Bo", "Cy"], [ended, closed]),
+                         f"Bo: FreeCAD ended before it was saved; Cy: it was closed without saving on {when}")
+        self.assertEqual(study_journal.said_how_lost(["Cy"], [closed]), f"it was closed without saving on {when}")
+        self.assertEqual(study_journal.said_how_lost(["Bo", "Cy"], [ended, ended]),
+                         "FreeCAD ended before it was saved")
+        # a journal written before closes were noted: either
+        self.assertEqual(study_journal.said_how_lost(["Bo"], [""]), "it was closed without saving, or FreeCAD ended")
+        # dropped only when the designer says so; what is left keeps how it was lost
+        study_journal.drop(self.study, lost[1:])
+        self.close_unsaved_and_reopen()
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Bo"])
+        self.assertEqual(study_journal.how_lost(self.study), [study_journal.ENDED])
 
     def test_a_record_given_twice_is_offered_as_many_times_as_it_was_lost(self):
         self.doc.saveAs(self.path)

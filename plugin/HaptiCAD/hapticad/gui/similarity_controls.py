@@ -6,16 +6,19 @@ their answer.
 The participant presses *Texture 1* or *Texture 2* (as often as they like) to have that
 texture on the study's face at the next servo tick, strokes it (a texture counts as felt
 once stroked over one period of its grating: Run.stroked, fed from the loop's trace by
-``stroked``), and rates how alike the two feel; in the classing part, *Texture*, *Reference A* and *Reference B*, then *Closer
-to A* or *Closer to B*. They never see which stimulus is which. *Back* takes the last
-answer back. When the last trial is answered the run is kept in the document as one
-undo step; a run stopped before is not kept (a half run would skew the cohort). While a
+``stroked``), and rates how alike the two feel; in the classing part, *Texture*,
+*Reference A* and *Reference B*, then *Closer to A* or *Closer to B*. They never see
+which stimulus is which. *Back* takes the last answer back. When the last trial is
+answered the run is kept in the document as one undo step; a run stopped before is not
+kept (a half run would skew the cohort). While a
 run holds answers its document cannot be closed (``holds_answers``; the Feel panel sets
 it), so no way of closing it loses them unasked.
 
 Every answer of a run in progress is written to disk (run_journal): a run FreeCAD never
 kept (it was closed, or crashed) is offered to go on when the study's controls are next
-shown, on the study as it was.
+shown, on the study as it was. A kept run the document lost unsaved is offered back (or
+to drop), saying under the offer how it was lost (a close without saving, with its time;
+a crash; an Undo), and what Put back or Drop did is said there too.
 
 A change to the study during a run (a stimulus, the surface's friction, a reference)
 pauses it, its answers held: undoing the change lets it go on, Stop run ends it. An Undo
@@ -95,6 +98,14 @@ class SimilarityControls(QtWidgets.QWidget):
         self.drop_button.clicked.connect(self.drop_lost)
         lost_row.addWidget(self.drop_button)
         layout.addLayout(lost_row)
+        # under the offer: how those runs were lost, and what Put back or Drop did
+        self.journal_label = QtWidgets.QLabel()
+        self.journal_label.setObjectName("similarityJournal")
+        self.journal_label.setWordWrap(True)
+        layout.addWidget(self.journal_label)
+        # what Put back or Drop did, with the runs it was said of: kept until they change
+        # (an Undo of the put back) or the next action
+        self.journal_notice = None
         run_journal.watch_saves()
 
         self.trial_label = QtWidgets.QLabel()
@@ -268,11 +279,27 @@ class SimilarityControls(QtWidgets.QWidget):
         lost = [] if running else self.unsaved_kept()
         self.put_back_button.setVisible(bool(lost))
         self.drop_button.setVisible(bool(lost))
+        notes = []
+        if self.journal_notice is not None and self.journal_notice[1] != self.study.Responses:
+            self.journal_notice = None  # said of runs that changed since (an Undo of the put back)
+        if self.journal_notice is not None:
+            notes.append(self.journal_notice[0])
         if lost:
-            self.put_back_button.setText(f"Put back {self._names(lost)} run{'s' if len(lost) > 1 else ''} "
+            many = len(lost) > 1
+            them = "them" if many else "it"
+            hows = run_journal.how_lost(self.study, lost)
+            said = run_journal.said_how_lost([str(r.get("name", "?")) for r in lost], hows)
+            closed = any(how not in (run_journal.ENDED, run_journal.UNDONE, "") for how in hows)
+            self.put_back_button.setText(f"Put back {self._names(lost)} run{'s' if many else ''} "
                                          "(kept, document not saved)")
-            self.put_back_button.setToolTip("Kept in the document, which closed (or FreeCAD ended) before it "
-                                            "was saved. Put back, then save the document.")
+            self.put_back_button.setToolTip(f"Kept in the document, and not in it now: {said}. Put back, then save "
+                                            "the document.")
+            notes.append(f"<span style='color:#b00000'>⚠ {html.escape(self._names(lost), quote=False)} kept "
+                         f"run{'s are' if many else ' is'} not in the document: {html.escape(said, quote=False)}. "
+                         f"Put {them} back, then save the document"
+                         + (f", or Drop {them} if the close was to discard {them}" if closed else "") + ".</span>")
+        self.journal_label.setText("<br>".join(notes))
+        self.journal_label.setVisible(bool(notes))
         self.resume_button.setVisible(waiting is not None)
         if waiting is not None:
             count = len(waiting["trials"])
@@ -350,6 +377,7 @@ class SimilarityControls(QtWidgets.QWidget):
                 QtWidgets.QMessageBox.Yes | QtWidgets.QMessageBox.No,
                 QtWidgets.QMessageBox.No) != QtWidgets.QMessageBox.Yes:
             return False
+        self.journal_notice = None
         try:
             self.run = ss.Run(self.study, self.name.text())
         except ValueError as exc:
@@ -377,6 +405,7 @@ class SimilarityControls(QtWidgets.QWidget):
         state = run_journal.read(self.study)
         if state is None or self.run is not None:
             return False
+        self.journal_notice = None
         try:
             self.run = run_journal.resume(self.study, state)
         except ValueError as exc:
@@ -409,17 +438,23 @@ class SimilarityControls(QtWidgets.QWidget):
                 ss.record_run(self.study, record)
         except ValueError as exc:
             doc.abortTransaction()
-            self.show_message(f"Not put back: {html.escape(str(exc), quote=False)}", error=True)
+            self.say_at_offer(f"Not put back: {html.escape(str(exc), quote=False)}", error=True)
             return False
         doc.commitTransaction()
         self.kept_here.extend(lost)
         many = len(lost) > 1
-        self.show_message(f"Put back {html.escape(self._names(lost), quote=False)} run{'s' if many else ''} "
+        self.say_at_offer(f"✓ Put back {html.escape(self._names(lost), quote=False)} run{'s' if many else ''} "
                           f"({self.study.Participants} participant{'s' if self.study.Participants != 1 else ''}). "
                           f"Save the document to keep {'them' if many else 'it'} on disk.")
         self.changed.emit()
-        self.load()
         return True
+
+    def say_at_offer(self, text, error=False):
+        """Shows ``text`` (HTML) under the offer of runs lost unsaved, where Put back and Drop
+        are pressed, until the study's runs change or the next action."""
+        colour = "#b00000" if error else "#006000"
+        self.journal_notice = (f"<span style='color:{colour}'>{text}</span>", self.study.Responses)
+        self.load()
 
     def drop_lost(self):
         """Forgets, when the designer says so, the runs the document lost unsaved."""
@@ -435,11 +470,10 @@ class SimilarityControls(QtWidgets.QWidget):
         try:
             run_journal.drop_kept(self.study, lost)
         except OSError as exc:
-            self.show_message(f"Not dropped: {html.escape(str(exc), quote=False)}", error=True)
+            self.say_at_offer(f"Not dropped: {html.escape(str(exc), quote=False)}", error=True)
             return False
-        self.show_message(f"Dropped {html.escape(self._names(lost), quote=False)} run"
+        self.say_at_offer(f"✓ Dropped {html.escape(self._names(lost), quote=False)} run"
                           f"{'s' if len(lost) > 1 else ''}.")
-        self.load()
         return True
 
     def _write_journal(self):

@@ -10,8 +10,11 @@ close the panel and press Feel: the Feel panel shows the same slider and form.
 
 Participants recorded since the document was last saved are written to disk as they come
 (study_journal): when the document was closed without saving them, or FreeCAD ended, the
-panel offers them back (Put back, one undo step) or to drop them. A document never saved
-has nowhere to be written from: the panel says its records are on disk only once saved.
+panel offers them back at its top (Put back, one undo step) or to drop them, saying which
+of the two lost them (a close is said with its time: the designer who closed it to
+discard them drops them), and says there what Put back or Drop did. A document never
+saved has nowhere to be written from: the panel says its records are on disk only once
+saved.
 """
 from html import escape
 
@@ -98,6 +101,9 @@ class StudyTaskPanel(CloseOnlyPanel):
         # reloads that follow (the study observer's, a turn later) until the cohort changes
         # or the next edit
         self.notice = None
+        # what Put back or Drop did, said where the offer was (at the top), with the cohort it
+        # was said of: kept until the cohort changes (an Undo of the put back) or the next edit
+        self.journal_notice = None
         self.form = [self._status_box("Stiffness study", "studyStatus"), self._model_box(), self._customise_box(),
                      self._cohort_box()]
         self._journal_row(self.form[0].layout())
@@ -317,19 +323,30 @@ class StudyTaskPanel(CloseOnlyPanel):
         return stiffness_study.rendered_force_limit_n(self.device_limits, preferences.load().force_limit_n)
 
     def _load_journal(self):
-        """What is not on disk: records lost unsaved (offered back), a document never saved,
-        a journal that could not be written."""
+        """What is not on disk: records lost unsaved (offered back, saying how they were
+        lost), a document never saved, a journal that could not be written; and what Put
+        back or Drop did (``journal_notice``)."""
         lost = study_journal.lost(self.obj)
         self.put_back_button.setVisible(bool(lost))
         self.drop_button.setVisible(bool(lost))
         notes = []
+        if self.journal_notice is not None and self.journal_notice[1] != self.obj.Cohort:
+            self.journal_notice = None  # said of a cohort that has changed since (an undo, a record)
+        if self.journal_notice is not None:
+            notes.append(self.journal_notice[0])
         if lost:
             many = len(lost) != 1
+            them = "them" if many else "it"
+            hows = study_journal.how_lost(self.obj)
+            said = study_journal.said_how_lost([r.name for r in lost], hows)
+            # a close without saving is seen (a crash is not): one made to discard them is the designer's to say
+            closed = any(how not in (study_journal.ENDED, "") for how in hows)
             self.put_back_button.setText(f"Put back {cohort.plural(len(lost), 'record')} ({_names(lost)})")
             notes.append(f"<span style='color:#b00000'>⚠ {cohort.plural(len(lost), 'participant record')} "
                          f"({escape(_names(lost))}) recorded here after the document was last saved "
-                         f"{'are' if many else 'is'} not in it: it was closed without saving, or FreeCAD ended. "
-                         f"Put {'them' if many else 'it'} back, then save the document.</span>")
+                         f"{'are' if many else 'is'} not in it: {escape(said)}. Put {them} back, then save the "
+                         f"document" + (f", or Drop {them} if the close was to discard {them}" if closed else "")
+                         + ".</span>")
         if study_journal.never_saved(self.obj):
             notes.append("<span style='color:#a06000'>This document has never been saved: the participants "
                          "recorded are on disk only once it is saved (from then on, each is written to disk as "
@@ -415,6 +432,13 @@ class StudyTaskPanel(CloseOnlyPanel):
     def say(self, text):
         """Shows ``text`` above the statistics until the cohort changes or the next edit."""
         self.notice = (text, self.obj.Cohort)
+        self.journal_notice = None
+        self.load()
+
+    def say_at_offer(self, text):
+        """Shows ``text`` where records lost unsaved are offered (at the top: what Put back or
+        Drop did, where the designer pressed it) until the cohort changes or the next edit."""
+        self.journal_notice = (text, self.obj.Cohort)
         self.load()
 
     # --- widgets -> object -------------------------------------------------------------
@@ -426,7 +450,7 @@ class StudyTaskPanel(CloseOnlyPanel):
     def set_property(self, name, value):
         if self._loading or not self._alive():
             return
-        self.notice = None
+        self.notice = self.journal_notice = None
         if not set_study_property(self.obj, name, value):
             self.status.setText(f"<span style='color:#b00000'>⚠ {LABELS.get(name, name)}: {value} refused</span>")
             return
@@ -435,7 +459,7 @@ class StudyTaskPanel(CloseOnlyPanel):
     def adjust_chosen(self, index):
         if self._loading or index < 0:
             return
-        self.notice = None
+        self.notice = self.journal_notice = None
         # the study sets the slider's range to the parameter's (StiffnessStudy.onChanged)
         set_study_property(self.obj, "Adjust", self.widgets["Adjust"].itemData(index))
         self.load()
@@ -447,7 +471,7 @@ class StudyTaskPanel(CloseOnlyPanel):
                          reverse=True)
         if not indices:
             return
-        self.notice = None
+        self.notice = self.journal_notice = None
         self.doc.openTransaction("Remove participants")
         for index in indices:
             stiffness_study.remove_record(self.obj, index)
@@ -465,12 +489,13 @@ class StudyTaskPanel(CloseOnlyPanel):
             stiffness_study.add_records(self.obj, lost)
         except ValueError as exc:  # an unreadable stored cohort
             self.doc.abortTransaction()
-            self.say(f"<span style='color:#b00000'>Not put back: {escape(str(exc))}</span>")
+            self.say_at_offer(f"<span style='color:#b00000'>Not put back: {escape(str(exc))}</span>")
             return 0
         self.doc.commitTransaction()
         many = len(lost) != 1
-        self.say(f"Put back {cohort.plural(len(lost), 'record')} ({escape(_names(lost))}). Save the document to "
-                 f"keep {'them' if many else 'it'} on disk.")
+        self.say_at_offer(f"<span style='color:#006000'>✓ Put back {cohort.plural(len(lost), 'record')} "
+                          f"({escape(_names(lost))}). Save the document to keep {'them' if many else 'it'} on "
+                          "disk.</span>")
         return len(lost)
 
     def drop_lost(self):
@@ -487,9 +512,10 @@ class StudyTaskPanel(CloseOnlyPanel):
         try:
             study_journal.drop(self.obj, lost)
         except OSError as exc:
-            self.say(f"<span style='color:#b00000'>Not dropped: {escape(str(exc))}</span>")
+            self.say_at_offer(f"<span style='color:#b00000'>Not dropped: {escape(str(exc))}</span>")
             return False
-        self.say(f"Dropped {cohort.plural(len(lost), 'record')} ({escape(_names(lost))}).")
+        self.say_at_offer(f"<span style='color:#006000'>✓ Dropped {cohort.plural(len(lost), 'record')} "
+                          f"({escape(_names(lost))}).</span>")
         return True
 
     def choose_export(self):

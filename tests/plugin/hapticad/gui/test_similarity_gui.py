@@ -42,7 +42,8 @@ def simulated_run(study, name, seed):
             run.answer("A" if v["TextureDC"] + v["TextureViscosity"] < 0.5 else "B")
             continue
         a, b = (run.stimuli[i]["values"] for i in (t.first, t.second))
-        d = np.hypot((a["TextureDC"] - b["TextureDC"]) / 0.35, 0.5 * (a["TextureViscosity"] - b["TextureViscosity"]) / 0.4)
+        d = np.hypot((a["TextureDC"] - b["TextureDC"]) / 0.35,
+                     0.5 * (a["TextureViscosity"] - b["TextureViscosity"]) / 0.4)
         run.answer(int(min(7, max(1, round(1 + (1 - d / 1.12 + rng.gauss(0, 0.05)) * 6)))))
     return run
 
@@ -287,6 +288,9 @@ class SimilarityGuiTest(unittest.TestCase):
         folder = tempfile.mkdtemp()
         self.doc.saveAs(os.path.join(folder, "study.FCStd"))  # a journal is named by the document's path
         study, controls = self.start_run("Fay")
+        # Fay's run is kept and never saved: its file lives in the test's FreeCAD home
+        path, name = self.doc.FileName, study.Name
+        self.addCleanup(lambda: [os.remove(f) for f in run_journal._kept_files(path, name)])
         self.answer_in_code(controls, 4)
         self.assertEqual(run_journal.read(study)["answers"], [4] * 4)
         # FreeCAD gone without a word: the next controls on the study (a new session) offer it
@@ -350,7 +354,13 @@ class SimilarityGuiTest(unittest.TestCase):
         self.assertFalse(put_back.isHidden())
         self.assertEqual(put_back.text(), "Put back Ida's run (kept, document not saved)")
         self.assertFalse(fresh.findChild(QtWidgets.QPushButton, "similarityDropLost").isHidden())
-        self.assertIn("closed (or FreeCAD ended) before it was saved", put_back.toolTip())
+        # how it was lost, under the offer: closed without saving (the close is seen), not a crash
+        journal = fresh.findChild(QtWidgets.QLabel, "similarityJournal")
+        self.assertFalse(journal.isHidden())
+        self.assertRegex(journal.text(), r"Ida's kept run is not in the document: it was closed without saving on "
+                         r"\d{4}-\d\d-\d\d at \d\d:\d\d\. Put it back, then save the document, or Drop it if the "
+                         r"close was to discard it\.")
+        self.assertIn("closed without saving on", put_back.toolTip())
         h.widen_panel()
         h.grab_screen("similarity_put_back.png")
         self.doc.UndoMode = 1
@@ -358,7 +368,11 @@ class SimilarityGuiTest(unittest.TestCase):
         self.assertEqual([r["name"] for r in ss.runs(study)], ["Ida"])
         self.assertEqual(study.Participants, 1)
         self.assertIn("Put back kept similarity runs", self.doc.UndoNames)
-        self.assertIn("Put back Ida's run (1 participant). Save the document", fresh.message.text())
+        # said where the offer was, not under the trial's buttons
+        self.assertIn("Put back Ida's run (1 participant). Save the document", journal.text())
+        self.assertFalse(journal.isHidden())
+        self.assertNotIn("Put back", fresh.message.text())
+        h.grab_screen("similarity_put_back_done.png")
         self.assertTrue(put_back.isHidden())
         # Undo takes it back (Redo brings it, and the next keep asks); once an edit clears
         # Redo, it is offered again rather than lost
@@ -366,6 +380,7 @@ class SimilarityGuiTest(unittest.TestCase):
         fresh.load()
         self.assertEqual(ss.runs(study), [])
         self.assertTrue(put_back.isHidden())
+        self.assertNotIn("Put back Ida's run (1 participant)", journal.text())  # said of what is undone
         self.doc.openTransaction("Rename")
         study.Label = "Study of gratings"
         self.doc.commitTransaction()
@@ -393,7 +408,10 @@ class SimilarityGuiTest(unittest.TestCase):
         self.doc.commitTransaction()
         controls.load()
         drop = controls.findChild(QtWidgets.QPushButton, "similarityDropLost")
+        journal = controls.findChild(QtWidgets.QLabel, "similarityJournal")
         self.assertEqual(controls.put_back_button.text(), "Put back Jan's run (kept, document not saved)")
+        self.assertIn("Jan's kept run is not in the document: an Undo took it out of the document before it was "
+                      "saved.", journal.text())
         with mock.patch.object(QtWidgets.QMessageBox, "question", return_value=QtWidgets.QMessageBox.No) as asked:
             drop.click()
         self.assertEqual(asked.call_args[0][2], "Drop Jan's kept run for good? No saved document holds it.")
@@ -402,9 +420,47 @@ class SimilarityGuiTest(unittest.TestCase):
             drop.click()
         self.assertTrue(drop.isHidden())
         self.assertTrue(controls.put_back_button.isHidden())
-        self.assertIn("Dropped Jan's run.", controls.message.text())
+        self.assertIn("Dropped Jan's run.", journal.text())
+        self.assertFalse(journal.isHidden())
         self.assertEqual(run_journal._kept_files(path, name), [])
         self.assertEqual([r["name"] for r in ss.runs(study)], ["Ida"])
+
+    def test_a_kept_run_removed_in_the_panel_forgets_its_file_and_is_not_offered_back(self):
+        # removed before a save, its file stayed beside the document: the next time, the run
+        # removed on purpose was offered back as lost
+        from hapticad import run_journal
+
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=2)
+        path = os.path.join(tempfile.mkdtemp(), "study.FCStd")
+        self.doc.saveAs(path)
+        self.doc.UndoMode = 1
+        name = study.Name
+        self.addCleanup(lambda: [os.remove(f) for f in run_journal._kept_files(path, name)])
+        self.run_in_feel("Ida")
+        h.press_task_button("Close")
+        self.assertEqual(len(run_journal._kept_files(path, name)), 1)
+        Gui.ActiveDocument.setEdit(study.Name, 0)
+        h.process_events()
+        table = h.widget(QtWidgets.QTableWidget, "runsTable")
+        table.selectRow(0)
+        h.widget(QtWidgets.QPushButton, "removeRun").click()
+        self.assertEqual(ss.runs(study), [])
+        self.assertEqual(run_journal._kept_files(path, name), [])
+        self.doc.undo()  # back in the document, unsaved: written again
+        h.process_events()
+        self.assertEqual(table.rowCount(), 1)
+        self.assertEqual(len(run_journal._kept_files(path, name)), 1)
+        table.selectRow(0)
+        h.widget(QtWidgets.QPushButton, "removeRun").click()
+        h.press_task_button("Close")
+        App.closeDocument(self.doc.Name)  # the removal lost unsaved: the run is in no saved document
+        self.doc = App.openDocument(path)
+        study = self.doc.getObject(name)
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        controls = task_panel_feel.active_panel().similarity_controls[0]
+        self.assertTrue(controls.put_back_button.isHidden())
+        self.assertEqual(run_journal.unsaved_kept(study), [])
 
     def test_an_edit_during_a_run_pauses_it_and_undoing_the_edit_goes_on(self):
         # a friction edit at trial 60 threw the run's answers away, and undoing it did not

@@ -5,6 +5,7 @@ cohort's statistics and exports and imports it; during a Feel session the slider
 what the probe feels at once and a participant's preference is recorded from the Feel
 panel. Run by gui_test_runner.py."""
 import os
+import shutil
 import sys
 import tempfile
 import unittest
@@ -70,11 +71,12 @@ class StudyGuiTest(unittest.TestCase):
         if Gui.Control.activeDialog():
             h.press_task_button("Close")
         Gui.Selection.clearSelection()
-        for study in HaptiCAD.studies_of(self.doc):  # records left unsaved are journaled in the test's home
-            path = study_journal.path_for(study)
-            if path is not None and os.path.exists(path):
-                os.remove(path)
+        # records left unsaved are journaled in the test's home, and written again as the document closes
+        paths = {study_journal.path_for(s) for s in HaptiCAD.studies_of(self.doc)} - {None}
         App.closeDocument(self.doc.Name)
+        for path in paths:
+            if os.path.exists(path):
+                os.remove(path)
         self.tmp.cleanup()
 
     def open_study(self):
@@ -741,9 +743,10 @@ class StudyGuiTest(unittest.TestCase):
         journal = h.widget(QtWidgets.QLabel, "cohortJournal")
         put_back = h.widget(QtWidgets.QPushButton, "putBackParticipants")
         drop = h.widget(QtWidgets.QPushButton, "dropLostParticipants")
-        self.assertIn("2 participant records (Bo, Cy) recorded here after the document was last saved are not in "
-                      "it: it was closed without saving, or FreeCAD ended. Put them back, then save the document.",
-                      journal.text())
+        # closed without saving (the close is seen, and said: not a crash)
+        self.assertRegex(journal.text(), r"2 participant records \(Bo, Cy\) recorded here after the document was "
+                         r"last saved are not in it: it was closed without saving on \d{4}-\d\d-\d\d at \d\d:\d\d\. "
+                         r"Put them back, then save the document, or Drop them if the close was to discard them\.")
         self.assertEqual(put_back.text(), "Put back 2 records (Bo, Cy)")
         self.assertFalse(put_back.isHidden())
         self.assertFalse(drop.isHidden())
@@ -759,14 +762,17 @@ class StudyGuiTest(unittest.TestCase):
         self.assertEqual(study.Participants, 3)
         self.assertEqual(self.doc.UndoCount, steps + 1)
         self.assertEqual(self.doc.UndoNames[0], "Put back participants recorded unsaved")
-        self.assertIn("Put back 2 records (Bo, Cy). Save the document to keep them on disk.",
-                      h.widget(QtWidgets.QLabel, "cohortStats").text())
+        # said where the offer was, at the top, not only in the statistics at the bottom
+        self.assertIn("Put back 2 records (Bo, Cy). Save the document to keep them on disk.", journal.text())
+        self.assertFalse(journal.isHidden())
+        self.assertNotIn("Put back", h.widget(QtWidgets.QLabel, "cohortStats").text())
         self.assertTrue(put_back.isHidden())
-        self.assertTrue(journal.isHidden())
+        h.grab_screen("study_put_back_done.png")
         self.doc.undo()  # taken back as one: offered again
         h.process_events()
         self.assertEqual(table.rowCount(), 1)
         self.assertFalse(put_back.isHidden())
+        self.assertNotIn("Put back 2 records (Bo, Cy). Save", journal.text())
         # dropped only when the designer says so
         with h.MessageBoxes(press=QtWidgets.QMessageBox.No) as asked:
             drop.click()
@@ -777,8 +783,73 @@ class StudyGuiTest(unittest.TestCase):
             drop.click()
         h.process_events()
         self.assertTrue(put_back.isHidden())
-        self.assertIn("Dropped 2 records (Bo, Cy).", h.widget(QtWidgets.QLabel, "cohortStats").text())
+        self.assertIn("Dropped 2 records (Bo, Cy).", journal.text())
+        self.assertFalse(journal.isHidden())
         self.assertEqual(study_journal.lost(study), [])
+        # until the next edit
+        h.widget(QtWidgets.QDoubleSpinBox, "BeamLength").setValue(70.0)
+        h.process_events()
+        self.assertTrue(journal.isHidden())
+
+    def test_a_document_closed_with_freecads_discard_offers_its_records_back_saying_so(self):
+        # the designer who answered Discard on purpose was told "it was closed without saving, or FreeCAD
+        # ended", as after a crash. The records are kept all the same (a Discard meant for an edit made
+        # after them would lose participants who cannot be asked again), and the offer says it was a close
+        study = self.open_study()
+        path = os.path.join(self.tmp.name, "toothbrush.FCStd")
+        self.doc.saveAs(path)
+        fill_participant("Bo")
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        name, surface, doc_name = study.Name, self.surface.Name, self.doc.Name
+        h.press_task_button("Close")
+        with h.MessageBoxes(press=QtWidgets.QMessageBox.Discard) as boxes:  # its only view closed, as by Ctrl+W
+            Gui.runCommand("Std_CloseActiveWindow")
+        self.assertEqual([title for title, _ in boxes.seen], ["Unsaved document"])
+        self.assertNotIn(doc_name, App.listDocuments())
+        self.doc = App.openDocument(path)
+        self.doc.UndoMode = 1
+        self.surface = self.doc.getObject(surface)
+        study = self.open_study()
+        self.assertEqual(study.Name, name)
+        journal = h.widget(QtWidgets.QLabel, "cohortJournal")
+        self.assertRegex(journal.text(), r"1 participant record \(Bo\) recorded here after the document was last "
+                         r"saved is not in it: it was closed without saving on \d{4}-\d\d-\d\d at \d\d:\d\d\. "
+                         r"Put it back, then save the document, or Drop it if the close was to discard it\.")
+        self.assertFalse(h.widget(QtWidgets.QPushButton, "dropLostParticipants").isHidden())
+        h.widen_panel(560)
+        h.scroll_to(journal)
+        h.grab_screen("study_discarded.png")
+
+    def test_a_journal_that_cannot_be_written_is_said_at_the_top_of_the_panel(self):
+        # said headless only (study_journal.failure): here, what the designer sees. The journal's
+        # file is written beside it first: a folder there makes the write fail, for root too (whom
+        # a folder's mode does not stop), and for this document only
+        study = self.open_study()
+        self.doc.saveAs(os.path.join(self.tmp.name, "toothbrush.FCStd"))
+        h.process_events()
+        journal = h.widget(QtWidgets.QLabel, "cohortJournal")
+        self.assertTrue(journal.isHidden())
+        blocked = study_journal.path_for(study) + ".part"
+        os.makedirs(blocked)
+        self.addCleanup(shutil.rmtree, blocked, True)
+        fill_participant("Bo")
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()
+        h.process_events()
+        self.assertEqual(study.Participants, 1)  # recorded all the same
+        self.assertFalse(journal.isHidden())
+        self.assertIn("⚠ The participants recorded since the last save could not be written to disk as they came",
+                      journal.text())
+        self.assertIn("Is a directory", journal.text())
+        self.assertIn("save the document now", journal.text())
+        h.widen_panel(560)
+        h.scroll_to(journal)
+        h.grab_screen("study_journal_unwritable.png")
+        shutil.rmtree(blocked)
+        fill_participant("Cy")
+        h.widget(QtWidgets.QPushButton, "recordPreference").click()  # written again: nothing to say
+        h.process_events()
+        self.assertTrue(journal.isHidden())
+        self.assertTrue(os.path.exists(study_journal.path_for(study)))
 
     def test_a_slider_step_loads_the_panel_and_its_controls_once(self):
         # each step loaded the panel at once, then again a turn later through the study observer (and the
