@@ -15,7 +15,7 @@ The binding's contract (devices/README.md):
     _core.ForceRenderer(scene, surfaces, limits) .set_surfaces(surfaces)
     loop.set_renderer(renderer)            (a new scene, taken at the next tick)
     loop.release_replaced_renderers()      (frees a scene the loop moved past)
-    _core.list_devices(), _core.open_device(path)
+    _core.list_devices(), _core.open_device(path)   (device_opening.py: off the GUI thread)
 
 Units: SI (m, N) in the loop, mm in the document. No GUI.
 """
@@ -108,13 +108,17 @@ def beyond_reach(limits, mapping, low_m, high_m):
 
 
 class LiveSession:
-    """One Feel session on a document scene. Raises RuntimeError / ValueError with the
-    device layer's message when the device cannot be opened."""
+    """One Feel session on a document scene. ``device``: SIMULATED (the simulated probe),
+    a device path, opened here with ``_core.open_device`` on the calling thread (which it
+    may block for seconds with a device that does not answer: the GUI opens it with
+    device_opening.DeviceOpening instead), or a device opened already (a _core.Device,
+    which the session then owns). Raises RuntimeError / ValueError with the device
+    layer's message when the device cannot be opened."""
 
     def __init__(self, doc_scene, device=SIMULATED, prefs=None):
         prefs = prefs or preferences.load()
         self.doc_scene = doc_scene
-        self.simulated = device == SIMULATED
+        self.simulated = isinstance(device, str) and device == SIMULATED
         self.rate_hz = float(prefs.servo_rate_hz)
         low, high = scene_box_m(doc_scene)
         self.reach_m = None  # the world box the probe reaches, where the session knows it
@@ -126,7 +130,7 @@ class LiveSession:
             self.device = _core.SimulatedHand(limits)
             mapping = None  # identity: the hand's frame is the world
         else:
-            self.device = _core.open_device(device)
+            self.device = _core.open_device(device) if isinstance(device, str) else device
             limits = self.device.info.limits
             mapping = workspace_mapping(limits, low, high, prefs)
         self.limits = limits

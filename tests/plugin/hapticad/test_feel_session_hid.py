@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """A Feel session on a HID device (the hidapi emulator preloaded in front of libhidapi,
-emu:0): its workspace mapping fits the parts when it starts, and a part that then grows
-beyond it is still felt where the device reaches, with a note that says so. The loop is
-not started: the mapping and the scene swap are what is tested. Run by freecadcmd."""
+emu:0), given its path or the device opened already: its workspace mapping fits the
+parts when it starts, and a part that then grows beyond it is still felt where the
+device reaches, with a note that says so. The loop is not started: the mapping and the
+scene swap are what is tested. Run by freecadcmd."""
 import unittest
 
 import numpy as np
@@ -51,6 +52,19 @@ class ReachTest(unittest.TestCase):
         self.assertIsNone(session.reach_note)
         session.update_scene(self.doc)
         self.assertIsNone(session.reach_note)
+
+    def test_a_session_takes_a_device_opened_already_as_it_takes_its_path(self):
+        # the Feel panel opens the device off the GUI thread (device_opening) and hands it over
+        device = _core.open_device("emu:0")
+        session = feel_session.LiveSession(build_document_scene(self.doc), device=device,
+                                           prefs=preferences.Preferences(workspace_mapping="Fit part"))
+        self.assertIs(session.device, device)
+        self.assertFalse(session.simulated)
+        by_path = self.session(workspace_mapping="Fit part")
+        self.assertEqual(session.device.info.name, by_path.device.info.name)
+        self.assertEqual(session.mapping.scale, by_path.mapping.scale)
+        np.testing.assert_allclose(session.mapping.offset_w, by_path.mapping.offset_w)
+        self.assertEqual(session.render_limits.max_force_n, by_path.render_limits.max_force_n)
 
     def test_a_fixed_scale_that_cannot_hold_the_part_is_noted_at_the_start(self):
         limits = _core.open_device("emu:0").info.limits

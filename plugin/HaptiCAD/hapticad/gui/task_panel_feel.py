@@ -6,7 +6,9 @@ Qt timer at most 60 times a second: the probe, proxy and force arrow in the 3D v
 strip chart of normal, friction and texture force (not the last two during a similarity
 study's run, which is blind), the face under the probe with its
 properties, and the loop rate. With the simulated probe the mouse steers it over the
-part and the wheel or the slider sets how hard it presses.
+part and the wheel or the slider sets how hard it presses. A HID device is opened on a
+worker thread (hapticad.device_opening), polled from a Qt timer: a device that does not
+answer takes seconds to fail, and FreeCAD stays responsive meanwhile.
 """
 import html
 
@@ -15,7 +17,7 @@ import numpy as np
 import FreeCADGui as Gui
 from PySide2 import QtCore, QtGui, QtWidgets
 
-from .. import _core, feel_session, icon, preferences, stiffness_study
+from .. import _core, device_opening, feel_session, icon, preferences, stiffness_study
 from ..proxy_state import is_alive
 from ..similarity_study import similarity_studies_of
 from ..surface_object import hidden_part_notes, surfaces_of
@@ -30,6 +32,7 @@ from .similarity_controls import SimilarityControls
 from .study_controls import StudyControls
 
 DISPLAY_HZ = 60
+OPEN_POLL_MS = 30  # how often the panel asks whether the device has opened (the Qt event loop runs between)
 # what the strip chart does not draw during a similarity run (the texture held out on the face)
 BLIND_SERIES = ("texture_force_n", "friction_force_n")
 _ACTIVE = []  # the open panel, for tests and for the Stop of a closing document
@@ -70,6 +73,8 @@ class FeelTaskPanel:
         self.frames = 0  # display updates with new samples
         self.last_sample = None
         self._limits_for = self._limits = None  # device_limits' answer, and what it was for
+        self.opening = None  # the device_opening.DeviceOpening of a HID device Start is opening
+        self.opening_label = ""  # that device's label, as the device choice shows it
         self.main = self._build()
         # a stiffness study's slider and participant form, next to the session (seed 000 Fig. 10)
         self.study_controls = [StudyControls(study, self.device_stiffness, force_limit=self.force_limit)
@@ -86,6 +91,9 @@ class FeelTaskPanel:
         self.timer = QtCore.QTimer()
         self.timer.setInterval(int(1000 / DISPLAY_HZ))
         self.timer.timeout.connect(self.update_display)
+        self.open_timer = QtCore.QTimer()
+        self.open_timer.setInterval(OPEN_POLL_MS)
+        self.open_timer.timeout.connect(self._poll_opening)
         self.refresh_devices()
         self.set_running(False)
         self.closing = DocumentClosingObserver(doc, self.document_closing)
@@ -211,9 +219,12 @@ class FeelTaskPanel:
         self.depth.setValue(self.depth.value() + step)
 
     def set_running(self, running):
-        self.start_button.setEnabled(not running)
-        self.stop_button.setEnabled(running)
-        self.device.setEnabled(not running)
+        """The buttons and the device choice for a session running or not; while a device
+        opens (self.opening) Start and the device choice are off, and Stop gives up the opening."""
+        busy = running or self.opening is not None
+        self.start_button.setEnabled(not busy)
+        self.stop_button.setEnabled(busy)
+        self.device.setEnabled(not busy)
         self.depth.setEnabled(self.device.currentData() == feel_session.SIMULATED)
 
     def show_message(self, text, error=False):
@@ -224,20 +235,68 @@ class FeelTaskPanel:
     # --- session -----------------------------------------------------------------------
 
     def start(self):
-        from .. import preferences
-        from ..document_scene import build_document_scene
-
+        """Start: with the simulated probe the session starts now (True), or the message
+        says why not (False). A HID device is opened on a worker thread while the message
+        says "Opening <device>..." and the Qt event loop runs (None is returned); the session
+        starts once it has opened, or the device layer's error shows (_poll_opening)."""
+        if self.opening is not None:  # Start is off while a device opens: a script's second call
+            return None
         self.show_message("")
-        view = _view_3d(self.doc)  # before anything is built: the probe is drawn there
+        path = self.device.currentData() or feel_session.SIMULATED
+        if path == feel_session.SIMULATED:
+            return self._start_session(path)
+        if self._view_or_say() is None:  # before the device is opened: the probe is drawn there
+            return False
+        self.opening_label = self.device.currentText() or path
+        self.opening = device_opening.DeviceOpening(path)
+        self.set_running(False)  # Start and the device choice off, Stop gives up
+        self.show_message(f"Opening {self.opening_label}...")
+        self.open_timer.start()
+        return None
+
+    def _view_or_say(self):
+        """The 3D view Feel draws in, or None when the document has none open (the message says so)."""
+        view = _view_3d(self.doc)
         if view is None:
             self.show_message(f"Feel draws the probe in a 3D view of {self.doc.Label}, and it has none open: open "
                               "one (View > Create new view) and press Start.", error=True)
+        return view
+
+    def _poll_opening(self):
+        """The open timer: while the device opens, nothing; then the session starts on it,
+        or the device layer's error shows and Start is on again."""
+        if self.opening is None:
+            self.open_timer.stop()
+            return
+        if self.opening.still_opening:
+            return
+        opening, self.opening = self.opening, None
+        self.open_timer.stop()
+        try:
+            device = opening.poll()
+        except (ValueError, RuntimeError) as exc:
+            self.show_message(str(exc), error=True)
+            self.set_running(False)
+            return
+        except Exception:
+            self.set_running(False)
+            raise
+        if not self._start_session(device):
+            self.set_running(False)
+
+    def _start_session(self, device):
+        """Builds the scene and starts a session on ``device`` (SIMULATED, or a device
+        opened already); True, or False with the reason in the message."""
+        from .. import preferences
+        from ..document_scene import build_document_scene
+
+        view = self._view_or_say()  # before anything is built (a device opens for seconds: it may have closed)
+        if view is None:
             return False
         try:
             with busy_cursor():  # tessellating and building a large part's scene takes seconds
                 self.doc_scene = build_document_scene(self.doc, preferences.scene_accuracy(preferences.load()))
-                self.session = feel_session.LiveSession(self.doc_scene, self.device.currentData() or
-                                                        feel_session.SIMULATED)
+                self.session = feel_session.LiveSession(self.doc_scene, device)
         except (ValueError, RuntimeError) as exc:
             self.session = None
             self.show_message(str(exc), error=True)
@@ -397,6 +456,9 @@ class FeelTaskPanel:
         return {"device": str(self.session.device.info.name), "servo_rate_hz": float(self.session.rate_hz)}
 
     def stop(self):
+        """Stops the session, or gives up a device still opening (no session starts on it)."""
+        if self.opening is not None:
+            self.show_message(f"Stopped: {self.opening_label} was still opening, and no session started.")
         if self.session is not None:
             self.session.stop()
             self.update_display_final()
@@ -416,6 +478,10 @@ class FeelTaskPanel:
 
     def _tear_down(self):
         self.timer.stop()
+        self.open_timer.stop()
+        if self.opening is not None:  # a device that opens later is dropped (closed), not started
+            self.opening.abandon()
+            self.opening = None
         if self.edits is not None:
             self.edits.remove()
             self.edits = None
