@@ -1,11 +1,74 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "hapticad/devices/device_catalog.h"
 
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <utility>
+
 #include "hapticad/devices/hid/hid_device.h"
 #include "hapticad/devices/hid/hid_device_finder.h"
 #include "hapticad/devices/simulated_hand.h"
 
 namespace hapticad {
+namespace {
+
+// One device's probe, shared by the lister and the thread that probes (which may
+// outlive the lister when the device does not answer).
+struct ProbeSlot {
+  std::mutex mutex;
+  std::condition_variable done_changed;
+  bool done = false;
+  bool read = false;
+  HidProbe probe;
+  std::string error;
+};
+
+// Probes `path` on a thread of its own and waits at most kProbeWaitS for it: true with
+// `*probe` read, false with `*error` (the device's, or that it did not answer in time;
+// the thread is then left to finish the request, and close the device, on its own).
+bool ProbeWithin(const std::string& path, HidProbe* probe, std::string* error) {
+  auto slot = std::make_shared<ProbeSlot>();
+  std::thread worker([slot, path] {
+    HidProbe read;
+    std::string failed;
+    try {
+      read = HidDevice::Probe(path);
+    } catch (const std::exception& e) {  // DeviceError, or out of memory: said, not thrown
+      failed = e.what();
+    }
+    std::lock_guard<std::mutex> lock(slot->mutex);
+    slot->probe = std::move(read);
+    slot->error = std::move(failed);
+    slot->read = slot->error.empty();
+    slot->done = true;
+    slot->done_changed.notify_all();
+  });
+  std::unique_lock<std::mutex> lock(slot->mutex);
+  const bool done = slot->done_changed.wait_for(lock, std::chrono::duration<double>(kProbeWaitS),
+                                                [&] { return slot->done; });
+  if (!done) {
+    lock.unlock();
+    worker.detach();
+    *error = "the HID device " + path + " did not answer its device information request within " +
+             std::to_string(static_cast<int>(kProbeWaitS * 1000)) +
+             " ms (a HaptiCAD device answers in milliseconds): it is busy or not a HaptiCAD "
+             "protocol device; unplug it and plug it in again";
+    return false;
+  }
+  *probe = std::move(slot->probe);
+  *error = std::move(slot->error);
+  const bool read = slot->read;
+  lock.unlock();
+  worker.join();
+  return read;
+}
+
+}  // namespace
 
 std::vector<DeviceListing> ListDevices() {
   std::vector<DeviceListing> out;
@@ -32,14 +95,12 @@ std::vector<DeviceListing> ListDevices() {
     listing.info.kind = "hid";
     listing.info.path = c.path;
     listing.info.name = c.product.empty() ? "HaptiCAD protocol device" : c.product;
-    try {
-      const HidProbe probe = HidDevice::Probe(c.path);
+    HidProbe probe;
+    if (ProbeWithin(c.path, &probe, &listing.error)) {
       listing.info = probe.info;
       listing.has_limits = true;
       listing.protocol = hid::VersionString(probe.report.version_min) + "-" +
                          hid::VersionString(probe.report.version_max);
-    } catch (const DeviceError& e) {
-      listing.error = e.what();
     }
     out.push_back(std::move(listing));
   }

@@ -4,7 +4,11 @@
 // plugs in (none, on a host without HaptiCAD hardware, is a case of its own).
 #include "hapticad/devices/device_catalog.h"
 
+#include <chrono>
+#include <future>
+#include <limits>
 #include <string>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -13,6 +17,8 @@
 namespace hapticad {
 namespace {
 
+using hidemu::Fault;
+using hidemu::FaultWindow;
 using hidemu::FirmwareConfig;
 
 bool Contains(const std::string& text, const std::string& part) {
@@ -52,6 +58,39 @@ TEST_F(Catalog, ListsTheSimulatedHandThenEachDeviceWithItsLimitsOrWhyNot) {
   // listing changes nothing on a device (another program may be using it)
   EXPECT_FALSE(hidemu::GetSnapshot(good).session_open);
   EXPECT_EQ(hidemu::GetSnapshot(good).version, 0);
+}
+
+// On the manual clock a request the device does not answer blocks until the test moves
+// the clock: a listing that waited for it would never come back.
+TEST_F(Catalog, ADeviceThatDoesNotAnswerIsListedAsSuchAndHoldsUpNothing) {
+  FirmwareConfig mute;
+  mute.faults.push_back(
+      FaultWindow{Fault::kSlowFeature, 0.0, std::numeric_limits<double>::infinity(), 5.0});
+  hidemu::AddDevice(mute);  // emu:0
+  FirmwareConfig good;
+  good.path = "emu:1";
+  hidemu::AddDevice(good);
+  auto listing = std::async(std::launch::async, [] { return ListDevices(); });
+  const bool came = listing.wait_for(std::chrono::seconds(30)) == std::future_status::ready;
+  if (!came) hidemu::SetTime(200.0);  // lets the request time out, so the test ends
+  ASSERT_TRUE(came) << "ListDevices waited for a device that does not answer";
+  const auto list = listing.get();
+  ASSERT_EQ(list.size(), 3u);
+  EXPECT_EQ(list[1].info.path, "emu:0");
+  EXPECT_FALSE(list[1].has_limits);
+  EXPECT_TRUE(
+      Contains(list[1].error, "did not answer its device information request within 500 ms"))
+      << list[1].error;
+  EXPECT_EQ(list[2].info.path, "emu:1");  // the device after it is read as ever
+  EXPECT_TRUE(list[2].has_limits) << list[2].error;
+  EXPECT_DOUBLE_EQ(list[2].info.limits.max_force_n, 8.0);
+  // the probe still waits on emu:0; when the request times out it closes the device
+  EXPECT_EQ(hidemu::OpenHandles("emu:0"), 1);
+  hidemu::SetTime(106.0);
+  for (int i = 0; i < 1000 && hidemu::OpenHandles("emu:0") != 0; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_EQ(hidemu::OpenHandles("emu:0"), 0);
 }
 
 TEST_F(Catalog, WithoutHidDevicesOnlyTheSimulatedHandIsListed) {

@@ -20,10 +20,17 @@ struct DeviceListing {
   std::string error;        // why it cannot be used (permissions, version), or empty
 };
 
+// How long ListDevices waits for a HID device to answer its information request. A
+// device that does not answer blocks the request in the kernel for up to 5 s (usbhid's
+// control timeout): a GUI listing devices as its panel opens would freeze that long.
+inline constexpr double kProbeWaitS = 0.5;
+
 // The simulated hand first ("sim:hand"), then HID devices in enumeration order. Each
-// HID device is probed (its information read; no session is touched); one that cannot
-// be read is listed with its error. Never throws for a device's fault; hidapi failing
-// to initialise gives one "hid" listing with the error.
+// HID device is probed (its information read; no session is touched), on a thread of its
+// own, waited for at most kProbeWaitS; one that cannot be read, or does not answer in
+// time, is listed with its error (the probe's thread then finishes on its own and closes
+// the device). Never throws for a device's fault; hidapi failing to initialise gives one
+// "hid" listing with the error.
 std::vector<DeviceListing> ListDevices();
 
 // Opens what a listing's `path` names: "sim:hand" is a new SimulatedHand with default
