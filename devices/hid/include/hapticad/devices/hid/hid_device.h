@@ -58,7 +58,9 @@
 // DescribeFault() may be read from any thread. BeginSession() and EndSession() wait at most
 // kEndSessionWaitS for the writer; BeginSession() sends its session request through the
 // writer and waits at most kBeginSessionWaitS for the answer. Open() still asks on the
-// calling thread.
+// calling thread, which a device that does not answer blocks for up to 5 s an exchange:
+// the workbench opens devices on a worker thread (plugin .../device_opening.py), and
+// ListDevices() waits for Probe() at most kProbeWaitS.
 #pragma once
 
 #include <atomic>
