@@ -21,6 +21,16 @@ How a kept run was lost is said (``how_lost``) as for a stiffness study's record
 (study_journal): the document closed without saving it (the close is seen, and its time
 written in the run's file), FreeCAD ended without closing it (a crash), or an Undo took
 it out before a save; none forgets it: the designer drops it.
+
+A document moved or renamed since its runs were written is opened under another path: the
+run in progress its document left at its earlier place, when there is none under its
+path (``read``), and the kept runs it left there (``unsaved_kept``) are taken as if
+written here, their files moved to the new path's names, as study_journal takes a
+stiffness study's records: known by the study's name and ID and the document's Uid they
+record, only when the document is gone from the path they record (and not open in this
+session), and none when they were left by more than one such path (copies of one document
+moved away: whose they are cannot be told; a warning names them). Where the document was
+is said (``earlier_path``; a run in progress's state holds it as ``moved_from``).
 """
 import hashlib
 import json
@@ -61,17 +71,28 @@ def write(study, run):
     path = path_for(study)
     if path is None:
         return
-    state = {"document": os.path.abspath(study.Document.FileName), "study": study.Name,
-             "name": run.participant, "seed": run.seed, "started": run.started,
+    state = {"document": os.path.abspath(study.Document.FileName), "document_uid": study.Document.Uid,
+             "study": study.Name, "study_id": study.ID, "name": run.participant, "seed": run.seed,
+             "started": run.started,
              "trials": [[t.kind, t.first, t.second] for t in run.trials], "answers": list(run.answers),
              "stimuli": run.stimuli, "context": run.context, "protocol": run.protocol}
     write_json(path, state)
 
 
 def read(study):
-    """The run in progress written for ``study``, as written, or None."""
+    """The run in progress written for ``study``, as written, or None; the one its document
+    left at its earlier path when there is none here (moved here: see the module's doc)."""
     path = path_for(study)
-    if path is None or not os.path.exists(path):
+    if path is None:
+        return None
+    if not os.path.exists(path):
+        found = _moved_here(study, kept=False)
+        if len(found) == 1:
+            earlier, state = next(iter(found.values()))[0]  # one file a path
+            _move(study, earlier, path, state)
+        else:
+            _say_not_taken(study, found, "a similarity run in progress")
+    if not os.path.exists(path):
         return None
     try:
         with open(path, encoding="utf-8") as handle:
@@ -79,6 +100,73 @@ def read(study):
     except (OSError, ValueError):
         return None
     return state if isinstance(state, dict) and state.get("answers") else None
+
+
+def _moved_here(study, kept):
+    """The files of ``study``'s kept runs (``kept``) or runs in progress written for its
+    document at another path, where it is no more (moved or renamed since): {that path:
+    [(file, what it holds)]}. Not those whose document still exists at its path or is open
+    in this session: they are that one's."""
+    try:
+        names = sorted(os.listdir(_folder()))
+    except OSError:
+        return {}
+    open_here = {os.path.abspath(d.FileName) for d in App.listDocuments().values() if d.FileName}
+    found = {}
+    for name in names:
+        if not name.endswith(".json") or ("-kept-" in name) != kept:
+            continue
+        path = os.path.join(_folder(), name)
+        try:
+            with open(path, encoding="utf-8") as handle:
+                state = json.load(handle)
+        except (OSError, ValueError):
+            continue
+        if not isinstance(state, dict):
+            continue
+        was = state.get("document")
+        if (state.get("study"), state.get("study_id"), state.get("document_uid")) != (
+                study.Name, study.ID, study.Document.Uid):
+            continue
+        if isinstance(was, str) and was and not os.path.exists(was) and os.path.abspath(was) not in open_here:
+            found.setdefault(os.path.abspath(was), []).append((path, state))
+    return found
+
+
+def _move(study, earlier, path, state):
+    """Moves the file ``earlier`` (holding ``state``) to ``path``, of the study's document
+    where it is now: in one step (a crash leaves it at one name or the other), then written
+    again saying where it was found from. False, warned of, when it cannot be moved (it
+    stays where it was, found again next time)."""
+    try:
+        os.replace(earlier, path)
+    except OSError as exc:
+        App.Console.PrintWarning(f"HaptiCAD: {study.Label}: a run written when the document was at "
+                                 f"{state.get('document')} could not be taken ({exc}): it stays in {earlier}\n")
+        return False
+    try:
+        write_json(path, {**state, "document": os.path.abspath(study.Document.FileName),
+                          "moved_from": state.get("document")})
+    except OSError:
+        pass  # moved as it was: read the same
+    return True
+
+
+# the files said not taken (left by more than one document moved away), said once a session
+_SAID_NOT_TAKEN = set()
+
+
+def _say_not_taken(study, found, what):
+    """Warns, once, that the files in ``found`` (of _moved_here, more than one earlier path)
+    are not taken: whose they are cannot be told."""
+    files = tuple(sorted(f for files in found.values() for f, _ in files))
+    if len(found) < 2 or files in _SAID_NOT_TAKEN:
+        return
+    _SAID_NOT_TAKEN.add(files)
+    App.Console.PrintWarning(
+        f"HaptiCAD: {study.Label}: {what} left unsaved by {len(found)} copies of this document, each moved away "
+        f"since ({', '.join(sorted(found))}), match it; none is taken, as whose they are cannot be told. "
+        f"Their files: {', '.join(files)}\n")
 
 
 def forget(study):
@@ -150,8 +238,8 @@ def write_kept(study, record):
     digest = hashlib.sha1(json.dumps(record, sort_keys=True).encode()).hexdigest()[:12]
     path = _kept_prefix(doc_path, study.Name) + f"{digest}.json"
     # the study's ID tells it from a later study given the name of a deleted one
-    write_json(path, {"document": os.path.abspath(doc_path), "study": study.Name, "study_id": study.ID,
-                      "kept": record, "closes_noted": True})
+    write_json(path, {"document": os.path.abspath(doc_path), "document_uid": study.Document.Uid,
+                      "study": study.Name, "study_id": study.ID, "kept": record, "closes_noted": True})
     _KEPT_HERE.add(path)
 
 
@@ -190,6 +278,7 @@ def unsaved_kept(study):
     if not doc_path:
         return []
     held = ss.runs(study)
+    _take_moved_kept(study)
     found = []
     for path in _kept_files(doc_path, study.Name):
         read = _read_kept(path)
@@ -198,6 +287,36 @@ def unsaved_kept(study):
         if not any(_same(read[1], r) for r in held):
             found.append(read[1])
     return sorted(found, key=lambda r: str(r.get("started", "")))
+
+
+def _take_moved_kept(study):
+    """Takes the files of the kept runs the study's document left at its earlier path (moved
+    here: see the module's doc), moved to the names of its path now; none when more than
+    one earlier path left some."""
+    found = _moved_here(study, kept=True)
+    if len(found) != 1:
+        _say_not_taken(study, found, "kept similarity runs")
+        return
+    prefix = _kept_prefix(study.Document.FileName, study.Name)
+    for earlier, state in next(iter(found.values())):
+        _move(study, earlier, prefix + earlier.rsplit("-kept-", 1)[1], state)
+
+
+def earlier_path(study, records):
+    """Where the study's document was (its path) when those of ``records`` (of unsaved_kept)
+    found from there were written, before it was moved or renamed; "" when all were written
+    where it is now."""
+    doc_path = study.Document.FileName
+    for path in _kept_files(doc_path, study.Name) if doc_path else []:
+        try:
+            with open(path, encoding="utf-8") as handle:
+                state = json.load(handle)
+            if state.get("moved_from") and state.get("study_id") in (None, study.ID) and any(
+                    _same(state.get("kept"), r) for r in records):
+                return str(state["moved_from"])
+        except (OSError, ValueError, AttributeError):
+            continue
+    return ""
 
 
 def how_lost(study, records):

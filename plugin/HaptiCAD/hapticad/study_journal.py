@@ -16,6 +16,20 @@ them lets them go (``SaveWatcher``), and the file goes once nothing in it is uns
 document never saved has no path to tell it from another's: nothing is written for it
 (``never_saved``).
 
+A document moved or renamed (in a file manager, a synced folder with another path) is
+opened under another path than its file was written for: when there is no file for the
+study under its path, the file of the same study left by the document at its earlier
+place is taken (``opened``), its records offered as if found here, and the file moved to
+the new path's name. Such a file is known by what it records: the study's name and ID,
+and the document's Uid (which FreeCAD makes once for a document and keeps through saves,
+Save As and moves; only a copy of the file shares it); and its document must be gone from
+the path it records (a file that still exists there, or a document open in this session,
+keeps its own). When more than one such file matches (copies of one document moved away,
+each with records unsaved), none is taken and a warning names them: which copy the
+records belong to cannot be told, and the union would offer each copy's records to the
+other too. Files written before the Uid was (none recorded) are not taken. Where the
+document was is said (``earlier_path``).
+
 A record the designer removes (``removing``: stiffness_study.remove_record, the panel's
 Remove) is not lost: one put back and removed again is not offered any more, nor written
 as lost. The study keeps what was removed in its ``Removed`` property, which the document
@@ -90,12 +104,14 @@ class _Session:
     ``path``, the document's path the file was last written for; ``failure``, why the
     last write failed ("" when it did not)."""
 
-    def __init__(self, saved=(), lost=(), path="", how=None):
+    def __init__(self, saved=(), lost=(), path="", how=None, moved_from=""):
         self.saved = collections.Counter(saved)
         self.lost = list(lost)
         self.how = dict(how or {})
         self.path = path
         self.failure = ""
+        # the document's earlier path the lost records were found from (it was moved since), or ""
+        self.moved_from = moved_from
 
 
 def _session(study):
@@ -176,8 +192,9 @@ def removing(study, record):
 
 def _read(path):
     """What the file at ``path`` holds: (study ID, the records as stored, the older first,
-    how each was lost); (None, [], {}) when there is no file or it cannot be read (cut off
-    by a crash mid-write: it is written beside and moved in, so only by hand)."""
+    how each was lost, the document's earlier path they were found from or ""); (None, [],
+    {}, "") when there is no file or it cannot be read (cut off by a crash mid-write: it is
+    written beside and moved in, so only by hand)."""
     try:
         with open(path, encoding="utf-8") as handle:
             state = json.load(handle)
@@ -191,9 +208,70 @@ def _read(path):
         ended = str(state.get("closed") or (ENDED if state.get("closes_noted") else ""))
         how.update((_canonical(d), ended) for d in cohort_)
         # the older first: lost in an earlier session, then the cohort as it was last
-        return state.get("study_id"), [_canonical(d) for d in [*lost, *cohort_]], how
+        moved_from = state.get("moved_from")
+        return (state.get("study_id"), [_canonical(d) for d in [*lost, *cohort_]], how,
+                moved_from if isinstance(moved_from, str) else "")
     except (OSError, ValueError, AttributeError, TypeError):
-        return None, [], {}
+        return None, [], {}, ""
+
+
+def _moved_here(study, path):
+    """The files of ``study`` written for its document at another path, where it is no
+    more (moved or renamed since; see the module's doc): [(file, what it holds)]. Not one
+    whose document still exists at its path or is open in this session: it is that one's."""
+    folder, own = os.path.split(path)
+    suffix = own[own.index("-"):]  # the study's name and ID
+    try:
+        names = sorted(os.listdir(folder))
+    except OSError:
+        return []
+    open_here = {os.path.abspath(d.FileName) for d in App.listDocuments().values() if d.FileName}
+    found = []
+    for name in names:
+        if name == own or not name.endswith(suffix):
+            continue
+        try:
+            with open(os.path.join(folder, name), encoding="utf-8") as handle:
+                state = json.load(handle)
+        except (OSError, ValueError):
+            continue
+        if not isinstance(state, dict) or (state.get("study"), state.get("study_id"), state.get("document_uid")) != (
+                study.Name, study.ID, study.Document.Uid):
+            continue
+        was = state.get("document")
+        if isinstance(was, str) and was and not os.path.exists(was) and os.path.abspath(was) not in open_here:
+            found.append((os.path.join(folder, name), state))
+    return found
+
+
+def _take_moved(study, path):
+    """Moves to ``path`` (where the study's file is written now) the file its document left
+    at its earlier path, if exactly one is found (_moved_here): moved in one step (a crash
+    leaves it at one name or the other), then written again saying where it was found
+    from. The earlier path, or "" (none found, more than one, or it could not be moved:
+    warned of, and left where it is)."""
+    found = _moved_here(study, path)
+    if len(found) > 1:
+        App.Console.PrintWarning(
+            f"HaptiCAD: {study.Label}: participant records left unsaved by {len(found)} copies of this document, "
+            f"each moved away since ({', '.join(s['document'] for _, s in found)}), match it; none is offered, as "
+            f"whose they are cannot be told. Their files: {', '.join(f for f, _ in found)}\n")
+        return ""
+    if not found:
+        return ""
+    (earlier, state), = found
+    try:
+        os.replace(earlier, path)
+    except OSError as exc:
+        App.Console.PrintWarning(f"HaptiCAD: {study.Label}: the participant records left unsaved when the document "
+                                 f"was at {state['document']} could not be taken ({exc}): they stay in {earlier}\n")
+        return ""
+    try:
+        write_json(path, {**state, "document": os.path.abspath(study.Document.FileName),
+                          "moved_from": state["document"]})
+    except OSError:
+        pass  # moved as it was: what it holds is read the same
+    return state["document"]
 
 
 def opened(study):
@@ -201,13 +279,16 @@ def opened(study):
     records its journal holds beyond them were lost unsaved (offered by ``lost``). Called
     by the study's proxy once the document is restored."""
     held = _stored(study) or []
-    lost, how = [], {}
+    lost, how, moved_from, earlier = [], {}, "", ""
     path = path_for(study)
     if path is not None:
-        study_id, written, how = _read(path)
+        if not os.path.exists(path):  # none here: one the document left where it was before?
+            earlier = _take_moved(study, path)
+        study_id, written, how, moved_from = _read(path)
+        moved_from = moved_from or earlier  # the file moved here, and not written again since
         if study_id in (None, study.ID):
             lost = _minus(written, collections.Counter(held))
-    study.Proxy._journal_session = _Session(held, lost, study.Document.FileName, how)
+    study.Proxy._journal_session = _Session(held, lost, study.Document.FileName, how, moved_from)
 
 
 def cohort_changed(study):
@@ -242,11 +323,14 @@ def _write(study, session, closed=""):
         return
     # the whole cohort, not only what is unsaved: the records it holds as often as it does
     # (one saved and one not of two alike are one lost, which the unsaved alone would not tell)
-    state = {"document": os.path.abspath(study.Document.FileName), "study": study.Name, "study_id": study.ID,
+    state = {"document": os.path.abspath(study.Document.FileName), "document_uid": study.Document.Uid,
+             "study": study.Name, "study_id": study.ID,
              "label": study.Label, "cohort": [json.loads(t) for t in held], "lost": [json.loads(t) for t in lost],
              "lost_how": [session.how.get(t, "") for t in lost], "closes_noted": True}
     if closed:
         state["closed"] = closed
+    if session.moved_from and lost:  # the records lost found from the document's earlier place
+        state["moved_from"] = session.moved_from
     write_json(path, state)
     _WRITTEN.add(path)
     session.failure = ""
@@ -282,6 +366,14 @@ def how_lost(study):
     closing the document: a crash), the time (ISO) the document was closed without saving
     it, or "" (written before closes were noted: either)."""
     return [how for _, how in _lost(study)]
+
+
+def earlier_path(study):
+    """Where the study's document was (its path) when the records ``lost`` offers were
+    found from there, written before it was moved or renamed; "" when they were found
+    where it is now, or none are offered. Some of them may have been lost here since."""
+    session = _session(study)
+    return session.moved_from if session.moved_from and _lost(study) else ""
 
 
 def _said(how):

@@ -4,13 +4,16 @@ back as it was, resumed on the study as it was and only then, gone once kept or 
 Run by freecadcmd (see tests/plugin/CMakeLists.txt)."""
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
 import unittest
+import uuid
 from datetime import datetime
 
 import FreeCAD as App
+import moved_documents
 
 import HaptiCAD
 from hapticad import run_journal
@@ -238,6 +241,154 @@ class RunJournalTest(unittest.TestCase):
         self.assertTrue(before <= datetime.fromisoformat(closed) <= datetime.now(), closed)
         run_journal.drop_kept(self.study, [kim])
         self.assertEqual(run_journal._kept_files(path, name), [])
+
+    def open_at(self, path, name):
+        """Opens the document at ``path`` as the test's own (the one before closed first, unsaved)."""
+        if self.doc is not None and self.doc.Name in App.listDocuments():
+            App.closeDocument(self.doc.Name)
+        self.doc = App.openDocument(path)
+        self.study = self.doc.getObject(name)
+
+    def test_runs_lost_before_the_document_was_moved_are_offered_where_it_is_now(self):
+        # moved (a file manager, a synced folder with another path) after a close without
+        # saving, the document was opened under another path: its kept run was not offered,
+        # nor its run in progress, and their files stayed under the earlier path's names for good
+        run_journal.watch_saves()
+        earlier = os.path.join(self.tmp.name, "study.FCStd")
+        self.doc.saveAs(earlier)
+        name = self.study.Name
+        record = self.keep("Ida")
+        written = run_journal._kept_files(earlier, name)
+        self.assertEqual(len(written), 1)
+        App.closeDocument(self.doc.Name)  # lost unsaved
+        self.doc = None
+        moved = os.path.join(self.tmp.name, "project", "plates.FCStd")  # moved and renamed
+        os.makedirs(os.path.dirname(moved))
+        os.rename(earlier, moved)
+        self.open_at(moved, name)
+        self.assertEqual(run_journal.unsaved_kept(self.study), [record],
+                         "a kept run lost before the document was moved is not offered where it is now")
+        self.assertEqual(run_journal.earlier_path(self.study, [record]), os.path.abspath(earlier))
+        (closed,) = run_journal.how_lost(self.study, [record])
+        self.assertNotIn(closed, (run_journal.ENDED, ""))  # still said: a close
+        here = run_journal._kept_files(moved, name)
+        self.assertEqual(len(here), 1)
+        self.assertFalse(os.path.exists(written[0]), "the file under the earlier path's name stays")
+        # put back and saved: no file is left under either name
+        ss.record_run(self.study, record)
+        self.doc.save()
+        self.assertEqual(run_journal._kept_files(moved, name), [])
+        self.assertEqual(run_journal._kept_files(earlier, name), [])
+        self.open_at(moved, name)
+        self.assertEqual(ss.runs(self.study), [record])
+        self.assertEqual(run_journal.unsaved_kept(self.study), [])
+        # a run in progress lost the same way goes on where the document is now
+        run_journal.write(self.study, self.half_run())
+        in_progress = run_journal.path_for(self.study)
+        again = os.path.join(self.tmp.name, "again.FCStd")
+        App.closeDocument(self.doc.Name)
+        self.doc = None
+        os.rename(moved, again)
+        self.open_at(again, name)
+        state = run_journal.read(self.study)
+        self.assertIsNotNone(state, "a run in progress when the document was moved is not found where it is now")
+        self.assertEqual((state["name"], state["answers"], state["moved_from"]), ("Ada", [4] * 5, moved))
+        self.assertFalse(os.path.exists(in_progress))
+        self.assertTrue(os.path.exists(run_journal.path_for(self.study)))
+        self.assertEqual(run_journal.resume(self.study, state).answers, [4] * 5)
+
+    def test_runs_whose_document_is_still_where_it_was_are_not_taken_by_a_copy(self):
+        run_journal.watch_saves()
+        original = os.path.join(self.tmp.name, "study.FCStd")
+        self.doc.saveAs(original)
+        name = self.study.Name
+        record = self.keep("Ida")
+        run_journal.write(self.study, self.half_run())
+        App.closeDocument(self.doc.Name)  # lost unsaved
+        self.doc = None
+        copy = os.path.join(self.tmp.name, "elsewhere", "study.FCStd")
+        os.makedirs(os.path.dirname(copy))
+        shutil.copy(original, copy)  # the same document (its Uid and all), at another path
+        self.open_at(copy, name)
+        self.assertEqual(run_journal.unsaved_kept(self.study), [])  # the original's, which is still there
+        self.assertIsNone(run_journal.read(self.study))
+        self.open_at(original, name)
+        self.assertEqual(run_journal.unsaved_kept(self.study), [record])
+        # its file taken away while it is open: the original is still the one its runs are of
+        aside = os.path.join(self.tmp.name, "aside.FCStd")
+        os.rename(original, aside)
+        other = App.openDocument(copy)
+        try:
+            self.assertEqual(run_journal.unsaved_kept(other.getObject(name)), [])
+            self.assertIsNone(run_journal.read(other.getObject(name)))
+        finally:
+            App.closeDocument(other.Name)
+        App.closeDocument(self.doc.Name)
+        self.doc = None
+        # the original gone for good: the copy is the document its runs were lost from
+        os.remove(aside)
+        self.open_at(copy, name)
+        self.assertEqual(run_journal.unsaved_kept(self.study), [record],
+                         "the kept runs of a document gone since are not offered to its copy")
+        self.assertEqual(run_journal.read(self.study)["name"], "Ada")
+        self.assertEqual(run_journal._kept_files(original, name), [])
+
+    def test_the_runs_of_another_document_or_of_one_of_two_copies_moved_away_are_not_taken(self):
+        run_journal.watch_saves()
+        name = self.study.Name
+        # two documents whose studies have the same name and ID (FreeCAD draws a document's first
+        # ID from 0-5000: documents made alike can share them), each losing a kept run; the second
+        # a copy of the first made another document (another Uid)
+        first, second = moved_documents.paths_in(self.tmp.name, ("a", "b"))
+        self.doc.saveAs(first)
+        shutil.copy(first, second)
+        ida = self.keep("Ida")
+        uid = self.doc.Uid
+        self.open_at(second, name)
+        self.doc.Uid = str(uuid.uuid4())
+        self.doc.save()
+        self.assertNotEqual(self.doc.Uid, uid)
+        jo = self.keep("Jo", seed=8)
+        App.closeDocument(self.doc.Name)
+        self.doc = None
+        # both moved away: each is offered its own run, not the other's
+        moved_first, moved_second = moved_documents.move_into(self.tmp.name, "moved", (first, second),
+                                                              ("a.FCStd", "b.FCStd"))
+        self.open_at(moved_second, name)
+        self.assertEqual(run_journal.unsaved_kept(self.study), [jo],
+                         "a moved document is not offered its own kept run (or is offered another's)")
+        self.open_at(moved_first, name)
+        self.assertEqual(run_journal.unsaved_kept(self.study), [ida])
+        ss.record_run(self.study, ida)
+        self.doc.save()
+        # two copies of one document, each losing a kept run and a run in progress, both moved
+        # away: whose they are cannot be told, so none is taken, and all stay
+        copies = moved_documents.paths_in(self.tmp.name, ("copy1", "copy2"))
+        kept, files = [], []
+        for path, who in zip(copies, ("Kim", "Lee")):
+            shutil.copy(moved_first, path)
+            self.open_at(path, name)
+            kept.append(self.keep(who, seed=9))
+            run_journal.write(self.study, self.half_run())
+            files += [*run_journal._kept_files(path, name), run_journal.path_for(self.study)]
+        self.assertEqual(len(files), 4)
+        App.closeDocument(self.doc.Name)
+        self.doc = None
+        moved_copies = moved_documents.move_into(self.tmp.name, "moved", copies, ("copy1.FCStd", "copy2.FCStd"))
+        self.open_at(moved_copies[0], name)
+        self.assertEqual(run_journal.unsaved_kept(self.study), [])
+        self.assertIsNone(run_journal.read(self.study))
+        self.assertTrue(all(os.path.exists(f) for f in files))
+        App.closeDocument(self.doc.Name)
+        self.doc = None
+        # one moved back where it was: its files are its own again, and the other's the moved one's
+        os.rename(moved_copies[1], copies[1])
+        self.open_at(moved_copies[0], name)
+        self.assertEqual(run_journal.unsaved_kept(self.study), [kept[0]])
+        self.assertIsNotNone(run_journal.read(self.study))
+        self.open_at(copies[1], name)
+        self.assertEqual(run_journal.unsaved_kept(self.study), [kept[1]])
+        self.assertIsNotNone(run_journal.read(self.study))
 
     @staticmethod
     def plate_of(doc):

@@ -9,9 +9,11 @@ import shutil
 import subprocess
 import tempfile
 import unittest
+import uuid
 from datetime import datetime
 
 import FreeCAD as App
+import moved_documents
 
 import HaptiCAD
 from hapticad import cohort, stiffness_study, study_journal
@@ -31,6 +33,9 @@ class StudyJournalTest(unittest.TestCase):
 
     def tearDown(self):
         # taken away once the document is closed: a close writes what it holds unsaved
+        if self.doc is None:  # closed by the test
+            self.tmp.cleanup()
+            return
         paths = (self.written | {study_journal.path_for(s) for s in HaptiCAD.studies_of(self.doc)}) - {None}
         App.closeDocument(self.doc.Name)
         for path in paths:
@@ -311,6 +316,161 @@ class StudyJournalTest(unittest.TestCase):
         self.assertEqual(study_journal.lost(self.study), [])  # another study (another ID)
         self.doc.save()  # the deleted study's records are in no document now: its file goes
         self.assertFalse(os.path.exists(journal))
+
+    def forget_journals_here(self):
+        """Takes away the journals written for the documents of this test's folder (they live
+        in the test's FreeCAD home), wherever they were moved."""
+        folder = os.path.join(App.getUserAppDataDir(), "HaptiCAD", "cohorts")
+        for name in os.listdir(folder) if os.path.isdir(folder) else []:
+            try:
+                with open(os.path.join(folder, name), encoding="utf-8") as handle:
+                    ours = json.load(handle).get("document", "").startswith(self.tmp.name + os.sep)
+            except (OSError, ValueError, AttributeError):
+                continue
+            if ours:
+                os.remove(os.path.join(folder, name))
+
+    def open_at(self, path, name):
+        """Opens the document at ``path`` as the test's own (the one before closed first)."""
+        if self.doc is not None and self.doc.Name in App.listDocuments():
+            App.closeDocument(self.doc.Name)
+        self.path = path
+        self.reopen(name)
+
+    def test_records_lost_before_the_document_was_moved_are_offered_where_it_is_now(self):
+        # moved (a file manager, a synced folder with another path) after a close without
+        # saving, the document was opened under another path: nothing was offered, and the
+        # records stayed in a file under the earlier path's name for good
+        self.addCleanup(self.forget_journals_here)
+        self.doc.saveAs(self.path)
+        earlier = self.path
+        self.record("Ann", 4.0)
+        self.doc.save()
+        bo, cy = self.record("Bo", 5.0), self.record("Cy", 6.0)
+        journal = study_journal.path_for(self.study)
+        name = self.study.Name
+        App.closeDocument(self.doc.Name)  # lost unsaved
+        self.doc = None
+        moved = os.path.join(self.tmp.name, "project", "brush head.FCStd")  # moved and renamed
+        os.makedirs(os.path.dirname(moved))
+        os.rename(earlier, moved)
+        self.open_at(moved, name)
+        self.assertEqual(self.names(stiffness_study.records(self.study)), ["Ann"])
+        self.assertEqual([r.as_dict() for r in study_journal.lost(self.study)], [bo.as_dict(), cy.as_dict()],
+                         "the records lost before the document was moved are not offered where it is now")
+        self.assertEqual(len(study_journal.how_lost(self.study)), 2)
+        self.assertNotIn(study_journal.ENDED, study_journal.how_lost(self.study))  # still said: a close
+        self.assertEqual(study_journal.earlier_path(self.study), os.path.abspath(earlier))
+        # from now on the file is the one of the document where it is
+        here = study_journal.path_for(self.study)
+        self.assertNotEqual(here, journal)
+        self.assertFalse(os.path.exists(journal), "the file under the earlier path's name stays")
+        self.assertTrue(os.path.exists(here))
+        # lost here again before they are put back: still offered, still from where it was
+        self.close_unsaved_and_reopen()
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Bo", "Cy"])
+        self.assertEqual(study_journal.earlier_path(self.study), os.path.abspath(earlier))
+        self.put_back()
+        self.assertEqual(study_journal.earlier_path(self.study), "")  # nothing offered
+        self.doc.save()
+        self.assertFalse(os.path.exists(journal))
+        self.assertFalse(os.path.exists(here))
+        self.close_unsaved_and_reopen()
+        self.assertEqual(self.names(stiffness_study.records(self.study)), ["Ann", "Bo", "Cy"])
+        self.assertEqual(study_journal.lost(self.study), [])
+
+    def test_a_journal_whose_document_is_still_where_it_was_is_not_taken_by_a_copy(self):
+        self.addCleanup(self.forget_journals_here)
+        self.doc.saveAs(self.path)
+        original = self.path
+        self.record("Bo", 5.0)
+        journal = study_journal.path_for(self.study)
+        name = self.study.Name
+        App.closeDocument(self.doc.Name)  # lost unsaved
+        self.doc = None
+        copy = os.path.join(self.tmp.name, "elsewhere", "toothbrush.FCStd")
+        os.makedirs(os.path.dirname(copy))
+        shutil.copy(original, copy)  # the same document (its Uid and all), at another path
+        self.open_at(copy, name)
+        self.assertEqual(study_journal.lost(self.study), [])  # the original's, which is still there
+        self.assertFalse(os.path.exists(study_journal.path_for(self.study)))
+        self.assertTrue(os.path.exists(journal))
+        self.open_at(original, name)
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Bo"])
+        # its file taken away while it is open: the original is still the one its records are of
+        aside = os.path.join(self.tmp.name, "aside.FCStd")
+        os.rename(original, aside)
+        other = App.openDocument(copy)
+        try:
+            self.assertEqual(study_journal.lost(other.getObject(name)), [])
+        finally:
+            App.closeDocument(other.Name)
+        self.assertTrue(os.path.exists(journal))
+        App.closeDocument(self.doc.Name)
+        self.doc = None
+        # the original gone for good: the copy is the document its records were lost from
+        os.remove(aside)
+        self.open_at(copy, name)
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Bo"],
+                         "the records of a document gone since are not offered to its copy")
+        self.assertFalse(os.path.exists(journal))
+
+    def test_the_journal_of_another_document_or_of_one_of_two_copies_moved_away_is_not_taken(self):
+        self.addCleanup(self.forget_journals_here)
+        name = self.study.Name
+        # two documents whose studies have the same name and ID (FreeCAD draws a document's first
+        # ID from 0-5000: documents made alike can share them), each losing records; the second a
+        # copy of the first made another document (another Uid)
+        first, second = moved_documents.paths_in(self.tmp.name, ("a", "b"))
+        self.doc.saveAs(first)
+        shutil.copy(first, second)
+        self.record("Bo", 5.0)
+        doc = App.openDocument(second)
+        doc.Uid = str(uuid.uuid4())
+        doc.save()
+        study = doc.getObject(name)
+        self.assertEqual((study.Name, study.ID), (self.study.Name, self.study.ID))
+        self.assertNotEqual(doc.Uid, self.doc.Uid)
+        doc.openTransaction("Record Cy")
+        study.BeamThickness = 6.0
+        HaptiCAD.record_preference(study, "Cy", "F", "26-40", 60, 1650)
+        doc.commitTransaction()
+        App.closeDocument(doc.Name)
+        App.closeDocument(self.doc.Name)
+        self.doc = None
+        # both moved away: each is offered its own records, not the other's
+        moved_first, moved_second = moved_documents.move_into(self.tmp.name, "moved", (first, second),
+                                                              ("a.FCStd", "b.FCStd"))
+        self.open_at(moved_second, name)
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Cy"],
+                         "a moved document is not offered its own lost records (or is offered another's)")
+        self.open_at(moved_first, name)
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Bo"])
+        self.put_back()
+        self.doc.save()
+        # two copies of one document, each losing records, both moved away: whose they are
+        # cannot be told, so neither is taken, and both stay
+        copies = moved_documents.paths_in(self.tmp.name, ("copy1", "copy2"))
+        journals = []
+        for path, (who, thickness) in zip(copies, (("Dan", 3.0), ("Eve", 7.0))):
+            shutil.copy(moved_first, path)
+            self.open_at(path, name)
+            self.record(who, thickness)
+            journals.append(study_journal.path_for(self.study))
+        App.closeDocument(self.doc.Name)
+        self.doc = None
+        moved_copies = moved_documents.move_into(self.tmp.name, "moved", copies, ("copy1.FCStd", "copy2.FCStd"))
+        self.open_at(moved_copies[0], name)
+        self.assertEqual(study_journal.lost(self.study), [])
+        self.assertTrue(all(os.path.exists(j) for j in journals))
+        App.closeDocument(self.doc.Name)
+        self.doc = None
+        # one moved back where it was: its file is its own again, and the other's is the moved one's
+        os.rename(moved_copies[1], copies[1])
+        self.open_at(moved_copies[0], name)
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Dan"])
+        self.open_at(copies[1], name)
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Eve"])
 
     def test_a_journal_that_cannot_be_written_is_said_and_the_record_still_made(self):
         self.doc.saveAs(self.path)

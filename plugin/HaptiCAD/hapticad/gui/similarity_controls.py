@@ -290,6 +290,8 @@ class SimilarityControls(QtWidgets.QWidget):
             hows = run_journal.how_lost(self.study, lost)
             said = run_journal.said_how_lost([str(r.get("name", "?")) for r in lost], hows)
             closed = any(how not in (run_journal.ENDED, run_journal.UNDONE, "") for how in hows)
+            earlier = run_journal.earlier_path(self.study, lost)  # the document moved or renamed since
+            said += f" (recorded when the document was at {earlier})" if earlier else ""
             self.put_back_button.setText(f"Put back {self._names(lost)} run{'s' if many else ''} "
                                          "(kept, document not saved)")
             self.put_back_button.setToolTip(f"Kept in the document, and not in it now: {said}. Put back, then save "

@@ -341,10 +341,12 @@ class StudyTaskPanel(CloseOnlyPanel):
             said = study_journal.said_how_lost([r.name for r in lost], hows)
             # a close without saving is seen (a crash is not): one made to discard them is the designer's to say
             closed = any(how not in (study_journal.ENDED, "") for how in hows)
+            earlier = study_journal.earlier_path(self.obj)  # the document moved or renamed since
+            where = f" (recorded when the document was at {escape(earlier)})" if earlier else ""
             self.put_back_button.setText(f"Put back {cohort.plural(len(lost), 'record')} ({_names(lost)})")
             notes.append(f"<span style='color:#b00000'>⚠ {cohort.plural(len(lost), 'participant record')} "
                          f"({escape(_names(lost))}) recorded here after the document was last saved "
-                         f"{'are' if many else 'is'} not in it: {escape(said)}. Put {them} back, then save the "
+                         f"{'are' if many else 'is'} not in it: {escape(said)}{where}. Put {them} back, then save the "
                          f"document" + (f", or Drop {them} if the close was to discard {them}" if closed else "")
                          + ".</span>")
         if study_journal.never_saved(self.obj):

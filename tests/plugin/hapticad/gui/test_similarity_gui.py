@@ -6,6 +6,7 @@ takes their answers only once they felt both textures, and is kept when done; th
 then shows the cohort's perceptual space. Run by gui_test_runner.py."""
 import os
 import random
+import re
 import sys
 import tempfile
 import unittest
@@ -424,6 +425,34 @@ class SimilarityGuiTest(unittest.TestCase):
         self.assertFalse(journal.isHidden())
         self.assertEqual(run_journal._kept_files(path, name), [])
         self.assertEqual([r["name"] for r in ss.runs(study)], ["Ida"])
+
+    def test_a_kept_run_lost_before_the_document_was_moved_is_offered_saying_where_it_was(self):
+        # moved after a close without saving, the document opened where it is now offered nothing
+        from hapticad import run_journal
+
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=2)
+        folder = tempfile.mkdtemp()
+        earlier = os.path.join(folder, "study.FCStd")
+        self.doc.saveAs(earlier)
+        self.run_in_feel("Ida")
+        h.press_task_button("Close")
+        name = study.Name
+        App.closeDocument(self.doc.Name)  # gone unsaved
+        moved = os.path.join(folder, "project", "plates.FCStd")
+        os.makedirs(os.path.dirname(moved))
+        os.rename(earlier, moved)
+        for path in (earlier, moved):  # its file taken away after, wherever it is then
+            self.addCleanup(lambda p=path: [os.remove(f) for f in run_journal._kept_files(p, name)])
+        self.doc = App.openDocument(moved)
+        study = self.doc.getObject(name)
+        Gui.runCommand("HaptiCAD_Feel")
+        h.process_events()
+        fresh = task_panel_feel.active_panel().similarity_controls[0]
+        self.assertFalse(fresh.findChild(QtWidgets.QPushButton, "similarityPutBack").isHidden())
+        journal = fresh.findChild(QtWidgets.QLabel, "similarityJournal")
+        self.assertRegex(journal.text(), r"Ida's kept run is not in the document: it was closed without saving on "
+                         r"\d{4}-\d\d-\d\d at \d\d:\d\d "
+                         rf"\(recorded when the document was at {re.escape(earlier)}\)\. Put it back")
 
     def test_a_kept_run_removed_in_the_panel_forgets_its_file_and_is_not_offered_back(self):
         # removed before a save, its file stayed beside the document: the next time, the run

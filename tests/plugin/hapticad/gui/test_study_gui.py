@@ -5,6 +5,7 @@ cohort's statistics and exports and imports it; during a Feel session the slider
 what the probe feels at once and a participant's preference is recorded from the Feel
 panel. Run by gui_test_runner.py."""
 import os
+import re
 import shutil
 import sys
 import tempfile
@@ -78,6 +79,12 @@ class StudyGuiTest(unittest.TestCase):
             if os.path.exists(path):
                 os.remove(path)
         self.tmp.cleanup()
+
+    def reopen_study(self, path, surface, name):
+        """Opens the document at ``path`` again (its surface named ``surface``) and the panel
+        of its study, which must be named ``name`` still: the study."""
+        study = self.reopen_study(path, surface, name)
+        return study
 
     def open_study(self):
         Gui.Selection.addSelection(self.surface)
@@ -733,11 +740,7 @@ class StudyGuiTest(unittest.TestCase):
         h.press_task_button("Close")
         name, surface = study.Name, self.surface.Name
         App.closeDocument(self.doc.Name)  # unsaved, as a crash leaves it
-        self.doc = App.openDocument(path)
-        self.doc.UndoMode = 1
-        self.surface = self.doc.getObject(surface)
-        study = self.open_study()
-        self.assertEqual(study.Name, name)
+        study = self.reopen_study(path, surface, name)
         table = h.widget(QtWidgets.QTableWidget, "cohortTable")
         self.assertEqual([table.item(r, 0).text() for r in range(table.rowCount())], ["Ann"])
         journal = h.widget(QtWidgets.QLabel, "cohortJournal")
@@ -806,11 +809,7 @@ class StudyGuiTest(unittest.TestCase):
             Gui.runCommand("Std_CloseActiveWindow")
         self.assertEqual([title for title, _ in boxes.seen], ["Unsaved document"])
         self.assertNotIn(doc_name, App.listDocuments())
-        self.doc = App.openDocument(path)
-        self.doc.UndoMode = 1
-        self.surface = self.doc.getObject(surface)
-        study = self.open_study()
-        self.assertEqual(study.Name, name)
+        study = self.reopen_study(path, surface, name)
         journal = h.widget(QtWidgets.QLabel, "cohortJournal")
         self.assertRegex(journal.text(), r"1 participant record \(Bo\) recorded here after the document was last "
                          r"saved is not in it: it was closed without saving on \d{4}-\d\d-\d\d at \d\d:\d\d\. "
@@ -819,6 +818,26 @@ class StudyGuiTest(unittest.TestCase):
         h.widen_panel(560)
         h.scroll_to(journal)
         h.grab_screen("study_discarded.png")
+
+    def test_records_lost_before_the_document_was_moved_are_offered_saying_where_it_was(self):
+        # moved after a close without saving (a file manager, a synced folder), the document
+        # opened where it is now offered nothing: the records waited under its earlier path for good
+        study = self.open_study()
+        earlier = os.path.join(self.tmp.name, "toothbrush.FCStd")
+        self.doc.saveAs(earlier)
+        HaptiCAD.record_preference(study, "Bo", "F", "26-40", 60, 1650)
+        h.press_task_button("Close")
+        name, surface = study.Name, self.surface.Name
+        App.closeDocument(self.doc.Name)  # unsaved
+        moved = os.path.join(self.tmp.name, "project", "brush.FCStd")
+        os.makedirs(os.path.dirname(moved))
+        os.rename(earlier, moved)
+        study = self.reopen_study(moved, surface, name)
+        journal = h.widget(QtWidgets.QLabel, "cohortJournal")
+        self.assertRegex(journal.text(), r"1 participant record \(Bo\) recorded here after the document was last "
+                         r"saved is not in it: it was closed without saving on \d{4}-\d\d-\d\d at \d\d:\d\d "
+                         rf"\(recorded when the document was at {re.escape(earlier)}\)\. Put it back, then save")
+        self.assertEqual(h.widget(QtWidgets.QPushButton, "putBackParticipants").text(), "Put back 1 record (Bo)")
 
     def test_a_journal_that_cannot_be_written_is_said_at_the_top_of_the_panel(self):
         # said headless only (study_journal.failure): here, what the designer sees. The journal's
