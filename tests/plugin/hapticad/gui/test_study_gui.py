@@ -83,7 +83,11 @@ class StudyGuiTest(unittest.TestCase):
     def reopen_study(self, path, surface, name):
         """Opens the document at ``path`` again (its surface named ``surface``) and the panel
         of its study, which must be named ``name`` still: the study."""
-        study = self.reopen_study(path, surface, name)
+        self.doc = App.openDocument(path)
+        self.doc.UndoMode = 1
+        self.surface = self.doc.getObject(surface)
+        study = self.open_study()
+        self.assertEqual(study.Name, name)
         return study
 
     def open_study(self):
