@@ -267,8 +267,8 @@ void ConfigureFromSpec(const std::string& spec) {
         config.faults.push_back(FaultWindow{Fault::kStall, a, b});
       } else if (key == "slow_feature" || key == "slow_session") {
         const Fault fault = key == "slow_feature" ? Fault::kSlowFeature : Fault::kSlowSession;
-        config.faults.push_back(FaultWindow{fault, 0.0, std::numeric_limits<double>::infinity(),
-                                            std::stod(value)});
+        config.faults.push_back(
+            FaultWindow{fault, 0.0, std::numeric_limits<double>::infinity(), std::stod(value)});
       } else if (key == "kind" && value == "other") {
         other = true;
       } else {
