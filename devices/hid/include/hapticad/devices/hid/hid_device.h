@@ -54,7 +54,10 @@
 //
 // Units: SI (device frame); velocity is filtered from positions on the device's own
 // clock. ReadState()/WriteForce() are servo-tick safe: no allocation, no lock; their
-// only system calls are hidapi's reads (hidraw's poll and read). The statistics and
+// only system calls are hidapi's reads (hidraw's poll and read). hidapi itself (0.13, Debian
+// 12's) allocates the error text of a read that fails or is interrupted (a signal): a tick
+// allocates only at an unplug, which ends the session, or at an EINTR (the emulator, through
+// which the tick's allocations are counted, allocates nothing). The statistics and
 // DescribeFault() may be read from any thread. BeginSession() and EndSession() wait at most
 // kEndSessionWaitS for the writer; BeginSession() sends its session request through the
 // writer and waits at most kBeginSessionWaitS for the answer. Open() still asks on the
