@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Sets HaptiCAD up on Debian 12, from a checkout, as root or as a user with sudo (it runs
-# itself through sudo then), for that user (setup-user.sh: the user who ran sudo, else the
-# checkout's owner, else root):
+# itself through sudo then), for that user (setup-user.sh: the user who ran sudo, else root):
 #   1. installs the dependencies (install-deps.sh),
 #   2. builds everything in build/ (as that user, so the checkout stays theirs),
 #   3. installs the workbench into that user's FreeCAD Mod folder
@@ -18,17 +17,19 @@ build="$top/build"
 if [ "$(id -u)" -ne 0 ]; then
   if ! command -v sudo > /dev/null; then
     echo "setup.sh: installing the Debian packages needs root, and this system has no sudo:" \
-         "run it as root (su -c ./packaging/setup.sh); nothing was changed." >&2
+         "install sudo, or set HaptiCAD up for root by running this as root; nothing was changed." >&2
     exit 2
   fi
   exec sudo "$0" "$@"
 fi
+# root through a plain `su` keeps the user's PATH, without the sbin folders that runuser,
+# groupadd, usermod and dpkg's helpers live in
+export PATH="/usr/local/sbin:/usr/sbin:/sbin:$PATH"
 
-# the user who ran sudo, or who owns the checkout, or root (setup-user.sh)
+# the user who ran sudo, else root (setup-user.sh)
 read -r user home < <("$top/packaging/setup-user.sh" "$top")
 mod_dir="$home/.local/share/FreeCAD/Mod/HaptiCAD"
 as_user=()
-# runuser, not sudo: root through `su` may have no sudo
 [ "$user" = root ] || as_user=(runuser -u "$user" -- env HOME="$home")
 # before anything is installed: a checkout in the Mod folder would be replaced below
 "$top/packaging/check-install-folder.sh" "$top" "$mod_dir"

@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """packaging/setup-user.sh, which tells setup.sh whom to set HaptiCAD up for: the user
-who ran sudo, else the checkout's owner (a user who ran it as root through `su`, having
-no sudo), else root. Needs root to give a folder to another user. Plain /usr/bin/python3."""
+who ran sudo, else root (root from `su` in another user's checkout is told that user's
+FreeCAD will not see it: the README's next command runs as root too); and setup.sh run by
+a user where there is no sudo. Needs root to give a folder to another user. Plain
+/usr/bin/python3."""
 import os
 import pwd
 import shutil
@@ -37,28 +39,21 @@ class SetupUserTest(unittest.TestCase):
 
     def test_the_user_who_ran_sudo_comes_first(self):
         self.give("bin")
-        self.assertEqual(setup_user(self.checkout, sudo_user="nobody")[:2], (0, ["nobody", "/nonexistent"]))
-        # sudo from root itself: as without sudo
-        self.assertEqual(setup_user(self.checkout, sudo_user="root")[1], ["bin", "/bin"])
+        self.assertEqual(setup_user(self.checkout, sudo_user="nobody"), (0, ["nobody", "/nonexistent"], ""))
 
-    def test_without_sudo_the_checkouts_owner_is_set_up_and_told(self):
-        self.give("bin")  # Debian's base-passwd: home /bin, which every system has
-        code, out, err = setup_user(self.checkout)
-        self.assertEqual((code, out), (0, ["bin", "/bin"]))
-        self.assertIn("setting up for bin, who owns this checkout", err)
-
-    def test_an_owner_without_a_home_folder_leaves_it_to_root_and_says_so(self):
-        self.give("nobody")  # home /nonexistent
-        code, out, err = setup_user(self.checkout)
-        self.assertEqual((code, out[0]), (0, "root"))
-        self.assertIn("owner (nobody) has no home folder here: setting up for root", err)
+    def test_root_in_another_users_checkout_is_set_up_as_root_and_told(self):
+        # root from `su`: the README's next command (run-tests.sh, hapticad demo) runs as root
+        # too, so the set-up is root's; the owner is told how to have it for themselves
+        self.give("bin")
+        for sudo_user in (None, "root"):
+            code, out, err = setup_user(self.checkout, sudo_user=sudo_user)
+            self.assertEqual((code, out), (0, ["root", pwd.getpwnam("root").pw_dir]))
+            self.assertIn("setting HaptiCAD up for root, who runs it; this checkout is bin's", err)
+            self.assertIn("run ./packaging/setup.sh as bin", err)
         os.chown(self.checkout, 54321, 54321)  # a user id with no name (a folder from another system)
-        code, out, err = setup_user(self.checkout)
-        self.assertEqual((code, out[0]), (0, "root"))
-        self.assertIn("has no home folder here", err)
+        self.assertEqual(setup_user(self.checkout), (0, ["root", pwd.getpwnam("root").pw_dir], ""))
 
-
-    def test_a_user_on_a_system_without_sudo_is_told_to_run_it_as_root(self):
+    def test_a_user_on_a_system_without_sudo_is_told_what_to_do(self):
         # setup.sh copied where nobody may read it, run by nobody with a PATH that has no sudo
         os.chmod(self.checkout, 0o755)
         os.makedirs(os.path.join(self.checkout, "packaging"))
@@ -71,8 +66,19 @@ class SetupUserTest(unittest.TestCase):
                                os.path.join(self.checkout, "packaging", "setup.sh")],
                               capture_output=True, text=True, timeout=60)
         self.assertEqual(done.returncode, 2, done.stderr)
-        self.assertIn("this system has no sudo: run it as root (su -c ./packaging/setup.sh); nothing was changed",
-                      done.stderr)
+        self.assertIn("this system has no sudo: install sudo, or set HaptiCAD up for root by running this as root; "
+                      "nothing was changed", done.stderr)
+
+    def test_root_from_a_plain_su_finds_the_sbin_tools(self):
+        # a plain `su` keeps the user's PATH: runuser, groupadd and usermod are in /usr/sbin.
+        # setup.sh's PATH, read up to where it names the user (nothing installed by then)
+        with open(SETUP) as handle:
+            head = handle.read().split("# the user who ran sudo")[0]
+        probe = head + '\ncommand -v runuser groupadd usermod\n'
+        done = subprocess.run(["env", "PATH=/usr/local/bin:/usr/bin:/bin", "/bin/bash", "-c", probe, SETUP],
+                              capture_output=True, text=True, timeout=60)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertEqual([os.path.basename(p) for p in done.stdout.split()], ["runuser", "groupadd", "usermod"])
 
 
 if __name__ == "__main__":
