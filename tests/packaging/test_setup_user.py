@@ -74,10 +74,12 @@ class SetupUserTest(unittest.TestCase):
         # setup.sh's PATH, read up to where it names the user (nothing installed by then)
         with open(SETUP) as handle:
             head = handle.read().split("# the user who ran sudo")[0]
-        probe = head + '\ncommand -v runuser groupadd usermod\n'
-        done = subprocess.run(["env", "PATH=/usr/local/bin:/usr/bin:/bin", "/bin/bash", "-c", probe, SETUP],
+        probe = os.path.join(self.checkout, "setup-head.sh")
+        with open(probe, "w") as handle:
+            handle.write(head + "\ncommand -v runuser groupadd usermod\n")
+        done = subprocess.run(["env", "PATH=/usr/local/bin:/usr/bin:/bin", "/bin/bash", probe],
                               capture_output=True, text=True, timeout=60)
-        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertEqual((done.returncode, done.stderr), (0, ""))
         self.assertEqual([os.path.basename(p) for p in done.stdout.split()], ["runuser", "groupadd", "usermod"])
 
 
