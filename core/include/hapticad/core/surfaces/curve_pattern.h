@@ -55,7 +55,8 @@ class CurvePattern {
   double ExactAngle(double y) const;
 
   // Translation of the family member through a point (m along x): the grating
-  // coordinate across the curves. Constant along Evaluate()'s stripe direction.
+  // coordinate across the curves. Constant along Evaluate()'s stripe direction (but beyond an
+  // end whose tangent is parallel to x: see above).
   double MemberOffset(const Vec3& point_w) const;
 
   double y_min() const { return y_min_; }
