@@ -397,20 +397,32 @@ def removed_changed(study, before, after):
     """The study's REMOVED_RUNS went from ``before`` to ``after`` (JSON texts): a run
     removed on purpose (a removal, or its Redo) has its file forgotten, so that it is
     never offered back as lost; one whose removal was undone, in the document again, is
-    written again if it was before. Called by the study's proxy; a failure is warned of,
-    never raised."""
+    written again if it was before, or if the document was saved since the removal (its
+    file on disk no longer holds the run). Called by the study's proxy; a failure is
+    warned of, never raised."""
     was = [json.dumps(e, sort_keys=True) for e in _removed_runs(before)]
     now = [json.dumps(e, sort_keys=True) for e in _removed_runs(after)]
     gone = [json.loads(t) for t in now if t not in was]
     back = [json.loads(t) for t in was if t not in now]
+    saved_without = _SAVED_WITHOUT.get(study.Document.Name, set())
     try:
         drop_kept(study, [e["run"] for e in gone if e.get("written")])
         for entry in back:
-            if entry.get("written"):
+            # a save since its removal left it out of the file on disk: only this one holds it now
+            if entry.get("written") or _run_key(study, entry["run"]) in saved_without:
                 write_kept(study, entry["run"])
     except OSError as exc:
         App.Console.PrintWarning(f"HaptiCAD: {study.Label}: a removed run's file beside the document could not be "
                                  f"{'removed' if gone else 'written again'} ({exc})\n")
+
+
+# document name -> the kept runs (_run_key) a save left out, removed on purpose before it:
+# an Undo of such a removal puts back a run that only the document in memory holds
+_SAVED_WITHOUT = {}
+
+
+def _run_key(study, record):
+    return (study.Name, json.dumps(record, sort_keys=True))
 
 
 # document name -> the paths its kept runs were written under this session (Save As
@@ -428,8 +440,16 @@ class SaveWatcher:
         if not doc.FileName or os.path.abspath(path) != os.path.abspath(doc.FileName):
             return  # a copy saved elsewhere: the document itself is as unsaved as before
         paths = {path, *_WRITTEN_UNDER.get(doc.Name, ())}
+        saved_without = _SAVED_WITHOUT.setdefault(doc.Name, set())
         for obj in doc.Objects:
             if ss.is_similarity_study(obj):
+                removed = {_run_key(obj, e["run"]) for e in _removed_runs(getattr(obj, ss.REMOVED_RUNS, ""))}
+                try:
+                    held = {_run_key(obj, r) for r in ss.runs(obj)}
+                except ValueError:
+                    held = set()
+                saved_without.difference_update(held)  # in the file on disk again
+                saved_without.update(removed - held)
                 for doc_path in paths:
                     try:
                         forget_saved(doc_path, obj)
@@ -440,6 +460,7 @@ class SaveWatcher:
         closed(doc)
         # a document of the same name opened later is another document
         _WRITTEN_UNDER.pop(doc.Name, None)
+        _SAVED_WITHOUT.pop(doc.Name, None)
 
 
 def closed(doc):

@@ -196,12 +196,26 @@ class RunJournalTest(unittest.TestCase):
         self.doc.undo()
         self.assertEqual(run_journal._kept_files(path, name), [])
         self.assertEqual(ss.runs(self.study), [jo])
-        # Ida's removal lost with the document: not offered
+        # removed, saved without it, and the removal undone: only the document in memory holds
+        # it, so it is written again, and offered if that document is lost unsaved
+        self.doc.openTransaction("Remove participants' runs")
+        ss.remove_run(self.study, 0)
+        self.doc.commitTransaction()
+        self.doc.save()
+        self.doc.undo()
+        self.assertEqual(ss.runs(self.study), [jo])
+        self.assertEqual(len(run_journal._kept_files(path, name)), 1,
+                         "a run removed, saved without, then put back by Undo is on disk nowhere")
         App.closeDocument(self.doc.Name)
         self.doc = App.openDocument(path)
         self.study = self.doc.getObject(name)
-        self.assertEqual(ss.runs(self.study), [jo])
+        self.assertEqual(ss.runs(self.study), [])
+        self.assertEqual(run_journal.unsaved_kept(self.study), [jo])
+        # Ida's removal, lost with the document before, is not offered
+        ss.record_run(self.study, jo)
+        self.doc.save()
         self.assertEqual(run_journal.unsaved_kept(self.study), [])
+        self.assertEqual(run_journal._kept_files(path, name), [])
 
     def test_a_kept_run_lost_to_a_close_without_saving_is_told_from_one_lost_to_a_crash(self):
         # "the document closed (or FreeCAD ended) before it was saved": a discard on purpose
