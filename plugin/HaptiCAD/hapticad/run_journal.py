@@ -26,8 +26,8 @@ A document moved or renamed since its runs were written is opened under another 
 run in progress its document left at its earlier place, when there is none under its
 path (``read``), and the kept runs it left there (``unsaved_kept``) are taken as if
 written here, their files moved to the new path's names, as study_journal takes a
-stiffness study's records: known by the study's name and ID and the document's Uid they
-record, only when the document is gone from the path they record (and not open in this
+stiffness study's records: known by the study's name and ID and the document's Uid and
+last save they record (document_identity), only when the document is gone from the path they record (and not open in this
 session), and none when they were left by more than one such path (copies of one document
 moved away: whose they are cannot be told; a warning names them). Where the document was
 is said (``earlier_path``; a run in progress's state holds it as ``moved_from``).
@@ -41,6 +41,7 @@ import FreeCAD as App
 
 from . import similarity_study as ss
 from .atomic_file import write_json
+from .document_identity import identity, same_document
 from .study_journal import ENDED, said_how_lost as _said_how_lost
 
 # how a kept run was lost besides study_journal's (ENDED, a close's time, ""): an Undo
@@ -71,7 +72,7 @@ def write(study, run):
     path = path_for(study)
     if path is None:
         return
-    state = {"document": os.path.abspath(study.Document.FileName), "document_uid": study.Document.Uid,
+    state = {"document": os.path.abspath(study.Document.FileName), **identity(study.Document),
              "study": study.Name, "study_id": study.ID, "name": run.participant, "seed": run.seed,
              "started": run.started,
              "trials": [[t.kind, t.first, t.second] for t in run.trials], "answers": list(run.answers),
@@ -125,8 +126,8 @@ def _moved_here(study, kept):
         if not isinstance(state, dict):
             continue
         was = state.get("document")
-        if (state.get("study"), state.get("study_id"), state.get("document_uid")) != (
-                study.Name, study.ID, study.Document.Uid):
+        if not same_document(state, study.Document) or (state.get("study"), state.get("study_id")) != (
+                study.Name, study.ID):
             continue
         if isinstance(was, str) and was and not os.path.exists(was) and os.path.abspath(was) not in open_here:
             found.setdefault(os.path.abspath(was), []).append((path, state))
@@ -238,7 +239,7 @@ def write_kept(study, record):
     digest = hashlib.sha1(json.dumps(record, sort_keys=True).encode()).hexdigest()[:12]
     path = _kept_prefix(doc_path, study.Name) + f"{digest}.json"
     # the study's ID tells it from a later study given the name of a deleted one
-    write_json(path, {"document": os.path.abspath(doc_path), "document_uid": study.Document.Uid,
+    write_json(path, {"document": os.path.abspath(doc_path), **identity(study.Document),
                       "study": study.Name, "study_id": study.ID, "kept": record, "closes_noted": True})
     _KEPT_HERE.add(path)
 

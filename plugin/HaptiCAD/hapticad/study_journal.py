@@ -21,13 +21,12 @@ opened under another path than its file was written for: when there is no file f
 study under its path, the file of the same study left by the document at its earlier
 place is taken (``opened``), its records offered as if found here, and the file moved to
 the new path's name. Such a file is known by what it records: the study's name and ID,
-and the document's Uid (which FreeCAD makes once for a document and keeps through saves,
-Save As and moves; only a copy of the file shares it); and its document must be gone from
-the path it records (a file that still exists there, or a document open in this session,
+and the document's Uid and last save (document_identity: the Uid alone is shared by every
+document saved from one template); and its document must be gone from the path it records (a file that still exists there, or a document open in this session,
 keeps its own). When more than one such file matches (copies of one document moved away,
 each with records unsaved), none is taken and a warning names them: which copy the
 records belong to cannot be told, and the union would offer each copy's records to the
-other too. Files written before the Uid was (none recorded) are not taken. Where the
+other too. Files written before the last save was recorded are not taken. Where the
 document was is said (``earlier_path``).
 
 A record the designer removes (``removing``: stiffness_study.remove_record, the panel's
@@ -59,6 +58,7 @@ import FreeCAD as App
 
 from . import cohort
 from .atomic_file import write_json
+from .document_identity import identity, same_document
 
 
 # how a record was lost (how_lost): FreeCAD ended without closing the document; else the
@@ -235,8 +235,8 @@ def _moved_here(study, path):
                 state = json.load(handle)
         except (OSError, ValueError):
             continue
-        if not isinstance(state, dict) or (state.get("study"), state.get("study_id"), state.get("document_uid")) != (
-                study.Name, study.ID, study.Document.Uid):
+        if not same_document(state, study.Document) or (state.get("study"), state.get("study_id")) != (
+                study.Name, study.ID):
             continue
         was = state.get("document")
         if isinstance(was, str) and was and not os.path.exists(was) and os.path.abspath(was) not in open_here:
@@ -323,7 +323,7 @@ def _write(study, session, closed=""):
         return
     # the whole cohort, not only what is unsaved: the records it holds as often as it does
     # (one saved and one not of two alike are one lost, which the unsaved alone would not tell)
-    state = {"document": os.path.abspath(study.Document.FileName), "document_uid": study.Document.Uid,
+    state = {"document": os.path.abspath(study.Document.FileName), **identity(study.Document),
              "study": study.Name, "study_id": study.ID,
              "label": study.Label, "cohort": [json.loads(t) for t in held], "lost": [json.loads(t) for t in lost],
              "lost_how": [session.how.get(t, "") for t in lost], "closes_noted": True}

@@ -8,6 +8,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 import uuid
 from datetime import datetime
@@ -262,6 +263,29 @@ class RunJournalTest(unittest.TestCase):
             App.closeDocument(self.doc.Name)
         self.doc = App.openDocument(path)
         self.study = self.doc.getObject(name)
+
+    def test_a_document_saved_from_the_same_template_does_not_take_a_moved_ones_runs(self):
+        # Save As keeps the document's Uid: Monday's and Tuesday's documents, saved from one
+        # template, share it; Monday's moved away, its kept run went to Tuesday's
+        run_journal.watch_saves()
+        name = self.study.Name
+        monday, tuesday = moved_documents.paths_in(self.tmp.name, ("mon", "tue"))
+        self.doc.saveAs(tuesday)
+        time.sleep(1.1)  # FreeCAD keeps a save's time to the second
+        self.doc.saveAs(monday)
+        self.addCleanup(self.forget_kept, monday, name)
+        ida = self.keep("Ida")
+        uid = self.doc.Uid
+        App.closeDocument(self.doc.Name)
+        self.doc = None
+        (archived,) = moved_documents.move_into(self.tmp.name, "archive", [monday], ["monday.FCStd"])
+        self.addCleanup(self.forget_kept, archived, name)
+        self.addCleanup(self.forget_kept, tuesday, name)
+        self.open_at(tuesday, name)
+        self.assertEqual(self.doc.Uid, uid)  # what the journal took for Monday's
+        self.assertEqual(run_journal.unsaved_kept(self.study), [], "another document saved from its template took it")
+        self.open_at(archived, name)
+        self.assertEqual(run_journal.unsaved_kept(self.study), [ida])
 
     def test_runs_lost_before_the_document_was_moved_are_offered_where_it_is_now(self):
         # moved (a file manager, a synced folder with another path) after a close without

@@ -8,6 +8,7 @@ import os
 import shutil
 import subprocess
 import tempfile
+import time
 import unittest
 import uuid
 from datetime import datetime
@@ -336,6 +337,26 @@ class StudyJournalTest(unittest.TestCase):
             App.closeDocument(self.doc.Name)
         self.path = path
         self.reopen(name)
+
+    def test_a_document_saved_from_the_same_template_does_not_take_a_moved_ones_records(self):
+        # Save As keeps the document's Uid: Monday's and Tuesday's documents, saved from one
+        # template, share it; Monday's moved away, its records went to Tuesday's
+        self.addCleanup(self.forget_journals_here)
+        name = self.study.Name
+        monday, tuesday = moved_documents.paths_in(self.tmp.name, ("mon", "tue"))
+        self.doc.saveAs(tuesday)
+        time.sleep(1.1)  # FreeCAD keeps a save's time to the second
+        self.doc.saveAs(monday)
+        self.record("Ann", 5.0)
+        uid = self.doc.Uid
+        App.closeDocument(self.doc.Name)
+        self.doc = None
+        (archived,) = moved_documents.move_into(self.tmp.name, "archive", [monday], ["monday.FCStd"])
+        self.open_at(tuesday, name)
+        self.assertEqual(self.doc.Uid, uid)  # what the journal took for Monday's
+        self.assertEqual(study_journal.lost(self.study), [], "another document saved from its template took them")
+        self.open_at(archived, name)
+        self.assertEqual(self.names(study_journal.lost(self.study)), ["Ann"])
 
     def test_records_lost_before_the_document_was_moved_are_offered_where_it_is_now(self):
         # moved (a file manager, a synced folder with another path) after a close without
