@@ -14,6 +14,9 @@ Python thread can do it while the Qt event loop runs:
 
 A device nobody takes (abandoned) is dropped, so its destructor closes it (for a HID
 device: its session ends and both hidapi handles close) on the thread that drops it last.
+Until an abandoned open is over, the same device is not to be opened again
+(``still_giving_up``): the late open's exchanges, and the end of its session when it is
+dropped, would reach the device in the middle of the new session's.
 
 No GUI, no FreeCAD: tested headless (tests/plugin/hapticad/test_device_opening.py).
 Thread safety: poll(), abandon(), still_opening and wait() are for one owner thread;
@@ -22,6 +25,17 @@ the worker only runs the open and hands over its outcome under a lock.
 import threading
 
 from . import _core
+
+# path -> the abandoned openings of it whose worker still runs
+_GIVING_UP = {}
+_GIVING_UP_LOCK = threading.Lock()
+
+
+def still_giving_up(path):
+    """True while an open of ``path`` that was abandoned has not ended (the device is
+    still answering it, or its late session is being ended): open it again only after."""
+    with _GIVING_UP_LOCK:
+        return bool(_GIVING_UP.get(path))
 
 
 class DeviceOpening:
@@ -54,6 +68,8 @@ class DeviceOpening:
                 device = None
         # abandoned meanwhile: nobody will take it. Dropped here, its destructor closes it
         del device
+        with _GIVING_UP_LOCK:
+            _GIVING_UP.get(self.path, set()).discard(self)
 
     @property
     def still_opening(self):
@@ -80,12 +96,16 @@ class DeviceOpening:
 
     def abandon(self):
         """The owner gives up (Stop, the panel closed): a device opened already and not
-        taken is dropped now, one the worker opens later is dropped by the worker. Does
-        not wait for the worker. A device handed over by poll() stays the owner's."""
+        taken is dropped now, one the worker opens later is dropped by the worker (until
+        then ``still_giving_up`` says so). Does not wait for the worker. A device handed
+        over by poll() stays the owner's."""
         with self._lock:
             self._abandoned = True
             device, self._device = self._device, None
             self._error = None
+            if not self._finished:  # the worker takes itself off when it is done
+                with _GIVING_UP_LOCK:
+                    _GIVING_UP.setdefault(self.path, set()).add(self)
         del device  # outside the lock: its destructor may take a moment (its writer thread)
 
     def wait(self, timeout_s=None):

@@ -104,10 +104,15 @@ class DeviceOpeningTest(unittest.TestCase):
 
         opening = device_opening.DeviceOpening(GOOD, open_when_let)
         self.assertTrue(opening.still_opening)
+        self.assertFalse(device_opening.still_giving_up(GOOD))
         opening.abandon()  # the panel closed while the device was opening
         self.assertFalse(opening.still_opening)
+        # until its late open is over and dropped, the device is not to be opened again
+        self.assertTrue(device_opening.still_giving_up(GOOD))
+        self.assertFalse(device_opening.still_giving_up(SLOW))
         gate.set()
         self.assertTrue(opening.wait(10.0))
+        self.assertFalse(device_opening.still_giving_up(GOOD))
         self.assertEqual(len(opened), 1)  # it did open, late
         self.assertIsNone(opened[0]())  # and was dropped, nobody holds it
         self.assertEqual(open_handles(GOOD), 0)  # so it closed: no handle left on the device
@@ -124,6 +129,7 @@ class DeviceOpeningTest(unittest.TestCase):
         self.assertEqual(open_handles(GOOD), 2)  # opened, held for the caller
         opening.abandon()
         self.assertEqual(open_handles(GOOD), 0)
+        self.assertFalse(device_opening.still_giving_up(GOOD))  # dropped at once: over
 
     def test_a_device_handed_over_is_the_callers_and_is_handed_over_once(self):
         opening = device_opening.DeviceOpening(GOOD)

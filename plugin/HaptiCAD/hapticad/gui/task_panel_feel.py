@@ -247,6 +247,10 @@ class FeelTaskPanel:
             return self._start_session(path)
         if self._view_or_say() is None:  # before the device is opened: the probe is drawn there
             return False
+        if device_opening.still_giving_up(path):  # its late session end would cut the new one's
+            self.show_message(f"{self.device.currentText() or path} is still answering the open that was stopped: "
+                              "press Start again in a moment.", error=True)
+            return False
         self.opening_label = self.device.currentText() or path
         self.opening = device_opening.DeviceOpening(path)
         self.set_running(False)  # Start and the device choice off, Stop gives up

@@ -151,13 +151,26 @@ class FeelHidGuiTest(unittest.TestCase):
         self.assertTrue(device.isEnabled())
         self.assertFalse(stop.isEnabled())
         self.assertIn("was still opening, and no session started", message.text())
+        # Start again at once: the device still answers the stopped open, whose late end
+        # would cut a new session's; it says so and opens nothing
+        start.click()
+        h.process_events()
+        self.assertIsNone(panel.opening)
+        self.assertIn(f"{SLOW_LABEL} is still answering the open that was stopped: press Start again in a moment",
+                      message.text())
         # the device's open ends (in its error) after Stop: nothing follows from it
         h.wait_for(lambda: opening.wait(0), "the worker's open over", dead_after_s=4 * SLOW_BLOCK_S)
         h.wait(0.2)
         self.assertIsNone(panel.session)
-        self.assertIn("was still opening, and no session started", message.text())
         self.assertNotIn("did not answer", message.text())
         self.assertTrue(start.isEnabled())
+        start.click()  # over now: it opens again
+        h.process_events()
+        again = panel.opening
+        self.assertIsNotNone(again)
+        stop.click()
+        h.process_events()
+        h.wait_for(lambda: again.wait(0), "the second open over", dead_after_s=4 * SLOW_BLOCK_S)
 
     def test_closing_the_panel_while_the_device_opens_starts_no_session(self):
         from hapticad.gui import task_panel_feel
