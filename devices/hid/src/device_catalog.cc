@@ -7,6 +7,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <utility>
 
@@ -23,31 +24,39 @@ struct ProbeSlot {
   std::mutex mutex;
   std::condition_variable done_changed;
   bool done = false;
-  bool read = false;
   HidProbe probe;
-  std::string error;
+  std::exception_ptr failed;  // what Probe threw: its text is made on the lister's thread
 };
 
 // Probes `path` on a thread of its own and waits at most kProbeWaitS for it: true with
-// `*probe` read, false with `*error` (the device's, or that it did not answer in time;
-// the thread is then left to finish the request, and close the device, on its own).
+// `*probe` read, false with `*error` (the device's, that it did not answer in time, or that
+// no thread could be started for it; the thread is then left to finish the request, and
+// close the device, on its own).
 bool ProbeWithin(const std::string& path, HidProbe* probe, std::string* error) {
   auto slot = std::make_shared<ProbeSlot>();
-  std::thread worker([slot, path] {
-    HidProbe read;
-    std::string failed;
-    try {
-      read = HidDevice::Probe(path);
-    } catch (const std::exception& e) {  // DeviceError, or out of memory: said, not thrown
-      failed = e.what();
-    }
-    std::lock_guard<std::mutex> lock(slot->mutex);
-    slot->probe = std::move(read);
-    slot->error = std::move(failed);
-    slot->read = slot->error.empty();
-    slot->done = true;
-    slot->done_changed.notify_all();
-  });
+  std::thread worker;
+  try {
+    // nothing may escape the thread's body (std::terminate): what Probe throws is kept,
+    // and the rest (a move, a mutex) does not throw
+    worker = std::thread([slot, path] {
+      HidProbe read;
+      std::exception_ptr failed;
+      try {
+        read = HidDevice::Probe(path);
+      } catch (...) {  // DeviceError, or out of memory: said by the lister, not thrown
+        failed = std::current_exception();
+      }
+      std::lock_guard<std::mutex> lock(slot->mutex);
+      slot->probe = std::move(read);
+      slot->failed = std::move(failed);
+      slot->done = true;
+      slot->done_changed.notify_all();
+    });
+  } catch (const std::system_error& e) {  // no thread left (EAGAIN): the process's limit
+    *error = "cannot probe the HID device " + path + ": no thread could be started for it (" +
+             e.what() + "); close some programs and list the devices again";
+    return false;
+  }
   std::unique_lock<std::mutex> lock(slot->mutex);
   const bool done = slot->done_changed.wait_for(lock, std::chrono::duration<double>(kProbeWaitS),
                                                 [&] { return slot->done; });
@@ -61,11 +70,18 @@ bool ProbeWithin(const std::string& path, HidProbe* probe, std::string* error) {
     return false;
   }
   *probe = std::move(slot->probe);
-  *error = std::move(slot->error);
-  const bool read = slot->read;
+  const std::exception_ptr failed = slot->failed;
   lock.unlock();
   worker.join();
-  return read;
+  if (!failed) return true;
+  try {
+    std::rethrow_exception(failed);
+  } catch (const std::exception& e) {
+    *error = e.what();
+  } catch (...) {
+    *error = "probing the HID device " + path + " failed";
+  }
+  return false;
 }
 
 }  // namespace

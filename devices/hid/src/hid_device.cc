@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <cwchar>
+#include <mutex>
 #include <utility>
 
 #include "hapticad/devices/hid/udev_advice.h"
@@ -43,22 +44,39 @@ struct HandleGuard {
   }
 };
 
+// hid_open_path's outcome, taken under the lock on hidapi's global state (hid_text.h).
+struct Opened {
+  hid_device* handle = nullptr;
+  int error = 0;       // open()'s errno, which hidapi keeps
+  std::string reason;  // hidapi's hid_error(NULL) when the open failed
+};
+
+Opened OpenLocked(const std::string& path) {
+  Opened opened;
+  std::lock_guard<std::mutex> lock(hid::GlobalStateMutex());
+  errno = 0;
+  opened.handle = hid_open_path(path.c_str());
+  opened.error = errno;
+  if (!opened.handle) opened.reason = hid::ErrorText(nullptr);
+  return opened;
+}
+
 hid_device* OpenPath(const std::string& path) {
   hid::EnsureHidInit();
-  errno = 0;
-  hid_device* handle = hid_open_path(path.c_str());
-  const int error = errno;  // open()'s, which hidapi keeps
-  if (!handle) {
-    const std::string reason = hid::ErrorText(nullptr);
+  const Opened opened = OpenLocked(path);
+  if (!opened.handle) {
+    const std::string& reason = opened.reason;
     std::string message = "cannot open the HID device " + path + ": " + reason;
-    if (error == EACCES || error == EPERM || reason.find("ermission") != std::string::npos) {
+    if (opened.error == EACCES || opened.error == EPERM ||
+        reason.find("ermission") != std::string::npos) {
       std::uint16_t vendor_id = 0, product_id = 0;
+      // after OpenLocked has let go: FindUsbIds takes the lock itself
       const bool known = hid::FindUsbIds(path, &vendor_id, &product_id);
       message += hid::UdevAdvice(known, vendor_id, product_id);
     }
     throw DeviceError(message);
   }
-  return handle;
+  return opened.handle;
 }
 
 // The session report's exchange on `handle` (PROTOCOL.md section 3.4), and its outcome.
@@ -162,10 +180,11 @@ std::unique_ptr<HidDevice> HidDevice::Open(const std::string& path, int watchdog
   HandleGuard guard{OpenPath(path)};
   HidProbe probe = ProbeOpen(guard.handle, path);
   // the writer's own handle: hidapi's per-handle error text must not be shared by threads
-  HandleGuard writer_guard{hid_open_path(path.c_str())};
+  const Opened writer = OpenLocked(path);
+  HandleGuard writer_guard{writer.handle};
   if (!writer_guard.handle) {
     throw DeviceError("cannot open the HID device " + path +
-                      " a second time, for its force commands: " + hid::ErrorText(nullptr));
+                      " a second time, for its force commands: " + writer.reason);
   }
   std::unique_ptr<HidDevice> device(new HidDevice(guard.handle, std::move(probe)));
   guard.handle = nullptr;  // the device owns it now

@@ -4,6 +4,7 @@
 #include <hidapi/hidapi.h>
 
 #include <algorithm>
+#include <mutex>
 
 #include "hapticad/devices/hid/hid_protocol.h"
 #include "hid_text.h"
@@ -13,6 +14,7 @@ namespace hapticad {
 std::vector<HidCandidate> FindHidCandidates() {
   hid::EnsureHidInit();
   std::vector<HidCandidate> found;
+  std::lock_guard<std::mutex> lock(hid::GlobalStateMutex());  // hidapi's global error text
   hid_device_info* list = hid_enumerate(0, 0);
   for (const hid_device_info* d = list; d != nullptr; d = d->next) {
     const bool by_usage = d->usage_page == hid::kUsagePage && d->usage == hid::kUsage;

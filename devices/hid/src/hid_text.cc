@@ -9,11 +9,21 @@
 
 namespace hapticad::hid {
 
+std::mutex& GlobalStateMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
 void EnsureHidInit() {
   static std::once_flag once;
   static int result = 0;
-  std::call_once(once, [] { result = hid_init(); });
-  if (result != 0) throw DeviceError("cannot initialise hidapi: " + ErrorText(nullptr));
+  static std::string why;  // hidapi's words at the failure, before another call replaces them
+  std::call_once(once, [] {
+    std::lock_guard<std::mutex> lock(GlobalStateMutex());
+    result = hid_init();
+    if (result != 0) why = ErrorText(nullptr);
+  });
+  if (result != 0) throw DeviceError("cannot initialise hidapi: " + why);
 }
 
 std::string ToUtf8(const wchar_t* text) {

@@ -4,8 +4,10 @@
 #include <hidapi/hidapi.h>
 
 #include <cstdio>
+#include <mutex>
 
 #include "hapticad/devices/hid/hid_device_finder.h"
+#include "hid_text.h"
 
 namespace hapticad::hid {
 namespace {
@@ -25,6 +27,7 @@ std::string RuleLine(const char* vid, const char* pid) {
 }  // namespace
 
 bool FindUsbIds(const std::string& path, std::uint16_t* vendor_id, std::uint16_t* product_id) {
+  std::lock_guard<std::mutex> lock(GlobalStateMutex());  // hidapi's global error text
   hid_device_info* all = hid_enumerate(0, 0);
   bool found = false;
   for (const hid_device_info* d = all; d && !found; d = d->next) {

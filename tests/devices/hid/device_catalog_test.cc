@@ -166,5 +166,40 @@ TEST_F(Catalog, OpensWhatAListingNames) {
   }
 }
 
+// hidapi's global state (one error string, freed and replaced with no lock) is not
+// thread-safe, and HaptiCAD calls into it from several threads: ListDevices' probe threads,
+// and the workbench's worker opening a device while its panel lists devices. With each
+// global call made slow, they overlap unless the backend makes them take turns.
+TEST_F(Catalog, ListingWhileOpeningOnAnotherThreadTakesTurnsInHidapisGlobalState) {
+  for (int i = 0; i < 3; ++i) {
+    FirmwareConfig c;
+    c.path = "emu:" + std::to_string(i);
+    hidemu::AddDevice(c);
+  }
+  FirmwareConfig denied;  // a failed open reads hidapi's global error, then enumerates
+  denied.path = "emu:denied";
+  denied.deny_open = true;
+  hidemu::AddDevice(denied);
+  hidemu::SetGlobalCallDelay(0.002);
+  for (int round = 0; round < 10; ++round) {
+    auto listing = std::async(std::launch::async, [] { return ListDevices(); });
+    const auto device = OpenDevice("emu:" + std::to_string(round % 3));
+    EXPECT_EQ(device->info().path, "emu:" + std::to_string(round % 3));
+    try {
+      OpenDevice("emu:denied");
+      ADD_FAILURE() << "opened emu:denied";
+    } catch (const DeviceError& e) {
+      EXPECT_TRUE(Contains(e.what(), "Permission denied")) << e.what();
+    }
+    const auto list = listing.get();
+    ASSERT_EQ(list.size(), 5u);
+    for (std::size_t i = 1; i < 4; ++i) EXPECT_TRUE(list[i].has_limits) << list[i].error;
+    EXPECT_TRUE(Contains(list[4].error, "Permission denied")) << list[4].error;
+  }
+  EXPECT_EQ(hidemu::MaxConcurrentGlobalCalls(), 1)
+      << "threads were inside hidapi's global state (hid_init, hid_enumerate, hid_open_path, "
+         "hid_error(NULL)) at once";
+}
+
 }  // namespace
 }  // namespace hapticad

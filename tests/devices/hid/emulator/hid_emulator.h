@@ -165,6 +165,18 @@ double Now();
 // thread-safe: a backend must not ask for it from another thread while it runs).
 std::uint64_t HidErrorCalls();
 
+// hidapi's global state is not thread-safe: hidapi 0.13 keeps one process-wide error
+// string that hid_init, hid_enumerate and hid_open_path (and hid_exit) free and replace, and
+// hid_error(NULL) reads, with no lock, so a backend must never be inside two of those calls
+// at once. The emulator counts the threads inside them (hid_open, which opens through
+// hid_open_path, is one call) and keeps the most there ever were at once, since the last
+// Reset(). SetGlobalCallDelay makes each such call first sleep `seconds` of real time,
+// outside the emulator's own lock (which would otherwise serialise them and hide the
+// overlap), so that calls a backend lets overlap do overlap. Reset() sets the delay back to
+// 0 and forgets the maximum.
+void SetGlobalCallDelay(double seconds);
+int MaxConcurrentGlobalCalls();
+
 // hidapi handles open now on the device at `path` (hid_open_path minus hid_close; a
 // handle stays counted after a Reset() until it is closed), and host writes blocked now
 // (kSlowWrite, kLateWrite) whose time to end has not come on the emulator's clock (one

@@ -135,6 +135,32 @@ Firmware* DeviceOf(hid_device* dev) {
   return R().devices[dev->device].get();
 }
 
+// the calls into hidapi's global state (hid_emulator.h: SetGlobalCallDelay)
+std::atomic<double> global_call_delay_s{0.0};
+std::atomic<int> global_calls_inside{0};
+std::atomic<int> global_calls_max{0};
+thread_local int global_call_depth = 0;  // hid_open calls hid_open_path: one call
+
+// A call into hidapi's global state, for its duration: counted, and first delayed (without
+// the registry's lock, which would serialise the calls being watched).
+class GlobalCall {
+ public:
+  GlobalCall() {
+    if (global_call_depth++ > 0) return;
+    const int inside = global_calls_inside.fetch_add(1) + 1;
+    int max = global_calls_max.load();
+    while (inside > max && !global_calls_max.compare_exchange_weak(max, inside)) {
+    }
+    const double delay_s = global_call_delay_s.load();
+    if (delay_s > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(delay_s));
+  }
+  ~GlobalCall() {
+    if (--global_call_depth == 0) global_calls_inside.fetch_sub(1);
+  }
+  GlobalCall(const GlobalCall&) = delete;
+  GlobalCall& operator=(const GlobalCall&) = delete;
+};
+
 constexpr const wchar_t* kGone = L"hid_read_timeout: unexpected poll error (device disconnected)";
 
 }  // namespace
@@ -147,7 +173,13 @@ void Reset() {
   R().others.clear();
   R().manual_clock = false;
   R().configured_from_env = true;  // an explicit set-up replaces the environment's
+  global_call_delay_s = 0.0;
+  global_calls_max = 0;
 }
+
+void SetGlobalCallDelay(double seconds) { global_call_delay_s = seconds; }
+
+int MaxConcurrentGlobalCalls() { return global_calls_max.load(); }
 
 int AddDevice(const FirmwareConfig& config) {
   std::lock_guard<std::mutex> lock(R().mutex);
@@ -286,6 +318,7 @@ void ConfigureFromSpec(const std::string& spec) {
 }  // namespace hapticad::hidemu
 
 using hapticad::hidemu::DeviceOf;
+using hapticad::hidemu::GlobalCall;
 using hapticad::hidemu::kGone;
 using hapticad::hidemu::NowLocked;
 using hapticad::hidemu::R;
@@ -294,15 +327,20 @@ using hapticad::hidemu::SetError;
 extern "C" {
 
 int HID_API_EXPORT HID_API_CALL hid_init(void) {
+  const GlobalCall global;
   std::lock_guard<std::mutex> lock(R().mutex);
   hapticad::hidemu::ConfigureFromEnvLocked();
   return 0;
 }
 
-int HID_API_EXPORT HID_API_CALL hid_exit(void) { return 0; }
+int HID_API_EXPORT HID_API_CALL hid_exit(void) {
+  const GlobalCall global;
+  return 0;
+}
 
 struct hid_device_info HID_API_EXPORT* HID_API_CALL hid_enumerate(unsigned short vendor_id,
                                                                   unsigned short product_id) {
+  const GlobalCall global;  // before the lock: released after it
   std::lock_guard<std::mutex> lock(R().mutex);
   hapticad::hidemu::ConfigureFromEnvLocked();
   hid_device_info* head = nullptr;
@@ -345,6 +383,7 @@ void HID_API_EXPORT HID_API_CALL hid_free_enumeration(struct hid_device_info* de
 }
 
 HID_API_EXPORT hid_device* HID_API_CALL hid_open_path(const char* path) {
+  const GlobalCall global;  // before the lock: released after it
   std::lock_guard<std::mutex> lock(R().mutex);
   hapticad::hidemu::ConfigureFromEnvLocked();
   const double now = NowLocked();
@@ -384,6 +423,7 @@ HID_API_EXPORT hid_device* HID_API_CALL hid_open_path(const char* path) {
 HID_API_EXPORT hid_device* HID_API_CALL hid_open(unsigned short vendor_id,
                                                  unsigned short product_id,
                                                  const wchar_t* /*serial_number*/) {
+  const GlobalCall global;
   std::string path;
   {
     std::lock_guard<std::mutex> lock(R().mutex);
@@ -592,7 +632,10 @@ struct hid_device_info HID_API_EXPORT* HID_API_CALL hid_get_device_info(hid_devi
 
 HID_API_EXPORT const wchar_t* HID_API_CALL hid_error(hid_device* dev) {
   hapticad::hidemu::error_calls.fetch_add(1, std::memory_order_relaxed);
-  if (!dev) return R().global_error;
+  if (!dev) {
+    const GlobalCall global;
+    return R().global_error;
+  }
   return dev->error;
 }
 

@@ -63,7 +63,10 @@
 // writer and waits at most kBeginSessionWaitS for the answer. Open() still asks on the
 // calling thread, which a device that does not answer blocks for up to 5 s an exchange:
 // the workbench opens devices on a worker thread (plugin .../device_opening.py), and
-// ListDevices() waits for Probe() at most kProbeWaitS.
+// ListDevices() waits for Probe() at most kProbeWaitS. Open() and Probe() may run on
+// several threads at once: their calls into hidapi's global state (hid_open_path, and its
+// error text after a failed open) take turns under one process-wide lock, which nothing
+// that waits on a device holds.
 #pragma once
 
 #include <atomic>

@@ -33,7 +33,7 @@ struct HidCandidate {
 };
 
 // Every HID interface that claims the protocol, once per path. Throws DeviceError if
-// hidapi cannot be initialised.
+// hidapi cannot be initialised. Takes the lock on hidapi's global state (hid_text.h).
 std::vector<HidCandidate> FindHidCandidates();
 
 }  // namespace hapticad

@@ -13,7 +13,8 @@
 namespace hapticad::hid {
 
 // The device's USB vendor and product IDs from hidapi's enumeration, looked up by path
-// (nothing is opened). False when no HID device has that path.
+// (nothing is opened). False when no HID device has that path. Takes the lock on hidapi's
+// global state (hid_text.h): never call it holding that lock.
 bool FindUsbIds(const std::string& path, std::uint16_t* vendor_id, std::uint16_t* product_id);
 
 // The advice, to follow "cannot open the HID device <path>: <reason>" (it starts with ". ").
