@@ -4,6 +4,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <exception>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -32,7 +33,43 @@ struct ProbeSlot {
 // `*probe` read, false with `*error` (the device's, that it did not answer in time, or that
 // no thread could be started for it; the thread is then left to finish the request, and
 // close the device, on its own).
+// The probes left waiting on a device that did not answer, by path: a later listing does
+// not ask that device again (another handle, another thread) until the request is over.
+std::mutex& UnansweredMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+std::map<std::string, std::weak_ptr<ProbeSlot>>& Unanswered() {
+  static auto* probes = new std::map<std::string, std::weak_ptr<ProbeSlot>>;  // kept to exit
+  return *probes;
+}
+
+std::string NotAnswered(const std::string& path) {
+  return "the HID device " + path + " did not answer its device information request within " +
+         std::to_string(static_cast<int>(kProbeWaitS * 1000)) +
+         " ms (a HaptiCAD device answers in milliseconds): it is busy or not a HaptiCAD "
+         "protocol device; unplug it and plug it in again";
+}
+
 bool ProbeWithin(const std::string& path, HidProbe* probe, std::string* error) {
+  {
+    std::lock_guard<std::mutex> lock(UnansweredMutex());
+    auto& unanswered = Unanswered();
+    const auto it = unanswered.find(path);
+    if (it != unanswered.end()) {
+      const std::shared_ptr<ProbeSlot> earlier = it->second.lock();
+      bool waiting = false;
+      if (earlier) {
+        std::lock_guard<std::mutex> slot_lock(earlier->mutex);
+        waiting = !earlier->done;
+      }
+      if (waiting) {
+        *error = NotAnswered(path) + " (an earlier request is still waiting)";
+        return false;
+      }
+      unanswered.erase(it);
+    }
+  }
   auto slot = std::make_shared<ProbeSlot>();
   std::thread worker;
   try {
@@ -63,10 +100,11 @@ bool ProbeWithin(const std::string& path, HidProbe* probe, std::string* error) {
   if (!done) {
     lock.unlock();
     worker.detach();
-    *error = "the HID device " + path + " did not answer its device information request within " +
-             std::to_string(static_cast<int>(kProbeWaitS * 1000)) +
-             " ms (a HaptiCAD device answers in milliseconds): it is busy or not a HaptiCAD "
-             "protocol device; unplug it and plug it in again";
+    {
+      std::lock_guard<std::mutex> unanswered_lock(UnansweredMutex());
+      Unanswered()[path] = slot;
+    }
+    *error = NotAnswered(path);
     return false;
   }
   *probe = std::move(slot->probe);

@@ -86,6 +86,16 @@ TEST_F(Catalog, ADeviceThatDoesNotAnswerIsListedAsSuchAndHoldsUpNothing) {
   EXPECT_DOUBLE_EQ(list[2].info.limits.max_force_n, 8.0);
   // the probe still waits on emu:0; when the request times out it closes the device
   EXPECT_EQ(hidemu::OpenHandles("emu:0"), 1);
+  // a listing meanwhile does not ask it again (another handle, another thread, another wait)
+  auto again = std::async(std::launch::async, [] { return ListDevices(); });
+  const bool came_again = again.wait_for(std::chrono::seconds(30)) == std::future_status::ready;
+  if (!came_again) hidemu::SetTime(200.0);
+  ASSERT_TRUE(came_again);
+  const auto second = again.get();
+  ASSERT_EQ(second.size(), 3u);
+  EXPECT_TRUE(Contains(second[1].error, "an earlier request is still waiting")) << second[1].error;
+  EXPECT_TRUE(second[2].has_limits);
+  EXPECT_EQ(hidemu::OpenHandles("emu:0"), 1);
   hidemu::SetTime(106.0);
   for (int i = 0; i < 1000 && hidemu::OpenHandles("emu:0") != 0; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
