@@ -503,8 +503,8 @@ class SurfaceTaskPanel:
             if state == face_references.BROKEN:
                 item.setIcon(QtGui.QIcon(icon("HaptiCAD_SurfaceBroken")))
                 item.setForeground(QtGui.QBrush(QtGui.QColor(180, 0, 0)))
-                item.setToolTip("The model changed and this face cannot be found unambiguously: remove it "
-                                "and pick the face again")
+                item.setToolTip("The model changed and this face cannot be found unambiguously: select it "
+                                "here, press Add and click the face in the 3D view to put it in its place")
             elif state == face_references.REMATCHED:
                 item.setToolTip("FreeCAD renamed this face after a model edit; the tag followed it")
             self.faces.addItem(item)
@@ -777,8 +777,22 @@ class SurfaceTaskPanel:
             self.show_problems([f"{obj.Label}.{face} is already tagged by {other.Label}: a face feels one way; "
                                 "remove it there first"])
             return
-        self.obj.References = surface_object.link_sub_list(pairs + [(obj, face)])
+        broken = self._broken_chosen(obj)
+        if broken is not None:  # picked again for the broken reference chosen in the list: in its place
+            pairs = [(obj, face) if pair == broken else pair for pair in pairs]
+        else:
+            pairs = pairs + [(obj, face)]
+        self.obj.References = surface_object.link_sub_list(pairs)
         self.load()
+
+    def _broken_chosen(self, part):
+        """(part, its face name) of the one reference chosen in the list when it is a broken
+        one of ``part`` (one stepped aside, "Face6~1", names no face to pick again), else None."""
+        chosen = self.faces.selectedItems()
+        if len(chosen) != 1 or chosen[0].data(QtCore.Qt.UserRole + 1) != face_references.BROKEN:
+            return None
+        obj_name, face = chosen[0].data(QtCore.Qt.UserRole).split(".", 1)
+        return (part, face) if obj_name == part.Name else None
 
     def remove_selected_faces(self):
         chosen = {item.data(QtCore.Qt.UserRole) for item in self.faces.selectedItems()}

@@ -669,6 +669,16 @@ class TaskPanelTest(unittest.TestCase):
                          [f"Cut.{top}", f"Cut.{top}  (broken)"])
         faces.item(1).setSelected(True)
         self.assertEqual(Gui.Selection.getSelectionEx(), [])
+        # picked again: chosen in the list, the face clicked takes its place (it names no face
+        # to click, and a click used to add the face beside it, the broken one left)
+        self.assertIn("put it in its place", faces.item(1).toolTip())
+        h.widget(QtWidgets.QPushButton, "addFaces").setChecked(True)
+        h.click_at((20, 0, 10))  # the front face
+        front = [f"Face{i + 1}" for i, f in enumerate(cut.Shape.Faces) if abs(f.CenterOfMass.y) < 1e-6][0]
+        self.assertEqual(HaptiCAD.reference_pairs(other), [(cut, top), (cut, front)])
+        self.assertEqual([state for _, _, state in HaptiCAD.reference_status(other)], ["ok", "ok"])
+        faces = h.widget(QtWidgets.QListWidget, "faces")
+        self.assertEqual([faces.item(i).text() for i in range(faces.count())], [f"Cut.{top}", f"Cut.{front}"])
         h.press_task_button("Cancel")
 
 
