@@ -407,7 +407,8 @@ def removed_changed(study, before, after):
     back = [json.loads(t) for t in was if t not in now]
     saved_without = _SAVED_WITHOUT.get(study.Document.Name, set())
     try:
-        drop_kept(study, [e["run"] for e in gone if e.get("written")])
+        # a file of a run removed is dropped whatever wrote it (an Undo after a save writes one)
+        drop_kept(study, [e["run"] for e in gone])
         for entry in back:
             # a save since its removal left it out of the file on disk: only this one holds it now
             if entry.get("written") or _run_key(study, entry["run"]) in saved_without:
@@ -456,12 +457,27 @@ class SaveWatcher:
                         forget_saved(doc_path, obj)
                     except ValueError:  # its runs unreadable: nothing is taken as saved
                         pass
+                _restamp(doc, obj)
 
     def slotDeletedDocument(self, doc):
         closed(doc)
         # a document of the same name opened later is another document
         _WRITTEN_UNDER.pop(doc.Name, None)
         _SAVED_WITHOUT.pop(doc.Name, None)
+
+
+def _restamp(doc, study):
+    """The files of ``study`` that outlive a save of ``doc`` (a run in progress, kept runs
+    an Undo took out) get the document's identity as saved now (document_identity): they
+    are known by it if the document is moved."""
+    for path in [path_for(study), *_kept_files(doc.FileName, study.Name)]:
+        try:
+            with open(path, encoding="utf-8") as handle:
+                state = json.load(handle)
+            if isinstance(state, dict) and state.get("study") == study.Name:
+                write_json(path, {**state, **identity(doc)})
+        except (OSError, ValueError, TypeError):
+            pass  # none, or not readable: as it was
 
 
 def closed(doc):

@@ -207,6 +207,10 @@ class RunJournalTest(unittest.TestCase):
         self.assertEqual(ss.runs(self.study), [jo])
         self.assertEqual(len(run_journal._kept_files(path, name)), 1,
                          "a run removed, saved without, then put back by Undo is on disk nowhere")
+        self.doc.redo()  # removed again: its file goes with it, or it is offered back as lost
+        self.assertEqual(run_journal._kept_files(path, name), [])
+        self.doc.undo()
+        self.assertEqual(len(run_journal._kept_files(path, name)), 1)
         App.closeDocument(self.doc.Name)
         self.doc = App.openDocument(path)
         self.study = self.doc.getObject(name)
@@ -286,6 +290,29 @@ class RunJournalTest(unittest.TestCase):
         self.assertEqual(run_journal.unsaved_kept(self.study), [], "another document saved from its template took it")
         self.open_at(archived, name)
         self.assertEqual(run_journal.unsaved_kept(self.study), [ida])
+
+    def test_runs_that_outlive_a_save_are_found_after_the_document_is_moved(self):
+        # a kept run an Undo took out, and a run in progress, are not in the saved file: their
+        # files outlive the save, and must be known by the document as saved then
+        run_journal.watch_saves()
+        name = self.study.Name
+        (first,) = moved_documents.paths_in(self.tmp.name, ("a",))
+        self.doc.saveAs(first)
+        self.addCleanup(self.forget_kept, first, name)
+        self.doc.UndoMode = 1
+        ida = self.keep("Ida")
+        self.doc.undo()  # taken out: offered as undone if the document is lost
+        run_journal.write(self.study, self.half_run())
+        time.sleep(1.1)  # FreeCAD keeps a save's time to the second
+        self.doc.save()
+        App.closeDocument(self.doc.Name)
+        self.doc = None
+        (moved,) = moved_documents.move_into(self.tmp.name, "moved", [first], ["a.FCStd"])
+        self.addCleanup(self.forget_kept, moved, name)
+        self.open_at(moved, name)
+        self.assertEqual(run_journal.unsaved_kept(self.study), [ida], "a kept run saved around is not found")
+        self.assertIsNotNone(run_journal.read(self.study), "the run in progress saved around is not found")
+        run_journal.forget(self.study)
 
     def test_runs_lost_before_the_document_was_moved_are_offered_where_it_is_now(self):
         # moved (a file manager, a synced folder with another path) after a close without

@@ -789,10 +789,13 @@ class SurfaceTaskPanel:
         """(part, its face name) of the one reference chosen in the list when it is a broken
         one of ``part`` (one stepped aside, "Face6~1", names no face to pick again), else None."""
         chosen = self.faces.selectedItems()
-        if len(chosen) != 1 or chosen[0].data(QtCore.Qt.UserRole + 1) != face_references.BROKEN:
+        if len(chosen) != 1:
             return None
         obj_name, face = chosen[0].data(QtCore.Qt.UserRole).split(".", 1)
-        return (part, face) if obj_name == part.Name else None
+        # as the surface holds it now, not as the list last showed it (an Undo, the console)
+        broken = obj_name == part.Name and (obj_name, face, face_references.BROKEN) in \
+            surface_object.reference_status(self.obj)
+        return (part, face) if broken else None
 
     def remove_selected_faces(self):
         chosen = {item.data(QtCore.Qt.UserRole) for item in self.faces.selectedItems()}

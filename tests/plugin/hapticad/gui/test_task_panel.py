@@ -680,6 +680,19 @@ class TaskPanelTest(unittest.TestCase):
         faces = h.widget(QtWidgets.QListWidget, "faces")
         self.assertEqual([faces.item(i).text() for i in range(faces.count())], [f"Cut.{top}", f"Cut.{front}"])
         h.press_task_button("Cancel")
+        # the list is older than the surface (a reference taken out from the console): the
+        # broken one chosen there is gone, and a pick adds its face, not nothing
+        other.References = [(cut, (top, f"{top}~1"))]
+        other.ReferenceState = json.dumps([dict(e, face=f"{top}~1", status="broken") if i else e for i, e in
+                                           enumerate(json.loads(other.ReferenceState)[:1] * 2)])
+        Gui.ActiveDocument.setEdit(other.Name, 0)
+        h.process_events()
+        h.widget(QtWidgets.QListWidget, "faces").item(1).setSelected(True)
+        other.References = [(cut, top)]
+        h.widget(QtWidgets.QPushButton, "addFaces").setChecked(True)
+        h.click_at((20, 0, 10))
+        self.assertEqual(HaptiCAD.reference_pairs(other), [(cut, top), (cut, front)])
+        h.press_task_button("Cancel")
 
 
 if __name__ == "__main__":
