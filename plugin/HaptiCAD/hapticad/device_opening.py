@@ -61,15 +61,18 @@ class DeviceOpening:
             device = self._open(self.path)
         except Exception as exc:  # noqa: BLE001 (handed to the owner, who raises it in poll())
             error = exc
-        with self._lock:
-            self._finished = True
-            if not self._abandoned:
-                self._device, self._error = device, error
-                device = None
-        # abandoned meanwhile: nobody will take it. Dropped here, its destructor closes it
-        del device
-        with _GIVING_UP_LOCK:
-            _GIVING_UP.get(self.path, set()).discard(self)
+        finally:  # whatever ends the open (a SystemExit too), it is over: never "opening" for good
+            if device is None and error is None:
+                error = RuntimeError(f"opening {self.path} was interrupted")
+            with self._lock:
+                self._finished = True
+                if not self._abandoned:
+                    self._device, self._error = device, error
+                    device = None
+            # abandoned meanwhile: nobody will take it. Dropped here, its destructor closes it
+            del device
+            with _GIVING_UP_LOCK:
+                _GIVING_UP.get(self.path, set()).discard(self)
 
     @property
     def still_opening(self):

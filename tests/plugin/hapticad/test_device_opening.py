@@ -122,6 +122,20 @@ class DeviceOpeningTest(unittest.TestCase):
         self.assertEqual(open_handles(GOOD), 2)
         del device
 
+    def test_an_open_ended_by_a_base_exception_is_over_and_says_so(self):
+        def interrupted(_path):
+            raise SystemExit(1)  # not an Exception: it ended the worker without an outcome
+
+        opening = device_opening.DeviceOpening(GOOD, interrupted)
+        self.assertTrue(opening.wait(10.0))
+        self.assertFalse(opening.still_opening)
+        with self.assertRaisesRegex(RuntimeError, "opening emu:0 was interrupted"):
+            opening.poll()
+        abandoned = device_opening.DeviceOpening(GOOD, interrupted)
+        abandoned.abandon()
+        self.assertTrue(abandoned.wait(10.0))
+        self.assertFalse(device_opening.still_giving_up(GOOD))
+
     def test_an_opening_given_up_releases_a_device_opened_and_not_taken(self):
         opening = device_opening.DeviceOpening(GOOD)
         self.assertTrue(opening.wait(10.0))
