@@ -22,15 +22,16 @@ How a kept run was lost is said (``how_lost``) as for a stiffness study's record
 written in the run's file), FreeCAD ended without closing it (a crash), or an Undo took
 it out before a save; none forgets it: the designer drops it.
 
-A document moved or renamed since its runs were written is opened under another path: the
-run in progress its document left at its earlier place, when there is none under its
+A document moved or renamed since its runs were written is opened under another path:
+the run in progress its document left at its earlier place, when there is none under its
 path (``read``), and the kept runs it left there (``unsaved_kept``) are taken as if
 written here, their files moved to the new path's names, as study_journal takes a
 stiffness study's records: known by the study's name and ID and the document's Uid and
-last save they record (document_identity), only when the document is gone from the path they record (and not open in this
-session), and none when they were left by more than one such path (copies of one document
-moved away: whose they are cannot be told; a warning names them). Where the document was
-is said (``earlier_path``; a run in progress's state holds it as ``moved_from``).
+last save they record (document_identity), only when the document is gone from the path
+they record (and not open in this session), and none when they were left by more than
+one such path (copies of one document moved away: whose they are cannot be told; a
+warning names them). Where the document was is said (``earlier_path``; a run in
+progress's state holds it as ``moved_from``).
 """
 import hashlib
 import json

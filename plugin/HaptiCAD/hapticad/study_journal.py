@@ -21,13 +21,14 @@ opened under another path than its file was written for: when there is no file f
 study under its path, the file of the same study left by the document at its earlier
 place is taken (``opened``), its records offered as if found here, and the file moved to
 the new path's name. Such a file is known by what it records: the study's name and ID,
-and the document's Uid and last save (document_identity: the Uid alone is shared by every
-document saved from one template); and its document must be gone from the path it records (a file that still exists there, or a document open in this session,
-keeps its own). When more than one such file matches (copies of one document moved away,
-each with records unsaved), none is taken and a warning names them: which copy the
-records belong to cannot be told, and the union would offer each copy's records to the
-other too. Files written before the last save was recorded are not taken. Where the
-document was is said (``earlier_path``).
+and the document's Uid and last save (document_identity: the Uid alone is shared by
+every document saved from one template); and its document must be gone from the path it
+records (a file that still exists there, or a document open in this session, keeps its
+own). When more than one such file matches (copies of one document moved away, each with
+records unsaved), none is taken and a warning names them: which copy the records belong
+to cannot be told, and the union would offer each copy's records to the other too. Files
+written before the last save was recorded are not taken. Where the document was is said
+(``earlier_path``).
 
 A record the designer removes (``removing``: stiffness_study.remove_record, the panel's
 Remove) is not lost: one put back and removed again is not offered any more, nor written
