@@ -11,6 +11,7 @@
 #include <system_error>
 #include <thread>
 #include <utility>
+#include <vector>
 
 #include "hapticad/devices/hid/hid_device.h"
 #include "hapticad/devices/hid/hid_device_finder.h"
@@ -29,10 +30,6 @@ struct ProbeSlot {
   std::exception_ptr failed;  // what Probe threw: its text is made on the lister's thread
 };
 
-// Probes `path` on a thread of its own and waits at most kProbeWaitS for it: true with
-// `*probe` read, false with `*error` (the device's, that it did not answer in time, or that
-// no thread could be started for it; the thread is then left to finish the request, and
-// close the device, on its own).
 // The probes left waiting on a device that did not answer, by path: a later listing does
 // not ask that device again (another handle, another thread) until the request is over.
 std::mutex& UnansweredMutex() {
@@ -51,7 +48,28 @@ std::string NotAnswered(const std::string& path) {
          "protocol device; unplug it and plug it in again";
 }
 
-bool ProbeWithin(const std::string& path, HidProbe* probe, std::string* error) {
+// One device's probe, started on a thread of its own (slot set), or not started (error
+// says why). Dropped unfinished, its thread is left to finish the request, and close the
+// device, on its own.
+struct StartedProbe {
+  std::string path;
+  std::shared_ptr<ProbeSlot> slot;
+  std::thread worker;
+  std::string error;
+
+  StartedProbe() = default;
+  StartedProbe(StartedProbe&&) = default;
+  StartedProbe& operator=(StartedProbe&&) = delete;
+  ~StartedProbe() {
+    if (worker.joinable()) worker.detach();
+  }
+};
+
+// Starts probing `path` on a thread of its own; not when an earlier listing's probe still
+// waits on it, nor when no thread can be started (the process's limit).
+StartedProbe StartProbe(const std::string& path) {
+  StartedProbe started;
+  started.path = path;
   {
     std::lock_guard<std::mutex> lock(UnansweredMutex());
     auto& unanswered = Unanswered();
@@ -64,18 +82,17 @@ bool ProbeWithin(const std::string& path, HidProbe* probe, std::string* error) {
         waiting = !earlier->done;
       }
       if (waiting) {
-        *error = NotAnswered(path) + " (an earlier request is still waiting)";
-        return false;
+        started.error = NotAnswered(path) + " (an earlier request is still waiting)";
+        return started;
       }
       unanswered.erase(it);
     }
   }
   auto slot = std::make_shared<ProbeSlot>();
-  std::thread worker;
   try {
     // nothing may escape the thread's body (std::terminate): what Probe throws is kept,
     // and the rest (a move, a mutex) does not throw
-    worker = std::thread([slot, path] {
+    started.worker = std::thread([slot, path] {
       HidProbe read;
       std::exception_ptr failed;
       try {
@@ -89,35 +106,47 @@ bool ProbeWithin(const std::string& path, HidProbe* probe, std::string* error) {
       slot->done = true;
       slot->done_changed.notify_all();
     });
-  } catch (const std::system_error& e) {  // no thread left (EAGAIN): the process's limit
-    *error = "cannot probe the HID device " + path + ": no thread could be started for it (" +
-             e.what() + "); close some programs and list the devices again";
+  } catch (const std::system_error& e) {  // no thread left (EAGAIN)
+    started.error = "cannot probe the HID device " + path +
+                    ": no thread could be started for it (" + e.what() +
+                    "); close some programs and list the devices again";
+    return started;
+  }
+  started.slot = std::move(slot);
+  return started;
+}
+
+// Waits for a started probe until `deadline`: true with `*probe` read, false with `*error`
+// (the device's, that it did not answer in time, or why it was not started).
+bool FinishProbe(StartedProbe& started, std::chrono::steady_clock::time_point deadline,
+                 HidProbe* probe, std::string* error) {
+  if (!started.slot) {
+    *error = started.error;
     return false;
   }
-  std::unique_lock<std::mutex> lock(slot->mutex);
-  const bool done = slot->done_changed.wait_for(lock, std::chrono::duration<double>(kProbeWaitS),
-                                                [&] { return slot->done; });
-  if (!done) {
+  ProbeSlot& slot = *started.slot;
+  std::unique_lock<std::mutex> lock(slot.mutex);
+  if (!slot.done_changed.wait_until(lock, deadline, [&] { return slot.done; })) {
     lock.unlock();
-    worker.detach();
+    started.worker.detach();
     {
       std::lock_guard<std::mutex> unanswered_lock(UnansweredMutex());
-      Unanswered()[path] = slot;
+      Unanswered()[started.path] = started.slot;
     }
-    *error = NotAnswered(path);
+    *error = NotAnswered(started.path);
     return false;
   }
-  *probe = std::move(slot->probe);
-  const std::exception_ptr failed = slot->failed;
+  *probe = std::move(slot.probe);
+  const std::exception_ptr failed = slot.failed;
   lock.unlock();
-  worker.join();
+  started.worker.join();
   if (!failed) return true;
   try {
     std::rethrow_exception(failed);
   } catch (const std::exception& e) {
     *error = e.what();
   } catch (...) {
-    *error = "probing the HID device " + path + " failed";
+    *error = "probing the HID device " + started.path + " failed";
   }
   return false;
 }
@@ -144,13 +173,22 @@ std::vector<DeviceListing> ListDevices() {
     out.push_back(std::move(failed));
     return out;
   }
-  for (const HidCandidate& c : candidates) {
+  // all probed at once, then waited for until one deadline: devices that do not answer
+  // hold the listing up kProbeWaitS in all, not each
+  std::vector<StartedProbe> probes;
+  probes.reserve(candidates.size());
+  for (const HidCandidate& c : candidates) probes.push_back(StartProbe(c.path));
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                            std::chrono::duration<double>(kProbeWaitS));
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const HidCandidate& c = candidates[i];
     DeviceListing listing;
     listing.info.kind = "hid";
     listing.info.path = c.path;
     listing.info.name = c.product.empty() ? "HaptiCAD protocol device" : c.product;
     HidProbe probe;
-    if (ProbeWithin(c.path, &probe, &listing.error)) {
+    if (FinishProbe(probes[i], deadline, &probe, &listing.error)) {
       listing.info = probe.info;
       listing.has_limits = true;
       listing.protocol = hid::VersionString(probe.report.version_min) + "-" +

@@ -103,6 +103,46 @@ TEST_F(Catalog, ADeviceThatDoesNotAnswerIsListedAsSuchAndHoldsUpNothing) {
   EXPECT_EQ(hidemu::OpenHandles("emu:0"), 0);
 }
 
+// Devices that do not answer are waited for together: three of them hold a listing up
+// one kProbeWaitS (0.5 s), where one after the other they held it up 1.5 s.
+TEST_F(Catalog, DevicesThatDoNotAnswerAreWaitedForTogetherNotEachInTurn) {
+  for (int i = 0; i < 3; ++i) {
+    FirmwareConfig mute;
+    mute.path = "emu:mute" + std::to_string(i);
+    mute.faults.push_back(
+        FaultWindow{Fault::kSlowFeature, 0.0, std::numeric_limits<double>::infinity(), 5.0});
+    hidemu::AddDevice(mute);
+  }
+  FirmwareConfig good;
+  good.path = "emu:good";
+  hidemu::AddDevice(good);
+  const auto began = std::chrono::steady_clock::now();
+  auto listing = std::async(std::launch::async, [] { return ListDevices(); });
+  const bool came = listing.wait_for(std::chrono::seconds(30)) == std::future_status::ready;
+  const double took_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  hidemu::SetTime(200.0);  // the requests time out on the emulator's clock: the probes end
+  ASSERT_TRUE(came);
+  const auto list = listing.get();
+  ASSERT_EQ(list.size(), 5u);
+  for (std::size_t i = 1; i < 4; ++i) {
+    EXPECT_TRUE(Contains(list[i].error, "did not answer its device information request"))
+        << list[i].error;
+  }
+  EXPECT_TRUE(list[4].has_limits) << list[4].error;
+  EXPECT_GE(took_s, kProbeWaitS);  // it did wait for them
+  // one wait, not three: 2x kProbeWaitS of margin for a loaded machine, below the 3x of turns
+  EXPECT_LT(took_s, 2.0 * kProbeWaitS) << "the devices were waited for one after the other";
+  for (int i = 0; i < 1000 && hidemu::OpenHandles("emu:mute0") + hidemu::OpenHandles("emu:mute1") +
+                                      hidemu::OpenHandles("emu:mute2") !=
+                                  0;
+       ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  for (int i = 0; i < 3; ++i)
+    EXPECT_EQ(hidemu::OpenHandles("emu:mute" + std::to_string(i)), 0) << i;
+}
+
 TEST_F(Catalog, WithoutHidDevicesOnlyTheSimulatedHandIsListed) {
   for (const bool keyboard : {false, true}) {  // nothing plugged in; only a keyboard
     if (keyboard) hidemu::AddOtherDevice("emu:kbd", 0x046d, 0xc31c, 0x0001, 0x0006, "Keyboard");

@@ -27,14 +27,14 @@ inline constexpr double kProbeWaitS = 0.5;
 
 // The simulated hand first ("sim:hand"), then HID devices in enumeration order. Each
 // HID device is probed (its information read; no session is touched), on a thread of its
-// own, waited for at most kProbeWaitS; one that cannot be read, or does not answer in
-// time, is listed with its error (the probe's thread then finishes on its own and closes
-// the device; until then a later listing does not ask it again, and lists it at once with
-// that error). Never throws for a device's fault (nor for no thread to probe one on: that
-// device is listed with that error); hidapi failing to initialise gives one "hid" listing
-// with the error. May run while OpenDevice() runs on another thread, and while probes of an
-// earlier listing still run: hidapi's global state (its enumeration, opens and error text)
-// is touched under one process-wide lock, held by nothing that waits on a device.
+// own, all at once, waited for at most kProbeWaitS in all (not for each); one that cannot
+// be read, or does not answer in time, is listed with its error (the probe's thread then finishes
+// on its own and closes the device; until then a later listing does not ask it again, and lists it
+// at once with that error). Never throws for a device's fault (nor for no thread to probe one on:
+// that device is listed with that error); hidapi failing to initialise gives one "hid" listing with
+// the error. May run while OpenDevice() runs on another thread, and while probes of an earlier
+// listing still run: hidapi's global state (its enumeration, opens and error text) is touched under
+// one process-wide lock, held by nothing that waits on a device.
 std::vector<DeviceListing> ListDevices();
 
 // Opens what a listing's `path` names: "sim:hand" is a new SimulatedHand with default
