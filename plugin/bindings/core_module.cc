@@ -794,6 +794,7 @@ void DefineTextureFit(py::module_& m) {
       .def_readwrite("min_periods", &TextureFitOptions::min_periods)
       .def_readwrite("harmonics", &TextureFitOptions::harmonics)
       .def_readwrite("samples_per_period", &TextureFitOptions::samples_per_period);
+  m.attr("LOWPASS_SETTLE_TIME_CONSTANTS") = kLowPassSettleTimeConstants;
   py::class_<TextureSection>(m, "TextureSection")
       .def_readonly("recording", &TextureSection::recording)
       .def_readonly("first_sample", &TextureSection::first_sample)

@@ -27,8 +27,8 @@ from texture_recordings import write_rig_csv  # noqa: E402
 assert HaptiCAD.__file__.startswith(os.environ["HAPTICAD_MOD"]), HaptiCAD.__file__
 
 
-def run_cli(*args):
-    return subprocess.run([CLI, *args], capture_output=True, text=True, timeout=120)
+def run_cli(*args, cwd=None):
+    return subprocess.run([CLI, *args], capture_output=True, text=True, timeout=120, cwd=cwd)
 
 
 class FitTextureCommandTest(unittest.TestCase):
@@ -142,7 +142,10 @@ class FitTextureCommandTest(unittest.TestCase):
         path = self.make_document("untouched.FCStd")
         before = os.path.getmtime(path)
         cases = [
-            (("fit-texture", os.path.join(self.tmp.name, "missing.csv"), "--period", "2.5"), "No such file"),
+            (("fit-texture", os.path.join(self.tmp.name, "missing.csv"), "--period", "2.5"),
+             f"{os.path.join(self.tmp.name, 'missing.csv')}: there is no such file"),
+            (("fit-texture", self.tmp.name, "--period", "2.5"),
+             f"{self.tmp.name} is a folder, not a recording: give the CSV files in it"),
             (("fit-texture", self.rig, "--period", "2.5", "--apply", path), "go together"),
             (("fit-texture", self.rig, "--period", "2.5", "--speeds", "50,120", "--apply", path, "--surface",
               "Handle"), "no haptic surface named 'Handle' (it has: Grip)"),
@@ -157,6 +160,49 @@ class FitTextureCommandTest(unittest.TestCase):
                 self.assertIn(message, proc.stderr)
         self.assertEqual(os.path.getmtime(path), before)
 
+
+    def test_forces_in_mn_are_refused_on_a_surface_with_a_full_range_too(self):
+        # after a fit set Full range, a rig's mN were set as levels of hundreds (TextureDC
+        # 571), exit 0, only "above level 1 it is clipped"; at the device's full range refused
+        millinewtons = os.path.join(self.tmp.name, "millinewtons.csv")
+        write_rig_csv(_core, millinewtons, speeds_mm_s=(50.0, 120.0), full_range_n=2000.0)
+        path = self.make_document("full_range.FCStd")  # Full range 2 N
+        with open(path, "rb") as f:
+            saved = f.read()
+        proc = run_cli("fit-texture", millinewtons, "--period", "2.5", "--speeds", "50,120", "--apply", path,
+                       "--surface", "Grip")
+        self.assertEqual(proc.returncode, 2, proc.stdout)
+        self.assertIn("are the forces recorded in mN? Give lateral_force_n in newtons; nothing was changed",
+                      proc.stderr)
+        with open(path, "rb") as f:
+            self.assertEqual(f.read(), saved)
+
+    def test_recordings_are_named_as_given(self):
+        # `hapticad feel` writes every trace as trace.csv: "note: trace.csv gave no section"
+        # did not say which of several
+        for folder, speed in (("slow", 50.0), ("fast", 120.0), ("other", 200.0)):
+            os.makedirs(os.path.join(self.tmp.name, "named", folder), exist_ok=True)
+            write_rig_csv(_core, os.path.join(self.tmp.name, "named", folder, "trace.csv"), speeds_mm_s=(speed,))
+        proc = run_cli("fit-texture", "slow/trace.csv", "fast/trace.csv", "other/trace.csv", "--period", "2.5",
+                       "--speeds", "50,120", cwd=os.path.join(self.tmp.name, "named"))
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertIn("note: other/trace.csv gave no section", proc.stdout)
+        proc = run_cli("fit-texture", "slow/trace.csv", "gone/trace.csv", "--period", "2.5",
+                       cwd=os.path.join(self.tmp.name, "named"))
+        self.assertEqual(proc.returncode, 2, proc.stdout)
+        self.assertEqual(proc.stderr, "hapticad fit-texture: gone/trace.csv: there is no folder gone\n")
+
+    def test_a_slow_low_pass_settles_before_the_sections_start_or_is_said(self):
+        # the core cut the sections from the filtered force as the strokes began: --lowpass 3
+        # gave f_vis 0.11 for 0.2 and --lowpass 1 -0.52, and said nothing
+        proc = run_cli("fit-texture", self.rig, "--period", "2.5", "--speeds", "50,120", "--lowpass", "3", "--json")
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        eq2 = json.loads(proc.stdout)["eq2_newtons"]  # f_vis 0.2 levels of 2 N
+        self.assertAlmostEqual(eq2["f_vis_n_per_400mm_s"], 0.4, delta=0.01)
+        proc = run_cli("fit-texture", self.rig, "--period", "2.5", "--speeds", "50,120", "--lowpass", "1")
+        self.assertEqual(proc.returncode, 2, proc.stdout)
+        self.assertIn("the low-pass at 1 Hz needs 1.1 s to settle, left out at the start of each stroke: give a "
+                      "higher cut-off (the paper's 1000 Hz)", proc.stderr)
 
     def test_counts_beyond_their_range_name_the_option_and_the_range(self):
         for args, message in ((("--harmonics", "99999999999999999999"),

@@ -319,6 +319,8 @@ TextureFit FitTexture(const std::vector<TextureRecording>& recordings,
 
   TextureFit fit;
   fit.period_m = lambda;
+  const double settle_s =
+      options.lowpass_hz > 0 ? kLowPassSettleTimeConstants / (2 * kPi * options.lowpass_hz) : 0.0;
   double seen_min = INFINITY;
   double seen_max = 0;
   for (std::size_t r = 0; r < recordings.size(); ++r) {
@@ -327,6 +329,7 @@ TextureFit FitTexture(const std::vector<TextureRecording>& recordings,
     if (options.lowpass_hz > 0) LowPassFirstOrder(rec.time_s, options.lowpass_hz, force);
     const double window = VelocityWindow(rec, options.velocity_window_s);
     const double half = 0.5 * window;
+    const double lead = std::max(half, settle_s);
     const std::vector<double> v = WindowVelocity(rec, window);
     for (double value : v) {
       if (!std::isfinite(value)) continue;
@@ -335,9 +338,10 @@ TextureFit FitTexture(const std::vector<TextureRecording>& recordings,
     }
     for (double target : targets) {
       for (auto [a, b] : FindRuns(v, target, options.speed_tolerance)) {
-        // Half a window off each end: the velocity there averages motion outside the run.
+        // Half a window off each end: the velocity there averages motion outside the run;
+        // and the filter's start-up off the start (`lead`)
         std::size_t first = a;
-        while (first <= b && rec.time_s[first] < rec.time_s[a] + half) ++first;
+        while (first <= b && rec.time_s[first] < rec.time_s[a] + lead) ++first;
         std::size_t last = b;
         while (last > first && rec.time_s[last] > rec.time_s[b] - half) --last;
         if (last <= first) continue;
@@ -456,6 +460,14 @@ TextureFit FitTexture(const std::vector<TextureRecording>& recordings,
         << options.speed_tolerance * 100 << " % of " << SpeedList(targets)
         << " mm/s in one direction over " << options.min_periods << " periods ("
         << Mm(options.min_periods * lambda) << " mm) of the grating";
+    if (settle_s > 0.5 * options.velocity_window_s) {
+      std::ostringstream settle;
+      settle.precision(2);
+      settle << settle_s;
+      why << "; the low-pass at " << options.lowpass_hz << " Hz needs " << settle.str()
+          << " s to settle, left out at the start of each stroke: give a higher cut-off (the "
+             "paper's 1000 Hz)";
+    }
     if (seen_max > 0) {
       why << "; its speeds range from " << seen_min * 1e3 << " to " << seen_max * 1e3 << " mm/s";
       // a thousand times off: metres for millimetres, or milliseconds for seconds

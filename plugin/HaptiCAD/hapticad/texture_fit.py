@@ -119,12 +119,14 @@ def _column_name(text):
 
 
 def _read_columns(path):
-    name = os.path.basename(path)
+    name = path  # as the user gave it: `hapticad feel` names every trace trace.csv
     try:
         with open(path, newline="", encoding="utf-8-sig") as handle:  # a spreadsheet's BOM too
             first = handle.readline()
     except (UnicodeDecodeError, csv.Error):
         raise ValueError(f"{name}: not a text CSV file") from None
+    except OSError as exc:
+        raise ValueError(_unreadable(path, exc)) from None
     # a spreadsheet's export: commas, or semicolons or tabs with decimal commas
     headers = {sep: [_column_name(h) for h in next(csv.reader([first], delimiter=sep), [])] for sep in ",;\t"}
     separator = next((sep for sep, header in headers.items() if set(RIG_COLUMNS) <= set(header)), ",")
@@ -155,6 +157,18 @@ def _read_columns(path):
     return kind, {c: table[:, k] for k, c in enumerate(wanted)}
 
 
+def _unreadable(path, exc):
+    """Why ``path`` could not be opened, as a sentence naming it (not Python's "[Errno 2]")."""
+    if isinstance(exc, IsADirectoryError) or os.path.isdir(path):
+        trace = os.path.join(path, "trace.csv")  # `hapticad feel`'s folder
+        return (f"{path} is a folder, not a recording: give the CSV files in it"
+                + (f", like {trace}" if os.path.isfile(trace) else ""))
+    if isinstance(exc, FileNotFoundError):
+        folder = os.path.dirname(path)
+        return f"{path}: there is no {f'folder {folder}' if folder and not os.path.isdir(folder) else 'such file'}"
+    return f"{path}: cannot be read ({(exc.strerror or str(exc)).lower()})"
+
+
 def _read_rows(path, name, wanted, index, separator=","):
     try:
         with open(path, newline="", encoding="utf-8-sig") as handle:
@@ -179,9 +193,10 @@ def _read_rows(path, name, wanted, index, separator=","):
 
 
 def load_recording(path):
-    """A Recording from a CSV file. Raises ValueError naming the file and line."""
+    """A Recording from a CSV file. Raises ValueError naming the file (as ``path`` gives it)
+    and line."""
     kind, c = _read_columns(path)
-    name = os.path.basename(path)
+    name = path
     if kind == "rig":
         t, x, f = c["time_s"], c["position_mm"] * MM, c["lateral_force_n"]
         normal = c.get("normal_force_n")
@@ -206,7 +221,8 @@ def load_recording(path):
 def fit_files(paths, period_mm, speeds_mm_s=PAPER_SPEEDS_MM_S, tolerance_percent=DEFAULT_TOLERANCE_PERCENT,
               lowpass_hz=DEFAULT_LOWPASS_HZ, harmonics=DEFAULT_HARMONICS, min_periods=DEFAULT_MIN_PERIODS):
     """Fits the recordings in ``paths``. Raises ValueError for unreadable files, bad options,
-    or recordings that hold no section of constant speed."""
+    or recordings that hold no section of constant speed; messages and notes name each file
+    as ``paths`` gives it."""
     if not paths:
         raise ValueError("give at least one recording")
     recordings = [load_recording(p) for p in paths]
@@ -236,7 +252,7 @@ def fit_files(paths, period_mm, speeds_mm_s=PAPER_SPEEDS_MM_S, tolerance_percent
             for section in sections:
                 at.setdefault(round(section.target_speed_mps / MM), []).append(section.dc_n)
             speeds = ", ".join(f"{np.mean(v):.3g} N at {k} mm/s" for k, v in sorted(at.items()))
-            said.append(f"{os.path.basename(paths[index])} ({speeds})")
+            said.append(f"{paths[index]} ({speeds})")
         raise ValueError(
             f"the lateral force runs with the motion, not against it, in {'; '.join(said)}: the fit needs the "
             "force resisting the finger, as eq. 2 gives it; change the sign of lateral_force_n in "
@@ -244,10 +260,10 @@ def fit_files(paths, period_mm, speeds_mm_s=PAPER_SPEEDS_MM_S, tolerance_percent
     notes = []
     if fit.speeds_without_sections_mps:
         missing = ", ".join(f"{s / MM:g}" for s in fit.speeds_without_sections_mps)
-        notes.append(f"no section at {missing} mm/s: those speeds are not in the fit")
+        notes.append(f"no section at {missing} mm/s: those speeds are not in the fit" + _settling(options))
     if len(fit.speeds) == 1:
         notes.append("one speed only: the viscous terms (f_vis, beta_vis, alpha_vis) are 0")
-    unused = [os.path.basename(p) for i, p in enumerate(paths) if not any(s.recording == i for s in fit.sections)]
+    unused = [p for i, p in enumerate(paths) if not any(s.recording == i for s in fit.sections)]
     if unused:
         notes.append(f"{', '.join(unused)} gave no section (no stroke held within {options.speed_tolerance:.1%} of a "
                      f"speed for {options.min_periods} periods): not in the fit")
@@ -257,12 +273,26 @@ def fit_files(paths, period_mm, speeds_mm_s=PAPER_SPEEDS_MM_S, tolerance_percent
     return report
 
 
+def _settling(options):
+    """", the low-pass ... leaves out ..." when the filter's start-up, left out of each
+    stroke's start (the core's kLowPassSettleTimeConstants), is longer than the half velocity
+    window left out anyway, else "": a slow cut-off is why short, fast strokes give no section."""
+    if options.lowpass_hz <= 0:
+        return ""
+    settle_s = _core.LOWPASS_SETTLE_TIME_CONSTANTS / (2 * math.pi * options.lowpass_hz)
+    if settle_s <= 0.5 * options.velocity_window_s:
+        return ""
+    return (f" (the low-pass at {options.lowpass_hz:g} Hz leaves out the first {settle_s:.2g} s of each stroke, "
+            "while it settles: a higher cut-off keeps more, the paper's is 1000 Hz)")
+
+
 def _where(recordings, paths, match):
-    """A core message's "recording N: ... sample K" as the file and, for a rig's CSV, its line."""
+    """A core message's "recording N: ... sample K" as the file (as given) and, for a rig's
+    CSV, its line."""
     if match.group(4):
-        return f"{os.path.basename(paths[int(match.group(4)) - 1])}:"
+        return f"{paths[int(match.group(4)) - 1]}:"
     index, what, sample = int(match.group(1)) - 1, match.group(2), int(match.group(3))
-    name = os.path.basename(paths[index])
+    name = paths[index]
     if index < len(recordings) and recordings[index].kind == "rig":
         return f"{name}: {what}line {sample + 1}"
     return f"{name}: {what}contact row {sample}"
@@ -422,7 +452,17 @@ def full_range_for(surface, report):
     Device force with a Full range: that. Device force with the device's full range (0):
     a number of newtons no device knows in advance, so the fit sets Full range to its own
     peak force rounded up to 0.1 N, and the recorded newtons are felt as recorded.
-    Friction level: static friction times the recordings' normal force."""
+    Friction level: static friction times the recordings' normal force.
+
+    Whatever the surface's setting, a fit beyond the newtons a full range can stand for is
+    refused: the recorded forces are implausible as newtons (mN logged as N), and on a
+    surface with a Full range they were set as levels of hundreds, clipped to level 1."""
+    peak = peak_force_n(report.fit)
+    most = _full_range_limit()
+    if peak > most:
+        raise ValueError(f"the fitted lateral force reaches {peak:.4g} N, more than the {most:g} N a texture's full "
+                         "range can stand for (a finger's lateral force is a few newtons): are the forces recorded "
+                         "in mN? Give lateral_force_n in newtons")
     if surface.TextureScale == "Friction level":
         normal = report.normal_force_n
         if normal is None:
@@ -435,13 +475,7 @@ def full_range_for(surface, report):
             f"level 1 = static friction {surface.StaticFriction:g} x the recorded normal force {normal:.3g} N"]
     if surface.TextureFullRange > 0:
         return surface.TextureFullRange, {}, []
-    chosen = math.ceil(peak_force_n(report.fit) * 10 - 1e-9) / 10
-    chosen = max(chosen, 0.1)
-    most = _full_range_limit()
-    if chosen > most:  # FreeCAD would store its limit, and every level would be felt low
-        raise ValueError(f"the fitted lateral force reaches {peak_force_n(report.fit):.4g} N, more than the "
-                         f"{most:g} N a texture's full range can stand for (a finger's lateral force is a few "
-                         "newtons): are the forces recorded in mN? Give lateral_force_n in newtons")
+    chosen = max(math.ceil(peak * 10 - 1e-9) / 10, 0.1)  # within the property's limit: peak <= most
     return chosen, {"TextureFullRange": chosen}, [
         f"Full range set to {chosen:g} N (it was the device's full range), so the recorded forces are felt "
         "as recorded"]

@@ -202,7 +202,7 @@ class RigRecordingTest(unittest.TestCase):
         self.assertIn("runs with the motion", str(caught.exception))
         self.assertIn("change the sign of lateral_force_n", str(caught.exception))
         # the level said is the one at each speed: 0.4 + 0.2 x v/400 levels of 2 N
-        self.assertIn("in along.csv (-0.85 N at 50 mm/s, -0.92 N at 120 mm/s)", str(caught.exception))
+        self.assertIn(f"in {self.path('along.csv')} (-0.85 N at 50 mm/s, -0.92 N at 120 mm/s)", str(caught.exception))
         # one trial of two logged the other way round: named, not fitted into a viscosity
         # of -2 N per 400 mm/s and set
         write_rig_csv(self.path("slow.csv"), speeds_mm_s=(50.0,))
@@ -210,7 +210,8 @@ class RigRecordingTest(unittest.TestCase):
         flip_force(self.path("fast.csv"))
         with self.assertRaises(ValueError) as caught:
             texture_fit.fit_files([self.path("slow.csv"), self.path("fast.csv")], 2.5, (50, 120))
-        self.assertIn("runs with the motion, not against it, in fast.csv (-0.92 N at 120 mm/s)", str(caught.exception))
+        self.assertIn(f"runs with the motion, not against it, in {self.path('fast.csv')} (-0.92 N at 120 mm/s)",
+                      str(caught.exception))
         self.assertNotIn("slow.csv", str(caught.exception))
         self.assertIn("change the sign of lateral_force_n in that file", str(caught.exception))
 
@@ -239,12 +240,59 @@ class RigRecordingTest(unittest.TestCase):
                  ("empty.csv", "empty file"),
                  ("header.csv", "header.csv: fewer than 3 samples"),
                  ("backwards.csv", "backwards.csv: time does not increase at line 4"),
-                 ("missing.csv", "No such file")]
+                 # said as a sentence naming the path, not Python's "[Errno 2]" / "[Errno 21]"
+                 ("missing.csv", f"{self.path('missing.csv')}: there is no such file"),
+                 ("folder", f"{self.path('folder')} is a folder, not a recording: give the CSV files in it, like "
+                            f"{os.path.join(self.path('folder'), 'trace.csv')}"),
+                 (os.path.join("gone", "x.csv"), f"{self.path(os.path.join('gone', 'x.csv'))}: there is no folder "
+                                                 f"{self.path('gone')}")]
+        os.makedirs(self.path("folder"), exist_ok=True)
+        with open(os.path.join(self.path("folder"), "trace.csv"), "w"):
+            pass
         for name, message in cases:
             with self.subTest(name=name):
-                with self.assertRaises((ValueError, OSError)) as caught:
+                with self.assertRaises(ValueError) as caught:
                     texture_fit.fit_files([self.path(name)], 2.5)
                 self.assertIn(message, str(caught.exception))
+
+    def test_files_are_named_as_given_where_their_names_repeat(self):
+        # `hapticad feel` names every trace trace.csv: "trace.csv gave no section" and
+        # "trace.csv: the trace has no contact to fit" did not say which of them
+        for folder in ("slow", "other", "idle"):
+            os.makedirs(self.path(folder), exist_ok=True)
+        write_rig_csv(self.path(os.path.join("slow", "trace.csv")), speeds_mm_s=(50.0,))
+        write_rig_csv(self.path(os.path.join("other", "trace.csv")), speeds_mm_s=(200.0,))
+        paths = [self.path(os.path.join(f, "trace.csv")) for f in ("slow", "other")]
+        report = texture_fit.fit_files(paths, 2.5, (50, 120))
+        self.assertTrue(any(n.startswith(f"{paths[1]} gave no section") for n in report.notes), report.notes)
+        self.assertFalse(any(paths[0] in n for n in report.notes), report.notes)
+        idle = self.path(os.path.join("idle", "trace.csv"))
+        with open(idle, "w") as f:
+            f.write(",".join(texture_fit.TRACE_COLUMNS) + "\n")
+            f.writelines(f"{0.001 * k:.3f},0,0,0,0,0,0,0,0\n" for k in range(10))
+        with self.assertRaises(ValueError) as caught:
+            texture_fit.fit_files([paths[0], idle], 2.5, (50, 120))
+        self.assertEqual(str(caught.exception), f"{idle}: the trace has no contact to fit")
+
+    def test_a_slow_low_pass_settles_before_the_sections_start(self):
+        # the core cut the sections from the filtered force as the strokes began: at 3 Hz f_vis
+        # came out 0.23 N for 0.4 N (0.2 levels of 2 N), at 1 Hz -0.2, and nothing was said. The
+        # start-up is now left out, and where that leaves a speed without a section, it is why
+        write_rig_csv(self.path("three.csv"), speeds_mm_s=(50.0, 120.0, 270.0), noise_n=0.01)
+        for lowpass in (1000, 0):
+            with self.subTest(lowpass=lowpass):
+                report = texture_fit.fit_files([self.path("three.csv")], 2.5, (50, 120, 270), lowpass_hz=lowpass)
+                self.assertAlmostEqual(report.fit.dc_n.slope, 0.4, delta=0.01)
+                self.assertFalse(any("low-pass" in n for n in report.notes), report.notes)
+        for lowpass, left_out_s in ((10, "0.11"), (3, "0.37")):  # too short at 270 mm/s
+            with self.subTest(lowpass=lowpass):
+                report = texture_fit.fit_files([self.path("three.csv")], 2.5, (50, 120, 270), lowpass_hz=lowpass)
+                self.assertAlmostEqual(report.fit.dc_n.slope, 0.4, delta=0.01)
+                self.assertIn(f"no section at 270 mm/s: those speeds are not in the fit (the low-pass at {lowpass} Hz "
+                              f"leaves out the first {left_out_s} s of each stroke, while it settles: a higher cut-off "
+                              "keeps more, the paper's is 1000 Hz)", report.notes)
+        with self.assertRaisesRegex(ValueError, r"the low-pass at 1 Hz needs 1\.1 s to settle"):
+            texture_fit.fit_files([self.path("three.csv")], 2.5, (50, 120, 270), lowpass_hz=1)
 
     def test_a_loose_harmonic_fit_at_the_right_period_does_not_blame_the_period(self):
         # sensor noise of 0.4 N over a grating of 2.5 mm given as 2.5 mm: it asked "is the
@@ -294,7 +342,8 @@ class RigRecordingTest(unittest.TestCase):
         # a recording that adds nothing is said, not passed over
         write_rig_csv(self.path("other.csv"), speeds_mm_s=(200.0,))
         report = texture_fit.fit_files([self.path("slow.csv"), self.path("other.csv")], 2.5, (50, 120))
-        self.assertTrue(any(n.startswith("other.csv gave no section") for n in report.notes), report.notes)
+        self.assertTrue(any(n.startswith(f"{self.path('other.csv')} gave no section") for n in report.notes),
+                        report.notes)
 
     def test_a_spreadsheets_export_reads_as_the_rigs_own_csv(self):
         # semicolons or tabs with decimal commas, "Time (s)" headers, a trailing row of
@@ -381,19 +430,25 @@ class RigRecordingTest(unittest.TestCase):
     def test_forces_beyond_what_a_full_range_holds_are_refused_not_clamped(self):
         # a rig logging mN as N: the full range was set to 100 N (the property's top)
         # against a fitted 138 N, so every level was felt 28 % low, "as recorded"
-        write_rig_csv(self.path("millinewtons.csv"), full_range_n=200.0)
+        write_rig_csv(self.path("millinewtons.csv"), full_range_n=200.0, normal_force_n=0.8)
         report = texture_fit.fit_files([self.path("millinewtons.csv")], 2.5, (50, 120))
         doc = App.newDocument("TextureFitTooStrong")
         try:
-            box = doc.addObject("Part::Box", "Box")
-            doc.recompute()
-            surface = HaptiCAD.make_surface(doc, [(box, "Face6")], material="ABS", FeelRoughness=False)
-            before = {name: getattr(surface, name) for name in (*texture_fit.FIELDS, "Texture", "TextureFullRange")}
-            with self.assertRaises(ValueError) as caught:
-                texture_fit.apply_to_surface(surface, report)
-            self.assertIn("more than the 100 N a texture's full range can stand for", str(caught.exception))
-            self.assertIn("recorded in mN?", str(caught.exception))
-            self.assertEqual({name: getattr(surface, name) for name in before}, before)
+            # and whatever level 1 is on the surface: with a Full range set (0.7 N) the mN
+            # were set as levels of hundreds, only a note saying they were clipped
+            for settings in ({}, {"TextureFullRange": 0.7}, {"TextureScale": "Friction level"}):
+                with self.subTest(**settings):
+                    box = doc.addObject("Part::Box", "Box")
+                    doc.recompute()
+                    surface = HaptiCAD.make_surface(doc, [(box, "Face6")], material="ABS", FeelRoughness=False,
+                                                    **settings)
+                    before = {name: getattr(surface, name)
+                              for name in (*texture_fit.FIELDS, "Texture", "TextureFullRange")}
+                    with self.assertRaises(ValueError) as caught:
+                        texture_fit.apply_to_surface(surface, report)
+                    self.assertIn("more than the 100 N a texture's full range can stand for", str(caught.exception))
+                    self.assertIn("recorded in mN?", str(caught.exception))
+                    self.assertEqual({name: getattr(surface, name) for name in before}, before)
         finally:
             App.closeDocument(doc.Name)
 

@@ -8,7 +8,11 @@
 //     a centred difference over `velocity_window_s`, stays within `speed_tolerance`
 //     (2.5 % in the paper) of one of the target speeds and the direction does not
 //     change. Turnarounds and other non-steady parts fall outside every run; half a
-//     window is dropped at each end; runs shorter than `min_periods` periods are dropped.
+//     window is dropped at each end, and at the start at least kLowPassSettleTimeConstants
+//     of the filter's time constant 1 / (2 pi lowpass_hz) (the filter still holds the force
+//     from before the run: the paper's 1000 Hz settles within the half window, a 1 Hz one
+//     would drag a short section's mean towards the pause before it); runs shorter than
+//     `min_periods` periods are dropped.
 //  3. Each section is resampled in space (the force interpolated linearly between the
 //     samples at steps of period / samples_per_period), trimmed to a whole number P of
 //     periods, detrended (its mean kept) and Hann-windowed, and its spatial
@@ -53,6 +57,10 @@ struct TextureRecording {
   std::vector<double> position_m;
   std::vector<double> lateral_force_n;
 };
+
+// The low-pass's start-up left out of each section's start, in time constants: what is left
+// of the force before the run is at most e^-7 (0.09 %) of the step from it.
+inline constexpr double kLowPassSettleTimeConstants = 7.0;
 
 struct TextureFitOptions {
   double period_m = 2.5e-3;                                         // the grating's lambda, > 0
