@@ -153,6 +153,21 @@ class BenchMeshCommandTest(unittest.TestCase):
             self.assertIsNone(result["expected_force_n"])
             self.assertIn("closed", result["repair"])
 
+    def test_more_than_one_mesh_file_is_refused(self):
+        # the program took the last one without a word
+        with tempfile.TemporaryDirectory() as tmp:
+            first, second = os.path.join(tmp, "first.off"), os.path.join(tmp, "second.off")
+            for path in (first, second):
+                with open(path, "w") as f:
+                    f.write("OFF\n4 4 0\n0 0 0\n10 0 0\n0 10 0\n0 0 10\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n")
+            done = bench(first, "--ticks", "100", second)
+            self.assertEqual(done.returncode, 2, done.stdout[:200])
+            self.assertIn(f"hapticad bench-mesh: one mesh file at a time: give one of {first}, {second}", done.stderr)
+            self.assertEqual(done.stdout, "")
+            # an option's value is no mesh file, whatever it looks like
+            done = bench(first, "--ticks", "100", "--seed", "7", "--units", "mm")
+            self.assertEqual(done.returncode, 0, done.stderr)
+
     def test_bad_input_is_a_clear_error(self):
         done = bench("/nonexistent/part.stl")
         self.assertNotEqual(done.returncode, 0)

@@ -174,6 +174,45 @@ class CohortCommandTest(unittest.TestCase):
                       "felt; left out of the statistics", study["beyond_device_note"])
         self.assertIn("† 1 preference above the force limit (3 N)", run_cli("cohort", path).stdout)
 
+    def test_a_hand_edited_cohort_is_named_and_the_rest_still_told(self):
+        # a record lacking a key stopped the whole command ("Record.__init__() missing 1 required
+        # positional argument: 'gender'"), and one unreadable study stopped the others' summary
+        doc = App.openDocument(self.path)
+        try:
+            (neck,) = HaptiCAD.studies_of(doc)
+            stored = json.loads(neck.Cohort)
+            del stored[1]["gender"]
+            neck.Cohort = json.dumps(stored)
+            handle = doc.addObject("Part::Box", "Handle")
+            doc.recompute()
+            grip = HaptiCAD.make_surface(doc, [(handle, "Face6")], material="PP", FeelRoughness=False)
+            broken = HaptiCAD.make_study(doc, grip, YoungsModulus=1.5)
+            broken.Label = "Grip study"
+            broken.Cohort = "[{not json"
+            edited = os.path.join(self.tmp.name, "edited.FCStd")
+            doc.saveAs(edited)
+        finally:
+            App.closeDocument(doc.Name)
+        proc = run_cli("cohort", edited)
+        self.assertEqual(proc.returncode, 1, proc.stderr)
+        self.assertIn("Neck (Bending beam): design 0.556 N/mm, 2 participants", proc.stdout)
+        self.assertIn("Neck: stored record 2 of 3 (Yang) cannot be read: it lacks gender; left out of the statistics",
+                      proc.stdout)
+        self.assertIn("hapticad cohort: Grip study: the stored cohort is not readable JSON", proc.stderr)
+        proc = run_cli("cohort", edited, "--json")
+        self.assertEqual(proc.returncode, 1, proc.stderr)
+        neck, grip = sorted(json.loads(proc.stdout), key=lambda s: s["study"] != "Neck")
+        self.assertEqual(neck["participants"], 2)
+        self.assertEqual(len(neck["unread"]), 1)
+        self.assertEqual(grip, {"study": "Grip study", "error": "Grip study: the stored cohort is not readable JSON"})
+        # the one study asked for, unreadable: refused (exit 2); its CSV would lose a record: refused
+        self.assertEqual(run_cli("cohort", edited, "--study", "Grip study").returncode, 2)
+        out_csv = os.path.join(self.tmp.name, "edited.csv")
+        proc = run_cli("cohort", edited, "--study", "Neck", "--csv", out_csv)
+        self.assertEqual(proc.returncode, 2, proc.stdout)
+        self.assertIn("it lacks gender", proc.stderr)
+        self.assertFalse(os.path.exists(out_csv))
+
     def test_bad_input_is_refused(self):
         for args, message in ((("cohort", os.path.join(self.tmp.name, "none.FCStd")), "no such file"),
                               (("cohort", self.path, "--study", "Handle"), "no stiffness study named 'Handle' "
@@ -193,6 +232,69 @@ class CohortCommandTest(unittest.TestCase):
                 self.assertEqual(proc.returncode, 2, proc.stderr)
                 self.assertIn(message, proc.stderr)
                 self.assertEqual(proc.stdout, "")
+
+    def test_the_csv_is_never_written_over_the_document_read(self):
+        # `--csv c2.FCStd` wrote the table over the document: the study and every record were gone
+        with tempfile.TemporaryDirectory() as tmp:
+            doc = os.path.join(tmp, "c2.FCStd")
+            with open(self.path, "rb") as source:
+                held = source.read()
+            with open(doc, "wb") as copy:
+                copy.write(held)
+            os.symlink(doc, os.path.join(tmp, "linked.csv"))
+            os.link(doc, os.path.join(tmp, "hard.csv"))
+            other = os.path.join(tmp, "other.csv")  # another FreeCAD document, whatever its name
+            with open(other, "wb") as copy:
+                copy.write(held)
+            for target, message in (
+                    (doc, f"argument --csv: {doc}: the table is a CSV file, so the name must end in .csv (like "
+                          f"{os.path.join(tmp, 'c2.csv')}), not .FCStd"),
+                    (os.path.join(tmp, "linked.csv"), f"argument --csv: {os.path.join(tmp, 'linked.csv')} is a "
+                                                      "FreeCAD document: writing the CSV over it would lose it"),
+                    (os.path.join(tmp, "hard.csv"), f"{os.path.join(tmp, 'hard.csv')} is a FreeCAD document"),
+                    (other, f"{other} is a FreeCAD document")):
+                with self.subTest(target=target):
+                    proc = run_cli("cohort", doc, "--study", "Neck", "--csv", target)
+                    self.assertEqual(proc.returncode, 2, proc.stderr)
+                    self.assertIn(message, proc.stderr)
+                    self.assertEqual(proc.stdout, "")
+            for path in (doc, other):
+                with open(path, "rb") as kept:
+                    self.assertEqual(kept.read(), held, path)
+            self.assertIn("Neck (Bending beam)", run_cli("cohort", doc).stdout)
+
+    def test_a_csv_name_ends_in_csv(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            bare = os.path.join(tmp, "neck")  # gets .csv, as a plot's name gets .png
+            proc = run_cli("cohort", self.path, "--csv", bare)
+            self.assertEqual(proc.returncode, 0, proc.stderr)
+            self.assertFalse(os.path.exists(bare))
+            with open(bare + ".csv", encoding="utf-8") as handle:
+                self.assertEqual([r["name"] for r in csv.DictReader(handle)], ["Steven", "Yang", "Zhang"])
+            self.assertEqual(run_cli("cohort", self.path, "--csv", os.path.join(tmp, "NECK.CSV")).returncode, 0)
+            text = os.path.join(tmp, "neck.txt")
+            proc = run_cli("cohort", self.path, "--csv", text)
+            self.assertEqual(proc.returncode, 2, proc.stderr)
+            self.assertIn(f"argument --csv: {text}: the table is a CSV file, so the name must end in .csv (like "
+                          f"{bare}.csv), not .txt", proc.stderr)
+            self.assertFalse(os.path.exists(text))
+
+    def test_a_csv_in_a_missing_folder_is_said_by_the_name_given(self):
+        # it said "[Errno 2] No such file or directory: 'nodir/x.csv.part'"
+        missing = os.path.join(self.tmp.name, "nodir", "x.csv")
+        proc = run_cli("cohort", self.path, "--csv", missing)
+        self.assertEqual(proc.returncode, 2, proc.stderr)
+        self.assertIn(f"argument --csv: {missing}: there is no folder {os.path.dirname(missing)}", proc.stderr)
+        self.assertNotIn(".part", proc.stderr)
+
+    @unittest.skipUnless(os.path.isdir("/proc/self"), "needs Linux's /proc, where no file can be made")
+    def test_a_file_that_cannot_be_written_is_said_without_errno_or_temporary_name(self):
+        proc = run_cli("cohort", self.path, "--csv", "/proc/hapticad-cohort.csv")
+        self.assertEqual(proc.returncode, 2, proc.stderr)
+        self.assertIn("hapticad cohort: /proc/hapticad-cohort.csv: No such file or directory", proc.stderr)
+        self.assertNotIn(".part", proc.stderr)
+        self.assertNotIn("Errno", proc.stderr)
+
 
 if __name__ == "__main__":
     unittest.main()

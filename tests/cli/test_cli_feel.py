@@ -111,6 +111,26 @@ class FeelCommandTest(unittest.TestCase):
         self.assertIn("raise the servo rate with --rate", proc.stderr)  # the CLI's rate, not Preferences'
         self.assertNotIn("Preferences", proc.stderr)
 
+    def test_a_face_stiffer_than_the_device_and_a_surface_left_out_are_said(self):
+        # a 5 N/mm surface was felt at the simulated hand's 3 N/mm without a word; a surface
+        # whose part was deleted was left out without one
+        path = os.path.join(self.tmp.name, "stiff.FCStd")
+        doc = App.openDocument(self.doc_path)
+        doc.getObject("HapticSurface").Stiffness = 5.0
+        gone = doc.addObject("Part::Box", "Lid")
+        doc.recompute()
+        HaptiCAD.make_surface(doc, [(gone, "Face6")], material="PP", FeelRoughness=False).Label = "Lid grip"
+        doc.removeObject("Lid")
+        doc.recompute()
+        doc.saveAs(path)
+        App.closeDocument(doc.Name)
+        proc = run_cli("feel", path, "--stroke", "10,20,20:30,20,20", "--depth", "0.5",
+                       "--out", os.path.join(self.tmp.name, "stiff"))
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertIn("is 5 N/mm stiff, above the 3 N/mm the device renders stably: it was felt at 3 N/mm (0.5 mm "
+                      "deep it pushes back with 1.5 N, not 2.5 N)", proc.stderr)
+        self.assertIn("Lid grip is not felt on Lid, which was deleted", proc.stderr)
+
     def test_the_preferences_force_limit_holds_the_stroke_as_in_the_feel_panel(self):
         # Steel (10 N/mm, felt at the probe's 1 N/mm) pressed 2 mm deep: 2 N, held to the
         # force limit set in HaptiCAD's Preferences (the panel's simulated hand is held so)
@@ -225,6 +245,34 @@ class FeelCommandTest(unittest.TestCase):
                 self.assertIn(message, proc.stderr)
                 self.assertEqual(proc.stdout, "")
 
+    def test_an_out_folder_that_is_a_file_is_refused_before_the_stroke(self):
+        # it ran the stroke, then said "[Errno 17] File exists"
+        with open(self.doc_path, "rb") as source:
+            held = source.read()
+        with tempfile.TemporaryDirectory() as tmp:
+            aside = os.path.join(tmp, "aside")
+            os.mkdir(aside)
+            as_trace = os.path.join(aside, "trace.png")  # the document read, where the plot would go
+            with open(as_trace, "wb") as copy:
+                copy.write(held)
+            for doc, out, message in (
+                    (self.doc_path, self.doc_path,
+                     f"argument --out: {self.doc_path} is a file, not a folder: give a folder to write in"),
+                    (self.doc_path, os.path.join(self.doc_path, "sub"),
+                     f"argument --out: {os.path.join(self.doc_path, 'sub')}: {self.doc_path} is a file, not a folder"),
+                    (self.doc_path, "", "argument --out: an empty name"),
+                    (as_trace, aside, f"argument --out: {as_trace} is a FreeCAD document: writing the trace.png "
+                                      "over it would lose it")):
+                with self.subTest(out=out):
+                    proc = run_cli("feel", doc, "--stroke", "10,20,20:70,20,20", "--out", out)
+                    self.assertEqual(proc.returncode, 2, proc.stderr)
+                    self.assertIn(message, proc.stderr)
+                    self.assertEqual(proc.stdout, "")
+            for path in (self.doc_path, as_trace):
+                with open(path, "rb") as kept:
+                    self.assertEqual(kept.read(), held)
+            self.assertEqual(os.listdir(aside), ["trace.png"])
+
 
 class TablesCommandTest(unittest.TestCase):
     def test_roughness_table_json_is_table_2(self):
@@ -259,6 +307,40 @@ class TablesCommandTest(unittest.TestCase):
             self.assertEqual(len(cards), len(json.loads(proc.stdout)))
             self.assertIn("HaptiCAD-TPE-soft-touch.FCMat", cards)
         self.assertEqual(run_cli("materials", "--export-fcmat", "/nonexistent/dir").returncode, 2)
+
+    def test_exported_cards_already_there_are_kept_unless_overwrite(self):
+        # the export replaced, without a word, a card the designer had edited
+        with tempfile.TemporaryDirectory() as tmp:
+            edited = os.path.join(tmp, "HaptiCAD-ABS.FCMat")
+            mine = "; my edited card\n[General]\nName = ABS\n"
+            with open(edited, "w", encoding="utf-8") as handle:
+                handle.write(mine)
+            proc = run_cli("materials", "--json", "--shipped-only", "--export-fcmat", tmp)
+            self.assertEqual(proc.returncode, 0, proc.stderr)  # nothing the designer made is lost
+            self.assertEqual(len(os.listdir(tmp)), len(json.loads(proc.stdout)))
+            with open(edited, encoding="utf-8") as handle:
+                self.assertEqual(handle.read(), mine)
+            self.assertIn(f"kept 1 card already in {tmp} that differs from HaptiCAD's (edited?), not replaced: "
+                          "HaptiCAD-ABS.FCMat; give --overwrite to replace it", proc.stderr)
+            # again: HaptiCAD's own cards, unchanged, are not news
+            again = run_cli("materials", "--shipped-only", "--export-fcmat", tmp)
+            self.assertEqual(again.returncode, 0, again.stderr)
+            self.assertIn("kept 1 card", again.stderr)
+            proc = run_cli("materials", "--shipped-only", "--export-fcmat", tmp, "--overwrite")
+            self.assertEqual(proc.returncode, 0, proc.stderr)
+            self.assertNotIn("kept", proc.stderr)
+            with open(edited, encoding="utf-8") as handle:
+                self.assertIn("HaptiCAD_StaticFriction = ", handle.read())
+            proc = run_cli("materials", "--overwrite")
+            self.assertEqual(proc.returncode, 2)
+            self.assertIn("--overwrite replaces cards --export-fcmat DIR writes", proc.stderr)
+
+    def test_an_export_folder_that_is_a_file_is_said_so(self):
+        with tempfile.NamedTemporaryFile() as afile:
+            proc = run_cli("materials", "--export-fcmat", afile.name)
+            self.assertEqual(proc.returncode, 2)
+            self.assertIn(f"{afile.name} is a file, not a folder: give --export-fcmat the folder", proc.stderr)
+            self.assertEqual(os.path.getsize(afile.name), 0)
 
     def test_a_rejected_card_is_said_and_fails_the_command_but_the_rest_is_listed(self):
         with tempfile.TemporaryDirectory() as data:

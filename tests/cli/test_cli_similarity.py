@@ -177,5 +177,36 @@ class SimilarityCommandTest(unittest.TestCase):
                 self.assertNotIn("Traceback", proc.stderr)
         self.assertFalse(os.path.exists(txt))
 
+    def test_the_answers_and_the_plot_are_never_written_over_the_document_read(self):
+        # `--csv s2.FCStd` wrote the answers over the document: the study and every run were gone
+        with tempfile.TemporaryDirectory() as tmp:
+            doc = os.path.join(tmp, "s2.FCStd")
+            with open(self.path, "rb") as source:
+                held = source.read()
+            with open(doc, "wb") as copy:
+                copy.write(held)
+            os.link(doc, os.path.join(tmp, "hard.csv"))
+            os.symlink(doc, os.path.join(tmp, "linked.png"))
+            for option, target, message in (
+                    ("--csv", doc, f"argument --csv: {doc}: the table is a CSV file, so the name must end in .csv"),
+                    ("--csv", os.path.join(tmp, "hard.csv"), f"argument --csv: {os.path.join(tmp, 'hard.csv')} is a "
+                                                             "FreeCAD document: writing the CSV over it would lose it"),
+                    ("--plot", os.path.join(tmp, "linked.png"),
+                     f"argument --plot: {os.path.join(tmp, 'linked.png')} is a FreeCAD document")):
+                with self.subTest(option=option, target=target):
+                    proc = run_cli("similarity", doc, "--study", "Gratings", option, target)
+                    self.assertEqual(proc.returncode, 2, proc.stderr)
+                    self.assertIn(message, proc.stderr)
+                    self.assertEqual(proc.stdout, "")
+            with open(doc, "rb") as kept:
+                self.assertEqual(kept.read(), held)
+            self.assertEqual(run_cli("similarity", doc, "--study", "Gratings").returncode, 0)
+            # a bare name gets .csv
+            proc = run_cli("similarity", doc, "--study", "Gratings", "--json", "--csv", os.path.join(tmp, "answers"))
+            self.assertEqual(proc.returncode, 0, proc.stderr)
+            self.assertEqual(json.loads(proc.stdout)[0]["csv"], os.path.join(tmp, "answers.csv"))
+            self.assertTrue(os.path.isfile(os.path.join(tmp, "answers.csv")))
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -2,6 +2,7 @@
 """The ``hapticad`` command line. Prints JSON on stdout; errors go to stderr with
 exit status 2 (bad input) or 1 (failure, or a material card refused)."""
 import argparse
+import errno
 import json
 import os
 import re
@@ -47,23 +48,73 @@ def _count(lo, hi):
 
 
 def _output_file(kind, example):
-    """An argparse type: a file to write, not empty and not a folder. For a PNG, a name without an
-    extension gets .png (what is reported is the file written) and any other extension is refused."""
+    """An argparse type: a file to write, not empty, not a folder, in a folder that exists, and
+    not a FreeCAD document (a plot or a table written over a .FCStd loses its parts and studies).
+    The name must end in the kind's extension (.png, .csv; any case): a name without one gets it
+    (what is reported is the file written), any other is refused."""
+    wanted = "." + kind.lower()
+    what = {"PNG": "the plot is a PNG image", "CSV": "the table is a CSV file"}[kind]
+
     def parse(text):
         if not text.strip():
             raise argparse.ArgumentTypeError(f"an empty name: give the {kind} file to write, like {example}")
         if os.path.isdir(text):
             raise argparse.ArgumentTypeError(f"{text} is a folder: give the {kind} file to write in it, like "
                                              f"{os.path.join(text, example)}")
-        if kind == "PNG":
-            extension = os.path.splitext(text)[1]
-            if not extension:
-                text += ".png"
-            elif extension.lower() != ".png":
-                raise argparse.ArgumentTypeError(f"{text}: the plot is a PNG image, so the name must end in "
-                                                 f".png (like {os.path.splitext(text)[0]}.png), not {extension}")
-            if os.path.isdir(text):
-                raise argparse.ArgumentTypeError(f"{text} is a folder: give the {kind} file to write")
+        extension = os.path.splitext(text)[1]
+        if not extension:
+            text += wanted
+        elif extension.lower() != wanted:
+            raise argparse.ArgumentTypeError(f"{text}: {what}, so the name must end in {wanted} (like "
+                                             f"{os.path.splitext(text)[0]}{wanted}), not {extension}")
+        if os.path.isdir(text):
+            raise argparse.ArgumentTypeError(f"{text} is a folder: give the {kind} file to write")
+        folder = os.path.dirname(text)
+        if folder and not os.path.isdir(folder):
+            # said now, before the work, and by the user's name (not the temporary file's)
+            raise argparse.ArgumentTypeError(f"{text}: {_no_folder(folder)}")
+        if _is_freecad_document(text):
+            raise argparse.ArgumentTypeError(f"{text} is a FreeCAD document: writing the {kind} over it would "
+                                             f"lose it; give another name, like {example}")
+        return text
+    return parse
+
+
+def _no_folder(folder):
+    """Why ``folder`` (not an existing folder) cannot take a file."""
+    return f"{folder} is a file, not a folder" if os.path.exists(folder) else f"there is no folder {folder}"
+
+
+def _is_freecad_document(path):
+    """Whether ``path`` is a file holding a FreeCAD document (a zip archive with a Document.xml), whatever its name."""
+    try:
+        if not os.path.isfile(path) or not zipfile.is_zipfile(path):
+            return False
+        with zipfile.ZipFile(path) as archive:
+            return "Document.xml" in archive.namelist()
+    except (OSError, zipfile.BadZipFile):
+        return False
+
+
+def _output_folder(written=()):
+    """An argparse type: a folder to write the files ``written`` in (made if missing): not empty,
+    not a file, and none of ``written`` in it a FreeCAD document (the one read, by any name, or
+    another). Said before the work (a stroke), which found a file only when it came to write."""
+    def parse(text):
+        if not text.strip():
+            raise argparse.ArgumentTypeError("an empty name: give the folder to write in, like out")
+        if os.path.exists(text) and not os.path.isdir(text):
+            raise argparse.ArgumentTypeError(f"{text} is a file, not a folder: give a folder to write in (it is "
+                                             f"made if missing), like {os.path.splitext(text)[0] or 'out'}-out")
+        above = os.path.dirname(text)  # the folders made with it: not one where a file is
+        while above and not os.path.exists(above):
+            above = os.path.dirname(above)
+        if above and not os.path.isdir(above):
+            raise argparse.ArgumentTypeError(f"{text}: {above} is a file, not a folder")
+        for name in written:
+            if _is_freecad_document(os.path.join(text, name)):
+                raise argparse.ArgumentTypeError(f"{os.path.join(text, name)} is a FreeCAD document: writing the "
+                                                 f"{name} over it would lose it; give another folder")
         return text
     return parse
 
@@ -102,6 +153,7 @@ def _feel_accuracy(args, prefs):
     return preferences.scene_accuracy(chosen)
 
 
+TRACE_FILES = ("trace.csv", "trace.png")  # what `hapticad feel` writes in --out (feel.feel_document)
 RATE_OPTION = "with --rate"  # where `hapticad feel` sets the servo rate (the GUI: in Preferences)
 
 
@@ -109,7 +161,7 @@ def cmd_feel(args):
     App = ensure_freecad()
     from . import preferences, surface_object, vibration_object
     from .document_scene import build_document_scene
-    from .feel import Stroke, feel_document, probe_limits
+    from .feel import Stroke, feel_document, probe_limits, skipped_surface_notes
 
     doc = _open_document(App, args.file)
     try:
@@ -120,12 +172,15 @@ def cmd_feel(args):
             print(f"hapticad feel: the scene is not closed: {doc_scene.repair}", file=sys.stderr)
         notes = (vibration_object.rate_notes(doc, args.rate, where=RATE_OPTION)
                  + vibration_object.force_notes(doc, limits.max_force_n)
-                 + surface_object.rate_notes(doc, args.rate, where=RATE_OPTION))
+                 + surface_object.rate_notes(doc, args.rate, where=RATE_OPTION)
+                 + skipped_surface_notes(doc))
         for note in notes:
             print(f"hapticad feel: {note}", file=sys.stderr)
         p0, p1 = args.stroke
         stroke = Stroke(p0, p1, args.speed, args.depth, args.rate)
         summary = feel_document(doc_scene, stroke, args.out, limits=limits)
+        for note in summary["notes"]:  # a face stiffer than the device: felt at its most
+            print(f"hapticad feel: {note}", file=sys.stderr)
         if summary["expected_normal_force_n"] > limits.max_force_n:
             print(f"hapticad feel: {args.depth:g} mm deep the face pushes back with "
                   f"{summary['expected_normal_force_n']:.2f} N, more than the {limits.max_force_n:g} N force limit "
@@ -171,15 +226,17 @@ def cmd_demo(args):
 def cmd_materials(args):
     from . import materials
 
-    if args.export_fcmat and not os.path.isdir(args.export_fcmat):
-        raise ValueError(f"{args.export_fcmat}: no such folder")
+    folder = args.export_fcmat
+    if folder is not None and not os.path.isdir(folder):
+        raise ValueError(f"{_no_folder(folder) if folder.strip() else 'an empty name'}: give --export-fcmat the "
+                         "folder to write the cards in")
+    if args.overwrite and folder is None:
+        raise ValueError("--overwrite replaces cards --export-fcmat DIR writes: give the folder too")
     database = materials.load_database(include_user=not args.shipped_only)
     for error in database.errors:
         print(f"hapticad materials: rejected {error}", file=sys.stderr)
-    if args.export_fcmat:
-        for material in database:
-            safe = "".join(c if c.isalnum() or c in "-_" else "-" for c in material.name)
-            materials.write_fcmat(material, os.path.join(args.export_fcmat, f"HaptiCAD-{safe}.FCMat"))
+    if folder is not None:
+        _export_cards(database, folder, args.overwrite)
     rows = [m.as_dict() for m in database]
     if not args.json:
         for row in rows:
@@ -193,6 +250,29 @@ def cmd_materials(args):
               "are listed", file=sys.stderr)
         return Finished(rows if args.json else None, 1)
     return rows if args.json else None
+
+
+def _export_cards(database, folder, overwrite):
+    """Writes each material of ``database`` as folder/HaptiCAD-<name>.FCMat. A different card
+    already there (the user's edits?) is kept unless ``overwrite``, and named on stderr with how
+    to replace it; that is no failure (exit status 0): nothing the designer made is lost."""
+    from . import materials
+
+    kept, cards = [], {}
+    for material in database:
+        card = "HaptiCAD-{}.FCMat".format("".join(c if c.isalnum() or c in "-_" else "-" for c in material.name))
+        if card in cards:  # names alike but for their punctuation: the second would replace the first's card
+            print(f"hapticad materials: {material.name} is not written: its card {card} is {cards[card]}'s "
+                  "(rename one of them)", file=sys.stderr)
+            continue
+        cards[card] = material.name
+        if not materials.write_fcmat(material, os.path.join(folder, card), overwrite=overwrite):
+            kept.append(card)
+    if kept:
+        many = len(kept) != 1
+        print(f"hapticad materials: kept {len(kept)} card{'s' if many else ''} already in {folder} that "
+              f"differ{'' if many else 's'} from HaptiCAD's (edited?), not replaced: {', '.join(kept)}; give "
+              f"--overwrite to replace {'them' if many else 'it'}", file=sys.stderr)
 
 
 def cmd_roughness_table(args):
@@ -231,8 +311,25 @@ def cmd_accuracy_table(args):
 BENCH_MESH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "hapticad-bench-mesh")
 
 
+def _mesh_files(options):
+    """The mesh files among bench-mesh's ``options``: what is not an option nor an option's
+    value. Every option of the program but --json takes the word after it (bench_mesh.cc's Parse)."""
+    files, value_next = [], False
+    for word in options:
+        if value_next:
+            value_next = False
+        elif word.startswith("-"):
+            value_next = word != "--json"
+        else:
+            files.append(word)
+    return files
+
+
 def cmd_bench_mesh(args):
     """Runs the contact engine's benchmark program, which prints the JSON itself."""
+    meshes = _mesh_files(args.options)
+    if len(meshes) > 1:  # the program took the last one without a word
+        raise ValueError(f"one mesh file at a time: give one of {', '.join(meshes)}")
     if not os.access(BENCH_MESH, os.X_OK):
         raise RuntimeError(f"{BENCH_MESH} is missing: build HaptiCAD (packaging/setup.sh)")
     sys.stdout.flush()
@@ -385,8 +482,14 @@ def cmd_cohort(args):
             raise ValueError("--csv writes one study's cohort: name it with --study")
         result = []
         for study in studies:
-            records = stiffness_study.comparable_records(study)
-            held = stiffness_study.records(study)
+            try:
+                records = stiffness_study.comparable_records(study)
+                held, unread = stiffness_study.readable_records(study)  # unread: named, left out
+            except ValueError as exc:  # a stored cohort not readable at all: the other studies are still told
+                if args.study is not None:
+                    raise
+                result.append({"study": study.Label, "error": str(exc)})
+                continue
             value, unit = stiffness_study.design_value(study)
             # starred: felt beyond the device (cohort.BEYOND_DEVICE says how), as the panel's table marks them
             result.append({"study": study.Label, "model": study.Model, "design_value": value, "unit": unit,
@@ -398,14 +501,22 @@ def cmd_cohort(args):
                            "beyond_force_limit": sum(1 for r in records if cohort.beyond_force_limit(r)),
                            "beyond_device_note": cohort.beyond_device_note(records),
                            "statistics": cohort.statistics(records),
-                           "design_among_preferences": cohort.place_design(value, records)[1]})
-            if args.csv:  # every record, as the panel exports: each row says its unit
-                cohort.write_csv(args.csv, held)
+                           "design_among_preferences": cohort.place_design(value, records)[1],
+                           "unread": unread})
+            if args.csv:  # every record, as the panel exports: each row says its unit; refused, named, if
+                cohort.write_csv(args.csv, stiffness_study.records(study))  # one cannot be read
     finally:
         App.closeDocument(doc.Name)
+    failed = [study["error"] for study in result if "error" in study]
+    if failed and len(failed) == len(result):
+        raise ValueError("; ".join(failed))
+    status = 1 if failed else 0
     if args.json:
-        return result
+        return Finished(result, status)
     for study in result:
+        if "error" in study:
+            print(f"hapticad cohort: {study['error']}", file=sys.stderr)
+            continue
         print(f"{study['study']} ({study['model']}): design {cohort.format_value(study['design_value'], study['unit'])}"
               f", {cohort.plural(study['participants'], 'participant')}"
               + (f" in {study['records']} records" if study["records"] != study["participants"] else "")
@@ -416,7 +527,9 @@ def cmd_cohort(args):
         print(f"  this design: {study['design_among_preferences']}")
         if study["beyond_device_note"]:
             print(f"  {study['beyond_device_note']}")
-    return None
+        for sentence in study["unread"]:
+            print(f"  {sentence}; left out of the statistics")
+    return Finished(None, status)
 
 
 def cmd_similarity(args):
@@ -479,7 +592,8 @@ def build_parser():
     feel.add_argument("--speed", type=float, default=50.0, metavar="MM_PER_S", help="sliding speed (50)")
     feel.add_argument("--depth", type=float, default=1.0, metavar="MM", help="depth below the surface (1)")
     feel.add_argument("--rate", type=float, default=1000.0, metavar="HZ", help="servo rate (1000)")
-    feel.add_argument("--out", required=True, metavar="DIR", help="folder for trace.csv and trace.png")
+    feel.add_argument("--out", type=_output_folder(TRACE_FILES), required=True, metavar="DIR",
+                      help="folder for trace.csv and trace.png (made if missing)")
     feel.add_argument("--accuracy", default=None, choices=list(PRESETS) + [CUSTOM],
                       help="tessellation and shading preset (default: the preferences', else Fine); Custom "
                            "uses the preferences' custom values and the four options below")
@@ -500,7 +614,12 @@ def build_parser():
     mats = sub.add_parser("materials", help="list the haptic materials (shipped and the user's)")
     mats.add_argument("--json", action="store_true", help="print JSON")
     mats.add_argument("--shipped-only", action="store_true", help="ignore the user's own materials")
-    mats.add_argument("--export-fcmat", metavar="DIR", help="also write each as a FreeCAD .FCMat card into DIR")
+    mats.add_argument("--export-fcmat", metavar="DIR",
+                      help="also write each as a FreeCAD .FCMat card (HaptiCAD-NAME.FCMat) into the folder DIR; "
+                           "a different card already there (your edits?) is kept and named on stderr, with exit "
+                           "status 0")
+    mats.add_argument("--overwrite", action="store_true",
+                      help="with --export-fcmat: replace the cards already in DIR with HaptiCAD's")
     mats.set_defaults(run=cmd_materials)
 
     rough = sub.add_parser("roughness-table", help="the seven roughness categories (seed 000, Table 2)")
@@ -554,7 +673,9 @@ def build_parser():
     coh = sub.add_parser("cohort", help="a document's stiffness studies: participants' preferences by group")
     coh.add_argument("file", help="FreeCAD document (.FCStd) with StiffnessStudy objects")
     coh.add_argument("--study", metavar="NAME", help="only this study (name or label)")
-    coh.add_argument("--csv", type=_csv_file, metavar="FILE", help="also write the study's participants as CSV")
+    coh.add_argument("--csv", type=_csv_file, metavar="FILE",
+                     help="also write the study's participants as CSV (the name ends in .csv, added if it has "
+                          "no extension; never written over a FreeCAD document)")
     coh.add_argument("--json", action="store_true", help="print JSON")
     coh.set_defaults(run=cmd_cohort)
 
@@ -567,14 +688,16 @@ def build_parser():
                      help="classical MDS, or Kruskal's ordinal MDS (only the order of the dissimilarities counts); "
                           "default: each study's Scaling")
     sim.add_argument("--csv", type=_answers_csv_file, metavar="FILE",
-                     help="also write every participant's answers (one row each, with the stimuli's values) as CSV")
+                     help="also write every participant's answers (one row each, with the stimuli's values) as CSV "
+                          "(the name ends in .csv, added if it has no extension; never written over a FreeCAD "
+                          "document)")
     sim.add_argument("--json", action="store_true", help="print JSON (with the dissimilarity matrix and the "
                      "stimuli's values)")
     sim.set_defaults(run=cmd_similarity)
 
     demo = sub.add_parser("demo", help="open the example toothbrush and feel it")
     demo.add_argument("--headless", action="store_true", help="stroke every tagged face, even with a display")
-    demo.add_argument("--out", default="hapticad-demo", metavar="DIR",
+    demo.add_argument("--out", type=_output_folder(), default="hapticad-demo", metavar="DIR",
                       help="output folder (hapticad-demo): the traces and plots, or the example's copy the GUI opens")
     demo.add_argument("--json", action="store_true", help="print every stroke's summary as JSON")
     demo.set_defaults(run=cmd_demo)
@@ -622,6 +745,25 @@ def _joined_negative_values(argv, valued):
     return joined
 
 
+def _said(exc):
+    """An OSError as "<path>: <reason>", without Python's "[Errno N]": the path as the user gave
+    it (a file written through "<path>.part" named without the .part), a missing folder said so."""
+    if not exc.strerror:
+        return str(exc)
+    reason = exc.strerror
+    if exc.filename is None:
+        return reason
+    path = os.fsdecode(exc.filename)
+    if path.endswith(".part"):
+        path = path[:-len(".part")]
+    folder = os.path.dirname(path)
+    if exc.errno in (errno.ENOENT, errno.ENOTDIR) and folder and not os.path.isdir(folder):
+        reason = _no_folder(folder)
+    elif exc.errno == errno.EISDIR:
+        reason = "is a folder, not a file"
+    return f"{path}: {reason}"
+
+
 def main(argv=None):
     # a closed pipe (`hapticad materials | head`) ends the program quietly
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)
@@ -637,6 +779,8 @@ def main(argv=None):
         result = args.run(args)
     except (ValueError, KeyError, OSError) as exc:
         message = exc.args[0] if isinstance(exc, KeyError) and exc.args else exc
+        if isinstance(exc, OSError):
+            message = _said(exc)
         print(f"hapticad {args.command}: {message}", file=sys.stderr)
         return 2
     except RuntimeError as exc:

@@ -16,7 +16,7 @@ import os
 import re
 import statistics as stats
 import unicodedata
-from dataclasses import asdict, dataclass, field
+from dataclasses import MISSING, asdict, dataclass, field
 from datetime import datetime, timedelta
 
 NOT_GIVEN = "not given"  # a participant need not say
@@ -146,10 +146,12 @@ def beyond_force_limit(record):
 
 def counted(records):
     """The records statistics and place_design count: all but those beyond the force
-    limit (beyond_force_limit), whose count beyond_device_note gives instead. Left out,
-    not flagged in the figures: a button whose click never came was not felt as designed
-    at all, and its value would pull the mean towards forces nobody felt."""
-    return [r for r in records if not beyond_force_limit(r)]
+    limit (beyond_force_limit) and those whose value is not a finite number (unfit_value),
+    whose counts beyond_device_note gives instead. Left out, not flagged in the figures: a
+    button whose click never came was not felt as designed at all, and its value would
+    pull the mean towards forces nobody felt; a NaN made every figure NaN (and the JSON
+    of `hapticad cohort --json` invalid)."""
+    return [r for r in records if not beyond_force_limit(r) and not unfit_value(r)]
 
 
 def mark(record):
@@ -172,10 +174,12 @@ BEYOND_DEVICE["snap ratio"] = BEYOND_DEVICE["N"]
 
 def beyond_device_note(records):
     """The footnotes of the marked records (mark) among ``records``, all of one unit: what
-    the star means there, and how many preferences lie beyond the force limit and are
-    left out of the statistics; "" when none is marked."""
-    starred = [r for r in records if beyond_device(r) and not beyond_force_limit(r)]
-    above = [r for r in records if beyond_force_limit(r)]
+    the star means there, how many preferences lie beyond the force limit and how many
+    records have no number for a value (unfit_value), both left out of the statistics;
+    "" when none is."""
+    unfit = [r for r in records if unfit_value(r)]
+    starred = [r for r in records if beyond_device(r) and not beyond_force_limit(r) and not unfit_value(r)]
+    above = [r for r in records if beyond_force_limit(r) and not unfit_value(r)]
     notes = []
     if starred:
         meaning = BEYOND_DEVICE.get(starred[0].unit, "beyond what the device renders stably")
@@ -183,6 +187,13 @@ def beyond_device_note(records):
     if above:
         notes.append(f"† {plural(len(above), 'preference')} {force_limit_meaning(above)}; left out of the "
                      "statistics (kept, and exported).")
+    if unfit:
+        shown = ", ".join(f"{r.name}: {r.value}" for r in unfit[:3]) + (f" and {len(unfit) - 3} more"
+                                                                        if len(unfit) > 3 else "")
+        one = len(unfit) == 1
+        notes.append(f"{plural(len(unfit), 'record')} whose value {'is' if one else 'are'} not a finite number "
+                     f"({shown}; a hand-edited document?) left out of the statistics: remove or correct "
+                     f"{'it' if one else 'them'}.")
     return " ".join(notes)
 
 
@@ -348,12 +359,40 @@ def same_time(a, b):
     return False
 
 
+# what a stored record's fields must hold to be read (a hand-edited document may hold anything)
+_TEXT_FIELDS = ("name", "gender", "age_band", "unit", "model", "recorded")
+_NUMBER_FIELDS = ("value", "weight_kg", "height_mm")  # weight and height may be None: not given
+
+
 def from_dict(data):
-    """A Record from stored JSON data; ValueError if it is not one."""
-    try:
-        return Record(**{k: data[k] for k in Record.__dataclass_fields__ if k in data})
-    except TypeError as exc:
-        raise ValueError(f"not a participant record: {exc}") from None
+    """A Record from stored JSON data; ValueError saying what it lacks or holds wrongly if
+    it is not one. A value that is a number but not a finite one (NaN, inf) is read:
+    counted leaves it out of the statistics, and the panel shows it to be removed."""
+    if not isinstance(data, dict):
+        raise ValueError(f"not a participant record but {type(data).__name__} {str(data)[:40]!r}")
+    fields = Record.__dataclass_fields__
+    required = [k for k, f in fields.items() if f.default is MISSING and f.default_factory is MISSING]
+    lacking = [k for k in required if k not in data]
+    if lacking:
+        raise ValueError(f"not a participant record: it lacks {', '.join(lacking)}")
+    wrong = [f"{k} {data[k]!r} is not text" for k in _TEXT_FIELDS if k in data and not isinstance(data[k], str)]
+    wrong += [f"{k} {data[k]!r} is not a number" for k in _NUMBER_FIELDS
+              if not _is_number(data[k]) and not (data[k] is None and k != "value")]
+    if "design" in data and not isinstance(data["design"], dict):
+        wrong.append(f"design {str(data['design'])[:40]!r} is not a set of design values")
+    if wrong:
+        raise ValueError(f"not a participant record: {'; '.join(wrong)}")
+    return Record(**{k: data[k] for k in fields if k in data})
+
+
+def _is_number(value):
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def unfit_value(record):
+    """Whether a record's preferred value cannot be summarised (not a finite number: a
+    hand-edited document's NaN or inf). counted leaves such a record out."""
+    return not (_is_number(record.value) and math.isfinite(record.value))
 
 
 def statistics(records, by=("gender", "age_band")):

@@ -170,8 +170,31 @@ def _dynamic_speed(doc_scene, face):
 
 
 def effective_stiffness_n_per_mm(doc_scene, face, limits):
+    """The face's stiffness as the device renders it, N/mm: the surface's, held to the
+    device's stable most (limits.max_stiffness_n_per_m) as the renderer holds it."""
     k = min(doc_scene.surface_properties(face).stiffness_n_per_m, limits.max_stiffness_n_per_m)
     return k * MM
+
+
+def stiffer_than_device(doc_scene, face, limits):
+    """Whether the face's own stiffness is above the device's stable most, so it is felt
+    softer (a stiffness study's law is stretched to the device instead, its forces kept)."""
+    props = doc_scene.surface_properties(face)
+    return props.force_travel is None and props.stiffness_n_per_m > limits.max_stiffness_n_per_m
+
+
+def stiffness_note(doc_scene, face, limits, depth_mm):
+    """A sentence when the face is stiffer_than_device, saying what the stroke felt at
+    ``depth_mm`` instead (held at the device's most), else ""."""
+    if not stiffer_than_device(doc_scene, face, limits):
+        return ""
+    k_set = doc_scene.surface_properties(face).stiffness_n_per_m * MM
+    k_most = limits.max_stiffness_n_per_m * MM
+    name = doc_scene.face_names[face]
+    surface = doc_scene.face_surface_label.get(name)
+    return (f"{name}{f' ({surface})' if surface else ''} is {k_set:g} N/mm stiff, above the {k_most:g} N/mm the "
+            f"device renders stably: it was felt at {k_most:g} N/mm ({depth_mm:g} mm deep it pushes back with "
+            f"{k_most * depth_mm:.3g} N, not {k_set * depth_mm:.3g} N)")
 
 
 def expected_normal_force_n(doc_scene, face, limits, depth_mm):
@@ -184,7 +207,10 @@ def expected_normal_force_n(doc_scene, face, limits, depth_mm):
 
 
 def summarize(result, doc_scene):
-    """The JSON-ready summary of a stroke."""
+    """The JSON-ready summary of a stroke: per face felt, its surface (Label, and Name as
+    surface_name), material, friction, its stiffness as felt and as set; the device's
+    limits; and ``notes``, sentences on what was felt otherwise than set (a face stiffer
+    than the device renders stably: stiffness_note)."""
     trace = result.trace
     contact = _contact(trace)
     sliding = sliding_mask(result, doc_scene)
@@ -198,11 +224,15 @@ def summarize(result, doc_scene):
         fn = trace["normal_force_n"][slide]
         ft = trace["tangential_force_n"][slide]
         faces[name] = {
-            "surface": doc_scene.face_surface.get(name),
+            # the Label, as the tree shows it and cohort, similarity and fit-texture name it; the Name beside it
+            "surface": doc_scene.face_surface_label.get(name),
+            "surface_name": doc_scene.face_surface.get(name),
             "material": doc_scene.face_material.get(name),
             "mu_static": props.friction.static_coefficient,
             "mu_dynamic": props.friction.dynamic_coefficient,
-            "stiffness_n_per_mm": effective_stiffness_n_per_mm(doc_scene, face, result.limits),
+            "stiffness_n_per_mm": effective_stiffness_n_per_mm(doc_scene, face, result.limits),  # as felt
+            "surface_stiffness_n_per_mm": props.stiffness_n_per_m * MM,  # as set on the surface
+            "stiffness_above_device": stiffer_than_device(doc_scene, face, result.limits),
             "contact_ticks": int((contact & on_face).sum()),
             "sliding_ticks": int(slide.sum()),
             "mean_normal_force_n": float(fn.mean()) if len(fn) else None,
@@ -222,6 +252,10 @@ def summarize(result, doc_scene):
         "contact_tick_us": _percentiles(contact_us),
         "rate_hz": result.stroke.rate_hz,
         "force_limit_n": float(result.limits.max_force_n),
+        "max_stiffness_n_per_mm": float(result.limits.max_stiffness_n_per_m * MM),  # the device's, stable
+        # what the stroke felt otherwise than the document sets it, as sentences (`hapticad feel` says them)
+        "notes": [note for note in (stiffness_note(doc_scene, face, result.limits, result.stroke.depth_mm)
+                                    for face in sorted(set(int(f) for f in trace["cad_face"][contact]))) if note],
         "accuracy": _accuracy_summary(doc_scene),
         "overruns": int(result.stats.overruns),
         "skipped_ticks": int(result.stats.skipped_ticks),
@@ -253,6 +287,30 @@ def _percentiles(values):
         "p99": float(np.percentile(values, 99)),
         "max": float(np.max(values)),
     }
+
+
+def skipped_surface_notes(doc):
+    """A sentence for each HapticSurface of ``doc`` that tags faces a stroke cannot feel,
+    naming it and why: its part was deleted, a face reference broke (the model changed),
+    or it tags no face. The scene leaves those faces out (document_scene)."""
+    from . import face_references
+    from .surface_object import deleted_parts, reference_status, surfaces_of
+
+    notes = []
+    for surface in surfaces_of(doc):
+        deleted = deleted_parts(surface)
+        if deleted:
+            were = "was" if len(deleted) == 1 else "were"
+            notes.append(f"{surface.Label} is not felt on {', '.join(deleted)}, which {were} deleted: undo the "
+                         "deletion or tag the faces of another part")
+        broken = [f"{name}.{face_references.shown_face(face)}" for name, face, status in reference_status(surface)
+                  if status == face_references.BROKEN]
+        if broken:
+            notes.append(f"{surface.Label} is not felt on {', '.join(broken)}: the face reference broke when the "
+                         "model changed; pick the face again")
+        if not surface.References and not deleted:
+            notes.append(f"{surface.Label} tags no face: pick faces for it")
+    return notes
 
 
 def write_trace_csv(path, result, doc_scene):

@@ -12,7 +12,9 @@ FreeCAD's own cards, carrying the haptic values under keys prefixed ``HaptiCAD_`
 <UserAppData>/HaptiCAD/materials.csv. Later sources override earlier ones by name.
 
 A bad row or card is rejected with ``file:line: problem`` and every other material
-still loads. No FreeCAD import: usable headless and from the CLI.
+still loads: a value that is no number, a card lacking a key, mu_d above mu_s or outside
+the entry's own mu_min..mu_max, a friction or stiffness beyond what a surface's
+properties take (they would clip it without a word). No FreeCAD import: usable headless and from the CLI.
 """
 import csv
 import glob
@@ -22,6 +24,12 @@ import re
 from dataclasses import dataclass
 
 from . import MATERIALS_FILE, __version__
+
+# the ranges a HapticSurface's Friction and Stiffness properties take (surface_object's
+# FRICTION_MAX and STIFFNESS_MIN/MAX_N_PER_MM, which import FreeCAD; test_materials checks
+# they agree): a material beyond them would be clipped there without a word
+FRICTION_MAX = 1e3
+STIFFNESS_RANGE_N_PER_MM = (1e-3, 1e3)
 
 COLUMNS = (
     "name",
@@ -152,6 +160,8 @@ def _number(row, key, positive=False, non_negative=False):
 
 
 def _parse_row(row, origin):
+    """A Material of a row of strings by column; ValueError naming the column (first word)
+    when a value is not a number, is out of its range or contradicts the row."""
     name = row["name"]
     if not name:
         raise ValueError("empty name")
@@ -159,15 +169,33 @@ def _parse_row(row, origin):
     mu_max = _number(row, "mu_max", non_negative=True)
     if mu_min > mu_max:
         raise ValueError(f"mu_min = {mu_min} exceeds mu_max = {mu_max}")
+    mu_s = _number(row, "mu_static", non_negative=True)
+    mu_d = _number(row, "mu_dynamic", non_negative=True)
+    for column, mu in (("mu_static", mu_s), ("mu_dynamic", mu_d)):
+        if mu > FRICTION_MAX:  # a surface's friction property would clip it there
+            raise ValueError(f"{column} = {row[column]} is above {FRICTION_MAX:g}, the most a surface's friction takes")
+    # mu_min..mu_max is mu_d's plausible range (the shipped file's header): mu_s, the peak a
+    # finger overcomes to start sliding, lies above mu_d and may lie above the range
+    if mu_d > mu_s:
+        raise ValueError(f"mu_dynamic = {row['mu_dynamic']} is above mu_static = {row['mu_static']}: sliding would "
+                         "feel stickier than starting to slide, which few materials do (were the two swapped?)")
+    if not mu_min <= mu_d <= mu_max:
+        raise ValueError(f"mu_dynamic = {row['mu_dynamic']} is outside its own plausible range mu_min..mu_max "
+                         f"{mu_min:g}..{mu_max:g}")
+    stiffness = _number(row, "stiffness_n_per_mm", positive=True)
+    low, high = STIFFNESS_RANGE_N_PER_MM
+    if not low <= stiffness <= high:  # a surface's Stiffness property would clip it silently
+        raise ValueError(f"stiffness_n_per_mm = {stiffness:g} is outside {low:g}..{high:g} N/mm, the range a "
+                         "surface's stiffness takes")
     return Material(
         name=name,
-        static_friction=_number(row, "mu_static", non_negative=True),
-        dynamic_friction=_number(row, "mu_dynamic", non_negative=True),
+        static_friction=mu_s,
+        dynamic_friction=mu_d,
         friction_min=mu_min,
         friction_max=mu_max,
         youngs_modulus_gpa=_number(row, "youngs_modulus_gpa", positive=True),
         density_kg_m3=_number(row, "density_kg_m3", positive=True),
-        stiffness_n_per_mm=_number(row, "stiffness_n_per_mm", positive=True),
+        stiffness_n_per_mm=stiffness,
         friction_source=row["mu_source"],
         bulk_source=row["bulk_source"],
         origin=origin,
@@ -230,7 +258,8 @@ def read_fcmat(path):
     if not any(k.startswith(FCMAT_PREFIX) for k in values):
         return None, []
     first = min(where[k] for k in values if k.startswith(FCMAT_PREFIX))
-    missing = [k for k in ("Name", *FCMAT_KEYS) if k not in values]
+    # FreeCAD's own keys too: a card lacking YoungsModulus was "YoungsModulus = '' is not a number"
+    missing = [k for k in ("Name", *FCMAT_KEYS, "YoungsModulus", "Density") if k not in values]
     if missing:
         return None, [f"{path}:{first}: the card lacks {', '.join(missing)}"]
     row = {"name": values["Name"], "mu_source": values["HaptiCAD_FrictionSource"],
@@ -241,9 +270,8 @@ def read_fcmat(path):
             row[column] = values[key]
         row["stiffness_n_per_mm"] = str(_quantity(values["HaptiCAD_ContactStiffness"], _STIFFNESS_IN_N_PER_MM,
                                                   "HaptiCAD_ContactStiffness"))
-        row["youngs_modulus_gpa"] = str(_quantity(values.get("YoungsModulus", ""), _PRESSURE_IN_GPA,
-                                                  "YoungsModulus"))
-        row["density_kg_m3"] = str(_quantity(values.get("Density", ""), _DENSITY_IN_KG_M3, "Density"))
+        row["youngs_modulus_gpa"] = str(_quantity(values["YoungsModulus"], _PRESSURE_IN_GPA, "YoungsModulus"))
+        row["density_kg_m3"] = str(_quantity(values["Density"], _DENSITY_IN_KG_M3, "Density"))
     except ValueError as exc:
         key = str(exc).split(" ", 1)[0]
         return None, [f"{path}:{where.get(key, first)}: {exc}"]
@@ -258,8 +286,10 @@ def read_fcmat(path):
         return None, [f"{path}:{where.get(card_key, first)}: {exc}"]
 
 
-def write_fcmat(material, path):
-    """Writes a FreeCAD 0.20 material card FreeCAD's own reader and editor accept."""
+def write_fcmat(material, path, overwrite=True):
+    """Writes a FreeCAD 0.20 material card FreeCAD's own reader and editor accept. With
+    overwrite=False a file already at ``path`` (a card the user may have edited) is kept as it
+    is. Returns whether ``path`` holds this card: False when a different file was kept. Raises OSError."""
     card = os.path.splitext(os.path.basename(path))[0]
     lines = [
         f"; {card}",
@@ -286,8 +316,19 @@ def write_fcmat(material, path):
         f"HaptiCAD_BulkSource = {material.bulk_source}",
         "",
     ]
-    with open(path, "w", encoding="utf-8") as handle:
-        handle.write("\n".join(lines))
+    text = "\n".join(lines)
+    try:
+        # "x" checks and creates in one step: no card made meanwhile is written over
+        handle = open(path, "w" if overwrite else "x", encoding="utf-8")
+    except FileExistsError:  # only without overwrite
+        try:
+            with open(path, encoding="utf-8") as held:
+                return held.read() == text
+        except (OSError, UnicodeDecodeError):  # a folder, a binary file: not this card
+            return False
+    with handle:
+        handle.write(text)
+    return True
 
 
 def user_data_dir():

@@ -496,13 +496,52 @@ def range_note(study, max_force_n):
     return f"past {max_force_n:.3g} N, the force limit, the click is never felt (the slider goes to {high:g} N)"
 
 
-def records(study):
-    """The participants' records (cohort.Record), oldest first."""
+def _stored(study):
+    """The study's stored cohort as the list of JSON records it holds; ValueError naming the
+    study when it is not readable JSON or not a list."""
     try:
         data = json.loads(study.Cohort or "[]")
     except ValueError:
         raise ValueError(f"{study.Label}: the stored cohort is not readable JSON") from None
-    return [cohort.from_dict(d) for d in data]
+    if not isinstance(data, list):
+        raise ValueError(f"{study.Label}: the stored cohort is not a list of records but {type(data).__name__} "
+                         f"{str(data)[:40]!r}")
+    return data
+
+
+def _read(study, data):
+    """[(index in ``data``, cohort.Record or None)], and a sentence for each stored record
+    that cannot be read, naming the study, which record and what is wrong."""
+    found, unread = [], []
+    for index, entry in enumerate(data):
+        try:
+            found.append((index, cohort.from_dict(entry)))
+        except ValueError as exc:
+            name = entry.get("name") if isinstance(entry, dict) else None
+            who = f" ({name})" if isinstance(name, str) and name.strip() else ""
+            found.append((index, None))
+            unread.append(f"{study.Label}: stored record {index + 1} of {len(data)}{who} cannot be read: "
+                          f"{str(exc).removeprefix('not a participant record: ')}")
+    return found, unread
+
+
+def records(study):
+    """The participants' records (cohort.Record), oldest first. Raises ValueError, naming
+    the study, the record and what is wrong, when one cannot be read (a hand-edited
+    document): what is written back from these must lose none (readable_records reads
+    the others)."""
+    found, unread = _read(study, _stored(study))
+    if unread:
+        raise ValueError(unread[0] + (f" (and {len(unread) - 1} more)" if len(unread) > 1 else ""))
+    return [r for _, r in found]
+
+
+def readable_records(study):
+    """(the records that can be read, oldest first; a sentence naming each stored record
+    that cannot, left out): for summarising a cohort a hand-edited record broke. Raises
+    ValueError naming the study when the stored cohort is not readable at all."""
+    found, unread = _read(study, _stored(study))
+    return [r for _, r in found if r is not None], unread
 
 
 def _write_records(study, kept):
@@ -512,15 +551,16 @@ def _write_records(study, kept):
 
 def comparable_records(study):
     """The records in the unit the study records in now (a study switched from a beam
-    to a button keeps its beam records, but they are not compared with button ones)."""
-    kept = records(study)
-    return [kept[i] for i in comparable_indices(study)]
+    to a button keeps its beam records, but they are not compared with button ones).
+    A stored record that cannot be read is left out (readable_records names it)."""
+    _, unit = design_value(study)
+    return [r for _, r in _read(study, _stored(study))[0] if r is not None and r.unit == unit]
 
 
 def comparable_indices(study):
     """Where comparable_records lie among all the records (for remove_record)."""
     _, unit = design_value(study)
-    return [i for i, r in enumerate(records(study)) if r.unit == unit]
+    return [i for i, r in _read(study, _stored(study))[0] if r is not None and r.unit == unit]
 
 
 def record_preference(study, name, gender, age_band, weight_kg, height_mm, device_max_stiffness_n_per_m=None,
@@ -575,7 +615,7 @@ def others_note(study):
     as a sentence without its full stop, or "": "4 recorded while the slider moved the
     operating force (N) are kept but not compared ...", "3 made with the bending beam
     model (N/mm) ..."."""
-    held = records(study)
+    held, _ = readable_records(study)  # what is summarised beside it
     _, unit = design_value(study)
     counts = {}
     for r in held:

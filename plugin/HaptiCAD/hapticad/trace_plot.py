@@ -3,11 +3,16 @@
 friction ratio while sliding. Where roughness or a texture ripples too finely to read at
 the stroke's scale (a category-1 face: some 220 cycles in 22 mm), a third panel shows a
 few cycles from the middle of the sliding, magnified."""
+import functools
+import warnings
+
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib import font_manager, ft2font  # noqa: E402
+from matplotlib.text import Text  # noqa: E402
 
 from . import _core  # noqa: E402
 from .feel import distance_along_stroke_mm, sliding_mask  # noqa: E402
@@ -87,8 +92,76 @@ def plot_trace(path, result, doc_scene, summary, title=""):
     stroke = summary["stroke"]
     fig.suptitle(title or f"stroke on {stroke['start_face']}: {stroke['depth_mm']} mm deep, "
                  f"{stroke['speed_mm_s']} mm/s, {summary['rate_hz']:.0f} Hz", fontsize=10)
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path)
     plt.close(fig)
+
+
+# matplotlib's warning for a character no font of the text has (it drew a box there)
+_MISSING_GLYPH = r"Glyph \d+ .*missing from current font"
+
+
+def save_figure(fig, path, dpi=110):
+    """Saves ``fig``, each text a label or name wrote in a script its font lacks (a surface
+    labelled "Grïp 面") drawn with an installed font that has the characters
+    (fallback_fonts), else with boxes for them, silently: matplotlib's warning, with its
+    source line, went to the terminal of `hapticad feel` and `demo`."""
+    for text in fig.findobj(Text):
+        content = text.get_text()
+        if not content or content.isascii():
+            continue
+        families = text.get_fontfamily()
+        own = _charmap(font_manager.findfont(text.get_fontproperties()))
+        more = fallback_fonts({c for c in content if not c.isspace() and ord(c) not in own})
+        if more:
+            text.set_fontfamily([*families, *more])
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message=_MISSING_GLYPH, category=UserWarning)
+        fig.savefig(path, dpi=dpi)
+
+
+@functools.lru_cache(maxsize=None)
+def _charmap(path):
+    """The characters (code points) a font file has; none when it cannot be read."""
+    if not path:
+        return frozenset()
+    try:
+        return frozenset(ft2font.FT2Font(path).get_charmap())
+    except (OSError, RuntimeError, ValueError):
+        return frozenset()
+
+
+def fallback_fonts(characters):
+    """Family names of installed fonts that together have as many of ``characters`` as
+    they can, the one having the most first; [] when none has any. Each family is judged
+    by the file matplotlib draws it with. Reads each font's character map once a session
+    (some 0.1 s for 70 fonts)."""
+    wanted = {ord(c) for c in characters}
+    chosen = []
+    while wanted:
+        best, found = None, set()
+        for family in _families():
+            has = wanted & _charmap(_drawn_with(family))
+            if len(has) > len(found) and family not in chosen:
+                best, found = family, has
+        if best is None:
+            break
+        chosen.append(best)
+        wanted -= found
+    return chosen
+
+
+def _families():
+    """The installed font families, by name, once each, in a stable order."""
+    return sorted({font.name for font in font_manager.fontManager.ttflist})
+
+
+@functools.lru_cache(maxsize=None)
+def _drawn_with(family):
+    """The font file matplotlib draws ``family`` with (its regular style), "" if none."""
+    try:
+        return font_manager.findfont(font_manager.FontProperties(family=[family]), fallback_to_default=False)
+    except ValueError:
+        return ""
 
 
 def _mean_and_mu(ax, ratio, summary):

@@ -217,7 +217,47 @@ class CohortTest(unittest.TestCase):
         self.assertGreater(rows["all"]["sd"], 1e307)
         self.assertIn("0% of the 5 participants", cohort.place_design(0.5, TABLE_3 + huge)[1])
         endless = cohort.Record("Inf", "M", "18-25", 70, 1700, float("inf"), "N/mm", "")
-        self.assertEqual(cohort.statistics(TABLE_3 + [endless])[0]["n"], 4)
+        # no number to summarise: left out with a note (it made every figure NaN; test below)
+        (everyone,) = cohort.statistics(TABLE_3 + [endless], by=())
+        self.assertEqual(everyone["n"], 3)
+        self.assertAlmostEqual(everyone["mean"], 11.5 / 3)
+
+    def test_a_stored_value_that_is_no_finite_number_is_left_out_of_the_statistics_and_said(self):
+        # a hand-edited document's NaN made every figure "nan" and `cohort --json` write bare NaN (invalid JSON)
+        import json
+
+        nan = cohort.Record("Zoë", "F", "26-40", 52, 1650, float("nan"), "N/mm", "Bending beam")
+        kept = TABLE_3 + [nan]
+        rows = {r["group"]: r for r in cohort.statistics(kept)}
+        self.assertEqual((rows["all"]["n"], rows["gender F"]["n"]), (3, 1))
+        self.assertAlmostEqual(rows["all"]["mean"], 11.5 / 3)
+        json.dumps(cohort.statistics(kept), allow_nan=False)  # raises on a NaN
+        self.assertIn("of the 3 participants", cohort.place_design(4.0, kept)[1])
+        self.assertEqual(cohort.beyond_device_note(kept),
+                         "1 record whose value is not a finite number (Zoë: nan; a hand-edited document?) left out "
+                         "of the statistics: remove or correct it.")
+        self.assertEqual(cohort.beyond_device_note(TABLE_3), "")
+
+    def test_a_stored_record_that_is_not_one_says_what_it_lacks_or_holds_wrongly(self):
+        good = TABLE_3[0].as_dict()
+        self.assertEqual(cohort.from_dict(good), TABLE_3[0])
+        cases = [
+            ({k: v for k, v in good.items() if k != "gender"}, "not a participant record: it lacks gender"),
+            ({"a": 1}, "it lacks name, gender, age_band, weight_kg, height_mm, value, unit, model"),
+            (dict(good, value="4.5"), "value '4.5' is not a number"),
+            (dict(good, value=None), "value None is not a number"),
+            (dict(good, weight_kg=True), "weight_kg True is not a number"),
+            (dict(good, name=7), "name 7 is not text"),
+            (dict(good, design=[1]), "design '[1]' is not a set of design values"),
+            ([1, 2], "not a participant record but list '[1, 2]'"),
+        ]
+        for data, message in cases:
+            with self.subTest(message=message):
+                with self.assertRaises(ValueError) as caught:
+                    cohort.from_dict(data)
+                self.assertIn(message, str(caught.exception))
+        self.assertIsNone(cohort.from_dict(dict(good, weight_kg=None)).weight_kg)  # not given
+        self.assertTrue(cohort.unfit_value(cohort.from_dict(dict(good, value=float("nan")))))
 
     def test_table_3s_heights_in_cm_say_what_to_give(self):
         # Table 3 prints 170/168/165 under "Height(mm)": they are cm; heights stay in mm, and the error says so

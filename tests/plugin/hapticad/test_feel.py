@@ -8,6 +8,7 @@ import FreeCAD as App
 
 import HaptiCAD
 from hapticad.document_scene import build_document_scene
+from hapticad import feel
 from hapticad.feel import Stroke, plan_stroke, run_stroke_in_servo_loop, summarize
 
 
@@ -99,6 +100,58 @@ class FeelTest(unittest.TestCase):
         self.assertAlmostEqual(face["mean_ft_over_fn"], 1.0, delta=1e-6)
         self.assertEqual(summary["ticks"] + summary["skipped_ticks"],
                          int(round(result.plan.times_s[-1] * 1000)) + 1)
+
+
+    def test_a_surface_stiffer_than_the_device_is_said_and_its_label_given(self):
+        # 5 N/mm on a 3 N/mm probe: felt at 3 N/mm (1.5 N at 0.5 mm, not 2.5 N), and nothing said it
+        doc = App.newDocument("FeelStiff")
+        try:
+            box = doc.addObject("Part::Box", "Box")
+            box.Length, box.Width, box.Height = 40, 20, 10
+            doc.recompute()
+            surface = HaptiCAD.make_surface(doc, [(box, "Face6")], material="Steel", stiffness_n_per_mm=5.0,
+                                            FeelRoughness=False)
+            surface.Label = "Grïp 面"
+            scene = build_document_scene(doc)
+            result = run_stroke_in_servo_loop(scene, Stroke((5, 10, 10), (35, 10, 10), depth_mm=0.5))
+            summary = summarize(result, scene)
+            face = summary["faces"]["Box.Face6"]
+            self.assertEqual((face["surface"], face["surface_name"]), ("Grïp 面", surface.Name))
+            most = result.limits.max_stiffness_n_per_m * 1e-3
+            self.assertEqual(summary["max_stiffness_n_per_mm"], most)
+            self.assertLess(most, 5.0)
+            self.assertEqual((face["stiffness_n_per_mm"], face["surface_stiffness_n_per_mm"],
+                              face["stiffness_above_device"]), (most, 5.0, True))
+            self.assertAlmostEqual(face["mean_normal_force_n"], most * 0.5, delta=1e-4)
+            self.assertEqual(summary["notes"], [
+                f"Box.Face6 (Grïp 面) is 5 N/mm stiff, above the {most:g} N/mm the device renders stably: it was "
+                f"felt at {most:g} N/mm (0.5 mm deep it pushes back with {most * 0.5:.3g} N, not 2.5 N)"])
+        finally:
+            App.closeDocument(doc.Name)
+        # one the device renders: nothing said
+        result = run_stroke_in_servo_loop(self.scene, Stroke((10, 20, 20), (50, 20, 20), depth_mm=1))
+        summary = summarize(result, self.scene)
+        self.assertEqual((summary["notes"], summary["faces"]["Box.Face6"]["stiffness_above_device"]), ([], False))
+
+    def test_a_surface_whose_part_was_deleted_is_named_with_why(self):
+        doc = App.newDocument("FeelDeleted")
+        try:
+            box = doc.addObject("Part::Box", "Box")
+            can = doc.addObject("Part::Cylinder", "Can")
+            can.Placement.Base = App.Vector(100, 0, 0)
+            doc.recompute()
+            HaptiCAD.make_surface(doc, [(box, "Face6")], material="ABS", FeelRoughness=False)
+            grip = HaptiCAD.make_surface(doc, [(can, "Face1")], material="Rubber", FeelRoughness=False)
+            grip.Label = "Grip"
+            self.assertEqual(feel.skipped_surface_notes(doc), [])
+            can.Label = "Handle"
+            doc.removeObject("Can")
+            doc.recompute()
+            self.assertEqual(feel.skipped_surface_notes(doc), [
+                "Grip is not felt on Handle, which was deleted: undo the deletion or tag the faces of another part"])
+            self.assertEqual(list(build_document_scene(doc).shapes), ["Box"])  # the rest is still felt
+        finally:
+            App.closeDocument(doc.Name)
 
 
 if __name__ == "__main__":

@@ -76,6 +76,42 @@ class BadFileTest(unittest.TestCase):
             self.assertTrue(error.startswith(f"{path}:{line}: "), error)
             self.assertIn(text, error)
 
+    def test_a_row_that_contradicts_itself_or_a_surfaces_range_is_rejected(self):
+        # all accepted before: mu_d above mu_s, mu_d outside the row's own range, a stiffness the
+        # surface's property clipped to 1000 N/mm without a word
+        path = self.write("\n".join([
+            HEADER,
+            "Inverted,0.6,0.9,0.3,1.0,2,1000,0.5,src,src",
+            "OutOfRange,1.0,0.9,0.3,0.8,2,1000,0.5,src,src",
+            "Huge,0.6,0.5,0.3,0.8,2,1000,1e300,src,src",
+            "Tiny,0.6,0.5,0.3,0.8,2,1000,1e-5,src,src",
+            "Sticky,2000,0.5,0.3,0.8,2,1000,0.5,src,src",
+            # the range is mu_d's: mu_s, the peak that starts a slide, may lie above it; equal mu's are fine
+            "StaticAbove,0.96,0.8,0.3,0.8,2,1000,0.5,src,src",
+            "Equal,0.5,0.5,0.3,0.8,2,1000,1000,src,src",
+        ]) + "\n")
+        db = materials.MaterialDatabase()
+        db.load_csv(path)
+        self.assertEqual(db.names(), ["StaticAbove", "Equal"])
+        expected = [
+            (2, "mu_dynamic = 0.9 is above mu_static = 0.6: sliding would feel stickier than starting to slide"),
+            (3, "mu_dynamic = 0.9 is outside its own plausible range mu_min..mu_max 0.3..0.8"),
+            (4, "stiffness_n_per_mm = 1e+300 is outside 0.001..1000 N/mm, the range a surface's stiffness takes"),
+            (5, "stiffness_n_per_mm = 1e-05 is outside 0.001..1000 N/mm"),
+            (6, "mu_static = 2000 is above 1000, the most a surface's friction takes"),
+        ]
+        self.assertEqual(len(db.errors), len(expected), db.errors)
+        for error, (line, text) in zip(db.errors, expected):
+            self.assertTrue(error.startswith(f"{path}:{line}: "), error)
+            self.assertIn(text, error)
+
+    def test_the_ranges_are_the_surface_properties(self):
+        from hapticad import surface_object
+
+        self.assertEqual(materials.FRICTION_MAX, surface_object.FRICTION_MAX)
+        self.assertEqual(materials.STIFFNESS_RANGE_N_PER_MM,
+                         (surface_object.STIFFNESS_MIN_N_PER_MM, surface_object.STIFFNESS_MAX_N_PER_MM))
+
     def test_a_missing_column_or_file_is_reported(self):
         path = self.write("name,mu_static\nA,1\n")
         db = materials.MaterialDatabase()
@@ -148,6 +184,13 @@ class FcmatTest(unittest.TestCase):
             "ZeroE.FCMat": ("YoungsModulus = 2300 MPa", "YoungsModulus = 0 MPa", "must be > 0"),
             "Unit.FCMat": ("YoungsModulus = 2300 MPa", "YoungsModulus = 2300 furlongs", "unknown unit"),
             "Missing.FCMat": ("HaptiCAD_FrictionMax = 0.8\n", "", "lacks HaptiCAD_FrictionMax"),
+            # FreeCAD's keys too: it said "YoungsModulus = '' is not a number"
+            "NoE.FCMat": ("YoungsModulus = 2300 MPa\n", "", "the card lacks YoungsModulus"),
+            "NoDensity.FCMat": ("Density = 1050 kg/m^3\n", "", "the card lacks Density"),
+            "Inverted.FCMat": ("HaptiCAD_DynamicFriction = 0.5", "HaptiCAD_DynamicFriction = 0.7",
+                               "mu_dynamic = 0.7 is above mu_static = 0.6"),
+            "Huge.FCMat": ("HaptiCAD_ContactStiffness = 0.8 N/mm", "HaptiCAD_ContactStiffness = 1e300 N/mm",
+                           "is outside 0.001..1000 N/mm"),
             "Garbage.FCMat": ("[Mechanical]", "this line is not a key value pair", "expected 'key = value'"),
         }
         text = open(good).read()

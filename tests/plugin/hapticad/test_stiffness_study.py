@@ -611,6 +611,36 @@ class StudyTest(unittest.TestCase):
         self.assertIn("of the 3 participants", cohort.place_design(1.0, held)[1])
         self.assertIn("outside the plausible", cohort.problems(held[1])[0])
 
+    def test_a_stored_record_that_cannot_be_read_is_named_and_left_out_of_the_summary(self):
+        # a hand-edited record lacking its gender: "Record.__init__() missing 1 required positional argument"
+        # without the study or the record, and the study could not be summarised at all
+        study = HaptiCAD.make_study(self.doc, self.head)
+        study.Label = "Neck"
+        HaptiCAD.record_preference(study, *PARTICIPANT)
+        HaptiCAD.record_preference(study, "Zoë", "F", "26-40", 52, 1650)
+        data = json.loads(study.Cohort)
+        del data[1]["gender"]
+        data.append(dict(data[0], name="Nan", value=float("nan")))
+        study.Cohort = json.dumps(data)
+        read, unread = stiffness_study.readable_records(study)
+        self.assertEqual([r.name for r in read], ["Steven", "Nan"])
+        self.assertEqual(unread, ["Neck: stored record 2 of 3 (Zoë) cannot be read: it lacks gender"])
+        self.assertEqual([r.name for r in stiffness_study.comparable_records(study)], ["Steven", "Nan"])
+        self.assertEqual(stiffness_study.comparable_indices(study), [0, 2])
+        self.assertEqual(cohort.statistics(stiffness_study.comparable_records(study))[0]["n"], 1)
+        self.assertEqual(stiffness_study.others_note(study), "")
+        # what writes the cohort back refuses, naming it, rather than drop the record
+        for write in (lambda: stiffness_study.remove_record(study, 0),
+                      lambda: HaptiCAD.record_preference(study, "Ann", "F", "18-25", None, None)):
+            with self.assertRaises(ValueError) as caught:
+                write()
+            self.assertEqual(str(caught.exception), unread[0])
+        self.assertEqual(json.loads(study.Cohort.replace("NaN", "null")), json.loads(json.dumps(data).replace(
+            "NaN", "null")))
+        study.Cohort = '{"a": 1}'
+        with self.assertRaisesRegex(ValueError, r"^Neck: the stored cohort is not a list of records but dict"):
+            stiffness_study.readable_records(study)
+
     def test_a_scaled_workspace_feels_the_design_at_the_handle(self):
         from types import SimpleNamespace
 

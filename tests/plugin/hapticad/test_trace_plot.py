@@ -1,5 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""A stroke's plot magnifies a ripple too fine to read at the stroke's scale, and only then."""
+"""A stroke's plot magnifies a ripple too fine to read at the stroke's scale, and only then; a label in a
+script its font lacks is drawn without a warning on the terminal."""
+import os
 import unittest
 
 import numpy as np
@@ -38,6 +40,50 @@ class ZoomWindowTest(unittest.TestCase):
         rounding = 0.4 + 1e-12 * np.random.default_rng(3).standard_normal(len(x))
         self.assertIsNone(zoom_window(x, rounding))
 
+
+
+class UnicodeLabelTest(unittest.TestCase):
+    """A surface labelled in a script the plot's font lacks: matplotlib printed "UserWarning: Glyph 38754
+    missing from current font" and its source line to the terminal of `hapticad feel` and `demo`."""
+
+    def test_a_label_the_font_lacks_is_drawn_without_a_warning(self):
+        import tempfile
+        import warnings
+
+        import FreeCAD as App
+
+        import HaptiCAD
+        from hapticad.document_scene import build_document_scene
+        from hapticad.feel import Stroke, run_stroke_in_servo_loop, summarize
+        from hapticad.trace_plot import plot_trace
+
+        doc = App.newDocument("PlotLabel")
+        try:
+            box = doc.addObject("Part::Box", "Box")
+            doc.recompute()
+            HaptiCAD.make_surface(doc, [(box, "Face6")], material="ABS", FeelRoughness=False).Label = "Grïp 面"
+            scene = build_document_scene(doc)
+            result = run_stroke_in_servo_loop(scene, Stroke((2, 5, 10), (8, 5, 10), speed_mm_s=60))
+            summary = summarize(result, scene)
+            with tempfile.TemporaryDirectory() as tmp, warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                path = os.path.join(tmp, "trace.png")
+                plot_trace(path, result, scene, summary, title="stroke on Grïp 面 ˯")
+                self.assertGreater(os.path.getsize(path), 10000)
+            self.assertEqual([str(w.message) for w in caught if "missing from current font" in str(w.message)], [])
+        finally:
+            App.closeDocument(doc.Name)
+
+    def test_an_installed_font_that_has_the_characters_is_found(self):
+        from matplotlib import font_manager, ft2font
+
+        from hapticad.trace_plot import fallback_fonts
+
+        # U+02EF: not in DejaVu Sans, in DejaVu Serif (which matplotlib ships)
+        (first, *_) = fallback_fonts("˯")
+        drawn = font_manager.findfont(font_manager.FontProperties(family=[first]))
+        self.assertIn(0x2EF, ft2font.FT2Font(drawn).get_charmap())
+        self.assertEqual(fallback_fonts(chr(0x10FFFD)), [])  # a private-use character no font has
 
 if __name__ == "__main__":
     unittest.main()
