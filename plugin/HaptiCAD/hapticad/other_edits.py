@@ -35,6 +35,11 @@ class OtherEdits:
     def remove(self):
         App.removeDocumentObserver(self)
 
+    def forget(self):
+        """Starts afresh: an Undo or a Redo took the transaction these were made in, so a
+        Cancel can no longer take them (nor what the Undo itself changed)."""
+        self.changed, self.created, self.deleted = {}, [], {}
+
     def _ours(self, obj):
         return getattr(obj, "Document", None) is not None and obj.Document.Name == self.doc_name
 

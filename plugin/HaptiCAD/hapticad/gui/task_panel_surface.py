@@ -31,6 +31,7 @@ from .busy_cursor import busy_cursor
 from .document_closing import DocumentClosingObserver
 from .narrow import SPIN_WIDTH_PX, let_narrow
 from .selection import selected_curve
+from .undo_redo_observer import UndoRedoObserver
 
 # units shown after values, by property
 UNITS = {
@@ -136,6 +137,11 @@ class SurfaceTaskPanel:
         self.closing = DocumentClosingObserver(self.doc, self.document_closing)
         # Cancel aborts the transaction, and with it whatever else was done meanwhile: asked first
         self.other_edits = OtherEdits(self.doc, self._edits_itself)
+        # an Undo or Redo while open takes the transaction: shown again, and a new one at the next edit
+        self._transaction_taken = False
+        self.undo_redo = UndoRedoObserver(self.doc, self._undone_or_redone)
+        # closed without OK or Cancel (Gui.Control.closeDialog()): the observers must not outlive it
+        self.form[0].destroyed.connect(lambda _obj=None: self._stop_watching_others())
         self.set_mode(self.mode)  # the hint and the Add button say whether clicks add faces
         self.load()
         for box in self.form:
@@ -385,6 +391,8 @@ class SurfaceTaskPanel:
             spin = _dspin(-360.0, 360.0, 5.0, UNITS.get(name, ""), 2)
         elif kind == "App::PropertyFloatConstraint":
             spin = _dspin(constraint[0], constraint[1], constraint[2], UNITS.get(name, ""))
+            if name == "TextureFullRange":  # 0 is no force: it stands for the device's full range
+                spin.setSpecialValueText("device's full range")
         else:  # App::PropertyFloat
             spin = _dspin(-1e4, 1e4, 0.01, UNITS.get(name, ""))
         spin.setObjectName(name)
@@ -593,6 +601,7 @@ class SurfaceTaskPanel:
     def set_property(self, name, value):
         if self._loading:
             return
+        self._in_transaction()
         if name == "TexturePeriod":  # a fit's message names the period it was made at
             self.fit_info.setText("")
         try:
@@ -617,6 +626,7 @@ class SurfaceTaskPanel:
             self.show_problems([f"{self.obj.Material} is not in the material database on this machine"])
             return
         m = database.get(self.obj.Material)
+        self._in_transaction()
         self.obj.StaticFriction = m.static_friction
         self.obj.DynamicFriction = m.dynamic_friction
         self.obj.Stiffness = m.stiffness_n_per_mm
@@ -661,6 +671,7 @@ class SurfaceTaskPanel:
             with busy_cursor():  # reading long recordings takes seconds
                 report = texture_fit.fit_files(paths, float(self.obj.TexturePeriod), speeds,
                                                **self.fit_option_values())
+                self._in_transaction()
                 notes = texture_fit.apply_to_surface(self.obj, report)
         except (ValueError, OSError) as exc:
             said = html.escape(str(exc), quote=False)  # a header such as "force <N>" is text
@@ -703,6 +714,7 @@ class SurfaceTaskPanel:
         if curve is None:
             self.show_problems(["select a sketch, or edges, for the curve pattern first"])
             return
+        self._in_transaction()
         self.obj.PatternCurve = curve
         self.load()
 
@@ -710,6 +722,7 @@ class SurfaceTaskPanel:
         if self._loading:
             return
         part, vib = self.part(), self.vibration()
+        self._in_transaction()
         if on and vib is None and part is not None:
             vibration_object.make_vibration(self.doc, part)
         elif not on and vib is not None:
@@ -720,6 +733,7 @@ class SurfaceTaskPanel:
         vib = self.vibration()
         if self._loading or vib is None:
             return
+        self._in_transaction()
         setattr(vib, name, value)
         self.load()
 
@@ -728,10 +742,40 @@ class SurfaceTaskPanel:
         if self._loading or vib is None:
             return
         axis = _with_component(vib.Axis, component, self.vibration_widgets[f"Axis.{component}"].value())
+        self._in_transaction()
         vib.Axis = axis
         self.load()
         if axis.Length == 0:
             self.show_problems([vibration_object.ZERO_AXIS])
+
+    # --- Undo and Redo while open ---------------------------------------------------------
+
+    def _undone_or_redone(self):
+        """FreeCAD's Undo (or Redo) of the document while the panel is open: it took the
+        panel's transaction (Undo commits it and undoes it). Handled once FreeCAD is done."""
+        QtCore.QTimer.singleShot(0, self._after_undo_redo)
+
+    def _after_undo_redo(self):
+        """Shows the surface as the Undo or Redo left it (the widgets showed the edits it
+        took back), and marks the transaction taken: the next edit opens another, so Cancel
+        reverts what is done after it and OK makes that one undo step. Not opened now: a new
+        transaction would clear FreeCAD's Redo list. An Undo of the surface's creation
+        deletes it, and FreeCAD closes the panel."""
+        if self.undo_redo is None or getattr(self, "document_gone", False) or not is_alive(self.obj):
+            return
+        if not self.doc.HasPendingTransaction:
+            self._transaction_taken = True
+        if self.other_edits is not None:  # the Undo took those with it: Cancel no longer would
+            self.other_edits.forget()
+        self.load()
+
+    def _in_transaction(self):
+        """Before an edit: a transaction again when an Undo or Redo took the panel's."""
+        if self._transaction_taken and not self.doc.HasPendingTransaction:
+            self.doc.openTransaction("Edit haptic surface")
+            # Cancel purges these: as up to date as they are now, after the Undo
+            self.up_to_date = [o.Name for o in self.doc.Objects if "Touched" not in o.State]
+        self._transaction_taken = False
 
     # --- faces -------------------------------------------------------------------------
 
@@ -756,6 +800,7 @@ class SurfaceTaskPanel:
         if obj is None:
             return
         if self.mode == "centre":
+            self._in_transaction()
             self.obj.PatternCenter = App.Vector(*point)
             self.set_mode(None)
             self.load()
@@ -769,6 +814,7 @@ class SurfaceTaskPanel:
         pairs = surface_object.reference_pairs(self.obj)
         if (obj, face) in pairs:
             if (obj.Name, face, face_references.BROKEN) in surface_object.reference_status(self.obj):
+                self._in_transaction()
                 surface_object.resign_reference(self.obj, obj, face)  # "pick it again"
                 self.load()
             return
@@ -782,6 +828,7 @@ class SurfaceTaskPanel:
             pairs = [(obj, face) if pair == broken else pair for pair in pairs]
         else:
             pairs = pairs + [(obj, face)]
+        self._in_transaction()
         self.obj.References = surface_object.link_sub_list(pairs)
         self.load()
 
@@ -802,6 +849,7 @@ class SurfaceTaskPanel:
         if not chosen:
             self.show_problems(["select the faces to remove in the list first"])
             return
+        self._in_transaction()
         self.obj.References = surface_object.link_sub_list(
             (o, f) for o, f in surface_object.reference_pairs(self.obj) if f"{o.Name}.{f}" not in chosen)
         self.highlight([])
@@ -918,6 +966,9 @@ class SurfaceTaskPanel:
         if self.other_edits is not None:
             self.other_edits.remove()
             self.other_edits = None
+        if self.undo_redo is not None:
+            self.undo_redo.remove()
+            self.undo_redo = None
 
     def _stop_picking(self):
         self._stop_watching_others()

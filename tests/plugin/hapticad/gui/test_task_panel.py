@@ -410,6 +410,72 @@ class TaskPanelTest(unittest.TestCase):
         self.assertEqual(boxes.seen, [])
         self.assertEqual(surface.Material, "ABS")
 
+    def test_undo_and_redo_while_editing_show_the_surface_and_edits_after_them_stay_one_step(self):
+        # Edit > Undo while the panel was open took back its edits (FreeCAD commits the open
+        # transaction and undoes it) but the widgets still showed them; later edits were in no
+        # transaction, so Cancel left them and OK made no undo step
+        self.doc.openTransaction("Tag")
+        surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS")
+        self.doc.commitTransaction()
+        self.doc.recompute()
+        abs_k, steel_k = surface.Stiffness, materials.default_database().get("Steel").stiffness_n_per_mm
+        Gui.ActiveDocument.setEdit(surface.Name, 0)
+        h.process_events()
+        material = h.widget(QtWidgets.QComboBox, "Material")
+        stiffness = h.widget(QtWidgets.QDoubleSpinBox, "Stiffness")
+        material.setCurrentText("Steel")
+        self.assertEqual(surface.Material, "Steel")
+        Gui.runCommand("Std_Undo")
+        h.process_events()
+        self.assertEqual(surface.Material, "ABS")
+        self.assertEqual(material.currentText(), "ABS")  # the panel shows what the Undo left
+        self.assertAlmostEqual(stiffness.value(), abs_k, places=3)
+        stiffness.setValue(0.33)
+        self.assertAlmostEqual(surface.Stiffness, 0.33)
+        self.assertTrue(self.doc.HasPendingTransaction)
+        h.press_task_button("Cancel")  # reverts the edit made after the Undo; the tag stays
+        self.assertAlmostEqual(surface.Stiffness, abs_k)
+        self.assertEqual(HaptiCAD.surfaces_of(self.doc), [surface])
+        # Redo brings the edits back into view; an edit after it is one undo step of its own
+        Gui.ActiveDocument.setEdit(surface.Name, 0)
+        h.process_events()
+        material = h.widget(QtWidgets.QComboBox, "Material")
+        stiffness = h.widget(QtWidgets.QDoubleSpinBox, "Stiffness")
+        material.setCurrentText("Steel")
+        Gui.runCommand("Std_Undo")
+        h.process_events()
+        Gui.runCommand("Std_Redo")  # the Redo list was kept: the panel opened no transaction at the Undo
+        h.process_events()
+        self.assertEqual((surface.Material, material.currentText()), ("Steel", "Steel"))
+        self.assertAlmostEqual(stiffness.value(), steel_k, places=3)
+        stiffness.setValue(0.33)
+        h.press_task_button("OK")
+        self.assertFalse(Gui.Control.activeDialog())
+        self.doc.undo()  # the edit after the Redo
+        self.assertEqual(surface.Material, "Steel")
+        self.assertAlmostEqual(surface.Stiffness, steel_k)
+        self.doc.undo()  # the Steel edit
+        self.assertEqual(surface.Material, "ABS")
+        self.assertEqual(HaptiCAD.surfaces_of(self.doc), [surface])  # the tag is a step of its own
+
+    def test_a_full_range_of_0_reads_as_the_devices(self):
+        # it read "0.0000 N", a texture of no force, where 0 stands for the device's full range
+        surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS")
+        surface.Texture = surface.getEnumerationsOfProperty("Texture")[1]
+        self.doc.recompute()
+        Gui.ActiveDocument.setEdit(surface.Name, 0)
+        h.process_events()
+        full_range = h.widget(QtWidgets.QDoubleSpinBox, "TextureFullRange")
+        self.assertTrue(full_range.isVisible())
+        self.assertEqual(full_range.lineEdit().text(), "device's full range")
+        h.widen_panel()
+        h.scroll_to(full_range)
+        h.grab_screen("task_panel_full_range.png")
+        full_range.setValue(0.7)
+        self.assertEqual((surface.TextureFullRange, full_range.lineEdit().text()), (0.7, "0.7000 N"))
+        h.press_task_button("Cancel")
+        self.assertEqual(surface.TextureFullRange, 0.0)
+
     def test_faces_are_picked_in_the_3d_view_listed_highlighted_and_removed(self):
         surface = self.open_new_surface()
         h.widget(QtWidgets.QPushButton, "addFaces").setChecked(True)
