@@ -22,6 +22,11 @@ when a face stands above the hand (a step up), when the cursor jumped (the new p
 farther than JUMP_MM from the hand), and when the proxy is held far from the hand
 (caught: the hand went where the proxy could not follow). Off the part, the hand lifts
 LIFT_MM off the face it was on.
+
+Where the cursor points: the view's own pick gives the point under the cursor on the
+parts drawn. A hidden part is not drawn, yet it is felt (a Cut or Fillet made after
+tagging hides the tagged part, and Feel says so): there the line of sight through the
+cursor is cast against the felt surface itself (cast_ray).
 """
 import numpy as np
 
@@ -45,6 +50,8 @@ STEP_MM = 2.0  # a face under the cursor this much (beyond the press) above the 
 # the hand through a 1.5 mm step, its proxy caught on the step's wall 101 mm away.
 # A drag moves the target 1-5 mm per mouse event, the hand lagging some 3 mm.
 JUMP_MM = 10.0
+RAY_HIT_MM = 1e-3  # a cast ray this near the surface has met it
+RAY_STEPS = 200  # steps a cast ray takes at most (it creeps along a face it grazes: a miss)
 
 
 class HandApproach:
@@ -192,3 +199,25 @@ class HandApproach:
         way = hover_w - press_w
         length_mm = float(np.linalg.norm(way)) / MM
         return press_w + way * min(1.0, self.descent_left_mm / length_mm) if length_mm > 0 else press_w
+
+
+def cast_ray(distance_mm, origin_mm, direction, length_mm):
+    """The first point (mm) where the ray from ``origin_mm`` along ``direction`` meets a
+    surface, within ``length_mm`` of the origin, or None when it misses. ``distance_mm(p)``
+    is how far point p (mm) is from the nearest point of the surface (unsigned, mm).
+    Sphere tracing: the ray steps on by that distance, within which no surface lies, so
+    it never steps through one; a ray that grazes a face takes many short steps, and
+    after RAY_STEPS counts as missing it (the cursor is at the part's outline)."""
+    origin = np.asarray(origin_mm, float)
+    direction = np.asarray(direction, float)
+    direction = direction / np.linalg.norm(direction)
+    travelled = 0.0
+    for _ in range(RAY_STEPS):
+        point = origin + travelled * direction
+        distance = float(distance_mm(point))
+        if distance <= RAY_HIT_MM:
+            return point
+        travelled += distance
+        if travelled > length_mm:
+            return None
+    return None

@@ -308,13 +308,26 @@ def shown_reference_pairs(surface):
 
 
 def overlay_faces(surface, colour_by="Material"):
-    """OverlayFaces of every face a surface tags on a shown part (shown_reference_pairs)."""
+    """OverlayFaces of every face a surface tags on a shown part (shown_reference_pairs).
+    A face its part no longer has is left out quietly: the part was just recomputed and
+    the surface's own recompute, still to come, follows the face or says once that its
+    reference broke (surface_object.validate)."""
     faces = []
     for obj, sub in shown_reference_pairs(surface):
+        if not _has_face(obj, sub):
+            continue
         try:
             faces.append(overlay_face(surface, obj, sub, colour_by))
         except Exception as exc:  # a face that cannot be drawn must not hide the others
             import FreeCAD as App
 
-            App.Console.PrintWarning(f"{surface.Label}: cannot draw {obj.Name}.{sub}: {exc}\n")
+            App.Console.PrintWarning(f"{surface.Label}: the overlay leaves out {obj.Label}.{sub}, whose shape "
+                                     f"cannot be drawn ({exc}); it is still felt\n")
     return faces
+
+
+def _has_face(obj, sub):
+    try:
+        return not obj.Shape.getElement(sub).isNull()
+    except Exception:  # noqa: BLE001 (Part raises its own error for a missing element)
+        return False

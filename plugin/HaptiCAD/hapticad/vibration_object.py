@@ -6,15 +6,23 @@ A HapticVibration links one part (``App::PropertyLinkGlobal``) and holds its
 ``Frequency`` (Hz), ``Amplitude`` (N), ``Axis`` and ``Powered``; while the probe touches
 any face of that part, the force carries amplitude * sin(2 pi f t) along the axis.
 Created with :func:`make_vibration`. App-only.
+
+Deleting the part empties ``Part`` before the part goes (FreeCAD breaks the links to
+it); the hidden ``DeletedPart`` keeps its name and label, so the vibration can say which
+part it lost and how to mend it (undo the deletion, link another part, or delete it),
+also after saving and reopening. The vibration stays, as a surface on a deleted part
+does: Std_Delete lists it as "might break", and Undo brings the link back.
 """
+import json
 import math
 
 import FreeCAD as App
 
-from .proxy_state import SchemaState, add_type_tag
+from .proxy_state import SchemaState, add_hidden_state, add_type_tag, is_restoring
 
 TYPE = "HaptiCAD::HapticVibration"
-SCHEMA_VERSION = 1
+# 2: DeletedPart (added empty when an older document opens)
+SCHEMA_VERSION = 2
 FREQUENCY_RANGE_HZ = (1.0, 1000.0)  # what a servo loop up to 10 kHz can render
 AMPLITUDE_RANGE_N = (0.0, 10.0)  # up to what a strong device renders: force_note says what a weaker one does
 # How hard a hand feeling a part presses it, N: a firm touch. The vibration rides on this
@@ -40,6 +48,7 @@ class HapticVibration(SchemaState):
             return False
 
         add_type_tag(obj, TYPE)
+        add_hidden_state(obj, [("DeletedPart", "The part that vibrated and was deleted, name and label (JSON)")])
         add("App::PropertyLinkGlobal", "Part", "Vibration", "The part that vibrates")
         add("App::PropertyBool", "Powered", "Vibration", "Whether the part is switched on")
         if add("App::PropertyFloatConstraint", "Frequency", "Vibration", "Vibration frequency, Hz"):
@@ -53,7 +62,20 @@ class HapticVibration(SchemaState):
         obj.Frequency = (obj.Frequency, *FREQUENCY_RANGE_HZ, 10.0)
         obj.Amplitude = (obj.Amplitude, *AMPLITUDE_RANGE_N, 0.05)
 
+    def onBeforeChange(self, obj, prop):
+        # deleting a part empties Part before the part goes: its label is only known here
+        if prop == "Part" and not is_restoring(obj):
+            self._part_before = (obj.Part.Name, obj.Part.Label) if obj.Part is not None else None
+
     def onChanged(self, obj, prop):
+        if prop == "Part" and "DeletedPart" in obj.PropertiesList and not is_restoring(obj):
+            before, self._part_before = getattr(self, "_part_before", None), None
+            if obj.Part is None and before is not None:
+                text = json.dumps({"name": before[0], "label": before[1]})
+            else:
+                text = ""  # linked to a part again (or never linked): nothing lost
+            if text != obj.DeletedPart:
+                obj.DeletedPart = text
         if prop == "Axis" and "Restore" not in obj.State and obj.Axis.Length == 0:
             App.Console.PrintError(f"{obj.Label}: {ZERO_AXIS}\n")
             obj.Axis = App.Vector(0, 0, 1)
@@ -80,11 +102,37 @@ def faceless_note(part):
             "vibrate")
 
 
+def deleted_part(obj):
+    """Label of the part ``obj`` vibrated until it was deleted, or "" (it has its part,
+    was never linked, or the part is in the document still: only unlinked)."""
+    try:
+        entry = json.loads(obj.DeletedPart) if getattr(obj, "DeletedPart", "") else {}
+    except ValueError:
+        entry = {}
+    if not isinstance(entry, dict) or obj.Part is not None:
+        return ""
+    if obj.Document.getObject(str(entry.get("name"))) is not None:
+        return ""
+    return str(entry.get("label", ""))
+
+
+def no_part_note(obj):
+    """Why ``obj`` vibrates nothing, naming the deleted part and the ways to mend it; ""
+    while it has a part."""
+    if obj.Part is not None:
+        return ""
+    mend = f"link a part in its Part property (Data tab) or delete {obj.Label}"
+    deleted = deleted_part(obj)
+    if deleted:
+        return f"no part to vibrate: {deleted}, which it vibrated, was deleted; undo the deletion, {mend}"
+    return f"no part to vibrate: {mend}"
+
+
 def validate(obj):
     """Problems with a vibration's current values, as sentences (empty when fine)."""
     problems = []
     if obj.Part is None:
-        problems.append("no part to vibrate")
+        problems.append(no_part_note(obj))
     elif not hasattr(obj.Part, "Shape") or obj.Part.Shape.isNull():
         problems.append(f"{obj.Part.Label} has no shape to vibrate")
     elif faceless_note(obj.Part):

@@ -170,5 +170,35 @@ class HandApproachTest(unittest.TestCase):
         self.assertFalse(approach.coming)
 
 
+
+class CastRayTest(unittest.TestCase):
+    """The line of sight cast against the felt surface, for a hidden part the view's pick
+    does not see: here a 10 mm ball at the origin, and a step of two slabs."""
+
+    @staticmethod
+    def ball(p):
+        return abs(float(np.linalg.norm(p)) - 10.0)
+
+    def test_it_meets_the_nearest_surface_first(self):
+        hit = ha.cast_ray(self.ball, (3.0, 4.0, 100.0), (0.0, 0.0, -1.0), 200.0)
+        np.testing.assert_allclose(hit, [3.0, 4.0, np.sqrt(100.0 - 25.0)], atol=2 * ha.RAY_HIT_MM)
+        # from inside, the inside of the ball's far side; along a slant
+        hit = ha.cast_ray(self.ball, (0.0, 0.0, 0.0), (1.0, 1.0, 0.0), 50.0)
+        np.testing.assert_allclose(hit, [10.0 / np.sqrt(2.0)] * 2 + [0.0], atol=2 * ha.RAY_HIT_MM)
+
+        def step(p):  # the top faces z = 10 (x < 0) and z = 15 (x > 0): distances to those planes
+            return min(abs(p[2] - 10.0) if p[0] < 0 else np.hypot(p[0], p[2] - 10.0) if p[2] > 10 else 0.0,
+                       abs(p[2] - 15.0) if p[0] > 0 else np.hypot(p[0], p[2] - 15.0))
+
+        hit = ha.cast_ray(step, (5.0, 0.0, 40.0), (-1.0, 0.0, -1.0), 100.0)  # passes over the step's edge
+        np.testing.assert_allclose(hit, [-25.0, 0.0, 10.0], atol=2 * ha.RAY_HIT_MM)
+
+    def test_it_misses_beside_the_part_and_beyond_its_length(self):
+        self.assertIsNone(ha.cast_ray(self.ball, (11.0, 0.0, 100.0), (0.0, 0.0, -1.0), 200.0))
+        self.assertIsNone(ha.cast_ray(self.ball, (0.0, 0.0, 100.0), (0.0, 0.0, -1.0), 50.0))
+        # grazing the outline, it creeps and counts as a miss rather than looping
+        self.assertIsNone(ha.cast_ray(self.ball, (10.01, -100.0, 0.0), (0.0, 1.0, 0.0), 200.0))
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -155,6 +155,32 @@ class OverlayGeometryTest(unittest.TestCase):
         self.assertEqual([st for _, _, st in HaptiCAD.reference_status(s)][0], "broken")
         self.assertEqual([f.name for f in overlay.overlay_faces(s)], [f"Cut.{HaptiCAD.reference_status(s)[1][1]}"])
 
+    def test_a_face_gone_before_the_surface_recomputes_is_left_out_without_a_warning(self):
+        # the part's recompute redraws the overlay before the surface has matched its
+        # faces again: "HapticSurface: cannot draw Cut.Face7: Index out of bound" came
+        # before the surface's own "reference ... is broken"
+        hole = self.doc.addObject("Part::Cylinder", "Hole")
+        hole.Placement.Base = App.Vector(110, 10, -5)
+        hole.Height = 30
+        cut = self.doc.addObject("Part::Cut", "Cut")
+        cut.Base, cut.Tool = self.box, hole
+        self.doc.recompute()
+        bore = [f"Face{i + 1}" for i, f in enumerate(cut.Shape.Faces) if type(f.Surface).__name__ == "Cylinder"]
+        s = HaptiCAD.make_surface(self.doc, [(cut, bore[0]), (cut, "Face1")])
+        self.doc.recompute()
+        self.assertGreater(int(bore[0][4:]), 6)  # a number the plain box has not
+        warnings = []
+        original = App.Console.PrintWarning
+        App.Console.PrintWarning = warnings.append
+        try:
+            hole.Placement.Base = App.Vector(300, 10, -5)  # the hole leaves the part
+            hole.recompute()
+            cut.recompute()  # the part only: the surface has not followed yet
+            self.assertEqual([f.name for f in overlay.overlay_faces(s)], ["Cut.Face1"])
+        finally:
+            App.Console.PrintWarning = original
+        self.assertEqual(warnings, [])
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -194,6 +194,42 @@ class VibrationTest(unittest.TestCase):
         v.Powered = False
         self.assertEqual(vibration_object.force_notes(self.doc, 3.0), [])
 
+    def test_a_deleted_part_is_named_with_the_ways_to_mend_it_through_undo_and_reopening(self):
+        # deleting the part left "no part to vibrate", naming nothing, for good
+        v = HaptiCAD.make_vibration(self.doc, self.razor)
+        self.razor.Label = "Shaver head"
+        self.doc.UndoMode = 1
+        self.doc.recompute()
+        self.doc.openTransaction("delete")
+        self.doc.removeObject("Razor")
+        self.doc.commitTransaction()
+        self.doc.recompute()
+        said = ("no part to vibrate: Shaver head, which it vibrated, was deleted; undo the deletion, link a part "
+                f"in its Part property (Data tab) or delete {v.Label}")
+        self.assertIsNone(v.Part)
+        self.assertEqual(vibration_object.validate(v), [said])
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "orphan.FCStd")
+            self.doc.saveCopy(path)
+            reopened = App.openDocument(path)
+            try:
+                self.assertEqual(vibration_object.validate(reopened.getObject(v.Name)), [said])
+            finally:
+                App.closeDocument(reopened.Name)
+        self.doc.undo()  # the part and the link come back, the note goes
+        self.doc.recompute()
+        self.assertEqual((v.Part.Name, vibration_object.deleted_part(v)), ("Razor", ""))
+        self.assertEqual(vibration_object.validate(v), [])
+        # unlinked without a deletion, or linked to another part: nothing was deleted
+        v.Part = None
+        self.assertEqual(vibration_object.validate(v), [f"no part to vibrate: link a part in its Part property "
+                                                         f"(Data tab) or delete {v.Label}"])
+        self.doc.removeObject("Razor")
+        other = self.doc.addObject("Part::Box", "Other")
+        self.doc.recompute()
+        v.Part = other
+        self.assertEqual((vibration_object.deleted_part(v), vibration_object.validate(v)), ("", []))
+
     def test_round_trip(self):
         v = HaptiCAD.make_vibration(self.doc, self.razor, frequency_hz=167.0, amplitude_n=0.25,
                                     axis=(0, 1, 0), powered=False)

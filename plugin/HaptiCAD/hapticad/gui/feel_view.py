@@ -7,13 +7,15 @@ proxy (the point held on the surface) as a green sphere, and the force on the ha
 an amber arrow from the proxy. With the simulated probe, moving the mouse over a part aims
 the hand at the point under the cursor, pressed ``depth_mm`` into the surface (how it
 comes there: hand_approach.py); the wheel sets that depth (and is not passed on to zoom
-while the session runs).
+while the session runs). A hidden part is felt but not picked by the view: where the
+view's pick finds nothing, the line of sight through the cursor is cast against the
+felt surface (hand_approach.cast_ray), so the mouse reaches a hidden part too.
 """
 import numpy as np
 
 import FreeCAD as App
 
-from ..hand_approach import MM, HandApproach
+from ..hand_approach import MM, HandApproach, cast_ray
 
 ARROW_MM_PER_N = 8.0  # force arrow length per newton
 
@@ -159,9 +161,44 @@ class MouseSteering:
         surface = None
         if info and "x" in info:
             point_mm = np.array([info["x"], info["y"], info["z"]], float)
+        else:  # nothing drawn there: a hidden part may be, and it is felt
+            point_mm = self.hidden_point(x, y)
+        if point_mm is not None:
             sample = self.doc_scene.scene.calc_closest_point(point_mm * MM)
             surface = (point_mm, np.asarray(sample.normal_w, float))
         self.hand.aim(surface)
+
+    def hidden_point(self, x, y):
+        """Where the line of sight through view pixel (x, y) (Coin's: y up) first meets the
+        felt surface (mm), or None: the scene's parts, drawn or not."""
+        box = None
+        for shape in self.doc_scene.shapes.values():
+            if box is None:
+                box = App.BoundBox(shape.BoundBox)
+            else:
+                box.add(shape.BoundBox)
+        if box is None or not box.isValid():
+            return None
+        on_plane = np.array(tuple(self.view.getPoint(x, y)), float)  # on the focal plane
+        if self.view.getCameraType() == "Perspective":
+            eye = np.array(self.view.getCameraNode().position.getValue().getValue(), float)
+            direction = on_plane - eye
+            behind_eye = -float(np.linalg.norm(direction))
+        else:
+            direction = np.array(tuple(self.view.getViewDirection()), float)
+            behind_eye = -np.inf
+        direction /= np.linalg.norm(direction)
+        centre = np.array([box.Center.x, box.Center.y, box.Center.z])
+        radius = 0.5 * box.DiagonalLength + 1.0
+        # from in front of the parts' bounding sphere (never behind the eye) to behind it
+        along = float(np.dot(centre - on_plane, direction))
+        start = max(along - radius, behind_eye)
+        scene = self.doc_scene.scene
+
+        def distance_mm(p):
+            return scene.calc_closest_point(p * MM).distance_m / MM
+
+        return cast_ray(distance_mm, on_plane + start * direction, direction, along + radius - start)
 
     def halt(self):
         """No more aiming: a hand on its way stops where it is."""

@@ -205,7 +205,8 @@ class StudyControls(QtWidgets.QWidget):
             self.harder.setText(high_end)
             value, value_unit = stiffness_study.design_value(self.study)
             placed = ""
-            if self.show_cohort:  # the others' preferences: the researcher's to see, not the participant's
+            unread = _unread(self.study)  # recording is refused: said before a participant tries
+            if self.show_cohort and not unread:  # the others' preferences: the researcher's, not the participant's
                 placed = cohort.place_design(value, stiffness_study.comparable_records(self.study))[1]
                 placed = f" {placed[0].upper() + placed[1:]}."
             problems = stiffness_study.law_problems(self.study)
@@ -222,7 +223,8 @@ class StudyControls(QtWidgets.QWidget):
                 + (f"<br><span style='color:#a06000'>Note: {note}.</span>" if note else "")
                 + (f"<br><span style='color:#a06000'>The {label} is set by the expression {bound}: clear "
                    "it to move the slider.</span>" if bound else "")
-                + (f"<br><span style='color:#b00000'>Not felt: {'; '.join(problems)}.</span>" if problems else ""))
+                + (f"<br><span style='color:#b00000'>Not felt: {'; '.join(problems)}.</span>" if problems else "")
+                + (f"<br><span style='color:#b00000'>Not recordable: {escape(unread)}.</span>" if unread else ""))
         finally:
             self._loading = False
         # shown as it is now: the observer's call for the changes so far (a slider step's
@@ -266,9 +268,9 @@ class StudyControls(QtWidgets.QWidget):
         doc = self.study.Document
         # the same name again is noted, not refused: a second session of one person (averaged
         # with the first), or two people of one name, is the coordinator's call
-        before = stiffness_study.comparable_records(self.study)
         doc.openTransaction("Record a participant's preference")
         try:
+            before = stiffness_study.comparable_records(self.study)  # (ValueError: an unreadable stored cohort)
             record = stiffness_study.record_preference(self.study, self.name.text(), self.gender.currentText(),
                                                        self.age.currentText(), _given(self.weight),
                                                        _given(self.height), self.device_stiffness(),
@@ -299,3 +301,14 @@ class StudyControls(QtWidgets.QWidget):
         self.changed.emit()
         App.Console.PrintLog(f"HaptiCAD: {self.study.Label}: recorded {record.name}\n")
         return record
+
+
+def _unread(study):
+    """Why no preference can be recorded in ``study`` now, as a sentence, or "": a stored
+    record (or the whole stored cohort) cannot be read, and writing the cohort back would
+    lose it (stiffness_study.records)."""
+    try:
+        _, unread = stiffness_study.readable_records(study)
+    except ValueError as exc:
+        return str(exc)
+    return unread[0] + (f" (and {len(unread) - 1} more)" if len(unread) > 1 else "") if unread else ""

@@ -22,6 +22,7 @@ from ..proxy_state import is_alive
 from ..similarity_study import similarity_studies_of
 from ..surface_object import hidden_part_notes, surfaces_of
 from ..stiffness_study import studies_of
+from ..vibration_object import no_part_note, vibrations_of
 from .busy_cursor import busy_cursor
 from .document_closing import DocumentClosingObserver
 from .feel_view import FeelView, MouseSteering
@@ -340,12 +341,13 @@ class FeelTaskPanel:
         return True
 
     def session_notes(self):
-        """As notes: what the servo rate and the force limit keep a vibration from being
-        felt as set, the roughness grids and gratings the servo rate cannot follow, and tagged parts hidden
-        behind what is shown (a fillet made after tagging)."""
+        """As notes: vibrations felt nowhere (their part deleted), what the servo rate and the force limit
+        keep a vibration from being felt as set, the roughness grids and gratings the servo rate cannot
+        follow, and tagged parts hidden behind what is shown (a fillet made after tagging)."""
         # one part under two surfaces is said once
         hidden = list(dict.fromkeys(n for s in surfaces_of(self.doc) for n in hidden_part_notes(s)))
-        return "".join(_note(n) for n in self.session.vibration_notes(self.doc)
+        partless = [f"{v.Label}: {no_part_note(v)}" for v in vibrations_of(self.doc) if v.Part is None]
+        return "".join(_note(n) for n in partless + self.session.vibration_notes(self.doc)
                        + self.session.roughness_notes(self.doc) + hidden)
 
     def edited(self, geometry):

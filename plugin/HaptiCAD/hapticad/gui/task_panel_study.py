@@ -362,8 +362,12 @@ class StudyTaskPanel(CloseOnlyPanel):
 
     def _load_cohort(self):
         self._load_journal()
-        records = stiffness_study.comparable_records(self.obj)
-        others = len(stiffness_study.records(self.obj)) - len(records)
+        try:  # a stored record that cannot be read (a hand-edited document) is named, the others shown
+            held, unread = stiffness_study.readable_records(self.obj)
+            records = stiffness_study.comparable_records(self.obj)
+        except ValueError as exc:  # the stored cohort as a whole is not readable
+            held, unread, records = [], [str(exc)], []
+        others = len(held) - len(records)
         shown = []
         for r in records:
             beyond = cohort.mark(r)  # * felt at the device's limit, † its click never felt
@@ -383,6 +387,8 @@ class StudyTaskPanel(CloseOnlyPanel):
             aside += (f"<br><span style='color:#b00000'>⚠ {len(wrong)} record{'s' if len(wrong) != 1 else ''} could "
                       f"not be recorded now ({escape(wrong[0][0])}: {escape(wrong[0][1][0])}): select and Remove "
                       f"{'them' if len(wrong) != 1 else 'it'}.</span>")
+        if unread:
+            aside += "<br><span style='color:#b00000'>" + unread_note(unread) + "</span>"
         if self.notice is not None and self.notice[1] != self.obj.Cohort:
             self.notice = None  # said of a cohort that has changed since (an undo, a record)
         notice = self.notice[0] + "<br>" if self.notice else ""
@@ -475,8 +481,13 @@ class StudyTaskPanel(CloseOnlyPanel):
             return
         self.notice = self.journal_notice = None
         self.doc.openTransaction("Remove participants")
-        for index in indices:
-            stiffness_study.remove_record(self.obj, index)
+        try:
+            for index in indices:
+                stiffness_study.remove_record(self.obj, index)
+        except ValueError as exc:  # a stored record that cannot be read: writing back would lose it
+            self.doc.abortTransaction()
+            self.say(f"<span style='color:#b00000'>Not removed: {escape(str(exc))}</span>")
+            return
         self.doc.commitTransaction()
         self.load()
 
@@ -561,6 +572,17 @@ class StudyTaskPanel(CloseOnlyPanel):
                     if repeated else "") + "."
                  + (f" Read as {escape(result.read_as)}." if result.read_as else ""))
         return added
+
+
+def unread_note(unread):
+    """The sentences of the stored records that cannot be read (stiffness_study.readable_records),
+    as HTML, with what follows: they are kept as stored but neither shown nor counted, and
+    what writes the cohort back (or out) is refused, since it would lose them."""
+    them = "it" if len(unread) == 1 else "them"
+    return ("⚠ " + "<br>⚠ ".join(escape(u) for u in unread)
+            + f". Kept as stored, but not shown or counted. Recording, removing, importing, putting back and "
+            f"exporting are refused while {them} cannot be read, so as not to lose {them}: mend the stored "
+            f"record{'' if len(unread) == 1 else 's'}, or undo the edit that broke {them}.")
 
 
 def _names(records, shown=5):

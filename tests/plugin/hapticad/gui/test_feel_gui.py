@@ -273,6 +273,38 @@ class FeelGuiTest(unittest.TestCase):
         self.assertGreater(pressed, 0.2)
         self.assertLess(float(normal.max()), 1.3 * pressed)
 
+    def test_a_hidden_part_is_felt_where_the_mouse_points_as_the_note_says(self):
+        # the note said "Box is hidden: you feel Box's shape", but the view's pick skips
+        # hidden parts: the probe never touched it
+        self.box.ViewObject.Visibility = False
+        h.process_events()
+        self.open_feel()
+        self.assertIn("Box is hidden", h.widget(QtWidgets.QLabel, "feelMessage").text())
+        view = Gui.ActiveDocument.ActiveView
+        for camera, point in (("Orthographic", (10.0, 8.0, 20.0)), ("Perspective", (30.0, 22.0, 20.0))):
+            view.setCameraType(camera)
+            h.process_events()
+            h.mouse("move", h.screen_pos(np.array(point)))
+            h.wait_for(lambda: np.linalg.norm(probe_mm("proxy_m")[:2] - point[:2]) < 1.0
+                       and "Box.Face6" in h.widget(QtWidgets.QLabel, "feelFace").text(),
+                       f"{camera}: the proxy on the hidden top face at {point}: {probe_mm('proxy_m')}")
+            self.assertAlmostEqual(float(probe_mm("proxy_m")[2]), 20.0, delta=0.1)
+        h.grab_screen("feel_hidden_part.png")
+        # off the part the hand lifts off, as over a part that is shown
+        h.mouse("move", h.screen_pos(np.array([90.0, -60.0, 0.0])))
+        h.wait_for(lambda: "not touching" in h.widget(QtWidgets.QLabel, "feelFace").text(), "lifted off")
+
+    def test_a_vibration_whose_part_was_deleted_is_said_when_feeling_starts(self):
+        motor = self.doc.addObject("Part::Box", "Motor")
+        motor.Placement.Base = App.Vector(60, 0, 0)
+        self.doc.recompute()
+        vibration = HaptiCAD.make_vibration(self.doc, motor)
+        self.doc.removeObject("Motor")
+        self.doc.recompute()
+        self.open_feel()
+        self.assertIn(f"Note: {vibration.Label}: no part to vibrate: Motor, which it vibrated, was deleted; undo "
+                      "the deletion", h.widget(QtWidgets.QLabel, "feelMessage").text())
+
     def test_the_wheel_turned_while_coming_down_sets_where_it_lands(self):
         panel = self.open_feel()
         chart = h.widget(QtWidgets.QWidget, "stripChart")

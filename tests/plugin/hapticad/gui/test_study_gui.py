@@ -243,6 +243,61 @@ class StudyGuiTest(unittest.TestCase):
                       h.widget(QtWidgets.QLabel, "cohortStats").text())
         self.assertEqual(study.Participants, 2)
 
+    def test_a_study_holding_a_record_that_cannot_be_read_opens_names_it_and_loses_nothing(self):
+        # a hand-edited record lacking its gender: records() refuses it by name, and the
+        # panel, which counted records(), raised as it opened
+        import json
+
+        study = HaptiCAD.make_study(self.doc, self.surface)
+        study.Label = "Neck"
+        HaptiCAD.record_preference(study, "Ann", "F", "18-25", None, None)
+        HaptiCAD.record_preference(study, "Zoë", "F", "26-40", 52, 1650)
+        data = json.loads(study.Cohort)
+        del data[1]["gender"]
+        study.Cohort = stored = json.dumps(data)
+        self.doc.recompute()
+        unread = "Neck: stored record 2 of 2 (Zoë) cannot be read: it lacks gender"
+        with h.uncaught_errors() as errors:
+            self.open_study()
+            table = h.widget(QtWidgets.QTableWidget, "cohortTable")
+            self.assertEqual([table.item(r, 0).text() for r in range(table.rowCount())], ["Ann"])
+            stats = h.widget(QtWidgets.QLabel, "cohortStats").text()
+            self.assertIn(f"⚠ {unread}. Kept as stored, but not shown or counted", stats)
+            self.assertIn("all: n 1", stats)
+            self.assertIn(f"Not recordable: {unread}", h.widget(QtWidgets.QLabel, "studyValue").text())
+            h.widen_panel(560)
+            _scroll_panel_to_end()
+            h.grab_screen("study_unreadable_record.png")
+            # what writes the cohort back refuses, naming the record, and nothing is lost
+            fill_participant("Bo")
+            h.widget(QtWidgets.QPushButton, "recordPreference").click()
+            self.assertIn(f"Not recorded: {unread}", h.widget(QtWidgets.QLabel, "studyMessage").text())
+            table.selectRow(0)
+            h.widget(QtWidgets.QPushButton, "removeParticipant").click()
+            self.assertIn(f"Not removed: {unread}", h.widget(QtWidgets.QLabel, "cohortStats").text())
+            self.assertFalse(self.doc.HasPendingTransaction)
+            self.assertEqual(study.Cohort, stored)
+            h.press_task_button("Close")
+            # the Feel panel's study controls open too, and say it before a participant records
+            Gui.runCommand("HaptiCAD_Feel")
+            h.process_events()
+            self.assertIn(f"Not recordable: {unread}", h.widget(QtWidgets.QLabel, "studyValue").text())
+            h.widget(QtWidgets.QPushButton, "feelStop").click()
+            h.press_task_button("Close")
+            # a stored cohort not readable at all: said, the panel open, nothing recorded
+            study.Cohort = stored = '{"a": 1}'
+            Gui.ActiveDocument.setEdit(study.Name)
+            h.process_events()
+            whole = "Neck: the stored cohort is not a list of records but dict"
+            self.assertIn(f"⚠ {whole}", h.widget(QtWidgets.QLabel, "cohortStats").text())
+            self.assertEqual(h.widget(QtWidgets.QTableWidget, "cohortTable").rowCount(), 0)
+            fill_participant("Bo")
+            h.widget(QtWidgets.QPushButton, "recordPreference").click()
+            self.assertIn(f"Not recorded: {whole}", h.widget(QtWidgets.QLabel, "studyMessage").text())
+            h.press_task_button("Close")
+        self.assertEqual(errors, [])
+        self.assertEqual(study.Cohort, stored)
+
     def test_a_name_recorded_again_is_noted_not_refused(self):
         study = self.open_study()
         fill_participant("Ann")

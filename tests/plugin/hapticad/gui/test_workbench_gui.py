@@ -11,6 +11,7 @@ import FreeCADGui as Gui
 from PySide2 import QtGui, QtWidgets
 
 import HaptiCAD
+from hapticad import vibration_object
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gui_helpers as h  # noqa: E402
@@ -110,6 +111,31 @@ class WorkbenchGuiTest(unittest.TestCase):
         # a script is told the same
         with self.assertRaisesRegex(ValueError, "BoxLink is a link to Box"):
             HaptiCAD.make_surface(self.doc, [(link, "Face6")])
+
+    def test_deleting_a_vibrating_part_names_it_in_its_vibration_and_undo_mends_it(self):
+        # the vibration said only "no part to vibrate", for good, after Std_Delete of its part
+        HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])
+        vibration = HaptiCAD.make_vibration(self.doc, self.box)
+        self.box.Label = "Razor head"
+        self.doc.UndoMode = 1
+        self.doc.recompute()
+        before = h.report_text()
+        Gui.Selection.addSelection(self.box)
+        with h.MessageBoxes(press=QtWidgets.QMessageBox.Yes) as boxes:
+            Gui.runCommand("Std_Delete")
+            h.process_events()
+        self.assertIn(vibration.Name, boxes.seen[0][1])  # FreeCAD's "might break" lists it
+        self.doc.recompute()
+        h.process_events()
+        said = h.report_text()[len(before):]
+        self.assertIn(f"{vibration.Label}: no part to vibrate: Razor head, which it vibrated, was deleted; undo the "
+                      f"deletion, link a part in its Part property (Data tab) or delete {vibration.Label}", said)
+        self.assertIsNone(vibration.Part)
+        Gui.runCommand("Std_Undo")
+        self.doc.recompute()
+        h.process_events()
+        self.assertEqual(vibration.Part.Name, "Box")
+        self.assertEqual(vibration_object.validate(vibration), [])
 
     def test_every_panel_fits_freecads_combo_view_as_it_opens(self):
         # FreeCAD's Combo View opens about 250 px wide and its task panels do not scroll
