@@ -139,7 +139,9 @@ class OverlayGeometryTest(unittest.TestCase):
         self.box.Visibility = assembly.Visibility = True
         self.assertEqual(len(overlay.legend_entries([a, b], "Roughness")), 2)  # one category and the stripes
 
-    def test_broken_references_are_not_drawn(self):
+    def _bore_tagged_in_a_cut(self):
+        """(the Cut of a hole through the box, its bore's face names, a surface tagging the
+        first bore face and Face1)."""
         hole = self.doc.addObject("Part::Cylinder", "Hole")
         hole.Placement.Base = App.Vector(110, 10, -5)
         hole.Height = 30
@@ -149,6 +151,10 @@ class OverlayGeometryTest(unittest.TestCase):
         bore = [f"Face{i + 1}" for i, f in enumerate(cut.Shape.Faces) if type(f.Surface).__name__ == "Cylinder"]
         s = HaptiCAD.make_surface(self.doc, [(cut, bore[0]), (cut, "Face1")])
         self.doc.recompute()
+        return cut, bore, s
+
+    def test_broken_references_are_not_drawn(self):
+        cut, bore, s = self._bore_tagged_in_a_cut()
         self.assertEqual(len(overlay.overlay_faces(s)), 2)
         cut.Tool = self.doc.addObject("Part::Sphere", "Ball")
         self.doc.recompute()
@@ -159,22 +165,14 @@ class OverlayGeometryTest(unittest.TestCase):
         # the part's recompute redraws the overlay before the surface has matched its
         # faces again: "HapticSurface: cannot draw Cut.Face7: Index out of bound" came
         # before the surface's own "reference ... is broken"
-        hole = self.doc.addObject("Part::Cylinder", "Hole")
-        hole.Placement.Base = App.Vector(110, 10, -5)
-        hole.Height = 30
-        cut = self.doc.addObject("Part::Cut", "Cut")
-        cut.Base, cut.Tool = self.box, hole
-        self.doc.recompute()
-        bore = [f"Face{i + 1}" for i, f in enumerate(cut.Shape.Faces) if type(f.Surface).__name__ == "Cylinder"]
-        s = HaptiCAD.make_surface(self.doc, [(cut, bore[0]), (cut, "Face1")])
-        self.doc.recompute()
+        cut, bore, s = self._bore_tagged_in_a_cut()
         self.assertGreater(int(bore[0][4:]), 6)  # a number the plain box has not
         warnings = []
         original = App.Console.PrintWarning
         App.Console.PrintWarning = warnings.append
         try:
-            hole.Placement.Base = App.Vector(300, 10, -5)  # the hole leaves the part
-            hole.recompute()
+            cut.Tool.Placement.Base = App.Vector(300, 10, -5)  # the hole leaves the part
+            cut.Tool.recompute()
             cut.recompute()  # the part only: the surface has not followed yet
             self.assertEqual([f.name for f in overlay.overlay_faces(s)], ["Cut.Face1"])
         finally:
