@@ -321,6 +321,7 @@ TextureFit FitTexture(const std::vector<TextureRecording>& recordings,
   fit.period_m = lambda;
   const double settle_s =
       options.lowpass_hz > 0 ? kLowPassSettleTimeConstants / (2 * kPi * options.lowpass_hz) : 0.0;
+  bool settle_longer = false;  // the filter's start-up, not the window, cut a stroke's start
   double seen_min = INFINITY;
   double seen_max = 0;
   for (std::size_t r = 0; r < recordings.size(); ++r) {
@@ -330,6 +331,7 @@ TextureFit FitTexture(const std::vector<TextureRecording>& recordings,
     const double window = VelocityWindow(rec, options.velocity_window_s);
     const double half = 0.5 * window;
     const double lead = std::max(half, settle_s);
+    settle_longer |= settle_s > half;
     const std::vector<double> v = WindowVelocity(rec, window);
     for (double value : v) {
       if (!std::isfinite(value)) continue;
@@ -460,7 +462,7 @@ TextureFit FitTexture(const std::vector<TextureRecording>& recordings,
         << options.speed_tolerance * 100 << " % of " << SpeedList(targets)
         << " mm/s in one direction over " << options.min_periods << " periods ("
         << Mm(options.min_periods * lambda) << " mm) of the grating";
-    if (settle_s > 0.5 * options.velocity_window_s) {
+    if (settle_longer) {
       std::ostringstream settle;
       settle.precision(2);
       settle << settle_s;

@@ -277,7 +277,7 @@ class StudyControls(QtWidgets.QWidget):
                                                        self.force_limit())
         except ValueError as exc:
             doc.abortTransaction()
-            self.show_message(f"Not recorded: {exc}", error=True)
+            self.show_message(f"Not recorded: {escape(str(exc))}", error=True)  # may quote a hand-edited record
             return None
         doc.commitTransaction()
         if cohort.beyond_force_limit(record):  # its forces were not felt as designed: the star's note would not hold

@@ -765,6 +765,8 @@ class SurfaceTaskPanel:
             return
         if not self.doc.HasPendingTransaction:
             self._transaction_taken = True
+            # Cancel now has no transaction to abort: it must not clear what the Undo touched
+            self.up_to_date = [o.Name for o in self.doc.Objects if "Touched" not in o.State]
         if self.other_edits is not None:  # the Undo took those with it: Cancel no longer would
             self.other_edits.forget()
         self.load()
