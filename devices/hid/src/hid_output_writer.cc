@@ -91,14 +91,10 @@ class PostClock {
 
 struct HidOutputWriter::State {
   explicit State(hid_device* h) : handle(h) {}
-  ~State() {
-    if (owns_handle) hid_close(handle);
-  }
   State(const State&) = delete;
   State& operator=(const State&) = delete;
 
-  hid_device* const handle;
-  bool owns_handle = false;  // once the thread runs (before, the caller still owns it)
+  hid_device* const handle;  // the thread's once it runs; it closes it before `exited`
 
   struct Slot {
     Report report{};
@@ -252,6 +248,11 @@ void Loop(std::shared_ptr<State> s) {
       s->wake.wait_for(lock, std::chrono::duration<double>(kOutsidePollS));
     }
   }
+  // closed before `exited`: a destructor that saw the thread end returns with the handle
+  // closed (closed after, by the last owner of the state, it raced the caller's next look)
+  lock.unlock();
+  hid_close(s->handle);
+  lock.lock();
   s->exited = true;
   s->done.notify_all();
 }
@@ -266,7 +267,6 @@ double HidOutputWriter::MonotonicSeconds() {
 
 HidOutputWriter::HidOutputWriter(hid_device* handle) : state_(std::make_shared<State>(handle)) {
   std::thread(Loop, state_).detach();  // "joined" by waiting for `exited` (the destructor)
-  state_->owns_handle = true;          // ~State reads it after the last owner lets go (ordered)
 }
 
 HidOutputWriter::~HidOutputWriter() {

@@ -9,6 +9,7 @@
 #include <pthread.h>
 #include <sched.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -16,6 +17,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -287,6 +289,31 @@ TEST_F(Writer, LetsGoOfAWriteStuckInTheKernelWithinItsBound) {
   // when the write times out, the abandoned thread runs the job and closes its handle
   ASSERT_TRUE(Eventually([&] { return hidemu::OpenHandles(c.path) == 0; }));
   EXPECT_TRUE(closed->load());
+}
+
+TEST_F(Writer, ItsHandleIsClosedWhenTheDestructorReturns) {
+  // The handle used to be closed by whichever of the destructor and the ended thread let go
+  // of the writer's state last: now and then the thread, just after the destructor had
+  // returned (seen in CI, as a handle still open on a device just closed). Busy threads on
+  // every core make the thread lose its core at that moment more often; seeded by nothing:
+  // the race is the scheduler's, so this test can only fail on a chance, not pass on one.
+  std::atomic<bool> stop{false};
+  std::vector<std::thread> busy;
+  for (unsigned i = 0; i < std::max(2u, std::thread::hardware_concurrency()); ++i) {
+    busy.emplace_back([&stop] {
+      while (!stop.load(std::memory_order_relaxed)) {
+      }
+    });
+  }
+  int still_open = 0;
+  for (int i = 0; i < 300; ++i) {
+    auto w = Plug();
+    w.reset();
+    still_open += hidemu::OpenHandles("emu:0");
+  }
+  stop = true;
+  for (std::thread& t : busy) t.join();
+  EXPECT_EQ(still_open, 0);
 }
 
 }  // namespace

@@ -33,7 +33,9 @@
 // or the servo thread off the tick (they lock and may allocate); their waits are bounded
 // by the caller's wait_s.
 //
-// Ending: the destructor waits at most kAbandonAfterS for the thread. A thread still
+// Ending: the destructor waits at most kAbandonAfterS for the thread, which closes its
+// handle before it ends: a destructor that did not abandon it returns with the handle
+// closed (a device opened again at once is not still held). A thread still
 // inside hidapi then (a write stuck in the kernel) is abandoned, detached: when the call
 // returns it runs the jobs still queued (the session close), closes its handle and frees
 // its state, touching nothing of its owner's. A process may exit meanwhile: the kernel
