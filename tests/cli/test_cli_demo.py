@@ -19,6 +19,21 @@ def run_cli(*args):
 
 
 class DemoCommandTest(unittest.TestCase):
+    def test_an_output_folder_that_is_a_file_is_refused_before_any_work(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            taken = os.path.join(tmp, "notes.txt")
+            with open(taken, "w", encoding="utf-8") as handle:
+                handle.write("mine\n")
+            for out in (taken, os.path.join(taken, "demo")):
+                with self.subTest(out=out):
+                    proc = run_cli("demo", "--headless", "--out", out)
+                    self.assertEqual(proc.returncode, 2, proc.stdout)
+                    self.assertIn(f"{taken} is a file, not a folder", proc.stderr)
+                    self.assertNotIn("Traceback", proc.stderr)
+            with open(taken, encoding="utf-8") as handle:
+                self.assertEqual(handle.read(), "mine\n")  # nothing written over it
+            self.assertEqual(os.listdir(tmp), ["notes.txt"])
+
     def test_headless_demo_says_what_each_face_felt_and_json_holds_it_all(self):
         with tempfile.TemporaryDirectory() as tmp:
             proc = run_cli("demo", "--headless", "--out", os.path.join(tmp, "text"))

@@ -19,6 +19,8 @@ import unicodedata
 from dataclasses import MISSING, asdict, dataclass, field
 from datetime import datetime, timedelta
 
+from .atomic_file import replacing
+
 NOT_GIVEN = "not given"  # a participant need not say
 GENDERS = ("F", "M", "other", NOT_GIVEN)
 AGE_BANDS = ("under 18", "18-25", "26-40", "41-60", "over 60", NOT_GIVEN)  # Table 3's bands and more
@@ -485,16 +487,9 @@ def spreadsheet_safe(text):
 def write_csv(path, records):
     """Writes ``records`` to ``path`` as UTF-8 (what read_csv reads, whatever the system's
     encoding: a Windows FreeCAD wrote cp1252 and stopped at the first name it had no
-    character for, the file cut short). All or nothing: written beside it, then moved in."""
-    part = f"{path}.part"
-    try:
-        with open(part, "w", newline="", encoding="utf-8") as handle:
-            _write_rows(handle, records)
-        os.replace(part, path)
-    except BaseException:
-        if os.path.exists(part):
-            os.remove(part)
-        raise
+    character for, the file cut short). All or nothing (atomic_file.replacing)."""
+    with replacing(path, newline="") as handle:
+        _write_rows(handle, records)
 
 
 def _write_rows(handle, records):

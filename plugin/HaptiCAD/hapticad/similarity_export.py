@@ -10,6 +10,7 @@ carries their eq. 2 values, so a row reads on its own. No GUI.
 """
 import csv
 
+from .atomic_file import replacing
 from .cohort import spreadsheet_safe
 from .similarity_study import SYMBOLS, TEXTURE_VALUES, classings_pooled, comparable, runs
 
@@ -51,11 +52,12 @@ def answer_rows(study):
 
 def write_csv(path, study):
     """Writes every answer of every kept run of ``study`` to ``path``; returns the number
-    of rows. Raises ValueError when the study keeps no run."""
+    of rows, all or nothing (atomic_file.replacing: a file there is left as it was if the
+    write fails). Raises ValueError when the study keeps no run, OSError."""
     rows = answer_rows(study)
     if not rows:
         raise ValueError(f"{study.Label}: no participant's run is kept yet: nothing to export")
-    with open(path, "w", newline="", encoding="utf-8") as handle:
+    with replacing(path, newline="") as handle:
         out = csv.DictWriter(handle, fieldnames=COLUMNS)
         out.writeheader()
         out.writerows(rows)

@@ -3,10 +3,12 @@
 (warm-ups and classings included), runs kept before the order was recorded, the pooled
 flag, each row's stimulus values, spreadsheet-safe names."""
 import csv
+import errno
 import json
 import os
 import tempfile
 import unittest
+from unittest import mock
 
 import FreeCAD as App
 
@@ -108,6 +110,25 @@ class ExportTest(unittest.TestCase):
         with self.assertRaises(ValueError):
             ss.record_run(self.study, record)
         self.assertEqual(json.loads(self.study.Responses or "[]"), [])
+
+    def test_a_write_that_fails_half_way_leaves_the_file_there_as_it_was(self):
+        # the disk fills after the header: the earlier export stays whole, nothing is left beside it
+        with open(self.path, "w", encoding="utf-8") as handle:
+            handle.write("an earlier export\n")
+        ss.record_run(self.study, answered(ss.Run(self.study, "Ada", seed=3)))
+
+        def disk_full(writer, rows):
+            writer.writerow(rows[0])
+            raise OSError(errno.ENOSPC, "No space left on device")
+
+        with mock.patch.object(csv.DictWriter, "writerows", disk_full), \
+                self.assertRaisesRegex(OSError, "No space left"):
+            similarity_export.write_csv(self.path, self.study)
+        with open(self.path, encoding="utf-8") as handle:
+            self.assertEqual(handle.read(), "an earlier export\n")
+        self.assertEqual(os.listdir(self.tmp.name), ["answers.csv"])
+        self.assertEqual(similarity_export.write_csv(self.path, self.study), 8)  # and it writes when it can
+        self.assertEqual(len(self.read()), 8)
 
 
 if __name__ == "__main__":
