@@ -33,6 +33,9 @@ constexpr double kOutsidePollS = 0.05;
 constexpr int kIntervals = 4;  // the period is the shortest of the last four post gaps
 constexpr int kReasonLength = 160;
 constexpr int kEintrRetries = 3;
+// the longest a bounded wait goes on for a thread that is not inside hidapi (not stuck,
+// only not scheduled): a machine that starves it longer is past helping
+constexpr double kStarvedS = 2.0;
 
 void Bump(std::atomic<std::uint64_t>& counter, std::uint64_t n = 1) {
   counter.store(counter.load(std::memory_order_relaxed) + n, std::memory_order_relaxed);
@@ -257,6 +260,28 @@ void Loop(std::shared_ptr<State> s) {
   s->done.notify_all();
 }
 
+// Waits on `s.done` (the lock held) until `ready()`: true; false once at least `wait_s`
+// has passed and the thread has been inside one hidapi call for `wait_s` (stuck in the
+// kernel), or kStarvedS have passed. A thread not yet scheduled (a loaded machine) is not
+// stuck: giving up on it after `wait_s` of the caller's clock called a working device one
+// that does not take commands, and left its handle open after the destructor.
+template <class Ready>
+bool WaitUnlessStuck(State& s, std::unique_lock<std::mutex>& lock, double wait_s, Ready ready) {
+  const double start = HidOutputWriter::MonotonicSeconds();
+  const double give_up = start + std::max(wait_s, kStarvedS);
+  while (!ready()) {
+    const double now = HidOutputWriter::MonotonicSeconds();
+    const double busy_since = s.busy_since_s.load(std::memory_order_relaxed);
+    const double stuck_at = busy_since < 0.0 ? now + wait_s : busy_since + wait_s;
+    if (now >= give_up || (now >= start + wait_s && busy_since >= 0.0 && now >= stuck_at)) {
+      return false;
+    }
+    const double until = std::min(give_up, std::max(start + wait_s, stuck_at));
+    s.done.wait_for(lock, std::chrono::duration<double>(until - now));
+  }
+  return true;
+}
+
 }  // namespace
 
 double HidOutputWriter::MonotonicSeconds() {
@@ -276,8 +301,7 @@ HidOutputWriter::~HidOutputWriter() {
   state_->wake.notify_all();
   // the thread runs the jobs still queued first; one stuck in the kernel is left to
   // finish on its own, with the state it shares (it closes the handle when done)
-  state_->done.wait_for(lock, std::chrono::duration<double>(kAbandonAfterS),
-                        [&] { return state_->exited; });
+  WaitUnlessStuck(*state_, lock, kAbandonAfterS, [&] { return state_->exited; });
 }
 
 void HidOutputWriter::Post(const Report& report, double now_s) {
@@ -358,17 +382,15 @@ bool HidOutputWriter::Run(std::function<void(hid_device*)> job, double wait_s) {
   state_->jobs.push_back(std::move(job));
   const std::uint64_t ticket = ++state_->jobs_queued;
   state_->wake.notify_all();
-  return state_->done.wait_for(lock, std::chrono::duration<double>(wait_s),
-                               [&] { return state_->jobs_done >= ticket; });
+  return WaitUnlessStuck(*state_, lock, wait_s, [&] { return state_->jobs_done >= ticket; });
 }
 
 bool HidOutputWriter::WaitUntilWritten(double wait_s) {
   const std::uint64_t target = state_->posted.load(std::memory_order_acquire);
   std::unique_lock<std::mutex> lock(state_->mutex);
   state_->wake.notify_all();
-  return state_->done.wait_for(lock, std::chrono::duration<double>(wait_s), [&] {
-    return state_->written.load(std::memory_order_acquire) >= target;
-  });
+  return WaitUnlessStuck(*state_, lock, wait_s,
+                         [&] { return state_->written.load(std::memory_order_acquire) >= target; });
 }
 
 }  // namespace hapticad

@@ -18,6 +18,7 @@
 #include "alloc_counter.h"
 #include "hapticad/devices/hid/hid_device_finder.h"
 #include "hid_emulator.h"
+#include "thread_stall.h"
 
 namespace hapticad {
 namespace {
@@ -83,6 +84,20 @@ TEST_F(HidOnEmulator, OpensNegotiatesAndRunsASession) {
   d->BeginSession();
   EXPECT_TRUE(hidemu::GetSnapshot(id).session_open);
   d->EndSession();
+  EXPECT_FALSE(hidemu::GetSnapshot(id).session_open);
+}
+
+TEST_F(HidOnEmulator, AWriterOnlySlowToBeScheduledDoesNotMakeADeviceRefuseASession) {
+  // the writer kept from running 0.3 s before a session, outside hidapi: BeginSession()
+  // waited 0.1 s for it and threw "is not taking commands: a write to it has waited 0.0 s"
+  const int id = hidemu::AddDevice(FirmwareConfig{});
+  auto d = HidDevice::Open("emu:0");
+  d->set_clock(&hidemu::Now);
+  ASSERT_GE(testing_stall::StallThreads("hid-writer", 0.3), 1);
+  EXPECT_NO_THROW(d->BeginSession());
+  EXPECT_TRUE(hidemu::GetSnapshot(id).session_open);
+  ASSERT_GE(testing_stall::StallThreads("hid-writer", 0.3), 1);
+  d->EndSession();  // waits for the close to reach the device
   EXPECT_FALSE(hidemu::GetSnapshot(id).session_open);
 }
 

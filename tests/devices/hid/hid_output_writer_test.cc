@@ -24,6 +24,7 @@
 #include "alloc_counter.h"
 #include "hid_emulator.h"
 #include "syscall_counter.h"
+#include "thread_stall.h"
 
 namespace hapticad {
 namespace {
@@ -314,6 +315,21 @@ TEST_F(Writer, ItsHandleIsClosedWhenTheDestructorReturns) {
   stop = true;
   for (std::thread& t : busy) t.join();
   EXPECT_EQ(still_open, 0);
+}
+
+TEST_F(Writer, AThreadOnlyNotScheduledIsWaitedForNotCalledStuck) {
+  // the writer kept from running for 0.3 s (a loaded machine), outside hidapi: a 50 ms
+  // Run() gave up on it, so BeginSession() called a working device one not taking
+  // commands ("a write to it has waited 0.0 s"), and the destructor left its handle open
+  auto w = Plug();
+  ASSERT_TRUE(w->Run([](hid_device*) {}, 1.0));  // the thread runs (and is named) now
+  ASSERT_GE(testing_stall::StallThreads("hid-writer", 0.3), 1);
+  auto start = Clock::now();
+  EXPECT_TRUE(w->Run([](hid_device*) {}, 0.05));
+  EXPECT_GT(Seconds(start, Clock::now()), 0.2);  // it did wait the stall out
+  ASSERT_GE(testing_stall::StallThreads("hid-writer", 0.3), 1);
+  w.reset();
+  EXPECT_EQ(hidemu::OpenHandles("emu:0"), 0);
 }
 
 }  // namespace

@@ -40,9 +40,10 @@
 // never calls hidapi, whose error text is not thread-safe).
 //
 // Ending. EndSession() hands the close (zero force with ENABLE = 0, SESSION = 0) to the
-// writer and waits for it at most kEndSessionWaitS; a writer stuck in the kernel sends it
-// when its write returns. The destructor waits at most HidOutputWriter::kAbandonAfterS
-// more, then leaves the stuck writer to finish and close its handle on its own.
+// writer and waits for it, kEndSessionWaitS of a writer stuck in the kernel (the writer's
+// bounded waits: hid_output_writer.h), which sends it when its write returns. The
+// destructor waits HidOutputWriter::kAbandonAfterS more for a stuck writer, then leaves it
+// to finish and close its handle on its own.
 //
 // Age: time since the last fresh report, plus how much later than usual that report
 // arrived (its delay over the smallest recent delay, comparing the device's clock with
@@ -58,15 +59,16 @@
 // 12's) allocates the error text of a read that fails or is interrupted (a signal): a tick
 // allocates only at an unplug, which ends the session, or at an EINTR (the emulator, through
 // which the tick's allocations are counted, allocates nothing). The statistics and
-// DescribeFault() may be read from any thread. BeginSession() and EndSession() wait at most
-// kEndSessionWaitS for the writer; BeginSession() sends its session request through the
-// writer and waits at most kBeginSessionWaitS for the answer. Open() still asks on the
-// calling thread, which a device that does not answer blocks for up to 5 s an exchange:
-// the workbench opens devices on a worker thread (plugin .../device_opening.py), and
-// ListDevices() waits for Probe() at most kProbeWaitS. Open() and Probe() may run on
-// several threads at once: their calls into hidapi's global state (hid_open_path, and its
-// error text after a failed open) take turns under one process-wide lock, which nothing
-// that waits on a device holds.
+// DescribeFault() may be read from any thread. BeginSession() and EndSession() wait
+// kEndSessionWaitS for a writer stuck in the kernel; BeginSession() sends its session
+// request through the writer and waits kBeginSessionWaitS for the answer (bounded waits
+// as hid_output_writer.h says: a writer thread only slow to be scheduled is waited for).
+// Open() still asks on the calling thread, which a device that does not answer blocks for
+// up to 5 s an exchange: the workbench opens devices on a worker thread (plugin
+// .../device_opening.py), and ListDevices() waits for Probe() at most kProbeWaitS. Open()
+// and Probe() may run on several threads at once: their calls into hidapi's global state
+// (hid_open_path, and its error text after a failed open) take turns under one
+// process-wide lock, which nothing that waits on a device holds.
 #pragma once
 
 #include <atomic>
@@ -127,7 +129,7 @@ class HidDevice final : public Device {
   // How long BeginSession() waits for an input report, to go on from the last command the
   // device applied (its report period is 2.5 ms at most).
   static constexpr int kEchoWaitMs = 50;
-  // The longest EndSession() and BeginSession() wait for the writer thread.
+  // How long EndSession() and BeginSession() wait for a writer stuck in the kernel.
   static constexpr double kEndSessionWaitS = 0.1;
   // How long BeginSession() waits for the device to answer its session request (a
   // feature-report exchange: milliseconds when the device answers).

@@ -30,10 +30,13 @@
 // thread per session, which calls EndSession() before it exits); wait-free, no
 // allocation, no lock, no system call. failed(), failure_reason(), Stats() and busy_s():
 // any thread. BeginSession(), EndSession(), Run(), WaitUntilWritten(): a control thread,
-// or the servo thread off the tick (they lock and may allocate); their waits are bounded
-// by the caller's wait_s.
+// or the servo thread off the tick (they lock and may allocate). Their waits are bounded
+// by the caller's wait_s as spent by the thread inside one hidapi call: a wait gives up
+// once wait_s has passed and the thread has been inside one call for wait_s (stuck in the
+// kernel), and waits on, at most 2 s in all, for a thread that is only not scheduled yet
+// (a loaded machine), which is not the device's fault.
 //
-// Ending: the destructor waits at most kAbandonAfterS for the thread, which closes its
+// Ending: the destructor waits for the thread so (kAbandonAfterS), which closes its
 // handle before it ends: a destructor that did not abandon it returns with the handle
 // closed (a device opened again at once is not still held). A thread still
 // inside hidapi then (a write stuck in the kernel) is abandoned, detached: when the call
@@ -77,7 +80,7 @@ class HidOutputWriter {
   static constexpr double kPollS = 20e-6;        // then polls this often until it is there
   static constexpr double kIdlePollS = 1e-3;     // in a session with no post for a while
   static constexpr int kFailuresToGiveUp = 3;    // failed writes in a row: the device is gone
-  static constexpr double kAbandonAfterS = 0.1;  // the destructor's longest wait
+  static constexpr double kAbandonAfterS = 0.1;  // the destructor's wait bound (above)
 
   // Takes `handle` (opened for this writer alone; closed when the thread ends) and starts
   // the thread. Throws std::system_error if no thread can be started (or std::bad_alloc);
@@ -115,10 +118,10 @@ class HidOutputWriter {
   void EndSession();
   // Runs `job` on the thread with its handle, after the write under way (reports posted
   // before it and not yet written are dropped: the job's own writes come after them).
-  // Waits at most `wait_s` for it; true if it finished. Otherwise it runs when the thread
-  // gets to it (also after the destructor: it must own what it uses).
+  // Waits for it as bounded by `wait_s` (above); true if it finished. Otherwise it runs when the
+  // thread gets to it (also after the destructor: it must own what it uses).
   bool Run(std::function<void(hid_device_*)> job, double wait_s);
-  // Waits until every report posted so far is written (or failed), at most `wait_s`, and
+  // Waits until every report posted so far is written (or failed), bounded by `wait_s`, and
   // wakes the thread at once for them. True if so. For callers that step the tick by hand
   // (tests, tools) and need the writes done before they go on; does not allocate.
   bool WaitUntilWritten(double wait_s);
