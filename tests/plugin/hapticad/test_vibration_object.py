@@ -1,14 +1,18 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """HapticVibration: a part that vibrates when powered; validation and persistence."""
 import os
+import sys
 import tempfile
 import unittest
 
 import FreeCAD as App
 
 import HaptiCAD
-from hapticad import vibration_object
+from hapticad import _core, vibration_object
 from hapticad.document_scene import build_document_scene
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from host_stalls import run_without_host_stall  # noqa: E402
 
 
 class VibrationTest(unittest.TestCase):
@@ -103,7 +107,7 @@ class VibrationTest(unittest.TestCase):
         def felt(rate_hz):
             """(strongest frequency, its amplitude) of the normal force while sliding."""
             scene = build_document_scene(self.doc)
-            result = run_stroke_in_servo_loop(scene, Stroke((10, 20, 20), (70, 20, 20), 50, 1.0, rate_hz=rate_hz))
+            result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, Stroke((10, 20, 20), (70, 20, 20), 50, 1.0, rate_hz=rate_hz)), _core.FLAG_FAULT_WATCHDOG)
             t = result.trace
             sliding = (t["time_s"] > result.plan.slide_start_s) & (t["time_s"] < result.plan.slide_end_s)
             fz = np.asarray(t["force_n"])[sliding, 2]
@@ -136,7 +140,7 @@ class VibrationTest(unittest.TestCase):
             """The smallest of the largest shake in each cycle's samples, as a share of
             the amplitude: 1 when every cycle's peak is felt."""
             scene = build_document_scene(self.doc)
-            result = run_stroke_in_servo_loop(scene, Stroke((10, 20, 20), (40, 20, 20), 50, 1.0, rate_hz=rate_hz))
+            result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, Stroke((10, 20, 20), (40, 20, 20), 50, 1.0, rate_hz=rate_hz)), _core.FLAG_FAULT_WATCHDOG)
             t = result.trace
             sliding = (t["time_s"] > result.plan.slide_start_s) & (t["time_s"] < result.plan.slide_end_s)
             shake = np.abs(np.asarray(t["vibration_force_n"])[sliding])
@@ -163,8 +167,10 @@ class VibrationTest(unittest.TestCase):
                               dynamic_friction=0.0, stiffness_n_per_mm=0.4)
         # a phone's buzz, 0.3 N, on a touch of 0.25 mm (0.1 N): more than the push
         v = HaptiCAD.make_vibration(self.doc, self.razor, frequency_hz=200.0, amplitude_n=0.3, axis=(0, 0, 1))
-        result = run_stroke_in_servo_loop(build_document_scene(self.doc),
-                                          Stroke((10, 20, 20), (70, 20, 20), 50, 0.25, rate_hz=1000))
+        scene = build_document_scene(self.doc)
+        result = run_without_host_stall(
+            lambda: run_stroke_in_servo_loop(scene, Stroke((10, 20, 20), (70, 20, 20), 50, 0.25, rate_hz=1000)),
+            _core.FLAG_FAULT_WATCHDOG)
         t = result.trace
         sliding = (t["time_s"] > result.plan.slide_start_s) & (t["time_s"] < result.plan.slide_end_s)
         fz = np.asarray(t["force_n"])[sliding, 2]
