@@ -14,8 +14,10 @@ import unittest
 
 CLI = os.environ["HAPTICAD_CLI"]
 sys.path.insert(0, os.environ["HAPTICAD_MOD"])
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 
 from hapticad.freecad_env import ensure_freecad  # noqa: E402
+from other_user import run_as_nobody, shared_folder  # noqa: E402
 
 App = ensure_freecad()
 import HaptiCAD  # noqa: E402
@@ -286,6 +288,37 @@ class CohortCommandTest(unittest.TestCase):
         self.assertEqual(proc.returncode, 2, proc.stderr)
         self.assertIn(f"argument --csv: {missing}: there is no folder {os.path.dirname(missing)}", proc.stderr)
         self.assertNotIn(".part", proc.stderr)
+
+    def test_a_csv_read_only_for_the_user_or_behind_a_link_is_not_replaced(self):
+        # a folder the user may write in let the CSV replace a read-only file, and a link
+        # became a plain file (the file it pointed to kept the old table)
+        import shutil
+
+        place = shared_folder(self)
+        shutil.copy(self.path, place)
+        document = os.path.join(place, "toothbrush.FCStd")
+        folder = os.path.join(place, "out")
+        os.mkdir(folder)
+        os.chmod(folder, 0o777)
+        read_only = os.path.join(folder, "kept.csv")
+        for path in (read_only, os.path.join(folder, "real.csv")):
+            with open(path, "w", encoding="utf-8") as handle:
+                handle.write("old\n")
+        os.chmod(read_only, 0o444)
+        os.chmod(os.path.join(folder, "real.csv"), 0o666)
+        os.symlink("real.csv", os.path.join(folder, "link.csv"))
+        proc = run_as_nobody(place, [CLI, "cohort", document, "--csv", read_only])
+        self.assertEqual(proc.returncode, 2, proc.stderr)
+        self.assertIn(f"{read_only}: the file is read-only for you, so it was not written over", proc.stderr)
+        with open(read_only, encoding="utf-8") as handle:
+            self.assertEqual(handle.read(), "old\n")
+        proc = run_as_nobody(place, [CLI, "cohort", document, "--csv", os.path.join(folder, "link.csv")])
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertTrue(os.path.islink(os.path.join(folder, "link.csv")))
+        with open(os.path.join(folder, "real.csv"), encoding="utf-8") as handle:
+            self.assertEqual([r["name"] for r in csv.DictReader(handle)], ["Steven", "Yang", "Zhang"])
+        self.assertEqual(os.stat(os.path.join(folder, "real.csv")).st_mode & 0o777, 0o666)  # its permissions kept
+        self.assertEqual(sorted(os.listdir(folder)), ["kept.csv", "link.csv", "real.csv"])
 
     @unittest.skipUnless(os.path.isdir("/proc/self"), "needs Linux's /proc, where no file can be made")
     def test_a_file_that_cannot_be_written_is_said_without_errno_or_temporary_name(self):

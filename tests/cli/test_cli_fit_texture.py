@@ -21,6 +21,7 @@ from hapticad.freecad_env import ensure_freecad  # noqa: E402
 App = ensure_freecad()
 import HaptiCAD  # noqa: E402
 from hapticad import _core  # noqa: E402
+from other_user import run_as_nobody, shared_folder  # noqa: E402
 from partdesign_parts import make_padded_body  # noqa: E402
 from texture_recordings import write_rig_csv  # noqa: E402
 
@@ -160,6 +161,37 @@ class FitTextureCommandTest(unittest.TestCase):
                 self.assertIn(message, proc.stderr)
         self.assertEqual(os.path.getmtime(path), before)
 
+
+    def test_a_document_the_user_cannot_write_is_refused_before_the_fit_and_left_alone(self):
+        # run as another user (root may write anything): FreeCAD replaced a read-only file
+        # in a writable folder, and in a folder it could not write in the error was a dict
+        # of FreeCAD's exception fields ('sclassname': 'N4Base13FileExceptionE', ...)
+        import shutil
+        import stat
+
+        place = shared_folder(self)
+        rig = shutil.copy(self.rig, place)
+        open_folder = os.path.join(place, "open")  # anyone may write in it, the file is read-only
+        locked_folder = os.path.join(place, "locked")  # nobody may write in it, the file is writable
+        for folder, folder_mode, file_mode in ((open_folder, 0o777, 0o444), (locked_folder, 0o755, 0o666)):
+            os.mkdir(folder)
+            path = shutil.copy(self.make_document("doc.FCStd"), folder)
+            os.chmod(path, file_mode)
+            os.chmod(folder, folder_mode)
+        cases = ((os.path.join(open_folder, "doc.FCStd"), "the file is read-only for you; nothing was saved"),
+                 (os.path.join(locked_folder, "doc.FCStd"), f"its folder {locked_folder} cannot be written in"))
+        for path, message in cases:
+            with self.subTest(message=message):
+                before = (os.stat(path).st_mtime_ns, os.stat(path).st_ino)
+                proc = run_as_nobody(place, [CLI, "fit-texture", rig, "--period", "2.5", "--speeds", "50,120",
+                                             "--apply", path, "--surface", "Grip"])
+                self.assertEqual(proc.returncode, 2, proc.stderr)
+                self.assertIn(f"{path}: ", proc.stderr)
+                self.assertIn(message, proc.stderr)
+                self.assertNotIn("sclassname", proc.stderr)
+                self.assertEqual((os.stat(path).st_mtime_ns, os.stat(path).st_ino), before)
+                self.assertEqual(sorted(os.listdir(os.path.dirname(path))), ["doc.FCStd"])
+                self.assertEqual(stat.S_IMODE(os.stat(path).st_mode), 0o444 if "read-only" in message else 0o666)
 
     def test_forces_in_mn_are_refused_on_a_surface_with_a_full_range_too(self):
         # after a fit set Full range, a rig's mN were set as levels of hundreds (TextureDC

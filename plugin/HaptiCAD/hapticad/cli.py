@@ -393,29 +393,15 @@ def _open_document(App, path):
     return doc
 
 
-def _save_keeping_views(doc):
-    """Saves doc in its file as FreeCAD without its GUI does, then puts back what only the
-    GUI writes (GuiDocument.xml: every object's visibility and colours, the colour arrays it
-    names, the thumbnail), as the file held it: saved without them, the document opened in
-    FreeCAD with every part hidden and grey."""
-    path = doc.FileName
-    with zipfile.ZipFile(path) as archive:
-        before = {info.filename: archive.read(info) for info in archive.infolist()}
-    doc.save()
-    with zipfile.ZipFile(path) as archive:
-        written = set(archive.namelist())
-    kept = {name: data for name, data in before.items() if name not in written}
-    if kept:
-        with zipfile.ZipFile(path, "a", zipfile.ZIP_DEFLATED) as archive:
-            for name, data in kept.items():
-                archive.writestr(name, data)
-
-
 def cmd_fit_texture(args):
     from . import texture_fit
 
     if bool(args.apply) != bool(args.surface):
         raise ValueError("--apply DOCUMENT and --surface NAME go together")
+    if args.apply and os.path.exists(args.apply):
+        from .document_saving import check_savable
+
+        check_savable(args.apply)  # before the fit, not after it
     speeds = args.speeds or texture_fit.PAPER_SPEEDS_MM_S
     report = texture_fit.fit_files(args.recordings, args.period, speeds, args.tolerance, args.lowpass,
                                    args.harmonics, args.min_periods)
@@ -427,8 +413,10 @@ def cmd_fit_texture(args):
         result["plot"] = os.path.abspath(args.plot)
     if args.apply:
         App = ensure_freecad()
+        from .document_saving import fingerprint, save_in_place
         from .surface_object import surfaces_of, validate
 
+        read = fingerprint(args.apply) if os.path.isfile(args.apply) else None
         doc = _open_document(App, args.apply)
         try:
             found = [o for o in surfaces_of(doc) if args.surface in (o.Name, o.Label)]
@@ -445,7 +433,7 @@ def cmd_fit_texture(args):
             if problems:
                 raise ValueError(f"{surface.Label}: the fitted texture is not valid: {'; '.join(problems)}; "
                                  "the document was not saved")
-            _save_keeping_views(doc)
+            save_in_place(doc, read)
             result["applied"] = {"document": os.path.abspath(args.apply), "surface": surface.Label,
                                  **{name: getattr(surface, name) for name in
                                     (*texture_fit.FIELDS, "TexturePeriod", "TextureFullRange", "TextureScale")},

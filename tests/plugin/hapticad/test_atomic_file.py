@@ -1,5 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""atomic_file: a file is written whole or not at all, and nothing is left beside it."""
+"""atomic_file: a file is written whole or not at all, and nothing is left beside it; a
+link stays one. (A file the user may not write: tests/cli/test_cli_cohort.py, run as
+another user.)"""
 import json
 import os
 import tempfile
@@ -35,6 +37,20 @@ class ReplacingTest(unittest.TestCase):
                     raise stop
             self.assertEqual(self.read(), "before\n")
             self.assertEqual(os.listdir(self.tmp.name), ["out.csv"])
+
+    def test_a_link_stays_a_link_and_a_file_keeps_its_permissions(self):
+        # moving the new file onto a link replaced the link; the file it named kept the old text
+        real = os.path.join(self.tmp.name, "real.csv")
+        with open(real, "w", encoding="utf-8") as handle:
+            handle.write("old\n")
+        os.chmod(real, 0o600)
+        os.symlink("real.csv", self.path)
+        with atomic_file.replacing(self.path) as handle:
+            handle.write("new\n")
+        self.assertTrue(os.path.islink(self.path))
+        self.assertEqual(self.read(), "new\n")
+        self.assertEqual(os.stat(real).st_mode & 0o777, 0o600)
+        self.assertEqual(sorted(os.listdir(self.tmp.name)), ["out.csv", "real.csv"])
 
     def test_json_in_a_folder_made_for_it(self):
         path = os.path.join(self.tmp.name, "journals", "run.json")
