@@ -843,6 +843,14 @@ def analyse(study):
         raise ValueError(f"{study.Label}: {dims} dimensions for {n} stimuli; give fewer than {n}")
     ordinal = study.Scaling == "Ordinal"
     d = dissimilarity(kept, n)
+    apart = d[np.triu_indices(n, 1)]
+    if apart.max() - apart.min() < 1e-12:
+        # no differences to lay out: every layout fits them (stress 0, "fits exactly") and the
+        # vectors would be fitted to an arbitrary one
+        how = ("the same" if apart[0] < 1e-12 else "nothing alike" if apart[0] > 1 - 1e-12
+               else f"alike to one degree ({100 * (1 - apart[0]):.0f} % of the scale)")
+        raise ValueError(f"{study.Label}: every pair was rated {how}, so the ratings hold no differences to lay out: "
+                         "no space can be drawn from them (check the scale was used, or collect more runs)")
     space = _core.compute_ordinal_perceptual_space(d, dims) if ordinal else _core.compute_perceptual_space(d, dims)
     notes = []
     if ordinal and not space.converged:

@@ -353,6 +353,25 @@ class StudyTest(unittest.TestCase):
         self.assertEqual(study.Participants, 1)
         self.assertNotIn("Touched", study.State)
 
+    def test_ratings_all_alike_are_refused_not_laid_out(self):
+        # every pair rated 1 (or 7): "stress 0.000: the ratings' order fits exactly", and
+        # vectors with r 0.38 drawn over an arbitrary layout
+        study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=0)
+        for rating, how in ((1, "nothing alike"), (7, "the same"), (4, "alike to one degree \\(50 % of the scale\\)")):
+            for scaling in ("Metric", "Ordinal"):
+                with self.subTest(rating=rating, scaling=scaling):
+                    while ss.runs(study):
+                        ss.remove_run(study, 0)
+                    run = ss.Run(study, "P1", seed=1)
+                    while not run.done:
+                        run.present_each()
+                        run.answer("A" if run.current.kind == "class" else rating)
+                    ss.record_run(study, run)
+                    study.Scaling = scaling
+                    with self.assertRaisesRegex(ValueError, f"every pair was rated {how}, so the ratings hold no "
+                                                            "differences to lay out"):
+                        ss.analyse(study)
+
     def test_runs_on_other_stimuli_are_kept_but_not_pooled(self):
         study = HaptiCAD.make_similarity_study(self.doc, self.plate, WarmUps=0)
         ss.record_run(study, finish(ss.Run(study, "P1", seed=1)))
