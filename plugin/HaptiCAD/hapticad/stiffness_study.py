@@ -23,6 +23,7 @@ comes until the document is saved (study_journal). App-only.
 """
 import json
 import math
+import numbers
 import re
 from datetime import datetime
 
@@ -241,6 +242,10 @@ def is_stiffness_study(obj):
 
 
 def studies_of(doc):
+    """The StiffnessStudy objects of a document. Raises ValueError when ``doc`` is not one."""
+    from .surface_object import require_document
+
+    require_document(doc, "studies_of")
     return [o for o in doc.Objects if is_stiffness_study(o)]
 
 
@@ -568,18 +573,28 @@ def record_preference(study, name, gender, age_band, weight_kg, height_mm, devic
     """Keeps a participant's preference for the design as it is now. With the device's
     stable stiffness, a design beyond it is marked (the participant felt less than it);
     with the session's force limit (N), a button whose operating force is above it is
-    marked (its click was never felt: cohort.beyond_force_limit), and the limit kept.
-    Raises ValueError, keeping nothing, if the record or the study is not valid (a design
-    outside the slider's range is not refused: outside_slider)."""
+    marked (its click was never felt: cohort.beyond_force_limit), and the limit kept. Each
+    limit is None when not known, else a finite number > 0. Raises ValueError, keeping
+    nothing, if the record, a limit or the study is not valid (a design outside the
+    slider's range is not refused: outside_slider)."""
+    if not isinstance(name, str):
+        raise ValueError(f"{study.Label}: name must be text (the participant's name or alias), got {name!r}")
+    for label, limit, unit in (("device_max_stiffness_n_per_m", device_max_stiffness_n_per_m, "N/m"),
+                               ("force_limit_n", force_limit_n, "N")):
+        # a NaN or negative limit was kept, starred, and printed as "(nan N, -1 N)"
+        if limit is not None and not (isinstance(limit, numbers.Real) and type(limit).__name__ not in
+                                      ("bool", "bool_") and math.isfinite(limit) and limit > 0):
+            raise ValueError(f"{study.Label}: {label} = {limit!r} must be a finite number > 0 ({unit}), or None "
+                             "when not known")
     wrong = law_problems(study) + slider_problems(study)
     if wrong:
         raise ValueError(f"{study.Label}: {'; '.join(wrong)}")
     value, unit = design_value(study)
     kept = design(study)
-    if device_max_stiffness_n_per_m:
-        kept["DeviceStiffness"] = device_max_stiffness_n_per_m * MM  # N/mm
+    if device_max_stiffness_n_per_m is not None:
+        kept["DeviceStiffness"] = float(device_max_stiffness_n_per_m) * MM  # N/mm
         kept["BeyondDevice"] = float(bool(device_note(study, device_max_stiffness_n_per_m)))
-    if force_limit_n:  # as the stiffness limit is kept: what the session rendered at most
+    if force_limit_n is not None:  # as the stiffness limit is kept: what the session rendered at most
         kept["ForceLimit"] = float(force_limit_n)  # N
         kept["BeyondForceLimit"] = float(bool(force_note(study, force_limit_n)))
     given = [None if v is None else float(v) for v in (weight_kg, height_mm)]  # None: not given

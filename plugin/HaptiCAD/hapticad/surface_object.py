@@ -10,6 +10,7 @@ App-only (no GUI import), so it works in ``freecadcmd`` and from the ``hapticad`
 """
 import json
 import math
+import numbers
 
 import FreeCAD as App
 
@@ -34,6 +35,14 @@ STIFFNESS_MAX_N_PER_MM = 1e3
 FRICTION_MAX = 1e3
 # the lookup-table size BENCHMARKS.md justifies: below 0.1 degree on smooth sketch curves
 DEFAULT_CURVE_TABLE_SIZE = 256
+# degrees: a pattern angle is taken modulo a turn, but past this a float's own step is
+# degrees wide (1e300 mod 360 is noise): such an angle is a slip, refused
+PATTERN_ANGLE_LIMIT_DEG = 1e6
+# make_surface's parameters and the properties they set: giving both is ambiguous
+PARAMETER_PROPERTIES = {"roughness_category": "RoughnessCategory", "pattern": "Pattern",
+                        "pattern_angle_deg": "PatternAngle", "pattern_center_mm": "PatternCenter",
+                        "static_friction": "StaticFriction", "dynamic_friction": "DynamicFriction",
+                        "stiffness_n_per_mm": "Stiffness"}
 
 # name, type, group, tooltip, default, constraint (min, max, step) for numbers
 PROPERTIES = [
@@ -337,8 +346,28 @@ def is_haptic_surface(obj):
     return getattr(obj, "HaptiCADType", None) == TYPE
 
 
+def shown(value):
+    """An argument as an error message names it: an object by its label, else its repr."""
+    label = getattr(value, "Label", None) if isinstance(value, App.DocumentObject) else None
+    return label if isinstance(label, str) else repr(value)
+
+
+def require_document(doc, who):
+    """Raises ValueError, naming ``who`` (the function), unless ``doc`` is a FreeCAD document."""
+    if not isinstance(doc, App.Document):
+        raise ValueError(f"{who}: doc = {shown(doc)} is not a FreeCAD document; pass one (App.ActiveDocument)")
+
+
+def require_surface(surface, who):
+    """Raises ValueError, naming ``who``, unless ``surface`` has a HapticSurface's References."""
+    if not (isinstance(surface, App.DocumentObject) and hasattr(surface, "References")):
+        raise ValueError(f"{who}: {shown(surface)} is not a haptic surface")
+
+
 def surfaces_of(doc):
-    """The HapticSurface objects of a document, in document order."""
+    """The HapticSurface objects of a document, in document order. Raises ValueError
+    when ``doc`` is not a document."""
+    require_document(doc, "surfaces_of")
     return [o for o in doc.Objects if is_haptic_surface(o)]
 
 
@@ -351,7 +380,9 @@ def surface_tagging(obj, face, besides=None):
 
 
 def reference_pairs(surface):
-    """[(object, "FaceN"), ...] of a surface's References."""
+    """[(object, "FaceN"), ...] of a surface's References. Raises ValueError when
+    ``surface`` is not a haptic surface."""
+    require_surface(surface, "reference_pairs")
     pairs = []
     for obj, subs in surface.References:
         for sub in subs if isinstance(subs, (list, tuple)) else [subs]:
@@ -475,7 +506,9 @@ def _read_reference_shapes(obj):
 
 
 def reference_status(surface):
-    """[(object name, face name, "ok" | "rematched" | "broken"), ...] per reference."""
+    """[(object name, face name, "ok" | "rematched" | "broken"), ...] per reference.
+    Raises ValueError when ``surface`` is not a haptic surface."""
+    require_surface(surface, "reference_status")
     known = {(e["object"], e["face"]): e["status"] for e in read_reference_state(surface)}
     return [(o.Name, sub, known.get((o.Name, sub), face_references.OK if _has_subshape(o, sub)
                                     else face_references.BROKEN))
@@ -848,6 +881,9 @@ def _normalise_references(doc, references):
             obj = doc.getObject(name)
             if obj is None:
                 raise ValueError(f"make_surface: document {doc.Name} has no object {name!r}")
+        if not isinstance(obj, App.DocumentObject):
+            raise ValueError(f"make_surface: {obj!r} in references is neither an object of the document nor "
+                             "its name")
         if obj.Document != doc:
             raise ValueError(f"make_surface: {obj.Name} belongs to document {obj.Document.Name}")
         if not hasattr(obj, "Shape"):
@@ -879,6 +915,23 @@ def _check_range(label, value, low, high):
         raise ValueError(f"make_surface: {label} = {value} is outside {low}..{high}")
 
 
+def _is_whole_number(value):
+    """An int or numpy integer (what scripts compute), not a bool, nor 2.0."""
+    return isinstance(value, numbers.Integral) and type(value).__name__ not in ("bool", "bool_")
+
+
+def _turn_angle(label, value):
+    """A pattern angle, degrees, as a float within a turn (taken modulo 360 beyond it; the
+    property would clamp 400 to 360). Raises ValueError when it is not a finite number or is
+    beyond PATTERN_ANGLE_LIMIT_DEG."""
+    _check_range(label, value, -math.inf, math.inf)
+    number = float(value)
+    if abs(number) > PATTERN_ANGLE_LIMIT_DEG:
+        raise ValueError(f"make_surface: {label} = {value} degrees is not a sensible angle (beyond "
+                         f"±{PATTERN_ANGLE_LIMIT_DEG:g}); give degrees, a turn being 360")
+    return math.fmod(number, 360.0) if abs(number) > 360.0 else number
+
+
 def make_surface(doc, references, material="ABS", roughness_category=3, pattern="None",
                  pattern_angle_deg=0.0, pattern_center_mm=None, static_friction=None,
                  dynamic_friction=None, stiffness_n_per_mm=None, name="HapticSurface", **properties):
@@ -887,16 +940,26 @@ def make_surface(doc, references, material="ABS", roughness_category=3, pattern=
     ``references`` is ``[(object_or_name, "FaceN"), ...]``. ``material`` names a row of
     the material database and sets friction and stiffness; ``static_friction``,
     ``dynamic_friction`` and ``stiffness_n_per_mm`` override them. Any other property
-    can be given by its name, e.g. ``AcrossFriction=2.0, Texture="Custom"``. Raises
-    ValueError with a clear message on bad input, before anything is added to the
-    document.
+    can be given by its name, e.g. ``AcrossFriction=2.0, Texture="Custom"``, but not
+    together with the parameter that sets it (``Stiffness`` and ``stiffness_n_per_mm``).
+    An angle beyond a turn is taken modulo 360 degrees. Raises ValueError with a clear
+    message on bad input, and on values validate() would report (but for a Curve pattern's
+    curve, a link set once the surface is made), leaving nothing in the document.
     """
+    require_document(doc, "make_surface")
     links = _normalise_references(doc, references)
     database = materials.default_database()
-    if material not in database:
+    if not isinstance(material, str) or material not in database:
         raise ValueError(f"make_surface: unknown material {material!r}; known: {', '.join(database.names())}")
-    if not (isinstance(roughness_category, int) and ROUGHNESS_MIN <= roughness_category <= ROUGHNESS_MAX):
+    if not (_is_whole_number(roughness_category) and ROUGHNESS_MIN <= roughness_category <= ROUGHNESS_MAX):
         raise ValueError(f"make_surface: roughness_category must be an integer 1..7, got {roughness_category!r}")
+    given = {"roughness_category": roughness_category != 3, "pattern": pattern != "None",
+             "pattern_angle_deg": pattern_angle_deg != 0.0, "pattern_center_mm": pattern_center_mm is not None,
+             "static_friction": static_friction is not None, "dynamic_friction": dynamic_friction is not None,
+             "stiffness_n_per_mm": stiffness_n_per_mm is not None}  # a parameter at its default gives way
+    for parameter, prop in PARAMETER_PROPERTIES.items():
+        if given[parameter] and prop in properties:
+            raise ValueError(f"make_surface: {parameter} and {prop} both set {prop}: give one of them")
     if pattern not in PATTERNS:
         raise ValueError(f"make_surface: pattern must be one of {PATTERNS}, got {pattern!r}")
     _check_range("static_friction", static_friction, 0.0, FRICTION_MAX)
@@ -911,20 +974,47 @@ def make_surface(doc, references, material="ABS", roughness_category=3, pattern=
         _check_kind(key, known[key][1], value)
         if known[key][5] is not None:
             _check_range(key, value, known[key][5][0], known[key][5][1])
-        elif known[key][1] in ("App::PropertyFloat", "App::PropertyAngle"):
+        elif known[key][1] == "App::PropertyAngle":
+            properties[key] = _turn_angle(key, value)
+        elif known[key][1] == "App::PropertyFloat":
             _check_range(key, value, -math.inf, math.inf)  # any finite number
-    _check_range("pattern_angle_deg", pattern_angle_deg, -math.inf, math.inf)
+    pattern_angle_deg = _turn_angle("pattern_angle_deg", pattern_angle_deg)
     if pattern_center_mm is not None:
         _check_kind("pattern_center_mm", "App::PropertyVectorDistance", pattern_center_mm)
+    if not isinstance(name, str) or not name:
+        raise ValueError(f"make_surface: name must be a non-empty string, got {name!r}")
+    _check_friction_level(properties, static_friction, material)
 
     obj = doc.addObject("App::FeaturePython", name)
     try:
         _set_up_surface(obj, links, material, roughness_category, pattern, pattern_angle_deg, pattern_center_mm,
                         static_friction, dynamic_friction, stiffness_n_per_mm, properties)
+        # what only the values together say (a texture scaled by a friction of 0); the curve
+        # of a Curve pattern is a link, set once the surface is made
+        problems = [p for p in validate(obj) if p != curve_references.NO_CURVE]
     except Exception as exc:  # what a check above missed: nothing is left behind half made
         doc.removeObject(obj.Name)
         raise ValueError(f"make_surface: {exc}") from exc
+    if problems:
+        doc.removeObject(obj.Name)
+        raise ValueError(f"make_surface: {'; '.join(problems)}")
     return obj
+
+
+def _check_friction_level(properties, static_friction, material):
+    """Refuses a texture whose level 1 is the face's static friction when that is 0 (it
+    would render nothing: validate), naming the arguments that set them."""
+    if properties.get("Texture", "None") == "None" or properties.get("TextureScale") != "Friction level":
+        return
+    for source, value in (("StaticFriction", properties.get("StaticFriction")),
+                          ("static_friction", static_friction),
+                          (f"material {material!r}", materials.default_database().get(material).static_friction)):
+        if value is not None:
+            break
+    if float(value) == 0:
+        raise ValueError(f"make_surface: TextureScale 'Friction level' makes the texture's level 1 the face's static "
+                         f"friction, and it is 0 ({source}): the texture would render nothing; give a static "
+                         "friction above 0, or TextureScale='Device force'")
 
 
 def _check_kind(label, kind, value):
@@ -932,14 +1022,14 @@ def _check_kind(label, kind, value):
     # True or False, or what scripts write for them (1 and 0, numpy's booleans)
     if kind == "App::PropertyBool" and not (type(value).__name__ in ("bool", "int", "bool_") and value in (0, 1)):
         raise ValueError(f"make_surface: {label} must be True or False, got {value!r}")
-    if kind == "App::PropertyIntegerConstraint" and (isinstance(value, bool) or not isinstance(value, int)):
+    if kind == "App::PropertyIntegerConstraint" and not _is_whole_number(value):
         raise ValueError(f"make_surface: {label} must be a whole number, got {value!r}")
     if kind in ("App::PropertyVector", "App::PropertyVectorDistance"):
         try:
-            numbers = [float(c) for c in value]
+            components = [float(c) for c in value]
         except (TypeError, ValueError):
-            numbers = []
-        if len(numbers) != 3 or not all(math.isfinite(c) for c in numbers):
+            components = []
+        if len(components) != 3 or not all(math.isfinite(c) for c in components):
             raise ValueError(f"make_surface: {label} must be three finite numbers (x, y, z), got {value!r}")
     if kind.startswith("App::PropertyLink"):
         raise ValueError(f"make_surface: {label} is a link: set it on the surface once made")
@@ -950,7 +1040,7 @@ def _set_up_surface(obj, links, material, roughness_category, pattern, pattern_a
     HapticSurface(obj)
     obj.References = links
     obj.Material = material
-    obj.RoughnessCategory = roughness_category
+    obj.RoughnessCategory = int(roughness_category)  # a numpy integer is not taken as one
     obj.Pattern = pattern
     obj.PatternAngle = pattern_angle_deg
     if pattern_center_mm is not None:  # else a circular pattern's centre is its faces' (centre_circles_on_faces)
@@ -968,7 +1058,8 @@ def _set_up_surface(obj, links, material, roughness_category, pattern, pattern_a
         if key != "Texture":
             kind = next(p[1] for p in PROPERTIES if p[0] == key)
             setattr(obj, key, App.Vector(*value) if isinstance(value, (list, tuple))
-                    else bool(value) if kind == "App::PropertyBool" else value)
+                    else bool(value) if kind == "App::PropertyBool"
+                    else int(value) if kind == "App::PropertyIntegerConstraint" else value)
     sync_reference_state(obj)
     attach_view_provider(obj)
 

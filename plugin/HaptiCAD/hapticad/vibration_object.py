@@ -15,6 +15,7 @@ does: Std_Delete lists it as "might break", and Undo brings the link back.
 """
 import json
 import math
+import numbers
 
 import FreeCAD as App
 
@@ -158,6 +159,10 @@ def is_haptic_vibration(obj):
 
 
 def vibrations_of(doc):
+    """The HapticVibration objects of a document. Raises ValueError when ``doc`` is not one."""
+    from .surface_object import require_document
+
+    require_document(doc, "vibrations_of")
     return [o for o in doc.Objects if is_haptic_vibration(o)]
 
 
@@ -223,36 +228,87 @@ def force_notes(doc, force_limit_n):
     return [n for n in (force_note(v, force_limit_n) for v in vibrations_of(doc)) if n]
 
 
-def make_vibration(doc, part, frequency_hz=100.0, amplitude_n=0.3, axis=(0.0, 0.0, 1.0), powered=True,
-                   name="HapticVibration"):
-    """Makes ``part`` vibrate when touched and powered. Raises ValueError on bad input."""
+def _is_number(value):
+    """A real number (numpy's too), not a bool nor a string."""
+    return isinstance(value, numbers.Real) and type(value).__name__ not in ("bool", "bool_")
+
+
+def _part_argument(doc, part):
+    """The part ``part`` names (an object of ``doc`` or its name) whose faces can vibrate.
+    Raises ValueError naming what it is instead."""
+    from .surface_object import is_haptic_surface, reference_pairs, shown
+
     if isinstance(part, str):
         found = doc.getObject(part)
         if found is None:
             raise ValueError(f"make_vibration: document {doc.Name} has no object {part!r}")
         part = found
+    if not isinstance(part, App.DocumentObject):
+        raise ValueError(f"make_vibration: part = {part!r} is neither a part of document {doc.Name} nor its name")
+    if is_haptic_surface(part):
+        tagged = ", ".join(dict.fromkeys(o.Label for o, _ in reference_pairs(part)))
+        raise ValueError(f"make_vibration: part {part.Label} is a haptic surface, not a part: give the part "
+                         f"whose faces vibrate{f' ({tagged})' if tagged else ''}")
+    if getattr(part, "HaptiCADType", None):
+        raise ValueError(f"make_vibration: part {shown(part)} is a HaptiCAD {part.HaptiCADType.split('::')[-1]}, "
+                         "not a part")
     if part.Document != doc or not hasattr(part, "Shape"):
         raise ValueError(f"make_vibration: {part.Name} is not a part of document {doc.Name}")
     if faceless_note(part):
         raise ValueError(f"make_vibration: {faceless_note(part)}")
-    for label, value, (low, high) in (("frequency_hz", frequency_hz, FREQUENCY_RANGE_HZ),
-                                      ("amplitude_n", amplitude_n, AMPLITUDE_RANGE_N)):
-        if not (isinstance(value, (int, float)) and low <= value <= high):
-            raise ValueError(f"make_vibration: {label} = {value!r} is outside {low}..{high}")
-    length = math.sqrt(sum(float(a) ** 2 for a in axis))
-    if not (length > 0 and math.isfinite(length)):
+    return part
+
+
+def _unit_axis(axis):
+    """``axis`` (three finite numbers, not all 0) as a unit App.Vector: hypot neither
+    overflows on (1e200, 1e200, 0) nor underflows on (1e-300, 0, 0). Raises ValueError."""
+    try:
+        components = list(axis)
+    except TypeError:
+        components = []
+    if not (len(components) == 3 and all(_is_number(a) and math.isfinite(a) for a in components)):
+        raise ValueError(f"make_vibration: axis must be three finite numbers (x, y, z), got {axis!r}")
+    length = math.hypot(*(float(a) for a in components))
+    if length == 0:
         raise ValueError(f"make_vibration: axis {axis!r} must be a non-zero vector")
+    return App.Vector(*(float(a) / length for a in components))
+
+
+def make_vibration(doc, part, frequency_hz=100.0, amplitude_n=0.3, axis=(0.0, 0.0, 1.0), powered=True,
+                   name="HapticVibration"):
+    """Makes ``part`` (an object of ``doc`` with faces, or its name) vibrate when touched
+    and powered: ``frequency_hz`` within FREQUENCY_RANGE_HZ, ``amplitude_n`` within
+    AMPLITUDE_RANGE_N, along ``axis`` (three numbers; kept as a unit vector). Raises
+    ValueError naming the argument on bad input, before anything is added."""
+    from .surface_object import attach_view_provider, require_document
+
+    require_document(doc, "make_vibration")
+    part = _part_argument(doc, part)
+    for label, value, (low, high), unit in (("frequency_hz", frequency_hz, FREQUENCY_RANGE_HZ, "Hz"),
+                                            ("amplitude_n", amplitude_n, AMPLITUDE_RANGE_N, "N")):
+        if not _is_number(value):
+            raise ValueError(f"make_vibration: {label} must be a number ({unit}), got {value!r}")
+        if not low <= value <= high:
+            raise ValueError(f"make_vibration: {label} = {value!r} is outside {low}..{high} {unit}")
+    unit_axis = _unit_axis(axis)
+    # True or False, or what scripts write for them (1 and 0, numpy's booleans)
+    if not (type(powered).__name__ in ("bool", "int", "bool_") and powered in (0, 1)):
+        raise ValueError(f"make_vibration: powered must be True or False, got {powered!r}")
+    if not isinstance(name, str) or not name:
+        raise ValueError(f"make_vibration: name must be a non-empty string, got {name!r}")
     if vibration_of(part) is not None:
         raise ValueError(f"make_vibration: {part.Label} vibrates already ({vibration_of(part).Label}); "
                          "edit that one")
     obj = doc.addObject("App::FeaturePython", name)
-    HapticVibration(obj)
-    obj.Part = part
-    obj.Frequency = float(frequency_hz)
-    obj.Amplitude = float(amplitude_n)
-    obj.Axis = App.Vector(*axis)
-    obj.Powered = bool(powered)
-    from .surface_object import attach_view_provider
-
-    attach_view_provider(obj)
+    try:
+        HapticVibration(obj)
+        obj.Part = part
+        obj.Frequency = float(frequency_hz)
+        obj.Amplitude = float(amplitude_n)
+        obj.Axis = unit_axis
+        obj.Powered = bool(powered)
+        attach_view_provider(obj)
+    except Exception as exc:  # what a check above missed: nothing is left behind half made
+        doc.removeObject(obj.Name)
+        raise ValueError(f"make_vibration: {exc}") from exc
     return obj

@@ -722,6 +722,37 @@ class StudyTest(unittest.TestCase):
         neck = HaptiCAD.record_preference(study, "Ed", "M", "26-40", None, None, 3000.0, 0.5)
         self.assertEqual((neck.design["ForceLimit"], cohort.beyond_force_limit(neck)), (0.5, False))
 
+    def test_a_limit_or_name_that_is_not_valid_is_refused_keeping_nothing(self):
+        study = HaptiCAD.make_study(self.doc, self.head, model="Push button")
+        HaptiCAD.record_preference(study, "Ann", "F", "26-40", None, None, 3000.0, 3.0)
+        before = (study.Cohort, study.Participants, [o.Name for o in self.doc.Objects])
+        # a NaN or negative limit was kept, starred †, stored as NaN and printed as
+        # "above the force limit (nan N, -1 N)"; a name not text gave an AttributeError
+        nan, inf = float("nan"), float("inf")
+        for args, message in (((None, None, nan), "device_max_stiffness_n_per_m = nan must be a finite number > 0"),
+                              ((None, None, inf), "device_max_stiffness_n_per_m = inf must be a finite number > 0"),
+                              ((None, None, -3000.0), "device_max_stiffness_n_per_m = -3000.0 must be a finite"),
+                              ((None, None, 3000.0, -1), "force_limit_n = -1 must be a finite number > 0 (N)"),
+                              ((None, None, 3000.0, nan), "force_limit_n = nan must be a finite number > 0 (N)"),
+                              ((None, None, 3000.0, 0.0), "force_limit_n = 0.0 must be a finite number > 0 (N)"),
+                              ((None, None, 3000.0, True), "force_limit_n = True must be a finite number > 0 (N)")):
+            with self.subTest(message=message):
+                with self.assertRaises(ValueError) as caught:
+                    HaptiCAD.record_preference(study, "Bo", "F", "26-40", *args)
+                self.assertIn(f"{study.Label}: {message}", str(caught.exception))
+                self.assertEqual((study.Cohort, study.Participants, [o.Name for o in self.doc.Objects]), before)
+        for name in (None, 5):
+            with self.subTest(name=name):
+                with self.assertRaises(ValueError) as caught:
+                    HaptiCAD.record_preference(study, name, "F", "26-40", None, None)
+                self.assertEqual(str(caught.exception),
+                                 f"{study.Label}: name must be text (the participant's name or alias), got {name!r}")
+                self.assertEqual((study.Cohort, study.Participants, [o.Name for o in self.doc.Objects]), before)
+        self.assertEqual([r.name for r in stiffness_study.records(study)], ["Ann"])
+        for doc in (None, "StudyTest"):
+            with self.assertRaisesRegex(ValueError, "^studies_of: doc = .* is not a FreeCAD document"):
+                HaptiCAD.studies_of(doc)
+
     def test_the_sliders_range_says_when_it_runs_past_the_force_limit(self):
         study = HaptiCAD.make_study(self.doc, self.head, model="Push button")  # 0.5-5 N
         self.assertEqual(stiffness_study.range_note(study, 3.0),

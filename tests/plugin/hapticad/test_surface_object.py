@@ -6,6 +6,8 @@ import sys
 import tempfile
 import unittest
 
+import numpy as np
+
 import FreeCAD as App
 
 import HaptiCAD
@@ -132,18 +134,68 @@ class MakeSurfaceTest(unittest.TestCase):
             ([(self.box, "Face1")], {"FeelRoughness": "no"}, "FeelRoughness must be True or False"),
             ([(self.box, "Face1")], {"CurveTableSize": 2.5}, "CurveTableSize must be a whole number"),
             ([(self.box, "Face1")], {"PatternCurve": (self.box, ["Edge1"])}, "PatternCurve is a link"),
+            # these gave AttributeError, or were taken as something else: 1e300 degrees as 360,
+            # Stiffness=5 over stiffness_n_per_mm=2 silently, and a texture that renders
+            # nothing made a surface validate() reports
+            ([(5, "Face1")], {}, "5 in references is neither an object of the document nor its name"),
+            ([(None, "Face1")], {}, "None in references is neither an object of the document nor its name"),
+            ([(self.box, "Face1")], {"roughness_category": True}, "roughness_category must be an integer 1..7"),
+            ([(self.box, "Face1")], {"pattern_angle_deg": 1e300},
+             "pattern_angle_deg = 1e+300 degrees is not a sensible angle"),
+            ([(self.box, "Face1")], {"PatternAngle": -1e7}, "PatternAngle = -10000000.0 degrees is not a sensible"),
+            ([(self.box, "Face1")], {"Stiffness": 5, "stiffness_n_per_mm": 2},
+             "stiffness_n_per_mm and Stiffness both set Stiffness: give one of them"),
+            ([(self.box, "Face1")], {"StaticFriction": 0.5, "static_friction": 0.4},
+             "static_friction and StaticFriction both set StaticFriction: give one of them"),
+            ([(self.box, "Face1")], {"Pattern": "Linear", "pattern": "Circular"},
+             "pattern and Pattern both set Pattern: give one of them"),
+            ([(self.box, "Face1")], {"Texture": "Custom", "TextureScale": "Friction level", "static_friction": 0},
+             "TextureScale 'Friction level' makes the texture's level 1 the face's static friction, and it is 0 "
+             "(static_friction)"),
+            ([(self.box, "Face1")], {"Texture": "Custom", "TextureScale": "Friction level", "StaticFriction": 0.0},
+             "and it is 0 (StaticFriction)"),
+            ([(self.box, "Face1")], {"name": None}, "name must be a non-empty string, got None"),
         ]
         for refs, kwargs, message in cases:
             with self.subTest(message=message):
                 with self.assertRaises(ValueError) as caught:
                     HaptiCAD.make_surface(self.doc, refs, **kwargs)
                 self.assertIn(message, str(caught.exception))
+                self.assertTrue(str(caught.exception).startswith("make_surface: "))
+                self.assertEqual([o.Name for o in self.doc.Objects], ["Box"])
+                self.assertFalse(self.doc.HasPendingTransaction)
+        for doc in (None, "MakeSurfaceTest"):
+            with self.assertRaisesRegex(ValueError, r"^make_surface: doc = .* is not a FreeCAD document"):
+                HaptiCAD.make_surface(doc, [(self.box, "Face1")])
         self.assertEqual([o.Name for o in self.doc.Objects], ["Box"])
         # good values of those kinds, as a script gives them
         s = HaptiCAD.make_surface(self.doc, [(self.box, "Face1")], pattern_center_mm=App.Vector(1, 2, 3),
                                   PatternAxis=(0, 0, 1), FeelRoughness=0, CurveTableSize=64)
         self.assertEqual((s.PatternCenter, s.PatternAxis), (App.Vector(1, 2, 3), App.Vector(0, 0, 1)))
         self.assertIs(s.FeelRoughness, False)  # 0, as scripts write it, is False
+        # numpy's integers are whole numbers (2 was refused as "must be an integer 1..7, got 2"),
+        # an angle beyond a turn is taken modulo 360 (400 was clamped to 360), and a
+        # parameter left at its default gives way to its property
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face2")], roughness_category=np.int64(2),
+                                  CurveTableSize=np.int32(64), pattern_angle_deg=400)
+        self.assertEqual((s.RoughnessCategory, s.CurveTableSize, float(s.PatternAngle)), (2, 64, 40.0))
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face3")], RoughnessCategory=5, PatternAngle=-400.0)
+        self.assertEqual((s.RoughnessCategory, float(s.PatternAngle)), (5, -40.0))
+        self.assertEqual([surface_object.validate(o) for o in HaptiCAD.surfaces_of(self.doc)], [[], [], []])
+
+    def test_the_queries_refuse_what_is_not_a_document_or_a_surface(self):
+        # these gave a bare AttributeError ("'NoneType' object has no attribute 'Objects'")
+        for shown, doc in (("None", None), ("a name", "MakeSurfaceTest"), ("a part", self.box)):
+            with self.subTest(doc=shown):
+                with self.assertRaisesRegex(ValueError, r"^surfaces_of: doc = .* is not a FreeCAD document"):
+                    HaptiCAD.surfaces_of(doc)
+        for surface, shown in ((None, "None"), ("HapticSurface", "'HapticSurface'"), (self.box, "Box")):
+            with self.subTest(surface=shown):
+                for query in (HaptiCAD.reference_status, HaptiCAD.reference_pairs):
+                    with self.assertRaises(ValueError) as caught:
+                        query(surface)
+                    self.assertEqual(str(caught.exception), f"{query.__name__}: {shown} is not a haptic surface")
+        self.assertEqual([o.Name for o in self.doc.Objects], ["Box"])
 
     def test_validation_names_the_property_or_reference_that_is_wrong(self):
         s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])

@@ -61,6 +61,45 @@ class VibrationTest(unittest.TestCase):
             HaptiCAD.make_vibration(self.doc, "Shaver")
         self.assertEqual(len(self.doc.Objects), 1)
 
+    def test_every_bad_argument_is_refused_by_name_before_anything_is_added(self):
+        neck = HaptiCAD.make_surface(self.doc, [(self.razor, "Face6")])
+        before = [o.Name for o in self.doc.Objects]
+        # a four-number axis was refused by FreeCAD after the vibration was added (150 Hz,
+        # along Z, powered, saved with the document), and the corrected call then refused
+        # as "Razor vibrates already"; the others gave bare TypeError, OverflowError,
+        # AttributeError, or took True for 1 Hz
+        for args, kwargs, message in (
+                ((self.doc, self.razor), {"frequency_hz": 150, "axis": (1, 0, 0, 0)},
+                 "axis must be three finite numbers (x, y, z), got (1, 0, 0, 0)"),
+                ((self.doc, self.razor), {"axis": "xyz"}, "axis must be three finite numbers (x, y, z), got 'xyz'"),
+                ((self.doc, self.razor), {"axis": None}, "axis must be three finite numbers (x, y, z), got None"),
+                ((self.doc, self.razor), {"axis": (0, float("inf"), 1)}, "axis must be three finite numbers"),
+                ((self.doc, 5), {}, "part = 5 is neither a part of document VibrationTest nor its name"),
+                ((self.doc, None), {}, "part = None is neither a part of document VibrationTest nor its name"),
+                ((self.doc, neck), {}, "part HapticSurface is a haptic surface, not a part: give the part whose "
+                                       "faces vibrate (Razor)"),
+                ((None, self.razor), {}, "doc = None is not a FreeCAD document"),
+                ((self.doc, self.razor), {"frequency_hz": "100"}, "frequency_hz must be a number (Hz), got '100'"),
+                ((self.doc, self.razor), {"frequency_hz": True}, "frequency_hz must be a number (Hz), got True"),
+                ((self.doc, self.razor), {"amplitude_n": None}, "amplitude_n must be a number (N), got None"),
+                ((self.doc, self.razor), {"powered": "no"}, "powered must be True or False, got 'no'"),
+                ((self.doc, self.razor), {"name": 7}, "name must be a non-empty string, got 7")):
+            with self.subTest(message=message):
+                with self.assertRaises(ValueError) as caught:
+                    HaptiCAD.make_vibration(*args, **kwargs)
+                self.assertIn(f"make_vibration: {message}", str(caught.exception))
+                self.assertEqual([o.Name for o in self.doc.Objects], before)
+                self.assertFalse(self.doc.HasPendingTransaction)
+        # the corrected call is taken; an axis of any finite size is kept as its direction
+        v = HaptiCAD.make_vibration(self.doc, self.razor, frequency_hz=150, axis=(1e200, 1e200, 0))
+        self.assertEqual(HaptiCAD.vibrations_of(self.doc), [v])
+        self.assertAlmostEqual(v.Axis.x, 0.5 ** 0.5)
+        self.assertAlmostEqual(v.Axis.y, 0.5 ** 0.5)
+        self.assertEqual(vibration_object.validate(v), [])
+        for doc in (None, "VibrationTest"):
+            with self.assertRaisesRegex(ValueError, "^vibrations_of: doc = .* is not a FreeCAD document"):
+                HaptiCAD.vibrations_of(doc)
+
     def test_a_part_vibrates_one_way_and_an_axis_must_be_finite(self):
         v = HaptiCAD.make_vibration(self.doc, self.razor)
         with self.assertRaisesRegex(ValueError, "Razor vibrates already"):
