@@ -582,6 +582,19 @@ def _column_letter(index):
     return letters
 
 
+def _check_quotes_closed(text, separator, name, last_start):
+    """Raises ValueError when a quote opens a cell that never closes: the reader took the
+    rest of the file into that cell, and the message was about its empty columns."""
+    try:
+        for _ in csv.reader(io.StringIO(text, newline=""), delimiter=separator, strict=True):
+            pass
+    except csv.Error as exc:
+        if "unexpected end of data" in str(exc):
+            raise ValueError(f"{name}, line {last_start}: a quote (\") opens a cell there that never closes, so the "
+                             "rest of the file was read into it: close it or remove it") from None
+        # other strict-only complaints (a quote inside a cell) the lenient reading above takes
+
+
 def read_csv(path):
     """Records from a CSV written by write_csv (or by hand with its columns). Raises
     ValueError naming the line and column of a cell that cannot be kept (read_csv_as_read);
@@ -605,7 +618,7 @@ def read_csv_as_read(path):
             text = handle.read()
         separator, found = _separator(re.split(r"\r\n|\r|\n", text, maxsplit=1)[0])
         reader = csv.DictReader(io.StringIO(text, newline=""), delimiter=separator)
-        rows, after, inside = [], 1, 0
+        rows, after, inside, start = [], 1, 0, 1
         for row in reader:  # each with the line it starts on (a quoted field may hold line breaks)
             breaks = sum(len(re.findall(r"\r\n|\r|\n", v)) for v in row.values() if isinstance(v, str))
             start = max(after + 1, reader.line_num - breaks)
@@ -613,13 +626,21 @@ def read_csv_as_read(path):
                 rows.append((_where(start, start - inside), row))
             after, inside = reader.line_num, inside + breaks
         header = reader.fieldnames or []
+        _check_quotes_closed(text, separator, name, start)
     except UnicodeDecodeError:
         raise ValueError(f"{name}: not UTF-8 text; save it from the spreadsheet as CSV UTF-8") from None
     except csv.Error as exc:
         raise ValueError(f"{name}: not a readable CSV file ({exc})") from None
+    except OSError as exc:  # a folder, a file gone, no permission: said as the rest, not a traceback
+        raise ValueError(f"{path}: {exc.strerror or exc}") from None
     if not found:
         raise ValueError(f"{name}: needs the columns {', '.join(CSV_COLUMNS[:7])}, separated by commas, semicolons "
                          f"or tabs; its header is {', '.join(header) or 'empty'}")
+    twice = [c for c in CSV_COLUMNS if header.count(c) > 1]
+    if twice:  # DictReader keeps the last of them: the first column's cells were dropped unsaid
+        raise ValueError(f"{name}: the header has the column {twice[0]} more than once ("
+                         + ", ".join(_column_letter(i) for i, c in enumerate(header) if c == twice[0])
+                         + "): which one holds it cannot be told; keep one")
     numbers = _Numbers(decimal_comma=separator == ";")
     records = []
 
@@ -648,16 +669,23 @@ def read_csv_as_read(path):
             raise ValueError(f"{name}, {where}: more cells than the header has columns, from column "
                              f"{_column_letter(len(header))} on (a cell holding a {SEPARATORS[separator]} without "
                              "quotes around it?)")
-        design = {key: numbers.design_value(text) for key, text in
-                  (item.split("=", 1) for item in _unguarded(row.get("design") or "").split(";") if "=" in item)}
+        items = [item for item in _unguarded(row.get("design") or "").split(";") if item.strip()]
+        odd = [item for item in items if "=" not in item or not item.split("=", 1)[0].strip()]
+        if odd:  # was dropped without a word
+            raise ValueError(f"{name}, {where}, column {cell('design')}: {odd[0]!r} is not name=value (the design "
+                             "reads like YoungsModulus=1.5;BeamWidth=5)")
+        design = {key: numbers.design_value(text) for key, text in (item.split("=", 1) for item in items)}
         record = Record(_unguarded(row["name"]), _unguarded(row["gender"]), _unguarded(row["age_band"]),
                         number(where, row, "weight_kg"), number(where, row, "height_mm"),
                         number(where, row, "value"), _unguarded(row["unit"]), _unguarded(row.get("model") or ""),
                         design, _unguarded(row.get("recorded") or ""))
-        wrong = sorted(field_problems(record), key=lambda found: header.index(found[0]) if found[0] in header
-                       else len(header))  # left to right
+        wrong = field_problems(record)  # (the time recorded is text: any text comes back as given)
+        wrong.sort(key=lambda found: header.index(found[0]) if found[0] in header else len(header))  # left to right
         if wrong:
-            raise ValueError(f"{name}, {where}, " + "; ".join(f"column {cell(c)}: {said}" for c, said in wrong))
+            split = (" (a decimal comma in a comma-separated file splits a number in two: give it with a point, "
+                     "or in quotes)" if separator == "," and re.fullmatch(r"\d+", record.unit.strip()) else "")
+            raise ValueError(f"{name}, {where}, " + "; ".join(f"column {cell(c)}: {said}" for c, said in wrong)
+                             + split)
         records.append(record)
     how = "" if separator == "," else f"{SEPARATORS[separator]}-separated"
     if numbers.read_comma:

@@ -170,7 +170,10 @@ class CohortTest(unittest.TestCase):
                  ({"recorded": "2026\x00"}, "column recorded (J): the time recorded '2026\\x00' holds a control "
                                             "character"),
                  ({"gender": "X", "weight_kg": "5"}, "column gender (D): gender 'X' is not one of F, M, other, "
-                                                     "not given; column weight_kg (F): weight 5.0 kg is outside")]
+                                                     "not given; column weight_kg (F): weight 5.0 kg is outside"),
+                 # a design item was dropped, or kept without a name
+                 ({"design": "YoungsModulus=1.5;=1"}, "column design (I): '=1' is not name=value"),
+                 ({"design": "YoungsModulus=1.5;x"}, "column design (I): 'x' is not name=value")]
         with tempfile.TemporaryDirectory() as tmp:
             path = os.path.join(tmp, "cells.csv")
             for bad, said in cases:
@@ -186,6 +189,34 @@ class CohortTest(unittest.TestCase):
                     self.assertIn(f"cells.csv, line 5 (row 4 in a spreadsheet), {said}", str(caught.exception))
         self.assertEqual([cohort._column_letter(i) for i in (0, 25, 26, 27, 51, 52, 701, 702)],
                          ["A", "Z", "AA", "AB", "AZ", "BA", "ZZ", "AAA"])
+
+    def test_a_file_misread_as_it_is_says_what_is_wrong_with_it(self):
+        # a column twice kept the second (a name lost), a decimal comma split the value
+        # into the unit, an open quote swallowed the file and was said as empty columns, a
+        # folder raised IsADirectoryError
+        header = "name,gender,age_band,weight_kg,height_mm,value,unit,model,design,recorded\n"
+        cases = [("name,name,gender,age_band,weight_kg,height_mm,value,unit\nLi,Lo,F,18-25,,,0.5,N/mm\n",
+                  "twice.csv: the header has the column name more than once (A, B): which one holds it cannot be "
+                  "told; keep one"),
+                 (header + "Dan,M,18-25,,,1,5,N/mm,,,\n",
+                  "comma.csv, line 2, column unit (G): unit '5' is not one of N/mm, N, snap ratio (a decimal comma "
+                  "in a comma-separated file splits a number in two: give it with a point, or in quotes)"),
+                 (header + "Ann,F,18-25,,,0.5,N/mm,,,\n\"Bo,F,18-25,,,0.5,N/mm,,,\nCy,M,18-25,,,0.6,N/mm,,,\n",
+                  "quote.csv, line 3: a quote (\") opens a cell there that never closes")]
+        with tempfile.TemporaryDirectory() as tmp:
+            for (text, said), file in zip(cases, ("twice.csv", "comma.csv", "quote.csv")):
+                with self.subTest(file=file):
+                    path = os.path.join(tmp, file)
+                    with open(path, "w", encoding="utf-8") as handle:
+                        handle.write(text)
+                    with self.assertRaises(ValueError) as caught:
+                        cohort.read_csv(path)
+                    self.assertIn(said, str(caught.exception))
+            with self.assertRaisesRegex(ValueError, f"{tmp}: Is a directory"):
+                cohort.read_csv(tmp)
+            with open(os.path.join(tmp, "inch.csv"), "w", encoding="utf-8") as handle:  # a quote inside a cell
+                handle.write(header + 'Ann 5",F,18-25,,,0.5,N/mm,,,\n')
+            self.assertEqual(cohort.read_csv(os.path.join(tmp, "inch.csv"))[0].name, 'Ann 5"')  # read as before
 
     def test_a_preference_beyond_what_a_hand_can_mean_is_refused_by_its_unit(self):
         def found(value, unit):
