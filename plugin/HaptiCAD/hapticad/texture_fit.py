@@ -269,6 +269,14 @@ def fit_files(paths, period_mm, speeds_mm_s=PAPER_SPEEDS_MM_S, tolerance_percent
                      f"speed for {options.min_periods} periods): not in the fit")
     notes += _quality_notes(fit, options)
     report = FitReport(fit, recordings, options, notes)
+    pressed = report.normal_force_by_speed_n()
+    if pressed and min(pressed.values()) <= 0:
+        # a finger stroking presses with more than 0 N: -1 was taken, and a friction level
+        # made of it failed as "the full range must be > 0 N, got -0.48", naming no file
+        at = ", ".join(f"{n:.3g} N at {v} mm/s" for v, n in pressed.items())
+        files = ", ".join(p for i, p in enumerate(paths) if recordings[i].normal_n is not None)
+        raise ValueError(f"the normal force (normal_force_n) while stroking is {at} in {files}: a finger pressing "
+                         "gives more than 0 N; was it logged with the other sign, or is it another column?")
     notes += [n for n in [press_note(report), slope_notes(fit)] if n]
     return report
 
@@ -337,6 +345,10 @@ def _quality_notes(fit, options):
             notes.append(f"at {s.speed_mps / MM:.0f} mm/s the recording has {s.samples_per_period:.1f} samples a "
                          f"period (fewer than {wanted}): interpolating between them lowers the higher harmonics "
                          f"and bends alpha_h; record at {rate:.0f} Hz or more")
+    if is_flat(fit):  # its harmonics' law and period mean nothing: said once, plainly
+        notes.append(f"the recordings hold no ripple at all (under {FLAT_RIPPLE_N * 1e6:g} uN at every speed): the "
+                     "force is flat, so no grating is felt in it and only the DC force means anything")
+        return notes
     wrong = wrong_period(fit)
     crooked = [s for s in fit.speeds if s.harmonic.r_squared < 0.9]
     if crooked:  # one sentence for every speed it happens at
@@ -357,6 +369,14 @@ def _quality_notes(fit, options):
 
 
 PERIOD_MISMATCH = 0.15  # of the given period: more than the fit's own search (2 bins) can correct
+FLAT_RIPPLE_N = 1e-6  # a ripple under a micronewton: below any rig's resolution, rounding left in a flat force
+
+
+def is_flat(fit):
+    """Whether no section's spectrum holds a ripple (FLAT_RIPPLE_N): a constant force, in
+    which the strongest "ripple" was rounding, read as a period of 11.5 mm."""
+    return all(float(np.max(np.abs(np.asarray(s.amplitude_n, float)[1:]), initial=0.0)) < FLAT_RIPPLE_N
+               for s in fit.sections)
 
 
 def wrong_period(fit):
@@ -373,7 +393,9 @@ def dominant_period_m(fit):
     """The period (m) of the strongest ripple the sections show between a quarter and
     four times the given period (the median over sections), or None without sections.
     The fit reads the grating only near the period it is given; a period given wrong by
-    a factor (half, double) is found here."""
+    a factor (half, double) is found here. None too for a flat force (is_flat)."""
+    if is_flat(fit):
+        return None
     periods = []
     for s in fit.sections:
         amplitude = np.asarray(s.amplitude_n, float)

@@ -3,6 +3,7 @@
 face stroked by the simulated probe at three speeds, its traces fitted, the fit set on
 another surface), a rig's CSV, and clear errors that change nothing."""
 import os
+import re
 import sys
 import tempfile
 import unittest
@@ -375,6 +376,36 @@ class RigRecordingTest(unittest.TestCase):
             f.write("\n".join([header, *idle, *rows]) + "\n")
         report = texture_fit.fit_files([self.path("idle_first.csv")], 2.5, (50, 120))
         self.assertAlmostEqual(report.normal_force_n, 0.8, places=6)
+
+    def test_a_normal_force_that_is_no_press_is_refused_naming_the_file(self):
+        # -1 N (logged with the other sign) and 0 N were taken without a word; applied as a
+        # friction level, "the full range must be > 0 N, got -0.48" named no recording
+        write_rig_csv(self.path("minus.csv"), normal_force_n=-0.8)
+        with open(self.path("minus.csv")) as f:
+            header, *rows = f.read().splitlines()
+        with open(self.path("zero.csv"), "w") as f:
+            f.write("\n".join([header, *(r.rsplit(",", 1)[0] + ",0.000" for r in rows)]) + "\n")
+        for name, press in (("minus.csv", "-0.8 N at 50 mm/s, -0.8 N at 120 mm/s"),
+                            ("zero.csv", "0 N at 50 mm/s, 0 N at 120 mm/s")):
+            with self.subTest(name=name), self.assertRaisesRegex(
+                    ValueError, f"the normal force \\(normal_force_n\\) while stroking is {press} in "
+                                f"{re.escape(self.path(name))}: a finger pressing gives more than 0 N"):
+                texture_fit.fit_files([self.path(name)], 2.5, (50, 120))
+
+    def test_a_flat_force_is_said_to_hold_no_ripple_not_a_wrong_period(self):
+        # a constant force's rounding was read as "the recordings ripple most strongly every
+        # 11.5 mm ... fit again with that period"
+        write_rig_csv(self.path("grating.csv"))
+        with open(self.path("grating.csv")) as f:
+            header, *rows = f.read().splitlines()
+        flat = [",".join(r.split(",")[:2] + [("-0.5" if r.split(",")[2].startswith("-") else "0.5")]) for r in rows]
+        with open(self.path("flat.csv"), "w") as f:
+            f.write("\n".join([header, *flat]) + "\n")
+        report = texture_fit.fit_files([self.path("flat.csv")], 2.5, (50, 120))
+        self.assertTrue(any("the recordings hold no ripple at all" in n for n in report.notes), report.notes)
+        self.assertFalse(any("period" in n for n in report.notes), report.notes)
+        self.assertEqual(texture_fit.wrong_period(report.fit), "")
+        self.assertAlmostEqual(report.fit.dc_n.intercept, 0.5, places=6)
 
     def test_a_wrong_period_is_said_and_not_set(self):
         write_rig_csv(self.path("grating.csv"))
