@@ -2,6 +2,7 @@
 """Face references survive model edits (or say they broke): Box minus Cylinder, a box
 made taller, a PartDesign Body, an App::Part; never a silent re-bind. Run by freecadcmd."""
 import json
+import math
 import os
 import tempfile
 import unittest
@@ -387,6 +388,17 @@ class TwoHolesTest(unittest.TestCase):
         ((_, face, status),) = HaptiCAD.reference_status(self.surface)
         self.assertEqual(status, "broken", f"the tag went to {face} (hole B is {self.bore(5)})")
 
+    def test_holes_that_moved_past_each_other_break_the_tag(self):
+        # one edit: hole A (r 2, x 15) made r 3 and moved to x 43, hole B (r 4, x 45) moved
+        # to x 17. Nearest the tagged hole's place is now hole B, 2 mm off against 30 mm
+        # between them: by place alone the tag would go to B; its size, B's, says it is B
+        self.hole_a.Radius = 3
+        self.hole_a.Placement.Base = App.Vector(43, 15, -5)
+        self.hole_b.Placement.Base = App.Vector(17, 15, -5)
+        self.doc.recompute()
+        ((_, face, status),) = HaptiCAD.reference_status(self.surface)
+        self.assertEqual(status, "broken", f"the tag went to {face} (hole B is {self.bore(4)})")
+
     def test_the_tagged_hole_made_wider_keeps_its_tag_beside_the_other(self):
         # without the rivals both bores faced the same way and the tag broke as ambiguous
         self.hole_a.Radius = 3
@@ -524,6 +536,72 @@ class PartDesignBodyTest(unittest.TestCase):
         self.assertEqual(HaptiCAD.reference_status(surface)[0][2], "ok")
 
 
+class FilletedBodyTest(unittest.TestCase):
+    """A Body: a 40 x 30 mm Pad 10 mm high, a Fillet on its four vertical edges, a Pocket
+    in the top; faces tagged on each. The four fillet faces are alike but for place."""
+
+    def setUp(self):
+        import Part
+
+        self.doc = App.newDocument("FilletedBody")
+        self.body = self.doc.addObject("PartDesign::Body", "Body")
+        sketch = self.rectangle("Sketch", (self.doc.getObject("XY_Plane"), [""]), 0, 0, 40, 30)
+        pad = self.body.newObject("PartDesign::Pad", "Pad")
+        pad.Profile = sketch
+        pad.Length = 10
+        self.doc.recompute()
+        vertical = [f"Edge{i + 1}" for i, e in enumerate(pad.Shape.Edges)
+                    if isinstance(e.Curve, Part.Line) and abs(e.Vertexes[0].Point.z - e.Vertexes[1].Point.z) > 1]
+        self.assertEqual(len(vertical), 4)
+        self.fillet = self.body.newObject("PartDesign::Fillet", "Fillet")
+        self.fillet.Base = (pad, vertical)
+        self.fillet.Radius = 3
+        pocket_sketch = self.rectangle("PocketSketch", (self.doc.getObject("XY_Plane"), [""]), 15, 10, 25, 18)
+        pocket_sketch.AttachmentOffset = App.Placement(App.Vector(0, 0, 10), App.Rotation())
+        self.pocket = self.body.newObject("PartDesign::Pocket", "Pocket")
+        self.pocket.Profile = pocket_sketch
+        self.pocket.Length = 4
+        self.doc.recompute()
+        self.assertTrue(all(o.isValid() for o in self.doc.Objects), [o.Name for o in self.doc.Objects])
+        self.assertEqual(len(faces_where(self.body.Shape, "Cylinder", lambda c: True)), 4)
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    rectangle = PartDesignBodyTest.rectangle
+
+    def corner_fillet(self):
+        """The fillet face at the (40, 30) corner."""
+        (name,) = faces_where(self.body.Shape, "Cylinder", lambda c: c.x > 30 and c.y > 20)
+        return name
+
+    def tagged(self):
+        """Names of the top, the (40, 30) fillet, the pocket floor and the y = 0 side."""
+        shape = self.body.Shape
+        (top,) = faces_where(shape, "Plane", lambda c: abs(c.z - 10) < 1e-6)
+        (floor,) = faces_where(shape, "Plane", lambda c: abs(c.z - 10 + self.pocket.Length.Value) < 1e-6)
+        (side,) = faces_where(shape, "Plane", lambda c: abs(c.y) < 1e-6)
+        return [top, self.corner_fillet(), floor, side]
+
+    def test_a_fillet_made_larger_keeps_its_tag_at_its_corner(self):
+        # the four fillets all changed alike, so area told the tagged one from none of
+        # the others and the tag broke; it moved 1 mm, the others are 28 mm and more away
+        surface = HaptiCAD.make_surface(self.doc, [(self.body, f) for f in self.tagged()], material="ABS")
+        self.doc.recompute()
+        for radius in (5, 2, 3):
+            self.fillet.Radius = radius
+            self.doc.recompute()
+            status = HaptiCAD.reference_status(surface)
+            self.assertEqual([f for _, f, _ in status], self.tagged(), radius)
+            self.assertNotIn("broken", [s for _, _, s in status], radius)
+            fillet = self.body.Shape.getElement(status[1][1])
+            self.assertAlmostEqual(fillet.Surface.Radius, radius)
+            self.assertAlmostEqual(fillet.Surface.Center.x, 40 - radius)
+            self.assertAlmostEqual(fillet.Surface.Center.y, 30 - radius)
+        self.assertEqual(surface_object_problems(surface), [])
+        self.assertEqual(len(build_document_scene(self.doc).face_material), 4)
+
+
 class AppPartTest(unittest.TestCase):
     def test_a_box_in_a_moved_app_part_keeps_its_tag_and_scene_position(self):
         doc = App.newDocument("AppPart")
@@ -607,6 +685,49 @@ class MatchFaceUnitTest(unittest.TestCase):
         # a unchanged is found at the first level, whatever its rivals did
         now = [a, b]
         self.assertEqual(m(a, "Face1", now, 10, before(now)), ("Face1", "ok"))
+
+    def fillet(self, x, y, radius, sx, sy):
+        """The signature of a round on the vertical edge at (x, y) of a 10 mm high block;
+        (sx, sy) points out of the block at that corner."""
+        k = 1 - 2 / math.pi  # the quarter round's centre of mass is k r (1, 1) in from the corner
+        return {"type": "Cylinder",
+                "surface": {"axis": [0.0, 0.0, 1.0], "foot": [x - sx * radius, y - sy * radius, 0.0],
+                            "radius": float(radius)},
+                "orientation": {"sense": 1, "axis": [0.0, 0.0, 1.0]},
+                "area": math.pi / 2 * radius * 10, "centre": [x - sx * k * radius, y - sy * k * radius, 5.0]}
+
+    def rounds(self, radius, length=40.0, width=30.0):
+        return [self.fillet(x, y, radius, sx, sy)
+                for x, sx in ((0.0, -1), (length, 1)) for y, sy in ((0.0, -1), (width, 1))]
+
+    def test_a_face_that_clearly_stayed_near_is_followed_among_rivals_alike(self):
+        m = face_references.match_face
+        old = self.rounds(3)
+        tagged = old[3]  # the round at (40, 30)
+
+        def match(now, old=old, name="Face4"):
+            return m(tagged, name, now, 50, face_references.Previous(list(old), now, 50))
+
+        # all four rounds made 5 mm: the tagged one moved 1 mm, its rivals are 28 mm off
+        now = self.rounds(5)
+        self.assertEqual(match(now), ("Face4", "ok"))
+        self.assertEqual(match(now[::-1]), ("Face1", "rematched"))
+        # ... not without the faces as they were (all four could be it), nor when a face
+        # came or went, nor on a block so small that 1 mm is a fifth of the way to a rival
+        self.assertEqual(m(tagged, "Face4", now, 50), (None, "broken"))
+        self.assertEqual(match([*now, self.fillet(20, 30, 5, 0, 1)]), (None, "broken"))
+        self.assertEqual(match(now[:3]), (None, "broken"))
+        small = self.rounds(1, 6, 6)
+        self.assertEqual(match(self.rounds(3, 6, 6), small), (None, "broken"))
+        # a rival now nearer the tagged face's place than half the way between them (the
+        # round at (40, 0) moved up to y 20): either might be the tagged one
+        near = [*now[:2], self.fillet(40, 20, 5, 1, -1), now[3]]
+        self.assertEqual(match(near), (None, "broken"))
+        # the one face near has a rival's size: a 4 mm round that moved to the tagged 3 mm
+        # round's corner as that one became a 5 mm round at (40, 0), two holes that passed
+        old = [*self.rounds(3)[:2], self.fillet(40, 0, 4, 1, -1), tagged]
+        passed = [*old[:2], self.fillet(40, 30, 4, 1, 1), self.fillet(40, 0, 5, 1, -1)]
+        self.assertEqual(match(passed, old), (None, "broken"))
 
 
 if __name__ == "__main__":
