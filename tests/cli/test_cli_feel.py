@@ -131,6 +131,65 @@ class FeelCommandTest(unittest.TestCase):
                       "deep it pushes back with 1.5 N, not 2.5 N)", proc.stderr)
         self.assertIn("Lid grip is not felt on Lid, which was deleted", proc.stderr)
 
+    def test_a_stiffness_studys_law_is_reported_as_felt(self):
+        # the summary said 0.8 N/mm (the surface's), notes [], while the probe felt the study's
+        # neck: 2.77 N of a 4.44 N/mm neck held to the device's 3, 1.08 N of a 1.09 N/mm one
+        for thickness, label in ((8.0, "Stiff neck"), (4.0, "Soft neck")):
+            path = os.path.join(self.tmp.name, f"study-{thickness:g}.FCStd")
+            doc = App.openDocument(self.doc_path)
+            HaptiCAD.make_study(doc, doc.getObject("HapticSurface"), YoungsModulus=1.5, BeamWidth=5,
+                                BeamThickness=thickness, BeamLength=60).Label = label
+            doc.recompute()
+            doc.saveAs(path)
+            App.closeDocument(doc.Name)
+            proc = run_cli("feel", path, "--stroke", "10,20,20:30,20,20", "--depth", "0.5", "--out",
+                           os.path.join(self.tmp.name, f"study-{thickness:g}"))
+            self.assertEqual(proc.returncode, 0, proc.stderr)
+            summary = json.loads(proc.stdout)
+            face = summary["faces"]["Box.Face6"]
+            law = 0.5556 * (thickness / 4) ** 3  # k = 3 E I / L^3: 4.44 and 0.556 N/mm
+            felt = min(law, summary["max_stiffness_n_per_mm"])
+            with self.subTest(study=label):
+                self.assertAlmostEqual(face["stiffness_n_per_mm"], felt, places=3)
+                # 0.5 mm deep: under the 3 N force limit, which holds the push with its friction
+                self.assertAlmostEqual(face["mean_normal_force_n"], 0.5 * felt, delta=0.05 * felt)
+                self.assertEqual((face["surface_stiffness_n_per_mm"], face["stiffness_above_device"],
+                                  face["stiffness_study"]), (K_N_PER_MM, law > felt, label))
+                said = (f"Box.Face6 (HapticSurface): {label}'s bending beam ({law:.3g} N/mm) replaces the surface's "
+                        "0.5 N/mm")
+                self.assertIn(said, proc.stderr)
+                (note,) = [n for n in summary["notes"] if "bending beam" in n]
+                self.assertTrue(note.startswith(said), note)
+                self.assertEqual("it is above the 3 N/mm the device renders stably" in note, law > felt, note)
+
+    def test_what_the_feel_panel_says_is_said_a_hidden_part_and_a_clipped_texture(self):
+        # the stroke crossed a hole the Cut shows and the tagged Box, hidden, does not have;
+        # and a texture at level 1e6 was felt clipped at the full range: notes [] both times
+        path = os.path.join(self.tmp.name, "cut.FCStd")
+        doc = App.openDocument(self.doc_path)
+        box = doc.getObject("Box")
+        hole = doc.addObject("Part::Cylinder", "Hole")
+        hole.Radius, hole.Height = 5, 30
+        hole.Placement.Base = App.Vector(40, 20, -5)
+        cut = doc.addObject("Part::Cut", "Cut")
+        cut.Base, cut.Tool = box, hole
+        surface = doc.getObject("HapticSurface")
+        surface.Texture, surface.TextureDC = "Custom", 1e6
+        doc.recompute()
+        box.Visibility = hole.Visibility = False
+        doc.saveAs(path)
+        App.closeDocument(doc.Name)
+        proc = run_cli("feel", path, "--stroke", "10,20,20:70,20,20", "--out", os.path.join(self.tmp.name, "cut"))
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        notes = json.loads(proc.stdout)["notes"]
+        for said in ("Box is hidden, used by Cut: you feel Box's shape, not what is shown; tag the faces of Cut "
+                     "instead",
+                     "HapticSurface: the texture is at level 1 or more all over at 50-270 mm/s: felt as a flat drag "
+                     "at the full range, its ridges clipped"):
+            with self.subTest(note=said[:20]):
+                self.assertIn(f"hapticad feel: {said}\n", proc.stderr)
+                self.assertIn(said, notes)
+
     def test_the_preferences_force_limit_holds_the_stroke_as_in_the_feel_panel(self):
         # Steel (10 N/mm, felt at the probe's 1 N/mm) pressed 2 mm deep: 2 N, held to the
         # force limit set in HaptiCAD's Preferences (the panel's simulated hand is held so)

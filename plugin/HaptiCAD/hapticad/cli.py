@@ -9,8 +9,6 @@ import re
 import signal
 import sys
 import zipfile
-import zlib
-from xml.etree import ElementTree
 
 from .accuracy import ANGULAR_RANGE_DEG_SHOWN, CUSTOM, LINEAR_RANGE_MM, PRESETS, REFINE_RANGE_MM
 from .freecad_env import ensure_freecad
@@ -159,9 +157,9 @@ RATE_OPTION = "with --rate"  # where `hapticad feel` sets the servo rate (the GU
 
 def cmd_feel(args):
     App = ensure_freecad()
-    from . import preferences, surface_object, vibration_object
+    from . import feel_notes, preferences
     from .document_scene import build_document_scene
-    from .feel import Stroke, feel_document, probe_limits, skipped_surface_notes
+    from .feel import Stroke, feel_document, probe_limits, study_labels
 
     doc = _open_document(App, args.file)
     try:
@@ -170,21 +168,21 @@ def cmd_feel(args):
         limits = probe_limits(prefs)  # the force limit the Feel panel renders with
         if not doc_scene.watertight:
             print(f"hapticad feel: the scene is not closed: {doc_scene.repair}", file=sys.stderr)
-        notes = (vibration_object.rate_notes(doc, args.rate, where=RATE_OPTION)
-                 + vibration_object.force_notes(doc, limits.max_force_n)
-                 + surface_object.rate_notes(doc, args.rate, where=RATE_OPTION)
-                 + skipped_surface_notes(doc))
+        # what the Feel panel would say (feel_notes), said before the stroke, which takes seconds
+        notes = feel_notes.stroke_notes(doc, args.rate, limits.max_force_n, where=RATE_OPTION)
         for note in notes:
             print(f"hapticad feel: {note}", file=sys.stderr)
         p0, p1 = args.stroke
         stroke = Stroke(p0, p1, args.speed, args.depth, args.rate)
-        summary = feel_document(doc_scene, stroke, args.out, limits=limits)
-        for note in summary["notes"]:  # a face stiffer than the device: felt at its most
-            print(f"hapticad feel: {note}", file=sys.stderr)
+        summary = feel_document(doc_scene, stroke, args.out, limits=limits, studies=study_labels(doc, doc_scene))
+        felt = summary["notes"]  # a study's law in place of the surface's stiffness, a face stiffer than the device
         if summary["expected_normal_force_n"] > limits.max_force_n:
-            print(f"hapticad feel: {args.depth:g} mm deep the face pushes back with "
-                  f"{summary['expected_normal_force_n']:.2f} N, more than the {limits.max_force_n:g} N force limit "
-                  "(HaptiCAD's Preferences): the stroke is felt at the limit", file=sys.stderr)
+            felt.append(f"{args.depth:g} mm deep the face pushes back with {summary['expected_normal_force_n']:.2f} "
+                        f"N, more than the {limits.max_force_n:g} N force limit (HaptiCAD's Preferences): the stroke "
+                        "is felt at the limit")
+        for note in felt:
+            print(f"hapticad feel: {note}", file=sys.stderr)
+        summary["notes"] = notes + felt  # all it said, in the JSON too
         return summary
     finally:
         App.closeDocument(doc.Name)
@@ -204,7 +202,11 @@ def cmd_demo(args):
         return None
     ensure_freecad()
     result = demo.run_headless(args.out)
+    for note in result["notes"]:  # what the Feel panel would say of the copy (feel_notes)
+        print(f"hapticad demo: {note}", file=sys.stderr)
     if args.json:
+        for stroke in result["strokes"]:
+            _say_demo_notes(stroke)
         print(f"HaptiCAD demo: traces and plots of {len(result['strokes'])} strokes are in "
               f"{result['out_dir']}", file=sys.stderr)
         return result
@@ -220,7 +222,15 @@ def cmd_demo(args):
                 f"Ft/Fn {felt['mean_ft_over_fn']:.2f} (mu_d {felt['mu_dynamic']:.2f})"
                 if felt and felt["mean_normal_force_n"] is not None else "not slid on")
         print(f"  {stroke['face']}: {what}; {os.path.relpath(stroke['trace_png'])}")
+        _say_demo_notes(stroke)
     return None
+
+
+def _say_demo_notes(stroke):
+    """A demo stroke's notes (what it felt otherwise than set: a stiffness study's law, a face
+    stiffer than the device) on stderr, as `hapticad feel` says them."""
+    for note in stroke.get("notes", ()):  # a skipped stroke has none
+        print(f"hapticad demo: {note}", file=sys.stderr)
 
 
 def cmd_materials(args):
@@ -364,33 +374,10 @@ def _speeds(text):
 
 
 def _open_document(App, path):
-    if not os.path.exists(path):
-        raise ValueError(f"{path}: no such file")
-    if not zipfile.is_zipfile(path):
-        # FreeCAD opens a cut-short .FCStd and reads what it can: the parts come without
-        # their shapes, and every face looks gone
-        raise ValueError(f"{path}: not a FreeCAD document, or a damaged one (cut short in a copy or "
-                         "download?): it is not a readable zip archive")
-    # a damaged Document.xml opens too, as objects without their properties: a study looked
-    # absent and a surface without its references raised
-    try:
-        with zipfile.ZipFile(path) as archive:
-            xml = ElementTree.fromstring(archive.read("Document.xml"))
-    except KeyError:
-        raise ValueError(f"{path}: not a FreeCAD document: the archive holds no Document.xml") from None
-    except (ElementTree.ParseError, zipfile.BadZipFile, zlib.error) as exc:
-        raise ValueError(f"{path}: a damaged FreeCAD document: its Document.xml cannot be read ({exc})") from None
-    doc = App.openDocument(os.path.abspath(path))
-    # FreeCAD leaves out, without a word, an object whose type no loaded workbench makes:
-    # read on, a part is missed; saved, it is lost
-    held = {o.Name for o in doc.Objects}
-    lost = [f"{o.get('name')} ({o.get('type')})" for o in xml.iterfind("./Objects/Object")
-            if o.get("type") and o.get("name") not in held]
-    if lost:
-        App.closeDocument(doc.Name)
-        raise ValueError(f"{path}: this FreeCAD could not load {len(lost)} of its objects: {', '.join(lost)} "
-                         "(a workbench it needs is missing); nothing was read or changed")
-    return doc
+    """document_file.open_document: the file checked before FreeCAD opens it (the demo checks its copy so)."""
+    from .document_file import open_document
+
+    return open_document(App, path)
 
 
 def cmd_fit_texture(args):

@@ -2,10 +2,11 @@
 """``hapticad demo``: open the example toothbrush and feel it.
 
 Both work on a copy of the example in the output folder (the shipped one stays as
-shipped; a copy saved there before is used again). With a display, FreeCAD opens with
-the HaptiCAD workbench and the copy. Headless, the simulated probe strokes every tagged
-face of the copy and the traces and plots are written to the output folder, whose
-location is printed.
+shipped; a copy saved there before is used again, once checked: a damaged one is named,
+with how to get a fresh one). With a display, FreeCAD opens with the HaptiCAD workbench
+and the copy. Headless, the simulated probe strokes every tagged face of the copy and
+the traces and plots are written to the output folder, whose location is printed, with
+what the Feel panel would say of the copy (feel_notes).
 """
 import os
 import shutil
@@ -29,11 +30,24 @@ def working_copy(out_dir, example=EXAMPLE):
     return path, True
 
 
+def damaged_copy(exc):
+    """ValueError of document_file's ``exc`` on the demo's working copy, saying how to get a
+    fresh one: working_copy opens a copy already there as it is, so each demo would fail on it."""
+    return ValueError(f"{exc}. It is the demo's copy of the example: move it away and run hapticad demo again, "
+                      "which copies the example there afresh")
+
+
 def launch_gui(out_dir):
+    from .document_file import document_xml
+
     freecad = shutil.which("freecad")
     if freecad is None:
         raise RuntimeError("FreeCAD's GUI ('freecad') is not installed")
     document, new = working_copy(out_dir)
+    try:
+        document_xml(document)  # FreeCAD opens a damaged one without a word, its faces looking gone
+    except ValueError as exc:
+        raise damaged_copy(exc) from None
     env = dict(os.environ)
     if os.geteuid() == 0:
         env.setdefault("QTWEBENGINE_DISABLE_SANDBOX", "1")  # else the Start page kills FreeCAD
@@ -68,27 +82,40 @@ def off_ball_rows(surface, face, p0, p1):
 
 
 RATE_HZ = 5000.0  # the finest roughness (0.1 mm balls) at 50 mm/s is 500 Hz: 1 kHz would alias it
+RATE_OPTION = "with hapticad feel --rate"  # the demo's own rate is fixed: where a stroke's rate is set
 
 
 def run_headless(out_dir, document=None, speed_mm_s=50.0, depth_mm=1.0, rate_hz=RATE_HZ):
     """Strokes every tagged face of ``document``: by default the example's copy in
     ``out_dir`` (working_copy), the one the GUI demo opens, so what the designer changed
-    and saved there is what is stroked."""
+    and saved there is what is stroked. Returns the strokes' summaries (feel.summarize,
+    each with its own ``notes``) and ``notes``, what the Feel panel would say of the
+    document (feel_notes.stroke_notes; a broken face is said as its stroke, skipped).
+    Raises ValueError when the document is damaged (document_file), for the working copy
+    saying how to get a fresh one."""
     import FreeCAD as App
 
+    from . import feel_notes
+    from .document_file import open_document
     from .document_scene import build_document_scene
     from .face_strokes import plan_face_stroke, vector_tuple
     from . import preferences
-    from .feel import Stroke, feel_document, probe_limits
+    from .feel import Stroke, feel_document, probe_limits, study_labels
     from .face_references import shown_face
     from .surface_object import active_reference_pairs, reference_pairs, surfaces_of
 
-    if document is None:
+    copy = document is None
+    if copy:
         document, _ = working_copy(out_dir)
-    doc = App.openDocument(document)
+    try:
+        doc = open_document(App, document)
+    except ValueError as exc:
+        raise (damaged_copy(exc) if copy else exc) from None
     try:
         doc_scene = build_document_scene(doc)
         limits = probe_limits(preferences.load())  # the force limit the Feel panel renders with
+        notes = feel_notes.stroke_notes(doc, rate_hz, limits.max_force_n, RATE_OPTION, broken=False)
+        studies = study_labels(doc, doc_scene)
         strokes = []
         for surface in surfaces_of(doc):
             active = active_reference_pairs(surface)
@@ -109,9 +136,10 @@ def run_headless(out_dir, document=None, speed_mm_s=50.0, depth_mm=1.0, rate_hz=
                 title = (f"{surface.Label} on {name}: {surface.Material}, roughness category "
                          f"{surface.RoughnessCategory}; stroked at {speed_mm_s:g} mm/s, {depth_mm:g} mm deep, "
                          f"{rate_hz / 1000:g} kHz")
-                summary = feel_document(doc_scene, stroke, os.path.join(out_dir, name), title, limits)
+                summary = feel_document(doc_scene, stroke, os.path.join(out_dir, name), title, limits, studies)
                 summary["face"] = name
                 strokes.append(summary)
     finally:
         App.closeDocument(doc.Name)
-    return {"gui": False, "document": document, "out_dir": os.path.abspath(out_dir), "strokes": strokes}
+    return {"gui": False, "document": document, "out_dir": os.path.abspath(out_dir), "notes": notes,
+            "strokes": strokes}

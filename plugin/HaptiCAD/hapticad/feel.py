@@ -170,29 +170,72 @@ def _dynamic_speed(doc_scene, face):
 
 
 def effective_stiffness_n_per_mm(doc_scene, face, limits):
-    """The face's stiffness as the device renders it, N/mm: the surface's, held to the
-    device's stable most (limits.max_stiffness_n_per_m) as the renderer holds it."""
-    k = min(doc_scene.surface_properties(face).stiffness_n_per_m, limits.max_stiffness_n_per_m)
-    return k * MM
+    """The face's stiffness as the device renders it, N/mm: the surface's, or, while a
+    stiffness study holds it, its law's steepest slope (the mechanism replaces the
+    surface's contact stiffness: a bending beam's stiffness, a button's click; its housing
+    stop aside, as stiffness_study.device_note leaves it), held to the device's stable most
+    (limits.max_stiffness_n_per_m) as the renderer holds it."""
+    props = doc_scene.surface_properties(face)
+    k = props.stiffness_n_per_m if props.force_travel is None else props.force_travel.stretch_slope()
+    return min(k, limits.max_stiffness_n_per_m) * MM
 
 
 def stiffer_than_device(doc_scene, face, limits):
-    """Whether the face's own stiffness is above the device's stable most, so it is felt
-    softer (a stiffness study's law is stretched to the device instead, its forces kept)."""
+    """Whether what the face pushes back with is steeper than the device's stable most, so
+    it is felt softer: the surface's own stiffness (felt at the device's most), or its
+    stiffness study's law's steepest slope (the law is stretched to the device, its forces
+    kept), as stiffness_study.device_note judges it."""
     props = doc_scene.surface_properties(face)
-    return props.force_travel is None and props.stiffness_n_per_m > limits.max_stiffness_n_per_m
+    k = props.stiffness_n_per_m if props.force_travel is None else props.force_travel.stretch_slope()
+    return k > limits.max_stiffness_n_per_m
 
 
-def stiffness_note(doc_scene, face, limits, depth_mm):
-    """A sentence when the face is stiffer_than_device, saying what the stroke felt at
-    ``depth_mm`` instead (held at the device's most), else ""."""
+def _face_named(doc_scene, face):
+    """"Object.FaceN (surface label)" of a face, as the notes name it."""
+    name = doc_scene.face_names[face]
+    surface = doc_scene.face_surface_label.get(name)
+    return f"{name}{f' ({surface})' if surface else ''}"
+
+
+def law_note(doc_scene, face, limits, depth_mm, study=""):
+    """A sentence when a stiffness study's law governs the face (its mechanism replaces the
+    surface's contact stiffness), naming the study (``study``: its Label; "" for "a
+    stiffness study"), the law and the surface stiffness it replaces; then, when the law is
+    steeper than the device renders stably, what the stroke felt at ``depth_mm`` instead.
+    "" when no law governs the face."""
+    props = doc_scene.surface_properties(face)
+    law = props.force_travel
+    if law is None:
+        return ""
+    whose = f"{study}'s" if study else "a stiffness study's"
+    steepest = law.stretch_slope() * MM  # N/mm
+    k_most = limits.max_stiffness_n_per_m * MM
+    if law.points == 1:  # a straight law: the bending beam's stiffness
+        mechanism = f"bending beam ({steepest:.3g} N/mm)"
+        beyond = f"it is above the {k_most:g} N/mm the device renders stably: it was felt at {k_most:g} N/mm"
+    else:
+        mechanism = f"push button (operating force {law.force_n[0]:.3g} N at {law.travel_m[0] / MM:.3g} mm)"
+        beyond = (f"its steepest slope, {steepest:.3g} N/mm, is above the {k_most:g} N/mm the device renders stably: "
+                  f"its forces are kept over a travel {steepest / k_most:.2g} x longer")
+    said = (f"{_face_named(doc_scene, face)}: {whose} {mechanism} replaces the surface's "
+            f"{props.stiffness_n_per_m * MM:g} N/mm")
+    if not stiffer_than_device(doc_scene, face, limits):
+        return said
+    felt, designed = law.force_clamped(depth_mm * MM, limits.max_stiffness_n_per_m), law.force(depth_mm * MM)
+    return f"{said}; {beyond} ({depth_mm:g} mm deep it pushes back with {felt:.3g} N, not {designed:.3g} N)"
+
+
+def stiffness_note(doc_scene, face, limits, depth_mm, study=""):
+    """A sentence on the face's stiffness as the stroke felt it at ``depth_mm``: law_note's
+    when a stiffness study governs it (``study``: its Label); else, when the surface is
+    stiffer_than_device, what was felt instead (held at the device's most); else ""."""
+    if doc_scene.surface_properties(face).force_travel is not None:
+        return law_note(doc_scene, face, limits, depth_mm, study)
     if not stiffer_than_device(doc_scene, face, limits):
         return ""
     k_set = doc_scene.surface_properties(face).stiffness_n_per_m * MM
     k_most = limits.max_stiffness_n_per_m * MM
-    name = doc_scene.face_names[face]
-    surface = doc_scene.face_surface_label.get(name)
-    return (f"{name}{f' ({surface})' if surface else ''} is {k_set:g} N/mm stiff, above the {k_most:g} N/mm the "
+    return (f"{_face_named(doc_scene, face)} is {k_set:g} N/mm stiff, above the {k_most:g} N/mm the "
             f"device renders stably: it was felt at {k_most:g} N/mm ({depth_mm:g} mm deep it pushes back with "
             f"{k_most * depth_mm:.3g} N, not {k_set * depth_mm:.3g} N)")
 
@@ -206,11 +249,28 @@ def expected_normal_force_n(doc_scene, face, limits, depth_mm):
     return effective_stiffness_n_per_mm(doc_scene, face, limits) * depth_mm
 
 
-def summarize(result, doc_scene):
+def study_labels(doc, doc_scene):
+    """{"Object.FaceN": Label of the stiffness study whose law the face feels} for the faces
+    of ``doc_scene`` (built from ``doc``) that feel one: how summarize names the study."""
+    from .stiffness_study import study_of
+
+    labels = {}
+    for name, surface_name in doc_scene.face_surface.items():
+        surface = doc.getObject(surface_name)
+        study = study_of(surface) if surface is not None else None
+        if study is not None and doc_scene.surface_properties(doc_scene.face_id(name)).force_travel is not None:
+            labels[name] = study.Label
+    return labels
+
+
+def summarize(result, doc_scene, studies=None):
     """The JSON-ready summary of a stroke: per face felt, its surface (Label, and Name as
-    surface_name), material, friction, its stiffness as felt and as set; the device's
-    limits; and ``notes``, sentences on what was felt otherwise than set (a face stiffer
-    than the device renders stably: stiffness_note)."""
+    surface_name), material, friction, its stiffness as felt and as set, and the stiffness
+    study governing it (``studies``: study_labels; its law's steepest slope as
+    study_stiffness_n_per_mm, null for none); the device's limits; and ``notes``, sentences
+    on what was felt otherwise than set (a study's law in place of the surface's stiffness,
+    a face stiffer than the device renders stably: stiffness_note)."""
+    studies = studies or {}
     trace = result.trace
     contact = _contact(trace)
     sliding = sliding_mask(result, doc_scene)
@@ -221,6 +281,7 @@ def summarize(result, doc_scene):
         # a vibration may take the push away on some ticks (a face only pushes): no ratio there
         slide = sliding & on_face & (trace["normal_force_n"] > 0)
         props = doc_scene.surface_properties(face)
+        law = props.force_travel
         fn = trace["normal_force_n"][slide]
         ft = trace["tangential_force_n"][slide]
         faces[name] = {
@@ -233,6 +294,8 @@ def summarize(result, doc_scene):
             "stiffness_n_per_mm": effective_stiffness_n_per_mm(doc_scene, face, result.limits),  # as felt
             "surface_stiffness_n_per_mm": props.stiffness_n_per_m * MM,  # as set on the surface
             "stiffness_above_device": stiffer_than_device(doc_scene, face, result.limits),
+            "stiffness_study": studies.get(name),  # its Label, when a study's law replaces the surface's stiffness
+            "study_stiffness_n_per_mm": law.stretch_slope() * MM if law is not None else None,  # as designed
             "contact_ticks": int((contact & on_face).sum()),
             "sliding_ticks": int(slide.sum()),
             "mean_normal_force_n": float(fn.mean()) if len(fn) else None,
@@ -254,7 +317,8 @@ def summarize(result, doc_scene):
         "force_limit_n": float(result.limits.max_force_n),
         "max_stiffness_n_per_mm": float(result.limits.max_stiffness_n_per_m * MM),  # the device's, stable
         # what the stroke felt otherwise than the document sets it, as sentences (`hapticad feel` says them)
-        "notes": [note for note in (stiffness_note(doc_scene, face, result.limits, result.stroke.depth_mm)
+        "notes": [note for note in (stiffness_note(doc_scene, face, result.limits, result.stroke.depth_mm,
+                                                   studies.get(doc_scene.face_names[face], ""))
                                     for face in sorted(set(int(f) for f in trace["cad_face"][contact]))) if note],
         "accuracy": _accuracy_summary(doc_scene),
         "overruns": int(result.stats.overruns),
@@ -289,10 +353,11 @@ def _percentiles(values):
     }
 
 
-def skipped_surface_notes(doc):
+def skipped_surface_notes(doc, broken=True):
     """A sentence for each HapticSurface of ``doc`` that tags faces a stroke cannot feel,
-    naming it and why: its part was deleted, a face reference broke (the model changed),
-    or it tags no face. The scene leaves those faces out (document_scene)."""
+    naming it and why: its part was deleted, a face reference broke (the model changed;
+    left out unless ``broken``), or it tags no face. The scene leaves those faces out
+    (document_scene)."""
     from . import face_references
     from .surface_object import deleted_parts, reference_status, surfaces_of
 
@@ -303,10 +368,10 @@ def skipped_surface_notes(doc):
             were = "was" if len(deleted) == 1 else "were"
             notes.append(f"{surface.Label} is not felt on {', '.join(deleted)}, which {were} deleted: undo the "
                          "deletion or tag the faces of another part")
-        broken = [f"{name}.{face_references.shown_face(face)}" for name, face, status in reference_status(surface)
-                  if status == face_references.BROKEN]
-        if broken:
-            notes.append(f"{surface.Label} is not felt on {', '.join(broken)}: the face reference broke when the "
+        gone = [f"{name}.{face_references.shown_face(face)}" for name, face, status in reference_status(surface)
+                if status == face_references.BROKEN]
+        if gone and broken:
+            notes.append(f"{surface.Label} is not felt on {', '.join(gone)}: the face reference broke when the "
                          "model changed; pick the face again")
         if not surface.References and not deleted:
             notes.append(f"{surface.Label} tags no face: pick faces for it")
@@ -345,14 +410,15 @@ def distance_along_stroke_mm(result):
     return (np.asarray(result.trace["device_m"]) - result.plan.p0_m) @ direction / MM
 
 
-def feel_document(doc_scene, stroke, out_dir, title="", limits=None):
+def feel_document(doc_scene, stroke, out_dir, title="", limits=None, studies=None):
     """Runs a stroke with the probe's ``limits`` (probe_limits; by default the simulated
-    probe's own), writes out_dir/trace.csv and out_dir/trace.png, returns the summary."""
+    probe's own), writes out_dir/trace.csv and out_dir/trace.png, returns the summary
+    (``studies``: study_labels, naming the stiffness studies it felt)."""
     from .trace_plot import plot_trace
 
     os.makedirs(out_dir, exist_ok=True)
     result = run_stroke_in_servo_loop(doc_scene, stroke, limits)
-    summary = summarize(result, doc_scene)
+    summary = summarize(result, doc_scene, studies)
     csv_path = os.path.join(out_dir, "trace.csv")
     png_path = os.path.join(out_dir, "trace.png")
     write_trace_csv(csv_path, result, doc_scene)

@@ -29,6 +29,38 @@ class WorkingCopyTest(unittest.TestCase):
                 self.assertTrue(saved.read().endswith(b"changed"))  # kept, not copied over
 
 
+    def test_a_damaged_copy_is_named_with_how_to_get_a_fresh_one(self):
+        # the copy cut short was opened as a document whose every face reference was
+        # broken ("pick the faces again"), a garbage one gave FreeCAD's "Invalid project file"
+        from unittest import mock
+
+        with open(demo.EXAMPLE, "rb") as example:
+            whole = example.read()
+        with tempfile.TemporaryDirectory() as tmp:
+            for name, data in (("cut short", whole[:5000]), ("garbage", b"not a zip\n")):
+                out = os.path.join(tmp, name)
+                os.makedirs(out)
+                copy = os.path.join(out, "toothbrush.FCStd")
+                with open(copy, "wb") as damaged:
+                    damaged.write(data)
+                with self.subTest(copy=name):
+                    with self.assertRaises(ValueError) as caught:
+                        demo.run_headless(out)
+                    said = str(caught.exception)
+                    self.assertIn(f"{copy}: not a FreeCAD document, or a damaged one", said)
+                    self.assertIn("It is the demo's copy of the example: move it away and run hapticad demo again, "
+                                  "which copies the example there afresh", said)
+                    # the GUI demo says so too, and starts no FreeCAD on it
+                    with mock.patch.object(demo.subprocess, "Popen") as popen, \
+                            mock.patch.object(demo.shutil, "which", return_value="/usr/bin/freecad"):
+                        with self.assertRaises(ValueError) as caught:
+                            demo.launch_gui(out)
+                    self.assertEqual(str(caught.exception), said)
+                    popen.assert_not_called()
+                with open(copy, "rb") as kept:
+                    self.assertEqual(kept.read(), data)  # left as it is: the designer moves it away
+
+
 class HeadlessDemoTest(unittest.TestCase):
     def test_the_headless_demo_strokes_the_designers_copy(self):
         import FreeCAD as App
@@ -89,6 +121,42 @@ class HeadlessDemoTest(unittest.TestCase):
             self.assertIn("is broken by a model edit: pick it again", skipped[0]["skipped"])
             (stroke,) = felt
             self.assertEqual(stroke["faces"][stroke["face"]]["material"], "Rubber")
+
+    def test_a_study_and_a_hidden_part_are_said_as_the_feel_panel_says_them(self):
+        # the demo printed "pressed 2.77 N" of a neck the study made 4.44 N/mm, with no note,
+        # and nothing of a tagged part hidden behind a Cut
+        import FreeCAD as App
+
+        import HaptiCAD
+
+        with tempfile.TemporaryDirectory() as tmp:
+            doc = App.newDocument("DemoNotes")
+            box = doc.addObject("Part::Box", "Box")
+            box.Length, box.Width, box.Height = 40, 20, 10
+            hole = doc.addObject("Part::Cylinder", "Hole")
+            hole.Radius, hole.Height = 2, 30
+            hole.Placement.Base = App.Vector(35, 15, -5)
+            doc.recompute()
+            surface = HaptiCAD.make_surface(doc, [(box, "Face6")], material="PP", FeelRoughness=False)
+            HaptiCAD.make_study(doc, surface, YoungsModulus=1.5, BeamWidth=5, BeamThickness=8,
+                                BeamLength=60).Label = "Neck study"
+            cut = doc.addObject("Part::Cut", "Cut")
+            cut.Base, cut.Tool = box, hole
+            doc.recompute()
+            box.Visibility = hole.Visibility = False
+            path = os.path.join(tmp, "notes.FCStd")
+            doc.saveAs(path)
+            App.closeDocument(doc.Name)
+            result = demo.run_headless(os.path.join(tmp, "out"), document=path)
+            self.assertIn("Box is hidden, used by Cut: you feel Box's shape, not what is shown; tag the faces of Cut "
+                          "instead", result["notes"])
+            (stroke,) = result["strokes"]
+            face = stroke["faces"]["Box.Face6"]
+            most = stroke["max_stiffness_n_per_mm"]
+            self.assertEqual((face["stiffness_n_per_mm"], face["stiffness_above_device"], face["stiffness_study"]),
+                             (most, True, "Neck study"))
+            self.assertEqual(len(stroke["notes"]), 1)
+            self.assertIn("Neck study's bending beam (4.44 N/mm) replaces the surface's", stroke["notes"][0])
 
 
 if __name__ == "__main__":

@@ -133,6 +133,107 @@ class FeelTest(unittest.TestCase):
         summary = summarize(result, self.scene)
         self.assertEqual((summary["notes"], summary["faces"]["Box.Face6"]["stiffness_above_device"]), ([], False))
 
+    def test_a_stiffness_studys_law_is_reported_as_felt_and_said(self):
+        # the summary gave the surface's 0.8 N/mm as felt, with no note, while the probe felt
+        # the study's neck: 2.77 N of a 4.44 N/mm neck (held to the device's 3), 1.08 N of a 1.09 one
+        doc = App.newDocument("FeelStudy")
+        try:
+            box = doc.addObject("Part::Box", "Head")
+            box.Length, box.Width, box.Height = 40, 20, 10
+            doc.recompute()
+            surface = HaptiCAD.make_surface(doc, [(box, "Face6")], material="PP", stiffness_n_per_mm=0.8,
+                                            FeelRoughness=False)
+            surface.Label = "Brush head"
+            study = HaptiCAD.make_study(doc, surface, YoungsModulus=1.5, BeamWidth=5, BeamThickness=8,
+                                        BeamLength=60)
+            study.Label = "Neck study"
+            doc.recompute()
+            scene = build_document_scene(doc)
+            result = run_stroke_in_servo_loop(scene, Stroke((5, 10, 10), (35, 10, 10), depth_mm=0.5))
+            most = result.limits.max_stiffness_n_per_m * 1e-3
+            self.assertLess(most, study.BendingStiffness)  # 4.44 N/mm on the 3 N/mm probe
+            face = summarize(result, scene)["faces"]["Head.Face6"]
+            self.assertEqual((face["stiffness_n_per_mm"], face["surface_stiffness_n_per_mm"],
+                              face["stiffness_above_device"]), (most, 0.8, True))
+            self.assertAlmostEqual(face["mean_normal_force_n"], most * 0.5, delta=1e-3)  # what it says is felt
+            self.assertAlmostEqual(face["study_stiffness_n_per_mm"], study.BendingStiffness, places=9)
+            # named by the study that governs the face (feel.study_labels, as `hapticad feel` passes them)
+            self.assertEqual(feel.study_labels(doc, scene), {"Head.Face6": "Neck study"})
+            summary = summarize(result, scene, feel.study_labels(doc, scene))
+            self.assertEqual(summary["faces"]["Head.Face6"]["stiffness_study"], "Neck study")
+            self.assertEqual(summary["notes"], [
+                f"Head.Face6 (Brush head): Neck study's bending beam (4.44 N/mm) replaces the surface's 0.8 N/mm; "
+                f"it is above the {most:g} N/mm the device renders stably: it was felt at {most:g} N/mm (0.5 mm deep "
+                f"it pushes back with {most * 0.5:.3g} N, not 2.22 N)"])
+
+            study.BeamThickness = 4.0  # 0.56 N/mm: under the device's, felt as designed
+            doc.recompute()
+            scene = build_document_scene(doc)
+            result = run_stroke_in_servo_loop(scene, Stroke((5, 10, 10), (35, 10, 10), depth_mm=1.0))
+            summary = summarize(result, scene, feel.study_labels(doc, scene))
+            face = summary["faces"]["Head.Face6"]
+            self.assertAlmostEqual(face["stiffness_n_per_mm"], study.BendingStiffness, places=9)
+            self.assertFalse(face["stiffness_above_device"])
+            self.assertAlmostEqual(face["mean_normal_force_n"], study.BendingStiffness, delta=1e-3)
+            self.assertEqual(summary["notes"], [
+                "Head.Face6 (Brush head): Neck study's bending beam (0.556 N/mm) replaces the surface's 0.8 N/mm"])
+
+            # a push button: its click (0.8 N at 0.4 mm: 2 N/mm, under the device's) felt as designed
+            study.Model = "Push button"
+            study.OperatingForce, study.Pretravel, study.SnapRatio = 0.8, 0.4, 0.5
+            study.SnapTravel, study.TotalTravel = 0.2, 1.0
+            doc.recompute()
+            scene = build_document_scene(doc)
+            result = run_stroke_in_servo_loop(scene, Stroke((5, 10, 10), (35, 10, 10), depth_mm=0.5))
+            summary = summarize(result, scene, feel.study_labels(doc, scene))
+            face = summary["faces"]["Head.Face6"]
+            self.assertAlmostEqual(face["stiffness_n_per_mm"], 2.0, places=9)
+            self.assertFalse(face["stiffness_above_device"])
+            self.assertEqual(summary["notes"], [
+                "Head.Face6 (Brush head): Neck study's push button (operating force 0.8 N at 0.4 mm) replaces the "
+                "surface's 0.8 N/mm"])
+            study.Pretravel = 0.2  # 4 N/mm to its click: stretched to the device's 3, its forces kept
+            doc.recompute()
+            scene = build_document_scene(doc)
+            result = run_stroke_in_servo_loop(scene, Stroke((5, 10, 10), (35, 10, 10), depth_mm=0.5))
+            summary = summarize(result, scene, feel.study_labels(doc, scene))
+            face = summary["faces"]["Head.Face6"]
+            self.assertEqual((face["stiffness_n_per_mm"], face["stiffness_above_device"]), (most, True))
+            self.assertIn("Neck study's push button (operating force 0.8 N at 0.2 mm) replaces the surface's 0.8 "
+                          f"N/mm; its steepest slope, 4 N/mm, is above the {most:g} N/mm the device renders stably: "
+                          "its forces are kept over a travel 1.3 x longer", summary["notes"][0])
+        finally:
+            App.closeDocument(doc.Name)
+
+    def test_what_the_feel_panel_says_is_said_for_a_stroke_too(self):
+        # `hapticad feel` said nothing of a tagged part hidden behind a Cut (the Feel panel
+        # did), nor of a texture clipped at its full range (the surface panel did)
+        from hapticad import feel_notes
+
+        doc = App.newDocument("FeelNotes")
+        try:
+            box = doc.addObject("Part::Box", "Box")
+            box.Length, box.Width, box.Height = 40, 20, 10
+            hole = doc.addObject("Part::Cylinder", "Hole")
+            hole.Radius, hole.Height = 5, 30
+            hole.Placement.Base = App.Vector(20, 10, -5)
+            doc.recompute()
+            surface = HaptiCAD.make_surface(doc, [(box, "Face6")], material="ABS", FeelRoughness=False)
+            cut = doc.addObject("Part::Cut", "Cut")
+            cut.Base, cut.Tool = box, hole
+            doc.recompute()
+            self.assertEqual(feel_notes.stroke_notes(doc, 1000.0, 3.0, "with --rate"), [])
+            box.Visibility = hole.Visibility = False  # as FreeCAD's Cut leaves them
+            surface.Texture, surface.TextureDC = "Custom", 1e6
+            hidden = "Box is hidden, used by Cut: you feel Box's shape, not what is shown; tag the faces of Cut instead"
+            self.assertEqual(feel_notes.session_notes(doc, 1000.0, 3.0), [hidden])  # the Feel panel's
+            notes = feel_notes.stroke_notes(doc, 1000.0, 3.0, "with --rate")
+            self.assertEqual(notes[0], hidden)
+            self.assertIn(f"{surface.Label}: the texture is at level 1 or more all over at 50-270 mm/s: felt as a "
+                          "flat drag at the full range, its ridges clipped", notes)
+        finally:
+            App.closeDocument(doc.Name)
+
     def test_a_surface_whose_part_was_deleted_is_named_with_why(self):
         doc = App.newDocument("FeelDeleted")
         try:

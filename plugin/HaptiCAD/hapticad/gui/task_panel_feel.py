@@ -17,12 +17,10 @@ import numpy as np
 import FreeCADGui as Gui
 from PySide2 import QtCore, QtGui, QtWidgets
 
-from .. import _core, device_opening, feel_session, icon, preferences, stiffness_study
+from .. import _core, device_opening, feel_notes, feel_session, icon, preferences, stiffness_study
 from ..proxy_state import is_alive
 from ..similarity_study import similarity_studies_of
-from ..surface_object import hidden_part_notes, surfaces_of
 from ..stiffness_study import studies_of
-from ..vibration_object import no_part_note, vibrations_of
 from .busy_cursor import busy_cursor
 from .document_closing import DocumentClosingObserver
 from .feel_view import FeelView, MouseSteering
@@ -343,12 +341,10 @@ class FeelTaskPanel:
     def session_notes(self):
         """As notes: vibrations felt nowhere (their part deleted), what the servo rate and the force limit
         keep a vibration from being felt as set, the roughness grids and gratings the servo rate cannot
-        follow, and tagged parts hidden behind what is shown (a fillet made after tagging)."""
-        # one part under two surfaces is said once
-        hidden = list(dict.fromkeys(n for s in surfaces_of(self.doc) for n in hidden_part_notes(s)))
-        partless = [f"{v.Label}: {no_part_note(v)}" for v in vibrations_of(self.doc) if v.Part is None]
-        return "".join(_note(n) for n in partless + self.session.vibration_notes(self.doc)
-                       + self.session.roughness_notes(self.doc) + hidden)
+        follow, and tagged parts hidden behind what is shown (a fillet made after tagging):
+        feel_notes.session_notes, which `hapticad feel` and the headless demo say too."""
+        return "".join(_note(n) for n in feel_notes.session_notes(self.doc, self.session.rate_hz,
+                                                                  self.session.render_limits.max_force_n))
 
     def edited(self, geometry):
         """The designer edited the document while the session runs: a surface (felt from

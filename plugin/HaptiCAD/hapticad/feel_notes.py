@@ -1,0 +1,55 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""What a document's parts and surfaces are felt as, otherwise than set, said before
+feeling them: the notes the Feel panel shows as its session starts (session_notes), and
+what ``hapticad feel`` and ``hapticad demo --headless`` say before their strokes
+(stroke_notes: those, and what the surface panel would have said of a texture, which
+they do not show). Gathered here, in one place, so the panel and the command line say
+the same. Sentences without a closing full stop. App-only (no GUI).
+"""
+
+
+def session_notes(doc, rate_hz, force_limit_n, where="in Preferences"):
+    """The Feel panel's notes on ``doc`` for a session at ``rate_hz`` (Hz) held to
+    ``force_limit_n`` (N), as sentences, in this order: vibrations felt nowhere (their part
+    deleted); what the servo rate and the force limit keep a vibration from being felt as
+    set; the roughness grids and gratings the rate cannot follow at a brisk stroke; tagged
+    parts hidden behind what is shown (a Cut or a Fillet made after tagging: the hidden
+    shape is felt), each part once. ``where`` says where the rate is set."""
+    from . import surface_object, vibration_object
+
+    # one part under two surfaces is said once
+    hidden = list(dict.fromkeys(note for surface in surface_object.surfaces_of(doc)
+                                for note in surface_object.hidden_part_notes(surface)))
+    partless = [f"{v.Label}: {vibration_object.no_part_note(v)}" for v in vibration_object.vibrations_of(doc)
+                if v.Part is None]
+    return (partless + vibration_object.rate_notes(doc, rate_hz, where)
+            + vibration_object.force_notes(doc, force_limit_n)
+            + surface_object.rate_notes(doc, rate_hz, where) + hidden)
+
+
+def texture_notes(doc):
+    """surface_compile.texture_notes of each surface of ``doc`` (a grating clipped at its
+    full range, or one whose harmonics grow), each led by the surface's Label, as the
+    surface panel shows them. A surface whose texture cannot be compiled says nothing here:
+    building the scene names it."""
+    from .surface_compile import texture_notes as surface_texture_notes
+    from .surface_object import surfaces_of
+
+    notes = []
+    for surface in surfaces_of(doc):
+        try:
+            notes += [f"{surface.Label}: {note}" for note in surface_texture_notes(surface)]
+        except ValueError:
+            continue
+    return notes
+
+
+def stroke_notes(doc, rate_hz, force_limit_n, where, broken=True):
+    """What ``hapticad feel`` and the headless demo say of ``doc`` before their strokes, as
+    sentences: session_notes (as the Feel panel), texture_notes (as the surface panel, which
+    they do not show) and the surfaces not felt at all (feel.skipped_surface_notes; without
+    the broken face references unless ``broken``: the demo says each as its skipped stroke)."""
+    from .feel import skipped_surface_notes
+
+    return (session_notes(doc, rate_hz, force_limit_n, where) + texture_notes(doc)
+            + skipped_surface_notes(doc, broken))
