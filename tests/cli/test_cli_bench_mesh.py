@@ -153,6 +153,21 @@ class BenchMeshCommandTest(unittest.TestCase):
             self.assertIsNone(result["expected_force_n"])
             self.assertIn("closed", result["repair"])
 
+    def test_the_json_gives_back_any_file_name(self):
+        # the name was printed as it was: a quote or a backslash broke the string, a tab was a
+        # raw control character, and json.loads refused the output
+        with tempfile.TemporaryDirectory() as tmp:
+            for name in ('quo"te\\back\there.off', "W\u00fcrfel \u2603 \\\".off"):
+                with self.subTest(name=name):
+                    path = os.path.join(tmp, name)
+                    with open(path, "w") as f:
+                        f.write("OFF\n4 4 0\n0 0 0\n10 0 0\n0 10 0\n0 0 10\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n")
+                    done = bench(path, "--ticks", "100")
+                    self.assertEqual(done.returncode, 0, done.stderr)
+                    result = json.loads(done.stdout)
+                    self.assertEqual(result["mesh"], path)
+                    self.assertIn("closed", result["repair"])
+
     def test_more_than_one_mesh_file_is_refused(self):
         # the program took the last one without a word
         with tempfile.TemporaryDirectory() as tmp:

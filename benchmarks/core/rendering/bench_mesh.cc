@@ -132,6 +132,26 @@ std::string Millimetres(double mm) {
   return text;
 }
 
+// `text` as a JSON string, in its quotes: quotes, backslashes and control characters escaped
+// (a file name may hold any of them), other bytes, UTF-8's, as they are.
+std::string JsonString(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (byte < 0x20 || byte == 0x7f) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\u%04x", byte);
+      out += escaped;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
 Options Parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
@@ -443,30 +463,33 @@ int Run(const Options& o) {
   }
 
   std::printf("{\n");
-  std::printf("  \"mesh\": \"%s\",\n", o.file.empty() ? "icosphere" : o.file.c_str());
-  std::printf("  \"units\": \"%s\",\n", o.metres ? "m" : "mm");
-  std::printf("  \"proxy\": \"%s\",\n",
-              r_proxy > 0 ? ("sphere:" + std::to_string(o.sphere_radius_mm)).c_str() : "point");
+  // every string escaped: a file name may hold a quote, a backslash or a tab
+  std::printf("  \"mesh\": %s,\n", JsonString(o.file.empty() ? "icosphere" : o.file).c_str());
+  std::printf("  \"units\": %s,\n", JsonString(o.metres ? "m" : "mm").c_str());
+  std::printf(
+      "  \"proxy\": %s,\n",
+      JsonString(r_proxy > 0 ? "sphere:" + std::to_string(o.sphere_radius_mm) : "point").c_str());
   std::printf("  \"triangles\": %zu,\n", triangles);
   std::printf("  \"build_ms\": %.3f,\n", build_ms);
   std::printf("  \"mesh_ms\": %.3f,\n", mesh_ms);
   std::printf("  \"pieces_ms\": %.3f,\n", pieces_ms);
   std::printf("  \"convex_pieces\": %zu,\n",
               o.convex_pieces ? scene->BuildPieces().num_pieces() : std::size_t{0});
-  std::printf("  \"structure\": \"%s\",\n", point ? "grid" : "tree");
+  std::printf("  \"structure\": %s,\n", JsonString(point ? "grid" : "tree").c_str());
   std::printf("  \"repair_ms\": %.3f,\n", repair_ms);
   std::printf("  \"solids_ms\": %.3f,\n", solids_ms);
   // from the soup read to a scene the renderer can touch: what a designer waits for
   std::printf("  \"ready_ms\": %.3f,\n", repair_ms + build_ms + solids_ms);
-  std::printf("  \"repair\": \"%s\",\n", report.Describe().c_str());
+  std::printf("  \"repair\": %s,\n", JsonString(report.Describe()).c_str());
   std::printf("  \"bytes_per_triangle\": %.1f,\n", static_cast<double>(bytes) / triangles);
   std::printf("  \"ticks\": %zu,\n", path.size());
   std::printf("  \"warm_ahead\": %lld,\n", o.warm_ahead);
   std::printf("  \"rate_hz\": %g,\n", o.rate_hz);
   std::printf("  \"late_ticks\": %zu,\n", late_ticks);
-  std::printf("  \"pace\": \"%s\",\n", o.rate_hz == 0.0 ? "back to back"
-                                       : o.spin         ? "spin"
-                                                        : "sleep");
+  std::printf("  \"pace\": %s,\n", JsonString(o.rate_hz == 0.0 ? "back to back"
+                                              : o.spin         ? "spin"
+                                                               : "sleep")
+                                       .c_str());
   std::printf("  \"contact_ticks\": %zu,\n", contact);
   std::printf("  \"tick_us\": {\"p50\": %.3f, \"p99\": %.3f, \"p999\": %.3f, \"max\": %.3f},\n",
               Percentile(contact_us, 0.5), Percentile(contact_us, 0.99),

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
@@ -323,13 +324,22 @@ std::string DescribeCutOff(const std::string& bytes) {
 // "property TYPE NAME" or "property list COUNT_TYPE ITEM_TYPE NAME" lines, "end_header"),
 // then the elements in order, ASCII or binary.
 struct PlyProperty {
-  int count_bytes = 0;  // a list's count type; 0 for a scalar
-  int bytes = 0;        // the scalar's (or each list item's) size
+  std::string name;
+  std::string count_type;  // a list's; empty for a scalar
+  int count_bytes = 0;     // a list's count type's size; 0 for a scalar
+  int bytes = 0;           // the scalar's (or each list item's) size
+  std::string type;        // the scalar's (or each list item's)
 };
 struct PlyElement {
   std::string name;
   std::uint64_t count = 0;
   std::vector<PlyProperty> properties;
+};
+struct PlyHeader {
+  std::string format;
+  std::vector<PlyElement> elements;
+  bool ended = false;       // "end_header" was read
+  std::size_t data_at = 0;  // the byte after "end_header"'s line
 };
 
 int PlyTypeBytes(const std::string& type) {
@@ -342,32 +352,30 @@ int PlyTypeBytes(const std::string& type) {
   return 0;
 }
 
-std::string DescribeCutPly(const std::string& bytes) {
+// The header at the start of `bytes`; false when they are no PLY, or a header line before
+// the last of `bytes` makes no sense (a malformed file, not a cut one).
+bool ReadPlyHeader(const std::string& bytes, PlyHeader* header) {
   std::size_t at = 0;
-  std::string format;
-  std::vector<PlyElement> elements;
-  bool header_ended = false;
   bool first = true;
   while (at < bytes.size()) {
     std::size_t end = bytes.find('\n', at);
     if (end == std::string::npos) end = bytes.size();
     const std::vector<std::string> words = Words(bytes.substr(at, end - at));
-    // a header line that makes no sense is a malformed file, unless the file ends in it
     const bool last = end == bytes.size();
     at = std::min(end + 1, bytes.size());
     if (first) {
-      if (words.empty() || words[0] != "ply") return {};
+      if (words.empty() || words[0] != "ply") return false;
       first = false;
       continue;
     }
     if (words.empty()) continue;
     if (words[0] == "end_header") {
-      header_ended = true;
+      header->ended = true;
       break;
     }
     bool understood = true;
     if (words[0] == "format" && words.size() >= 2) {
-      format = words[1];
+      header->format = words[1];
     } else if (words[0] == "element") {
       char* stop = nullptr;
       PlyElement e;
@@ -376,23 +384,36 @@ std::string DescribeCutPly(const std::string& bytes) {
         e.count = std::strtoull(words[2].c_str(), &stop, 10);
       }
       understood = stop != nullptr && *stop == '\0';
-      elements.push_back(e);
-    } else if (words[0] == "property" && !elements.empty()) {
+      header->elements.push_back(e);
+    } else if (words[0] == "property" && !header->elements.empty()) {
       PlyProperty p;
       if (words.size() >= 5 && words[1] == "list") {
+        p.count_type = words[2];
         p.count_bytes = PlyTypeBytes(words[2]);
-        p.bytes = PlyTypeBytes(words[3]);
+        p.type = words[3];
+        p.name = words[4];
       } else if (words.size() >= 3 && words[1] != "list") {
-        p.bytes = PlyTypeBytes(words[1]);
+        p.type = words[1];
+        p.name = words[2];
       }
+      p.bytes = PlyTypeBytes(p.type);
       understood = p.bytes != 0 && (words[1] != "list" || p.count_bytes != 0);
-      elements.back().properties.push_back(p);
+      header->elements.back().properties.push_back(p);
     }
-    if (!understood && !last) return {};
+    if (!understood && !last) return false;
   }
-  if (first) return {};
-  if (!header_ended)
+  header->data_at = at;
+  return !first;
+}
+
+std::string DescribeCutPly(const std::string& bytes) {
+  PlyHeader header;
+  if (!ReadPlyHeader(bytes, &header)) return {};
+  if (!header.ended)
     return "PLY ends inside its header (no 'end_header' line)" + std::string(kTruncated);
+  const std::string& format = header.format;
+  const std::vector<PlyElement>& elements = header.elements;
+  std::size_t at = header.data_at;
   const bool ascii = format == "ascii";
   const bool big_endian = format == "binary_big_endian";
   if (!ascii && !big_endian && format != "binary_little_endian") return {};
@@ -524,6 +545,342 @@ std::string DescribeTruncation(const std::string& path) {
   return {};
 }
 
+// Counts no file of its size holds. CGAL sizes its vectors from what a file declares before
+// it reads what was declared: OFF's vertex and face counts (a 150-byte OFF declaring 1e9
+// faces took a minute and 23 GB before CGAL found it short), each OFF face's corner count and
+// each PLY list's length (2e9: a vector of 16 or 8 GB), and a PLY 'vertex' element's count (a
+// point an item, even with no property to read). So each is checked first against the file's
+// size, at the fewest bytes an item can take there. No file CGAL reads is refused but one
+// whose element without properties has more items than the file has bytes (CGAL would loop
+// over them all, making a point of each vertex).
+
+constexpr std::size_t kHeadBytes = 65536;  // a longer header is left unchecked
+constexpr std::uint64_t kMaxBytes = std::numeric_limits<std::uint64_t>::max();
+
+// a * b + c, at most the largest uint64 (the counts come from files)
+std::uint64_t MulAdd(std::uint64_t a, std::uint64_t b, std::uint64_t c) {
+  if (b != 0 && a > (kMaxBytes - c) / b) return kMaxBytes;
+  return a * b + c;
+}
+
+// A file whose counts need more bytes than it has: what it holds, where that can be counted
+// ("OFF declares 8 vertices and 1000000000 faces but holds 8 vertices and 1 face; the file is
+// truncated"), else "OFF declares ..., which take at least N bytes, but the file has M after
+// its header; its counts are wrong or it is truncated".
+std::string BeyondSize(const std::string& path, const std::string& format,
+                       const std::vector<std::string>& names,
+                       const std::vector<std::uint64_t>& counts, std::uint64_t needed,
+                       std::uint64_t have) {
+  const std::string cut = DescribeTruncation(path);  // reads the file: its size, not the claim
+  if (!cut.empty()) return cut;
+  std::string said = format + " declares ";
+  for (std::size_t e = 0; e < names.size(); ++e) {
+    said += (e == 0 ? "" : e + 1 == names.size() ? " and " : ", ") + Counted(counts[e], names[e]);
+  }
+  return said + ", which take at least " + std::to_string(needed) + " bytes, but the file has " +
+         std::to_string(have) + " after its header; its counts are wrong or it is truncated";
+}
+
+// OFF's header as CGAL reads it (File_header_OFF): comment lines, a keyword
+// [ST][C][N][4][n]OFF or the same with SKEL, "BINARY" before binary data, then, as text or as
+// big-endian int32s, the dimension (with 'n'), the vertex and face counts, and for OFF the
+// edge count.
+struct OffHeader {
+  bool binary = false;
+  bool plain = false;  // "OFF": a binary vertex is 3 floats and nothing else
+  bool skel = false;
+  std::int64_t vertices = 0, faces = 0;
+  std::size_t data_at = 0;  // the byte after the counts
+};
+
+// False when `head`, the file's first bytes, holds no such header, or counts CGAL refuses
+// itself (text: negative, or beyond an int).
+bool ReadOffHeader(const std::string& head, OffHeader* header) {
+  std::size_t at = 0;
+  const auto word = [&]() {  // the next word, past white space and '#' comments
+    while (at < head.size()) {
+      if (std::isspace(static_cast<unsigned char>(head[at]))) {
+        ++at;
+      } else if (head[at] == '#') {
+        at = std::min(head.find('\n', at), head.size());
+      } else {
+        break;
+      }
+    }
+    const std::size_t start = at;
+    while (at < head.size() && !std::isspace(static_cast<unsigned char>(head[at])) &&
+           head[at] != '#') {
+      ++at;
+    }
+    return head.substr(start, at - start);
+  };
+  const std::string keyword = word();
+  std::size_t k = keyword.rfind("ST", 0) == 0 ? 2 : 0;
+  bool dimensional = false;
+  for (const char flag : {'C', 'N', '4', 'n'}) {
+    if (k < keyword.size() && keyword[k] == flag) {
+      dimensional = flag == 'n';
+      ++k;
+    }
+  }
+  const std::string kind = keyword.substr(k);
+  if (kind != "OFF" && kind != "SKEL") return false;
+  header->plain = keyword == "OFF";
+  header->skel = kind == "SKEL";
+  const std::size_t numbers = (dimensional ? 1 : 0) + (kind == "OFF" ? 3 : 2);
+  std::vector<std::int64_t> counts;
+  const std::size_t before = at;
+  if (word() == "BINARY") {
+    header->binary = true;
+    at = std::min(head.find('\n', at), head.size()) + 1;  // CGAL skips the rest of the line
+    if (head.size() < at + 4 * numbers) return false;
+    for (std::size_t n = 0; n < numbers; ++n, at += 4) {
+      std::uint32_t v = 0;
+      for (int b = 0; b < 4; ++b) v = v << 8 | static_cast<unsigned char>(head[at + b]);
+      counts.push_back(static_cast<std::int32_t>(v));
+    }
+  } else {
+    at = before;
+    while (counts.size() < numbers) {
+      const std::string w = word();
+      char* end = nullptr;
+      const long long n = std::strtoll(w.c_str(), &end, 10);
+      if (w.empty() || *end != '\0' || n < 0 || n > std::numeric_limits<std::int32_t>::max())
+        return false;
+      counts.push_back(n);
+    }
+  }
+  header->vertices = counts[dimensional ? 1 : 0];
+  header->faces = counts[dimensional ? 2 : 1];
+  header->data_at = at;
+  return true;
+}
+
+// An OFF's counts against its size (a text vertex takes at least 6 bytes, "0 0 0" and its
+// line end, a face 2; binary, 12 and 4), then each face's corner count (a corner takes at
+// least 2 bytes, binary 4). Empty when they fit or the header is not understood.
+std::string DescribeOffBeyondSize(const std::string& path, std::uint64_t size) {
+  const std::string head = ReadBytes(path, kHeadBytes);
+  OffHeader h;
+  if (!ReadOffHeader(head, &h) || h.data_at > size) return {};
+  if (h.data_at >= head.size() && head.size() < size) return {};  // a count may go on past `head`
+  if (h.vertices < 0) {  // binary: CGAL would size its points from it as an unsigned count
+    return "binary OFF declares " + std::to_string(h.vertices) + " vertices";
+  }
+  if (h.faces < 0) return {};  // CGAL refuses it
+  const auto vertices = static_cast<std::uint64_t>(h.vertices);
+  const auto faces = static_cast<std::uint64_t>(h.faces);
+  const std::uint64_t have = size - h.data_at;
+  const std::uint64_t vertex_bytes = h.binary ? 12 : 6, face_bytes = h.binary ? 4 : 2;
+  std::uint64_t needed = MulAdd(faces, face_bytes, MulAdd(vertices, vertex_bytes, 0));
+  if (!h.binary && needed > 0) --needed;  // the last line needs no line end
+  if (needed > have) {
+    return BeyondSize(path, h.skel ? "SKEL" : "OFF", {"vertex", "face"}, {vertices, faces}, needed,
+                      have);
+  }
+  const std::uint64_t corner_bytes = h.binary ? 4 : 2;
+  const auto too_many = [&](const std::string& where, std::uint64_t face,
+                            const std::string& corners) {
+    return where + "face " + std::to_string(face) + " declares " + corners +
+           " corners, more than the file's " + std::to_string(size) +
+           " bytes can hold (a corner takes at least " + std::to_string(corner_bytes) + ")";
+  };
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(static_cast<std::streamoff>(h.data_at));
+  if (h.binary) {
+    if (!h.plain) return {};  // where the variants' faces start is not worked out here
+    in.ignore(static_cast<std::streamsize>(12 * vertices));
+    for (std::uint64_t f = 1; f <= faces; ++f) {
+      unsigned char raw[4];
+      if (!in.read(reinterpret_cast<char*>(raw), 4)) return {};
+      const auto corners =
+          static_cast<std::int32_t>(std::uint32_t{raw[0]} << 24 | std::uint32_t{raw[1]} << 16 |
+                                    std::uint32_t{raw[2]} << 8 | raw[3]);
+      if (corners < 0 || static_cast<std::uint64_t>(corners) * 4 > size) {
+        return too_many("", f, std::to_string(corners));
+      }
+      in.ignore(4 * static_cast<std::streamsize>(corners));
+    }
+    return {};
+  }
+  // as CGAL reads text: a record a line, past blank and comment lines; a face's first number
+  // is its corner count
+  std::uint64_t number =
+      1 + static_cast<std::uint64_t>(std::count(head.begin(), head.begin() + h.data_at, '\n'));
+  std::uint64_t record = 0;
+  std::string line;
+  for (; record < vertices + faces && std::getline(in, line); ++number) {
+    const std::size_t start = line.find_first_not_of(" \t\r\f\v");
+    if (start == std::string::npos || line[start] == '#') continue;
+    if (record++ < vertices) continue;
+    char* end = nullptr;
+    const double corners = std::strtod(line.c_str() + start, &end);
+    // not a number, or a negative one: CGAL refuses it
+    if (end != line.c_str() + start && std::isfinite(corners) && corners * 2 > size) {
+      return too_many("line " + std::to_string(number) + ": ", record - vertices,
+                      line.substr(start, static_cast<std::size_t>(end - (line.c_str() + start))));
+    }
+  }
+  return {};
+}
+
+// A PLY number type as CGAL reads it (PLY_read_number): its size in binary, and in ASCII
+// `>>` into the type (a char's through a short), so an integer beyond [lo, hi] is read as
+// another number, or not at all.
+struct PlyNumber {
+  int bytes = 0;
+  bool real = false;
+  std::int64_t lo = 0, hi = 0;
+};
+
+PlyNumber PlyNumberOf(const std::string& type) {
+  PlyNumber n;
+  n.bytes = PlyTypeBytes(type);
+  n.real = type == "float" || type == "float32" || type == "double" || type == "float64";
+  const bool is_signed = type == "char" || type == "int8" || type == "short" || type == "int16" ||
+                         type == "int" || type == "int32";
+  if (!n.real && n.bytes > 0) {
+    const int bits = 8 * n.bytes;
+    n.lo = is_signed ? -(std::int64_t{1} << (bits - 1)) : 0;
+    n.hi = (std::int64_t{1} << (is_signed ? bits - 1 : bits)) - 1;
+  }
+  return n;
+}
+
+// The next ASCII number at `*at` in a NUL-ended text; an integer's in `value`. False at the
+// end, or at a word CGAL reads otherwise: not a number, or an integer beyond the type (a uint
+// excepted: CGAL takes "-5" as 2^32 - 5, a count refused here as -5). The walk stops there:
+// CGAL fails at it, or reads the words out of step.
+bool ReadPlyAscii(const char** at, const PlyNumber& type, std::int64_t* value) {
+  char* end = nullptr;
+  errno = 0;
+  if (type.real) {
+    std::strtod(*at, &end);
+  } else {
+    *value = std::strtoll(*at, &end, 10);
+  }
+  if (end == *at || errno == ERANGE ||
+      (*end != '\0' && !std::isspace(static_cast<unsigned char>(*end)))) {
+    return false;
+  }
+  *at = end;
+  const bool uint = type.bytes == 4 && type.lo == 0;
+  return type.real || ((uint || *value >= type.lo) && *value <= type.hi);
+}
+
+// A PLY's element counts against its size (an item takes at least its binary size, its
+// lists' counts in it, or in ASCII 2 bytes a property), then, where a list's count may claim
+// more than a file holds (a signed or a 4-byte count type), each list's. Empty when they fit
+// or the header is not understood.
+std::string DescribePlyBeyondSize(const std::string& path, std::uint64_t size) {
+  PlyHeader h;
+  if (!ReadPlyHeader(ReadBytes(path, kHeadBytes), &h) || !h.ended || h.data_at > size) return {};
+  const bool ascii = h.format == "ascii";
+  const bool big_endian = h.format == "binary_big_endian";
+  if (!ascii && !big_endian && h.format != "binary_little_endian") return {};
+  const std::uint64_t have = size - h.data_at;
+  std::vector<std::string> names;
+  std::vector<std::uint64_t> counts;
+  std::uint64_t needed = 0;
+  std::size_t checked = 0;  // the elements up to the last with a list to check
+  for (std::size_t e = 0; e < h.elements.size(); ++e) {
+    const PlyElement& element = h.elements[e];
+    std::uint64_t item = 0;
+    for (const PlyProperty& p : element.properties) {
+      item += ascii ? 2 : static_cast<std::uint64_t>(p.count_bytes != 0 ? p.count_bytes : p.bytes);
+      if (p.count_bytes != 0 && (PlyNumberOf(p.count_type).lo < 0 || p.count_bytes == 4)) {
+        checked = e + 1;
+      }
+    }
+    // CGAL reads every item, and makes a point of a vertex, even with nothing to read
+    if (item == 0 && element.count > have) {
+      return "PLY declares " + Counted(element.count, element.name) +
+             " with no property, more than the " + std::to_string(have) +
+             " bytes after its header; its counts are wrong";
+    }
+    names.push_back(element.name);
+    counts.push_back(element.count);
+    needed = MulAdd(element.count, item, needed);
+  }
+  if (ascii && needed > 0) --needed;  // the last number needs no space after it
+  if (needed > have) return BeyondSize(path, "PLY", names, counts, needed, have);
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(static_cast<std::streamoff>(h.data_at));
+  std::string text;  // ASCII: the data, read at once (the file's size, less than CGAL's soup)
+  if (ascii && checked > 0) {
+    text.resize(static_cast<std::size_t>(have));
+    in.read(text.data(), static_cast<std::streamsize>(have));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+  }
+  const char* cursor = text.c_str();
+  // the next number; false at the end of the data
+  const auto next = [&](const PlyNumber& type, std::int64_t* value) {
+    if (ascii) return ReadPlyAscii(&cursor, type, value);
+    unsigned char raw[8];
+    if (!in.read(reinterpret_cast<char*>(raw), type.bytes)) return false;
+    std::uint64_t v = 0;
+    for (int k = 0; k < type.bytes; ++k) v = v << 8 | raw[big_endian ? k : type.bytes - 1 - k];
+    const int bits = 8 * type.bytes;
+    *value = static_cast<std::int64_t>(v);
+    if (type.lo < 0 && (v >> (bits - 1)) != 0) *value -= std::int64_t{1} << bits;
+    return true;
+  };
+  std::int64_t value = 0, ignored = 0;
+  for (std::size_t e = 0; e < checked; ++e) {
+    const PlyElement& element = h.elements[e];
+    std::vector<std::pair<PlyNumber, PlyNumber>> types;  // each property's count's and item's
+    std::uint64_t fixed = 0;                             // binary: an item's bytes, without lists
+    for (const PlyProperty& p : element.properties) {
+      types.emplace_back(PlyNumberOf(p.count_type), PlyNumberOf(p.type));
+      fixed = p.count_bytes != 0 || fixed == kMaxBytes ? kMaxBytes : fixed + p.bytes;
+    }
+    if (!ascii && fixed != kMaxBytes) {  // items of one size: skipped at once
+      in.ignore(static_cast<std::streamsize>(element.count * fixed));  // at most `have`
+      continue;
+    }
+    for (std::uint64_t i = 0; i < element.count; ++i) {
+      for (std::size_t k = 0; k < types.size(); ++k) {
+        const auto& [count_type, item_type] = types[k];
+        if (count_type.bytes == 0) {
+          if (!next(item_type, &ignored)) return {};
+          continue;
+        }
+        if (!next(count_type, &value)) return {};
+        const std::uint64_t item = ascii ? 2 : static_cast<std::uint64_t>(item_type.bytes);
+        if (value < 0 || static_cast<std::uint64_t>(value) > have / item) {
+          const std::string list =
+              "PLY's " + Ordinal(i + 1) + " " + Counted(1, element.name).substr(2) + " declares " +
+              std::to_string(value) + " items in its list '" + element.properties[k].name + "'";
+          if (value < 0) return list + "; a count cannot be negative";
+          return list + ", more than the " + std::to_string(have) +
+                 " bytes after its header can hold (an item takes at least " +
+                 std::to_string(item) + ")";
+        }
+        if (!ascii) {
+          in.ignore(value * item_type.bytes);
+          continue;
+        }
+        for (std::int64_t n = 0; n < value; ++n) {
+          if (!next(item_type, &ignored)) return {};
+        }
+      }
+    }
+  }
+  return {};
+}
+
+// Refuses a file whose counts its size cannot hold (see above) before CGAL reads it.
+void CheckCountsAgainstSize(const std::string& path) {
+  std::error_code error;
+  const std::uint64_t size = std::filesystem::file_size(path, error);
+  if (error) return;
+  const std::string ext = Extension(path);
+  const std::string said = ext == "off"   ? DescribeOffBeyondSize(path, size)
+                           : ext == "ply" ? DescribePlyBeyondSize(path, size)
+                                          : std::string();
+  if (!said.empty()) throw std::runtime_error(path + ": " + said);
+}
+
 // The first face of an OBJ or OFF that names a vertex the file does not have (CGAL
 // refuses most such files without saying why, and lets an OBJ index one past the last
 // vertex through): "line L: face F names vertex V, but the file has N vertices"; empty
@@ -618,6 +975,7 @@ TriangleSoup ReadMeshFile(const std::string& path) {
     throw std::runtime_error(path + ": the file is empty");
   }
   if (Extension(path) == "stl") CheckBinaryStl(path);
+  CheckCountsAgainstSize(path);
   using Point = CGAL::Simple_cartesian<double>::Point_3;
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> polygons;

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -382,6 +383,114 @@ TEST_F(MeshFile, APlyCutShortSaysWhatItDeclaredAndWhatItHolds) {
   EXPECT_EQ(ErrorFor("lines_binary.ply", binary.substr(0, faces + 12 * 13 - 13)),
             "PLY declares 8 vertices and 12 faces but holds 8 vertices and 11 faces; the file is "
             "truncated");
+}
+
+// Big-endian int32s, as binary OFF has them.
+std::string BigEndian(std::initializer_list<std::int32_t> values) {
+  std::string s;
+  for (const std::int32_t v : values) {
+    const auto u = static_cast<std::uint32_t>(v);
+    for (int shift = 24; shift >= 0; shift -= 8) s += static_cast<char>(u >> shift & 0xff);
+  }
+  return s;
+}
+
+// CGAL sized a vector from each of these counts before reading what it counts: 48 GB for
+// 2e9 faces or vertices, 8 TB for 1e12 corners, 16 GB for 2^31 - 1 (the old reader threw
+// std::bad_alloc, or took minutes and all the memory). Refused from the file's size instead.
+TEST_F(MeshFile, AnOffCountItsFileCannotHoldIsRefusedBeforeAnythingIsSizedFromIt) {
+  std::string cube_vertices = CubeVertexAndFaceLines();
+  cube_vertices.resize(cube_vertices.find("3 "));
+  // one face where 2e9 are declared: the file is named as cut, as a shorter claim is
+  EXPECT_EQ(ErrorFor("faces.off", "OFF\n8 2000000000 0\n" + cube_vertices + "3 0 2 1\n"),
+            "OFF declares 8 vertices and 2000000000 faces but holds 8 vertices and 1 face; the "
+            "file is truncated");
+  EXPECT_EQ(ErrorFor("vertices.off", "OFF\n2000000000 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+            "OFF declares 2000000000 vertices and 1 face but holds 4 vertices and 0 faces; the "
+            "file is truncated");
+  // where the records cannot be counted, what the counts take against what the file has
+  EXPECT_EQ(ErrorFor("skeleton.off", "SKEL\n2000000000 1\n0 0 0\n"),
+            "SKEL declares 2000000000 vertices and 1 face, which take at least 12000000001 bytes, "
+            "but the file has 7 after its header; its counts are wrong or it is truncated");
+  std::string binary_vertices;
+  for (const Vec3& v : kCubeVertices) {
+    for (int k = 0; k < 3; ++k) {
+      float f = static_cast<float>(v[k]);
+      std::int32_t bits = 0;
+      std::memcpy(&bits, &f, sizeof bits);
+      binary_vertices += BigEndian({bits});
+    }
+  }
+  const std::string binary = "OFF BINARY\n" + BigEndian({8, 2000000000, 0}) + binary_vertices;
+  EXPECT_EQ(ErrorFor("faces_binary.off", binary + BigEndian({3, 0, 2, 1})),
+            "OFF declares 8 vertices and 2000000000 faces, which take at least 8000000096 bytes, "
+            "but the file has 112 after its header; its counts are wrong or it is truncated");
+  // a face's corner count
+  EXPECT_EQ(ErrorFor("corners.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n1000000000000 0 1 2\n"),
+            "line 6: face 1 declares 1000000000000 corners, more than the file's 48 bytes can "
+            "hold (a corner takes at least 2)");
+  const std::string one_face = "OFF BINARY\n" + BigEndian({8, 1, 0}) + binary_vertices;
+  EXPECT_EQ(ErrorFor("corners_binary.off", one_face + BigEndian({2147483647, 0, 2, 1})),
+            "face 1 declares 2147483647 corners, more than the file's 135 bytes can hold (a "
+            "corner takes at least 4)");
+  // the same files with what they declare are read
+  EXPECT_EQ(
+      ReadMeshFile(Write("face_binary.off", one_face + BigEndian({3, 0, 2, 1}))).triangles.size(),
+      1u);
+  EXPECT_EQ(ReadMeshFile(Write("corners_fit.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2"))
+                .triangles.size(),
+            1u);
+}
+
+TEST_F(MeshFile, APlyCountItsFileCannotHoldIsRefusedBeforeAnythingIsSizedFromIt) {
+  const std::string ascii = CubeAsciiPly();
+  std::string claims = ascii;
+  claims.replace(claims.find("vertex 8"), 8, "vertex 2000000000");
+  EXPECT_EQ(ErrorFor("vertices.ply", claims),
+            "PLY declares 2000000000 vertices and 12 faces but holds 24 vertices and 0 faces; "
+            "the file is truncated");
+  std::string binary = CubeBinaryPly();
+  binary.replace(binary.find("face 12"), 7, "face 2000000000");
+  EXPECT_EQ(ErrorFor("faces_binary.ply", binary),
+            "PLY declares 8 vertices and 2000000000 faces but holds 8 vertices and 12 faces; the "
+            "file is truncated");
+  // a vertex element with no property: CGAL made a point of each of its items
+  const std::string bare =
+      "ply\nformat ascii 1.0\nelement vertex 2000000000\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n3 0 1 2\n";
+  EXPECT_EQ(ErrorFor("bare.ply", bare),
+            "PLY declares 2000000000 vertices with no property, more than the 8 bytes after its "
+            "header; its counts are wrong");
+  // a list's count, with a count type that can claim more than a file holds
+  std::string wide = ascii;
+  wide.replace(wide.find("list uchar int"), 14, "list uint int");
+  std::string uint_count = wide;
+  uint_count.replace(uint_count.find("\n3 4 5 6\n") + 1, 1, "4294967295");
+  EXPECT_EQ(ErrorFor("list.ply", uint_count),
+            "PLY's 3rd face declares 4294967295 items in its list 'vertex_indices', more than the "
+            "153 bytes after its header can hold (an item takes at least 2)");
+  std::string int_binary = PlyHeader("binary_big_endian");
+  int_binary.replace(int_binary.find("list uchar int"), 14, "list int int");
+  for (const Vec3& v : kCubeVertices) {
+    for (int k = 0; k < 3; ++k) {
+      float f = static_cast<float>(v[k]);
+      std::int32_t bits = 0;
+      std::memcpy(&bits, &f, sizeof bits);
+      int_binary += BigEndian({bits});
+    }
+  }
+  std::string faces;
+  for (const auto& t : kCubeTriangles) faces += BigEndian({3, t[0], t[1], t[2]});
+  EXPECT_EQ(ReadMeshFile(Write("int_binary.ply", int_binary + faces)).triangles.size(), 12u);
+  EXPECT_EQ(
+      ErrorFor("list_binary.ply", int_binary + BigEndian({2147483647, 0, 2, 1}) + faces.substr(16)),
+      "PLY's 1st face declares 2147483647 items in its list 'vertex_indices', more than the "
+      "288 bytes after its header can hold (an item takes at least 4)");
+  EXPECT_EQ(ErrorFor("negative_binary.ply", int_binary + faces.substr(0, 16) +
+                                                BigEndian({-5, 0, 2, 1}) + faces.substr(32)),
+            "PLY's 2nd face declares -5 items in its list 'vertex_indices'; a count cannot be "
+            "negative");
+  EXPECT_EQ(ReadMeshFile(Write("wide.ply", wide)).triangles.size(), 12u);
 }
 
 TEST_F(MeshFile, AnObjCutInsideALineIsRefusedAndOneCutBetweenLinesIsNot) {

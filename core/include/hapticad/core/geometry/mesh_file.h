@@ -21,6 +21,9 @@ namespace hapticad {
 // vertex or face left short) is refused, and one cut before its faces is named as such.
 // A binary STL holding more whole triangles than its count says is refused too ("binary
 // STL claims 0 triangles but holds 12 ..."): reading the count would drop the rest.
+// A count the file's size cannot hold (OFF's vertices, faces or a face's corners, PLY's
+// elements or a list's items) is refused before anything is sized from it, saying what
+// the file holds where that can be told, else what the counts take against its size.
 TriangleSoup ReadMeshFile(const std::string& path);
 
 }  // namespace hapticad
