@@ -4,14 +4,21 @@
 Shows and stores hapticad.preferences: the device (the simulated probe, or a HID
 device found now), servo rate, accuracy (a preset, whose values are shown, or Custom's
 own linear and angular deflection, force shading and refinement), force limit,
-workspace mapping, and the overlay. The widgets only allow valid values; preferences.save checks them again.
+workspace mapping, and the overlay. preferences.save checks the values again.
+
+A number typed is taken as typed or refused, never changed unsaid (quantity_spin): read as
+FreeCAD reads a quantity ("2,5 kHz", "0,05" with a decimal comma, "0,5 rad" in degrees),
+and when it is not one, or is outside the preference's range, the field keeps its value
+and the page says why at its top; OK then says which typed values were not saved.
 """
 import math
+from html import escape
 
 from PySide2 import QtWidgets
 
 from .. import accuracy as accuracy_presets
 from .. import preferences
+from .quantity_spin import QuantitySpin, read_quantity
 
 
 def hid_devices():
@@ -23,11 +30,37 @@ def hid_devices():
     return [(c.label, c.path) for c in device_choices() if not c.simulated]
 
 
+class RefineSpin(QuantitySpin):
+    """The Custom accuracy's refinement: "off" (or 0), or an edge length in mm within
+    accuracy.REFINE_RANGE_MM; a length finer than that is refused, not rounded to off."""
+
+    def __init__(self, name, label):
+        super().__init__(name, label, "mm")
+        self.setRange(0.0, accuracy_presets.REFINE_RANGE_MM[1])
+        self.setSpecialValueText("off")
+
+    def read(self, text):
+        if text.strip().lower() == "off":
+            return 0.0
+        value = read_quantity(text, "mm", self.label)
+        low, high = accuracy_presets.REFINE_RANGE_MM
+        if value != 0.0 and not low <= value <= high:
+            raise ValueError(f"{self.label}: {value:g} mm is neither 0 (off) nor in {low:g}..{high:g} mm")
+        return value
+
+
 class PreferencesPage:
     def __init__(self, parent=None):
         self.form = QtWidgets.QWidget(parent)
         self.form.setWindowTitle("HaptiCAD")
         layout = QtWidgets.QVBoxLayout(self.form)
+        self.spins = []  # the QuantitySpins: what they refuse is said (_refused)
+        self._refusals = {}  # field label -> why what was typed there is not set
+        self.message = QtWidgets.QLabel()
+        self.message.setObjectName("preferencesMessage")
+        self.message.setWordWrap(True)
+        self.message.hide()
+        layout.addWidget(self.message)
 
         device_box = QtWidgets.QGroupBox("Haptic device")
         form = QtWidgets.QFormLayout(device_box)
@@ -35,21 +68,16 @@ class PreferencesPage:
         self.device.setObjectName("device")
         self.device.setToolTip("The simulated probe follows the mouse; HID devices are listed when connected")
         form.addRow("Device", self.device)
-        self.servo_rate = QtWidgets.QSpinBox()
-        self.servo_rate.setObjectName("servoRate")
+        self.servo_rate = self._spin("servoRate", "Servo rate", "Hz", decimals=0)  # whole Hz, as stored
         self.servo_rate.setRange(*preferences.SERVO_RATE_RANGE_HZ)
         self.servo_rate.setSingleStep(100)
-        self.servo_rate.setSuffix(" Hz")
         self.servo_rate.setToolTip("Rate of the C++ servo loop; textures feel cleaner at higher rates. At least "
                                    f"{preferences.SERVO_RATE_RANGE_HZ[0]} Hz: a slower loop would trip its own "
                                    "5 ms watchdog")
         form.addRow("Servo rate", self.servo_rate)
-        self.force_limit = QtWidgets.QDoubleSpinBox()
-        self.force_limit.setObjectName("forceLimit")
+        self.force_limit = self._spin("forceLimit", "Force limit", "N")
         self.force_limit.setRange(*preferences.FORCE_LIMIT_RANGE_N)
-        self.force_limit.setDecimals(2)
         self.force_limit.setSingleStep(0.1)
-        self.force_limit.setSuffix(" N")
         self.force_limit.setToolTip("Largest force sent to the device (never more than the device's own limit)")
         form.addRow("Force limit", self.force_limit)
         self.mapping = QtWidgets.QComboBox()
@@ -58,12 +86,10 @@ class PreferencesPage:
         self.mapping.setToolTip("Fit part: the device's workspace spans the part; Fixed scale: model mm per "
                                 "device mm")
         form.addRow("Workspace mapping", self.mapping)
-        self.scale = QtWidgets.QDoubleSpinBox()
-        self.scale.setObjectName("workspaceScale")
+        self.scale = self._spin("workspaceScale", "Scale", "")  # a ratio: its unit is in the row's label
         self.scale.setRange(*preferences.WORKSPACE_SCALE_RANGE)
-        self.scale.setDecimals(3)
-        self.scale.setSuffix(" model mm / device mm")
-        form.addRow("Scale", self.scale)
+        self.scale.setSingleStep(0.1)
+        form.addRow("Scale (model mm / device mm)", self.scale)
         # why the two above are greyed, when they are: said, not left to guess
         self.mapping_hint = QtWidgets.QLabel()
         self.mapping_hint.setObjectName("workspaceHint")
@@ -83,30 +109,20 @@ class PreferencesPage:
                                  "follows curved faces closely; Custom takes your own values")
         form.addRow("Accuracy", self.accuracy)
         # what the chosen accuracy means: a preset's values shown greyed, Custom's editable
-        self.linear_deflection = QtWidgets.QDoubleSpinBox()
-        self.linear_deflection.setObjectName("linearDeflection")
-        self.linear_deflection.setDecimals(4)
+        # 8 decimals: 4 digits kept at the range's low end, 0.0001 mm
+        self.linear_deflection = self._spin("linearDeflection", "Linear deflection", "mm", decimals=8)
         self.linear_deflection.setRange(*accuracy_presets.LINEAR_RANGE_MM)
         self.linear_deflection.setSingleStep(0.01)
-        self.linear_deflection.setSuffix(" mm")
         self.linear_deflection.setToolTip("Largest distance between a facet and the face it stands for")
         form.addRow("Linear deflection", self.linear_deflection)
-        self.angular_deflection = QtWidgets.QDoubleSpinBox()
-        self.angular_deflection.setObjectName("angularDeflection")
-        self.angular_deflection.setDecimals(4)
+        self.angular_deflection = self._spin("angularDeflection", "Angular deflection", "\u00b0")
         self.angular_deflection.setRange(*preferences.ANGULAR_RANGE_DEG_SHOWN)
-        self.angular_deflection.setSuffix(" \u00b0")
         self.angular_deflection.setToolTip("Largest angle between the normals of neighbouring facets")
         form.addRow("Angular deflection", self.angular_deflection)
         self.force_shading = QtWidgets.QCheckBox("Force shading (push along the exact normal of curved faces)")
         self.force_shading.setObjectName("forceShading")
         form.addRow(self.force_shading)
-        self.refine_edge = QtWidgets.QDoubleSpinBox()
-        self.refine_edge.setObjectName("refineEdge")
-        self.refine_edge.setDecimals(2)
-        self.refine_edge.setRange(0.0, accuracy_presets.REFINE_RANGE_MM[1])
-        self.refine_edge.setSpecialValueText("off")
-        self.refine_edge.setSuffix(" mm")
+        self.refine_edge = self._spin("refineEdge", "Refine edges over", kind=RefineSpin)
         self.refine_edge.setToolTip("Split edges longer than this after tessellating (off: keep FreeCAD's facets)")
         form.addRow("Refine edges over", self.refine_edge)
         self.accuracy_hint = QtWidgets.QLabel()
@@ -131,7 +147,30 @@ class PreferencesPage:
         layout.addWidget(overlay_box)
         layout.addStretch(1)
 
+    def _spin(self, name, label, unit="", decimals=6, kind=QuantitySpin):
+        """A field that takes a number as typed or refuses it, saying why (_refused)."""
+        spin = kind(name, label) if kind is not QuantitySpin else kind(name, label, unit, decimals)
+        spin.refused.connect(lambda problem, spin=spin: self._refused(spin, problem))
+        self.spins.append(spin)
+        return spin
+
+    def _refused(self, spin, problem):
+        """What was typed in ``spin`` is not set (``problem``, why) or is taken (""): said at
+        the page's top until typed again, and at OK."""
+        if problem:
+            self._refusals[spin.label] = problem
+        else:
+            self._refusals.pop(spin.label, None)
+        self._show_refusals()
+
+    def _show_refusals(self):
+        lines = [f"\u26a0 Not set: {escape(text, quote=False)}" for text in self._refusals.values()]
+        self.message.setText("<span style='color:#b00000'>" + "<br>".join(lines) + "</span>" if lines else "")
+        self.message.setVisible(bool(lines))
+
     def loadSettings(self):
+        self._refusals.clear()
+        self._show_refusals()
         prefs = preferences.load()
         self.device.clear()
         self.device.addItem("Simulated probe (mouse)", preferences.SIMULATED_DEVICE)
@@ -231,9 +270,21 @@ class PreferencesPage:
         )
 
     def saveSettings(self):
+        """Stores the page's values; a value typed and refused is not among them (its field
+        kept the value before), and a message box says which."""
+        for spin in self.spins:  # typed, and OK pressed without leaving the field
+            spin.commit()
         before = preferences.load()
         prefs = self.values()
         preferences.save(prefs)
+        if self._refusals:
+            refused = list(self._refusals.values())
+            self._refusals.clear()  # said here now: the page's own message goes
+            self._show_refusals()
+            QtWidgets.QMessageBox.warning(
+                self.form, "HaptiCAD preferences",
+                "These values typed were refused and not saved (each field kept its value before):\n\n"
+                + "\n".join(refused) + "\n\nThe other preferences are saved.")
         if (before.overlay_visible, before.overlay_colour_by) != (prefs.overlay_visible, prefs.overlay_colour_by):
             from .command_overlay import refresh_all
 

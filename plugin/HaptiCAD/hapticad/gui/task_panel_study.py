@@ -18,11 +18,12 @@ saved.
 """
 from html import escape
 
-from PySide2 import QtCore, QtGui, QtWidgets
+from PySide2 import QtCore, QtWidgets
 
 from .. import cohort, preferences, stiffness_study, study_journal
 from ..proxy_state import is_alive
 from .narrow import let_narrow
+from .quantity_spin import QuantitySpin
 from .study_controls import StudyControls, set_study_property
 from .task_panel_base import CloseOnlyPanel
 
@@ -34,24 +35,15 @@ LABELS = {"YoungsModulus": "Young's modulus E", "BeamWidth": "Width b", "BeamThi
 TABLE_COLUMNS = ("Participant", "Preferred", "Gender", "Age", "Weight (kg)", "Height (mm)")  # what counts, first
 
 
-class QuantitySpin(QtWidgets.QDoubleSpinBox):
-    """A spin box of one of the study's values, read as FreeCAD reads a quantity
-    (stiffness_study.typed_value): "6 cm" in a length is 60 mm, "1500 MPa" in the modulus
-    1.5 GPa, "4,5" 4.5, a number alone in the shown unit. Every key typed stays (a spin box
-    bounded by its range dropped the 4th digit of 1500, and its suffix took "6 cm" as
-    6 mm); on Return or leaving the field, a value that is not one, or is outside the
-    range, is not set, and ``refused`` says why ("" when what was typed is taken)."""
-
-    refused = QtCore.Signal(str)
+class StudyQuantitySpin(QuantitySpin):
+    """A spin box of one of the study's values, read as stiffness_study.typed_value reads
+    it, in the unit of the property it takes (``quantity_of``; AdjustMin: the slider's):
+    "6 cm" in a length is 60 mm, "1500 MPa" in the modulus 1.5 GPa, "4,5" 4.5, "150 gf"
+    1.47 N. What is typed, and what is refused, as QuantitySpin."""
 
     def __init__(self, name, label):
-        super().__init__()
-        self.setObjectName(name)
-        self.name, self.label, self.problem = name, label, None
+        super().__init__(name, label)
         self.quantity_of = name  # the property whose unit and range it takes (AdjustMin: the slider's)
-        self.setDecimals(6)
-        self.setKeyboardTracking(False)
-        self.editingFinished.connect(self._finished)
 
     def set_quantity(self, name, value_range, step):
         """Takes ``name``'s unit, over ``value_range`` (signals blocked by the caller)."""
@@ -59,29 +51,12 @@ class QuantitySpin(QtWidgets.QDoubleSpinBox):
         self.setRange(*value_range)
         self.setSingleStep(step)
 
-    def validate(self, text, pos):
-        return QtGui.QValidator.Acceptable  # whatever is typed stays; valueFromText judges it
+    def unit(self):
+        # asked by QuantitySpin's own setup, before quantity_of is set: its name's then
+        return stiffness_study.UNITS.get(getattr(self, "quantity_of", self.name), "")
 
-    def fixup(self, text):
-        return text
-
-    def valueFromText(self, text):
-        try:
-            value = stiffness_study.typed_value(self.quantity_of, text, self.label)
-        except ValueError as exc:
-            self.problem = str(exc)
-            return self.value()  # nothing set
-        self.problem = None
-        return value
-
-    def textFromValue(self, value):
-        unit = stiffness_study.UNITS.get(self.quantity_of, "")
-        shown = f"{value:.{self.decimals()}f}".rstrip("0").rstrip(".")
-        return f"{shown} {unit}".rstrip()
-
-    def _finished(self):
-        problem, self.problem = self.problem, None
-        self.refused.emit(problem or "")
+    def read(self, text):
+        return stiffness_study.typed_value(self.quantity_of, text, self.label)
 
 
 class StudyTaskPanel(CloseOnlyPanel):
@@ -115,7 +90,7 @@ class StudyTaskPanel(CloseOnlyPanel):
     # --- building -------------------------------------------------------------------
 
     def _spin(self, name, constraint, label=None):
-        box = QuantitySpin(name, label or LABELS.get(name, name))
+        box = StudyQuantitySpin(name, label or LABELS.get(name, name))
         if constraint is not None:
             box.set_quantity(name, constraint[:2], constraint[2])
         box.valueChanged.connect(lambda v, n=name: self.set_property(n, float(v)))
