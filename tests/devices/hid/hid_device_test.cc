@@ -373,11 +373,11 @@ TEST_F(HidOnEmulator, ACommandStuckInTheUsbStackIsAFaultThenALostDeviceAndNothin
   // ending the session and closing the device do not wait for the stuck write
   auto start = std::chrono::steady_clock::now();
   d->EndSession();
-  EXPECT_LT(SecondsSince(start), HidDevice::kEndSessionWaitS + 0.1);
+  EXPECT_LT(SecondsSince(start), HidDevice::kEndSessionWaitS + 0.5);
   EXPECT_THROW(d->BeginSession(), DeviceError);
   start = std::chrono::steady_clock::now();
   d.reset();
-  EXPECT_LT(SecondsSince(start), HidOutputWriter::kAbandonAfterS + 0.1);
+  EXPECT_LT(SecondsSince(start), HidOutputWriter::kAbandonAfterS + 0.5);
   // the abandoned writer keeps its handle until its write returns (here: the device goes)
   EXPECT_EQ(hidemu::OpenHandles(c.path), 1);
   hidemu::Reset();
