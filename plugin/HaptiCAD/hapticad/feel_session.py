@@ -224,6 +224,28 @@ class LiveSession:
         if self.simulated:
             self.device.set_target(np.asarray(target_w, float))
 
+    def let_go(self):
+        """The simulated hand lets go of the proxy (the clutch held): the force stops at
+        once and the hand moves freely, while the loop's tool stays where it was. With
+        ``take_hold`` the hand steering frees a proxy caught on the far side of a part
+        (hand_approach.py); a real device's user moves the handle out instead."""
+        if self.simulated:
+            self.loop.set_clutch(True)
+
+    def take_hold(self):
+        """After ``let_go``: the proxy restarts at the hand, as at the start of a session
+        (the hand's identity mapping given again: it drops the clutch's offset), and the
+        force ramps in from zero. The mapping first, so that the tick that sees the clutch
+        released restarts the proxy at the hand, never at the tool let go of."""
+        if self.simulated:
+            self.loop.set_mapping(self.mapping)
+            self.loop.set_clutch(False)
+
+    def hand_w(self):
+        """Where the simulated hand holds the handle now, world metres (its frame is the
+        world), let go of or not."""
+        return np.asarray(self.device.true_state.position_d, float)
+
     def tool_w(self):
         """Where the device's tool was at the loop's last tick, world metres."""
         return np.asarray(self.loop.latest()["device_m"], float)

@@ -257,6 +257,44 @@ class FeelSessionTest(unittest.TestCase):
         self.assertGreater(f_after, 2.0 * f_before)
         self.assertLessEqual(float(np.linalg.norm(after["force_n"], axis=1).max()), 3.0 + 1e-9)
 
+    @rerun_after_host_stall
+    def test_a_hand_let_go_of_its_proxy_caught_under_the_part_takes_hold_again_in_the_open(self):
+        # the box moved 14 mm up over the resting hand: the proxy restarts on its bottom
+        # (6 mm away, the top 14), and pulls the hand aiming up through the part back down
+        session, _ = self.press_on_the_top()
+        try:
+            self.box.Placement.Base = App.Vector(0, 0, 14)
+            self.doc.recompute()
+            session.update_scene(self.doc)
+            session.set_target(np.array([20, 15, 44]) * MM)  # 10 mm over the new top
+            caught = drain_ticks(session, 600)[-50:]
+            session.let_go()  # the force stops, the hand goes up freely
+            let_go = drain_ticks(session, 600)
+            hand_mm = session.hand_w() / MM
+            session.take_hold()  # the proxy restarts at the hand, in the open
+            held = drain_ticks(session, 300)[-50:]
+            session.set_target(np.array([20, 15, 32]) * MM)  # 2 mm into the new top
+            pressed = drain_ticks(session, 600)[-50:]
+            running = session.running
+        finally:
+            session.stop()
+        self.assertTrue(running)
+        bottom, top = session.doc_scene.face_id("Box.Face5"), session.doc_scene.face_id("Box.Face6")
+        self.assertTrue((caught["cad_face"] == bottom).all())
+        self.assertTrue(np.allclose(caught["proxy_m"][:, 2], 14 * MM, atol=0.05 * MM))
+        self.assertLess(float(caught["device_m"][-1, 2]), 40 * MM)  # held down by the force
+        # let go: no force, the loop's tool stays, the hand rises to its target
+        self.assertTrue((let_go["flags"][-300:] & _core.FLAG_CLUTCHED).all())
+        self.assertEqual(float(np.abs(let_go["force_n"][-300:]).max()), 0.0)
+        np.testing.assert_allclose(hand_mm, [20, 15, 44], atol=0.5)
+        # taken hold again: the proxy at the hand over the part, touching nothing
+        self.assertFalse((held["flags"] & (_core.FLAG_CONTACT | _core.FLAG_CLUTCHED)).any())
+        np.testing.assert_allclose(held["proxy_m"], held["device_m"], atol=1e-9)
+        self.assertGreater(float(held["proxy_m"][-1, 2]), 43 * MM)
+        # and the hand comes down onto the new top
+        self.assertTrue((pressed["cad_face"] == top).all())
+        self.assertTrue(np.allclose(pressed["proxy_m"][:, 2], 34 * MM, atol=0.05 * MM))
+
     def test_a_geometry_edit_that_cannot_be_felt_leaves_the_old_scene_running(self):
         self.doc.removeObject("HapticSurface")  # the plate's surface is the only one
         part = self.doc.addObject("Part::Feature", "Plate")

@@ -3,7 +3,8 @@
 follows its target at a bounded speed is steered over a part, and the targets it is
 given are checked: it comes down onto a face slowing as it nears, slides straight
 while it rests, and comes over (lift, hover, down) after a jump, onto a step, and when
-its proxy is caught. No loop and no GUI: the Feel GUI tests feel the same with the real
+its proxy is caught; a proxy caught behind the part is let go of (a clutch) and the hand
+re-lands. No loop and no GUI: the Feel GUI tests feel the same with the real
 loop. Run by freecadcmd."""
 import unittest
 
@@ -24,6 +25,7 @@ class Hand:
         self.tool_w = np.asarray(at_mm, float) * MM
         self.target_w = self.tool_w.copy()
         self.proxy_w = None  # None: the proxy is where the hand is (above the part)
+        self.ceiling_mm = None  # held under this z (by a proxy caught under the part), until let go
         self.speed_mm_s = speed_mm_s
         self.targets = []  # every target handed over, mm
         self.path = []  # where the hand was after each move, mm
@@ -37,6 +39,8 @@ class Hand:
         reach = self.speed_mm_s * MM * dt_s
         length = float(np.linalg.norm(way))
         self.tool_w = self.target_w.copy() if length <= reach else self.tool_w + way * reach / length
+        if self.ceiling_mm is not None:
+            self.tool_w[2] = min(self.tool_w[2], self.ceiling_mm * MM)
         self.path.append(self.tool_w / MM)
 
     def proxy(self):
@@ -48,6 +52,25 @@ class Hand:
         return p
 
 
+class Clutch:
+    """A session's clutch for ``hand``: taking hold restarts the proxy at the hand."""
+
+    def __init__(self, hand):
+        self.hand = hand
+        self.calls = []
+
+    def let_go(self):
+        self.calls.append("let_go")
+        self.hand.ceiling_mm = None  # no force holds it now
+
+    def take_hold(self):
+        self.calls.append("take_hold")
+        self.hand.proxy_w = None
+
+    def hand_w(self):
+        return self.hand.tool_w
+
+
 def steer(hand, approach, seconds):
     """Ticks the approach and the hand together; returns the targets set meanwhile."""
     first = len(hand.targets)
@@ -55,6 +78,16 @@ def steer(hand, approach, seconds):
         approach.step(DT_S)
         hand.move(DT_S)
     return np.array(hand.targets[first:]).reshape(-1, 3)
+
+
+def steer_until(hand, approach, condition, seconds):
+    """Ticks the approach and the hand together until ``condition()``; the seconds it took."""
+    for tick in range(int(round(seconds / DT_S))):
+        if condition():
+            return tick * DT_S
+        approach.step(DT_S)
+        hand.move(DT_S)
+    raise AssertionError(f"not within {seconds} s")
 
 
 def on_top(x, y=15.0):
@@ -161,6 +194,87 @@ class HandApproachTest(unittest.TestCase):
         self.assertFalse(self.approach.landed)
         self.assertFalse(self.approach.coming)
         np.testing.assert_allclose(self.hand.targets[-1], [20, 15, TOP_MM + ha.LIFT_MM])
+
+    def with_clutch(self):
+        """The approach again, with a clutch: letting go frees the hand; taking hold
+        restarts the proxy at the hand (the loop's, feel_session.LiveSession)."""
+        clutch = Clutch(self.hand)
+        self.approach = ha.HandApproach(self.hand.set_target, lambda: self.hand.tool_w, self.hand.proxy,
+                                        top_mm=TOP_MM, clutch=clutch)
+        return clutch
+
+    def test_a_proxy_caught_under_the_part_is_let_go_of_and_the_hand_lands_on_top(self):
+        # a part moved up over the resting probe: its proxy restarted on the bottom face,
+        # under the hand; every way up went through the part, the proxy held below for good
+        clutch = self.with_clutch()
+        self.land(20.0)
+        self.hand.proxy_w = np.array([20.0, 15.0, 12.0]) * MM  # under the bottom, 7 mm below
+        self.hand.ceiling_mm = TOP_MM + 2.0  # the force holds it back
+        steer(self.hand, self.approach, DT_S)  # caught: it comes over, lifting first
+        self.assertEqual(clutch.calls, [])
+        # it tried to lift, and the proxy did not come
+        took_s = steer_until(self.hand, self.approach, lambda: clutch.calls, 2.0)
+        self.assertGreaterEqual(took_s, ha.WAYPOINT_TIMEOUT_S)
+        self.assertEqual(clutch.calls, ["let_go"])
+        np.testing.assert_allclose(self.hand.targets[-1], [20, 15, TOP_MM + ha.CLEAR_MM])  # its hover point
+        steer(self.hand, self.approach, 3.0)
+        self.assertEqual(clutch.calls, ["let_go", "take_hold"])  # the proxy restarted in the open
+        self.assertTrue(self.approach.landed)
+        np.testing.assert_allclose(self.hand.targets[-1], [20, 15, TOP_MM - 1.0])
+
+    def test_off_the_part_a_caught_proxy_is_let_go_of_clear_of_the_parts(self):
+        clutch = self.with_clutch()
+        self.land(20.0)
+        self.hand.proxy_w = np.array([20.0, 15.0, 12.0]) * MM
+        self.hand.ceiling_mm = TOP_MM + 2.0
+        self.approach.aim(None)
+        np.testing.assert_allclose(self.hand.targets[-1], [20, 15, TOP_MM + ha.LIFT_MM])  # lifts off, as ever
+        steer_until(self.hand, self.approach, lambda: clutch.calls, 2.0)
+        self.assertEqual(clutch.calls, ["let_go"])
+        # the face it lifted off may be inside the part now (it moved): clear of the parts instead
+        np.testing.assert_allclose(self.hand.targets[-1], [20, 15, TOP_MM + ha.CLEAR_MM])
+        steer(self.hand, self.approach, 1.0)
+        self.assertEqual(clutch.calls, ["let_go", "take_hold"])
+        steer(self.hand, self.approach, 2.0)
+        self.assertEqual(clutch.calls, ["let_go", "take_hold"])  # free now: nothing more
+        self.assertFalse(self.approach.landed)
+
+    def test_off_the_part_a_free_proxy_is_not_let_go_of(self):
+        clutch = self.with_clutch()
+        self.land(20.0)
+        self.approach.aim(None)
+        steer(self.hand, self.approach, 2.0)
+        self.assertEqual(clutch.calls, [])
+
+    def test_a_swap_that_leaves_the_proxy_under_the_part_relands_on_the_face_under_the_cursor(self):
+        clutch = self.with_clutch()
+        self.land(20.0)
+        # a 10 mm part moved 7 mm up (17..27): the proxy restarted on its bottom (3 mm away, the top 7),
+        # the hand 2 mm in; the cursor now over the top, at x 27, y 8 in an isometric view
+        self.hand.proxy_w = np.array([20.0, 15.0, 17.0]) * MM
+        self.approach.scene_changed((np.array([27.0, 8.0, TOP_MM + 7.0]), UP), top_mm=TOP_MM + 7.0)
+        self.assertEqual(clutch.calls, [])  # not before the loop has taken the new scene
+        took_s = steer_until(self.hand, self.approach, lambda: clutch.calls, 1.0)
+        self.assertLessEqual(took_s, ha.SWAP_SETTLE_S + DT_S)
+        self.assertEqual(clutch.calls, ["let_go"])
+        np.testing.assert_allclose(self.hand.targets[-1], [27, 8, TOP_MM + 7.0 + ha.CLEAR_MM])
+        steer(self.hand, self.approach, 3.0)
+        self.assertEqual(clutch.calls, ["let_go", "take_hold"])
+        self.assertTrue(self.approach.landed)
+        np.testing.assert_allclose(self.hand.targets[-1], [27, 8, TOP_MM + 7.0 - 1.0])
+
+    def test_a_swap_that_pushes_the_proxy_out_on_the_face_under_the_cursor_changes_nothing(self):
+        # the part grew 3 mm under the resting hand: the new top pushes it out, as the
+        # hand still aims where it did
+        clutch = self.with_clutch()
+        self.land(20.0)
+        before = len(self.hand.targets)
+        self.hand.proxy_w = np.array([20.0, 15.0, TOP_MM + 3.0]) * MM
+        self.approach.scene_changed((np.array([23.0, 12.0, TOP_MM + 3.0]), UP), top_mm=TOP_MM + 3.0)
+        steer(self.hand, self.approach, 0.5)
+        self.assertEqual(clutch.calls, [])
+        self.assertTrue(self.approach.landed)
+        self.assertEqual(len(self.hand.targets), before)  # no new target
 
     def test_without_the_tools_position_it_goes_straight(self):
         hand = Hand([20.0, 15.0, 40.0])

@@ -9,12 +9,15 @@ the hand at the point under the cursor, pressed ``depth_mm`` into the surface (h
 comes there: hand_approach.py); the wheel sets that depth (and is not passed on to zoom
 while the session runs). A hidden part is felt but not picked by the view: where the
 view's pick finds nothing, the line of sight through the cursor is cast against the
-felt surface (hand_approach.cast_ray), so the mouse reaches a hidden part too.
+felt surface (hand_approach.cast_ray), so the mouse reaches a hidden part too. A scene
+swapped in (a part edited or moved) is picked again under the cursor: a proxy it left on
+the far side of the part is let go of, and the hand re-lands (HandApproach.scene_changed).
 """
 import numpy as np
 
 import FreeCAD as App
 
+from ..feel_session import scene_box_m
 from ..hand_approach import MM, HandApproach, cast_ray
 
 ARROW_MM_PER_N = 8.0  # force arrow length per newton
@@ -106,14 +109,16 @@ class MouseSteering:
 
     TICK_MS = 20
 
-    def __init__(self, view, doc_scene, set_target, depth_changed, tool_w=None, proxy_w=None, top_mm=None):
+    def __init__(self, view, doc_scene, set_target, depth_changed, tool_w=None, proxy_w=None, top_mm=None,
+                 clutch=None):
         from pivy import coin
         from PySide2 import QtCore
 
         self.view = view
         self.doc_scene = doc_scene
         self.depth_changed = depth_changed  # callable(step), from the wheel
-        self.hand = HandApproach(set_target, tool_w, proxy_w, top_mm)
+        self.hand = HandApproach(set_target, tool_w, proxy_w, top_mm, clutch)
+        self.pixel = None  # the view pixel the mouse was at last (Coin's: y up)
         self._timer = QtCore.QTimer()
         self._timer.setInterval(self.TICK_MS)
         self._timer.timeout.connect(lambda: self.hand.step(self.TICK_MS / 1000.0))
@@ -157,16 +162,31 @@ class MouseSteering:
 
     def aim_at_pixel(self, x, y):
         """Aims the hand at the part under view pixel (x, y) (Coin's: y up)."""
+        self.pixel = (x, y)
+        self.hand.aim(self.surface_at(x, y))
+
+    def surface_at(self, x, y):
+        """(point_mm, normal) of the part under view pixel (x, y) (Coin's: y up), or None."""
         info = self.view.getObjectInfo((x, y))
-        surface = None
         if info and "x" in info:
             point_mm = np.array([info["x"], info["y"], info["z"]], float)
         else:  # nothing drawn there: a hidden part may be, and it is felt
             point_mm = self.hidden_point(x, y)
-        if point_mm is not None:
-            sample = self.doc_scene.scene.calc_closest_point(point_mm * MM)
-            surface = (point_mm, np.asarray(sample.normal_w, float))
-        self.hand.aim(surface)
+        if point_mm is None:
+            return None
+        sample = self.doc_scene.scene.calc_closest_point(point_mm * MM)
+        return point_mm, np.asarray(sample.normal_w, float)
+
+    def scene_changed(self, doc_scene):
+        """A new scene swapped into the loop (the parts changed shape or moved): aimed from
+        now on, and the hand told what the cursor is over now (HandApproach.scene_changed:
+        a hand whose proxy the swap left on the far side of the part re-lands)."""
+        self.doc_scene = doc_scene
+        top_mm = scene_box_m(doc_scene)[1][2] / MM
+        if self.pixel is None:  # the mouse has not steered yet
+            self.hand.top_mm = top_mm
+            return
+        self.hand.scene_changed(self.surface_at(*self.pixel), top_mm)
 
     def hidden_point(self, x, y):
         """Where the line of sight through view pixel (x, y) (Coin's: y up) first meets the

@@ -12,9 +12,13 @@ recompute that reshapes several objects, are gathered into one call):
 - callback(geometry=False) when only a HapticSurface, HapticVibration, StiffnessStudy or
   SimilarityStudy changed (any
   property: material, friction, roughness, pattern, texture, vibration, the faces it
-  tags), or one was created or deleted, or the sketch or edge a Curve pattern follows
-  was edited or moved: the surfaces are compiled again and handed to the loop without
-  a new scene (LiveSession.update_surfaces).
+  tags, a study's mechanism), or one was created or deleted, or the sketch or edge a Curve
+  pattern follows was edited or moved: the surfaces are compiled again and handed to the
+  loop without a new scene (LiveSession.update_surfaces).
+
+A study's record keeping changes nothing felt and calls nothing: a stiffness study's
+participants and records (recording a preference said "Surface edited"), its slider's
+range, a similarity study's runs and protocol.
 
 Either way the edit is felt without stopping the session. Changes during a recompute
 wait for its end (the shapes and the face references are then all up to date), so one
@@ -24,6 +28,8 @@ import FreeCAD as App
 from PySide2 import QtCore
 
 IGNORED = frozenset(("Label", "Label2", "Visibility", "ExpressionEngine"))
+# a stiffness study's property groups that change what is felt (not Customise, the slider's, or Cohort)
+STIFFNESS_FELT_GROUPS = ("Study", "Beam", "Button")
 
 
 class SessionEditObserver:
@@ -59,11 +65,19 @@ class SessionEditObserver:
 
     @staticmethod
     def _felt(obj, prop):
-        """False for a similarity study's bookkeeping (its runs, its protocol): what the
-        face renders does not change with them."""
+        """False for a study's bookkeeping, with which what the face renders does not
+        change: a similarity study's runs and protocol; a stiffness study's participants,
+        records and slider (what it moves, its range: the parameter moved is felt). A
+        stiffness study's felt properties are its surface, model and mechanism (its
+        Study, Beam and Button groups)."""
         from ..similarity_study import FELT_PROPERTIES, is_similarity_study
+        from ..stiffness_study import PROPERTIES, is_stiffness_study
 
-        return not is_similarity_study(obj) or prop in FELT_PROPERTIES
+        if is_similarity_study(obj):
+            return prop in FELT_PROPERTIES
+        if is_stiffness_study(obj):
+            return any(name == prop and group in STIFFNESS_FELT_GROUPS for name, _, group, *_ in PROPERTIES)
+        return True
 
     def _reshapes(self, obj, prop):
         """A change of shape or placement of a part in the scene, or of a container

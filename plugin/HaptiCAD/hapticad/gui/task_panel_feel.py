@@ -8,9 +8,12 @@ study's run, which is blind), the face under the probe with its
 properties, and the loop rate. With the simulated probe the mouse steers it over the
 part and the wheel or the slider sets how hard it presses. A HID device is opened on a
 worker thread (hapticad.device_opening), polled from a Qt timer: a device that does not
-answer takes seconds to fail, and FreeCAD stays responsive meanwhile.
+answer takes seconds to fail, and FreeCAD stays responsive meanwhile. A session keeps the
+preferences it started with: the display timer looks every PREFS_CHECK_S whether the saved
+ones differ in what it uses, and a note then says they apply at the next Start.
 """
 import html
+import time
 
 import numpy as np
 
@@ -32,6 +35,7 @@ from .study_controls import StudyControls
 
 DISPLAY_HZ = 60
 OPEN_POLL_MS = 30  # how often the panel asks whether the device has opened (the Qt event loop runs between)
+PREFS_CHECK_S = 0.25  # how often the display timer reads the preferences (a dozen parameters) during a session
 # what the strip chart does not draw during a similarity run (the texture held out on the face)
 BLIND_SERIES = ("texture_force_n", "friction_force_n")
 _ACTIVE = []  # the open panel, for tests and for the Stop of a closing document
@@ -43,6 +47,18 @@ def _note(text):
 
 def active_panel():
     return _ACTIVE[-1] if _ACTIVE else None
+
+
+def session_settings(prefs, simulated):
+    """What a session uses of ``prefs``, by name: the servo rate, the force limit, the
+    scene's accuracy and, with a device, its workspace mapping (the simulated hand's is
+    the world). The device preference is not: the panel's choice is."""
+    used = {"servo rate": prefs.servo_rate_hz, "force limit": prefs.force_limit_n,
+            "accuracy": preferences.scene_accuracy(prefs)}
+    if not simulated:
+        used["workspace mapping"] = (prefs.workspace_mapping, prefs.workspace_scale
+                                     if prefs.workspace_mapping == "Fixed scale" else None)
+    return used
 DEPTH_RANGE_MM = (0.0, 15.0)  # a 0.4 N/mm hand aimed 15 mm in pushes 6 N: past a 4.9 N switch
 DEPTH_STEP_MM = 0.25
 
@@ -73,6 +89,8 @@ class FeelTaskPanel:
         self.last_sample = None
         self._limits_for = self._limits = None  # device_limits' answer, and what it was for
         self.opening = None  # the device_opening.DeviceOpening of a HID device Start is opening
+        self.session_prefs = None  # the preferences the running session started with
+        self._prefs_checked_at = 0.0  # time.monotonic() the display timer last read the preferences
         self.opening_label = ""  # that device's label, as the device choice shows it
         self.main = self._build()
         # a stiffness study's slider and participant form, next to the session (seed 000 Fig. 10)
@@ -148,7 +166,13 @@ class FeelTaskPanel:
         self.message = QtWidgets.QLabel()
         self.message.setObjectName("feelMessage")
         self.message.setWordWrap(True)
-        for widget in (self.face_label, self.rate_label, self.message):
+        # the preferences saved since Start that the session does not use yet (PREFS_CHECK_S)
+        self.prefs_note = QtWidgets.QLabel()
+        self.prefs_note.setObjectName("feelPreferencesNote")
+        self.prefs_note.setWordWrap(True)
+        self.prefs_note.setStyleSheet("color: #a06000")
+        self.prefs_note.hide()
+        for widget in (self.face_label, self.rate_label, self.message, self.prefs_note):
             layout.addWidget(widget)
         self.depth_set(self.depth.value())
         return box
@@ -296,10 +320,11 @@ class FeelTaskPanel:
         view = self._view_or_say()  # before anything is built (a device opens for seconds: it may have closed)
         if view is None:
             return False
+        prefs = preferences.load()
         try:
             with busy_cursor():  # tessellating and building a large part's scene takes seconds
-                self.doc_scene = build_document_scene(self.doc, preferences.scene_accuracy(preferences.load()))
-                self.session = feel_session.LiveSession(self.doc_scene, device)
+                self.doc_scene = build_document_scene(self.doc, preferences.scene_accuracy(prefs))
+                self.session = feel_session.LiveSession(self.doc_scene, device, prefs)
         except (ValueError, RuntimeError) as exc:
             self.session = None
             self.show_message(str(exc), error=True)
@@ -317,7 +342,7 @@ class FeelTaskPanel:
         if self.session.simulated:
             self.steering = MouseSteering(view, self.doc_scene, self.session.set_target, self.wheel,
                                           tool_w=self.session.tool_w, proxy_w=self.session.proxy_w,
-                                          top_mm=high[2] / feel_session.MM)
+                                          top_mm=high[2] / feel_session.MM, clutch=self.session)
             self.steering.depth_mm = self.depth_mm()
             # the hand starts above the middle of the parts, clear of them
             start_w = np.array([0.5 * (low[0] + high[0]), 0.5 * (low[1] + high[1]), high[2] + 0.01])
@@ -327,6 +352,8 @@ class FeelTaskPanel:
             self.show_message(str(exc), error=True)
             self._tear_down()
             return False
+        self.session_prefs = prefs
+        self._prefs_checked_at = time.monotonic()
         self.chart.clear()
         self.timer.start()
         for controls in self.study_controls:  # now a device's limit can be told
@@ -367,7 +394,10 @@ class FeelTaskPanel:
             return
         self.doc_scene = self.session.doc_scene
         if self.steering is not None:
-            self.steering.doc_scene = self.doc_scene
+            if applied == "scene":  # the hand re-lands if the swap left its proxy behind the part
+                self.steering.scene_changed(self.doc_scene)
+            else:
+                self.steering.doc_scene = self.doc_scene
         if applied == "surfaces":
             self.show_message("Surface edited: you feel the change now." + self.session_notes())
         elif geometry:
@@ -444,9 +474,27 @@ class FeelTaskPanel:
                                     else "Face: - (not touching)")
         self.rate_label.setText(f"Loop: {self.session.achieved_rate_hz():.0f} Hz of "
                                 f"{self.session.rate_hz:.0f} Hz, display {DISPLAY_HZ} Hz")
+        if time.monotonic() - self._prefs_checked_at >= PREFS_CHECK_S:
+            self._prefs_checked_at = time.monotonic()
+            self.note_preferences()
         if not self.session.running:
             self.show_message(self.session.end_message or "The session ended.", error=True)
             self.stop()
+
+    def note_preferences(self):
+        """Says, once, which saved preferences the running session does not use (it keeps
+        those it started with), and that they apply at the next Start; the note goes when
+        they are as the session's again."""
+        if self.session is None or self.session_prefs is None:
+            return
+        simulated = self.session.simulated
+        now, kept = session_settings(preferences.load(), simulated), session_settings(self.session_prefs, simulated)
+        changed = [name for name in kept if now[name] != kept[name]]
+        text = (f"Preferences changed ({', '.join(changed)}): they apply when you press Stop and Start again; "
+                "this session keeps those it started with." if changed else "")
+        if text != self.prefs_note.text():  # set on a change only, not at every check
+            self.prefs_note.setText(text)
+            self.prefs_note.setVisible(bool(text))
 
     def session_running(self):
         return self.session is not None and self.session.running
@@ -466,6 +514,8 @@ class FeelTaskPanel:
             self.update_display_final()
         self._tear_down()
         self.set_running(False)
+        self.prefs_note.setText("")  # the next Start takes the preferences as they are
+        self.prefs_note.hide()
         for controls in self.similarity_controls:  # nothing is felt now: no trial counts as felt
             controls.session_stopped()
         for controls in self.study_controls:  # their notes now judge what a session started now would render
@@ -494,6 +544,7 @@ class FeelTaskPanel:
             self.view_nodes.remove()
             self.view_nodes = None
         self.session = None
+        self.session_prefs = None
 
     # --- FreeCAD's task dialog -----------------------------------------------------------
 

@@ -59,10 +59,10 @@ class FeelGuiTest(unittest.TestCase):
 
     def wait_touching(self, face):
         """Until the probe touches ``face`` (it comes down at 150 mm/s, then slows near the
-        face: a loaded host draws that later), then 0.3 s more for it to settle."""
+        face: a loaded host draws that later), has landed and presses steadily."""
         label = h.widget(QtWidgets.QLabel, "feelFace")
         h.wait_for(lambda: face in label.text(), f"touching {face}: {label.text()}")
-        h.wait(0.3)
+        wait_settled(h.widget(QtWidgets.QWidget, "stripChart"), f"resting on {face}")
 
     def test_closing_the_document_while_feeling_stops_the_session_and_closes_the_panel(self):
         from hapticad.gui import task_panel_feel
@@ -195,6 +195,46 @@ class FeelGuiTest(unittest.TestCase):
         finally:
             preferences.update(accuracy="Fine")
 
+    def test_preferences_changed_during_a_session_are_said_to_apply_at_the_next_start(self):
+        # the session keeps the servo rate and force limit it started with, and nothing said
+        # so: the panel went on talking of its rate as if the new one were in use
+        kept = preferences.load()
+        self.addCleanup(preferences.save, kept)
+        panel = self.open_feel()
+        note = h.widget(QtWidgets.QLabel, "feelPreferencesNote")
+        self.assertFalse(note.isVisible())
+        preferences.update(overlay_colour_by="Roughness")  # nothing the session uses
+        h.wait(0.6)
+        self.assertFalse(note.isVisible())
+        self.assertEqual(note.text(), "")
+        said = []
+        set_text = note.setText
+        note.setText = lambda text: (said.append(text), set_text(text))
+        preferences.update(servo_rate_hz=2000, force_limit_n=2.0)  # as the Preferences dialog's OK saves them
+        h.wait_for(lambda: note.isVisible(), "the note on the preferences")
+        h.widen_panel()
+        h.grab_screen("feel_preferences_changed.png")
+        self.assertIn("Preferences changed (servo rate, force limit): they apply when you press Stop and Start again",
+                      note.text())
+        self.assertEqual((panel.session.rate_hz, panel.session.render_limits.max_force_n), (1000.0, 3.0))
+        h.wait(0.8)
+        self.assertEqual(len(said), 1)  # said once, not at every look
+        # Stop and Start: the session takes them, and the note goes
+        h.widget(QtWidgets.QPushButton, "feelStop").click()
+        h.process_events()
+        self.assertFalse(note.isVisible())
+        h.widget(QtWidgets.QPushButton, "feelStart").click()
+        h.process_events()
+        self.assertEqual((panel.session.rate_hz, panel.session.render_limits.max_force_n), (2000.0, 2.0))
+        h.wait(0.6)
+        self.assertFalse(note.isVisible())
+        # changed, and changed back to the session's: the note comes and goes
+        preferences.update(servo_rate_hz=1000)
+        h.wait_for(lambda: note.isVisible(), "the note on the servo rate")
+        self.assertIn("(servo rate)", note.text())
+        preferences.update(servo_rate_hz=2000)
+        h.wait_for(lambda: not note.isVisible(), "the note gone")
+
     def press_on_the_top(self):
         """Starts a session and presses the probe well into the middle of the top face;
         the panel's Stop button and strip chart."""
@@ -202,11 +242,12 @@ class FeelGuiTest(unittest.TestCase):
         h.process_events()
         stop = h.widget(QtWidgets.QPushButton, "feelStop")
         self.assertTrue(stop.isEnabled(), h.widget(QtWidgets.QLabel, "feelMessage").text())
+        chart = h.widget(QtWidgets.QWidget, "stripChart")
         h.mouse("move", h.screen_pos(np.array([20.0, 15.0, 20.0])))
-        h.wait(0.3)
+        wait_settled(chart, "landed on the top")
         h.wheel(h.screen_pos(np.array([20.0, 15.0, 20.0])), 4)
-        h.wait(0.8)
-        return stop, h.widget(QtWidgets.QWidget, "stripChart")
+        wait_settled(chart, "pressing 2 mm in")
+        return stop, chart
 
     def test_a_vibration_the_servo_rate_cannot_render_is_said_when_feeling_starts(self):
         HaptiCAD.make_vibration(self.doc, self.box, frequency_hz=700.0, amplitude_n=0.5)
@@ -266,7 +307,7 @@ class FeelGuiTest(unittest.TestCase):
         self.open_feel()
         chart = h.widget(QtWidgets.QWidget, "stripChart")
         h.mouse("move", h.screen_pos(np.array([20.0, 15.0, 20.0])))
-        h.wait(1.5)
+        wait_settled(chart, "landed")
         self.assertIn("Box.Face6", h.widget(QtWidgets.QLabel, "feelFace").text())
         normal = np.asarray(chart.values["normal_force_n"], float)
         pressed = float(normal[-200:].mean())
@@ -311,7 +352,8 @@ class FeelGuiTest(unittest.TestCase):
         point = h.screen_pos(np.array([20.0, 15.0, 20.0]))
         h.mouse("move", point)
         h.wheel(point, 6)  # 1 -> 2.5 mm before it has landed
-        h.wait(1.5)
+        self.assertFalse(panel.steering.hand.landed)
+        wait_settled(chart, "landed")
         self.assertEqual(panel.depth_mm(), 2.5)
         # grip (0.4 N/mm) in series with the face (0.8 N/mm): 0.67 N at 2.5 mm, 0.27 at 1
         self.assertGreater(float(np.asarray(chart.values["normal_force_n"][-200:]).mean()), 0.55)
@@ -343,7 +385,7 @@ class FeelGuiTest(unittest.TestCase):
         h.mouse("move", h.screen_pos(np.array([10.0, 15.0, 10.0])))  # one move, across the block
         h.wait_for(lambda: abs(probe_mm("proxy_m")[0] - 10.0) < 1.0 and abs(probe_mm("proxy_m")[2] - 10.0) < 0.1,
                    f"the proxy on the base at x 10: {probe_mm('proxy_m')}")
-        h.wait(0.3)
+        wait_settled(h.widget(QtWidgets.QWidget, "stripChart"), "landed on the base")
         self.assertIn("Base.Face6", h.widget(QtWidgets.QLabel, "feelFace").text())
         apart = np.linalg.norm(probe_mm("proxy_m") - probe_mm())
         self.assertLess(apart, 2.0)  # pressing 1 mm, not held anywhere else
@@ -369,7 +411,7 @@ class FeelGuiTest(unittest.TestCase):
         chart = h.widget(QtWidgets.QWidget, "stripChart")
         pressed = float(chart.values["normal_force_n"][-200:].mean())
         h.wheel(h.screen_pos(np.array([40.0, 15.0, 15.0])), 6)
-        h.wait(0.8)
+        wait_settled(chart, "pressing 2.5 mm in")
         self.assertEqual(panel.depth_mm(), 2.5)
         self.assertGreater(float(chart.values["normal_force_n"][-200:].mean()), 1.8 * pressed)
         # aimed 2.5 mm in, the probe goes in less: the panel says how far, 0.67 N / 0.8 N/mm
@@ -566,6 +608,58 @@ class FeelGuiTest(unittest.TestCase):
         h.process_events()
         h.press_task_button("Close")
 
+    def test_a_part_moved_up_over_the_resting_probe_lets_it_come_back_onto_its_top(self):
+        # a 10 mm box moved 7 mm up under the probe resting on its top: the proxy restarts on
+        # its bottom face (2 mm away, the top 8), and every way the hand took to the new top,
+        # or off the part, went up through it: held under it at the force limit, "the probe
+        # 10.38 mm in", until Stop and Start
+        self.box.Height = 10
+        self.doc.recompute()
+        h.show_workbench()
+        panel = self.open_feel()
+        label = h.widget(QtWidgets.QLabel, "feelFace")
+        h.mouse("move", h.screen_pos(np.array([20.0, 15.0, 10.0])))
+        self.wait_touching("Box.Face6")
+        self.box.Placement.Base = App.Vector(0, 0, 7)
+        self.doc.recompute()
+        h.wait_for(lambda: "Geometry edited" in h.widget(QtWidgets.QLabel, "feelMessage").text(), "the swap")
+
+        def on_the_top():
+            return abs(probe_mm("proxy_m")[2] - 17.0) < 0.1 and "Box.Face6" in label.text()
+
+        # the mouse held still: it re-lands on the top face under the cursor, as at the first touch
+        wait_probe(on_the_top, "the proxy on the new top")
+        h.widen_panel()
+        h.grab_screen("feel_part_moved_up.png")
+        self.assertLess(np.linalg.norm(probe_mm("proxy_m") - probe_mm()), 2.0)  # pressing 1 mm, held nowhere else
+        # off the part it lifts off; back on the top it lands there again
+        h.mouse("move", h.screen_pos(np.array([90.0, -60.0, 0.0])))
+        wait_probe(lambda: "not touching" in label.text(), "lifted off")
+        h.mouse("move", h.screen_pos(np.array([22.0, 16.0, 17.0])))
+        wait_probe(on_the_top, "back on the top")
+        self.assertTrue(panel.session.running)
+
+    def test_a_proxy_left_under_the_part_is_freed_by_moving_off_it(self):
+        # the same trap, the hand aimed at the new top before the panel could tell (a
+        # steering that does not re-land at the swap): off the part it lifts off all the same
+        self.box.Height = 10
+        self.doc.recompute()
+        h.show_workbench()
+        panel = self.open_feel()
+        label = h.widget(QtWidgets.QLabel, "feelFace")
+        h.mouse("move", h.screen_pos(np.array([20.0, 15.0, 10.0])))
+        self.wait_touching("Box.Face6")
+        panel.steering.hand.scene_changed = lambda surface, top_mm=None: None  # no re-landing at the swap
+        self.box.Placement.Base = App.Vector(0, 0, 7)
+        self.doc.recompute()
+        h.wait_for(lambda: "Geometry edited" in h.widget(QtWidgets.QLabel, "feelMessage").text(), "the swap")
+        wait_probe(lambda: "Box.Face5" in label.text(), "the proxy under the bottom face")
+        h.mouse("move", h.screen_pos(np.array([90.0, -60.0, 0.0])))
+        wait_probe(lambda: "not touching" in label.text(), "lifted off")
+        h.mouse("move", h.screen_pos(np.array([20.0, 15.0, 17.0])))
+        wait_probe(lambda: abs(probe_mm("proxy_m")[2] - 17.0) < 0.1 and "Box.Face6" in label.text(),
+                   "on the new top")
+
     def test_a_slow_recompute_of_two_parts_rebuilds_once_after_it(self):
         # two parts whose recompute takes 0.3 s each: FreeCAD's progress bar runs Qt's
         # queued events in the middle; a rebuild then would see one part new, one old
@@ -628,6 +722,38 @@ def task_panel_feel_scene():
     from hapticad.gui import task_panel_feel
 
     return task_panel_feel.active_panel().session.doc_scene
+
+
+def wait_settled(chart, what, dead_after_s=20.0):
+    """Until the simulated hand has landed on the part and the normal force has settled
+    (the mean of the last 100 samples within 2 % of the 100 before), all 300 samples since
+    the call: the hand comes down in a fixed number of display ticks, which a slow host
+    stretches in wall time, and a force changed by the wheel takes a moment to settle."""
+    from hapticad.gui import task_panel_feel
+
+    since = chart.sample_count
+
+    def settled():
+        normal = np.asarray(chart.values["normal_force_n"], float)
+        panel = task_panel_feel.active_panel()
+        if panel is None or panel.steering is None or not panel.steering.hand.landed:
+            return False
+        if chart.sample_count < since + 300 or len(normal) < 200:
+            return False
+        last, before = float(normal[-100:].mean()), float(normal[-200:-100].mean())
+        return abs(last - before) <= 0.02 * abs(before)
+
+    h.wait_for(settled, f"{what}: the hand landed and the normal force settled", dead_after_s)
+
+
+def wait_probe(condition, what, dead_after_s=20.0):
+    """h.wait_for, whose failure says where the probe and the proxy were then and the face the
+    panel named (not as they were when the wait began)."""
+    try:
+        h.wait_for(condition, what, dead_after_s)
+    except AssertionError as exc:
+        raise AssertionError(f"{exc}: probe {probe_mm()}, proxy {probe_mm('proxy_m')} mm; "
+                             f"{h.widget(QtWidgets.QLabel, 'feelFace').text()}") from None
 
 
 def probe_mm(field="device_m"):

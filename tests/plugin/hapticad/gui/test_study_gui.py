@@ -25,6 +25,26 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gui_helpers as h  # noqa: E402
 
 
+def wait_settled(chart, what, dead_after_s=20.0):
+    """Until the simulated hand has landed on the part and the normal force has settled
+    (the mean of the last 100 samples within 2 % of the 100 before), all 300 samples since
+    the call: the hand comes down in a fixed number of display ticks, which a slow host
+    stretches in wall time, and a force changed by an edit takes a moment to settle."""
+    since = chart.sample_count
+
+    def settled():
+        normal = np.asarray(chart.values["normal_force_n"], float)
+        panel = task_panel_feel.active_panel()
+        if panel is None or panel.steering is None or not panel.steering.hand.landed:
+            return False
+        if chart.sample_count < since + 300 or len(normal) < 200:
+            return False
+        last, before = float(normal[-100:].mean()), float(normal[-200:-100].mean())
+        return abs(last - before) <= 0.02 * abs(before)
+
+    h.wait_for(settled, f"{what}: the hand landed and the normal force settled", dead_after_s)
+
+
 def fill_participant(name, gender="M", age="26-40", weight=70.0, height=1700.0):
     h.widget(QtWidgets.QLineEdit, "participantName").setText(name)
     h.widget(QtWidgets.QComboBox, "participantGender").setCurrentText(gender)
@@ -380,12 +400,12 @@ class StudyGuiTest(unittest.TestCase):
         slider = h.widget(QtWidgets.QSlider, "studySlider")
         top = np.array([20.0, 15.0, 20.0])
         h.mouse("move", h.screen_pos(top))
-        h.wait(0.3)
+        wait_settled(chart, "landed")
         h.wheel(h.screen_pos(top), 2)  # the hand presses harder
         felt = {}
         for position, thickness in ((0, 2.0), (100, 5.0)):  # 0.07 and 1.09 N/mm
             slider.setValue(position)
-            h.wait(0.8)
+            wait_settled(chart, f"pressing the {thickness} mm neck")
             self.assertAlmostEqual(study.BeamThickness, thickness)
             # the live session felt the new neck: force over the depth pressed is its k
             sample = task_panel_feel.active_panel().last_sample
@@ -398,9 +418,18 @@ class StudyGuiTest(unittest.TestCase):
         self.assertGreater(felt[5.0], 3 * felt[2.0])
         self.assertIn("1.09 N/mm bending", h.widget(QtWidgets.QLabel, "feelFace").text())
         fill_participant("Steven")
+        panel = task_panel_feel.active_panel()
+        panel.show_message("Pressing the neck.")
+        edits = []
+        handler = panel.edits.callback
+        panel.edits.callback = lambda geometry: (edits.append(geometry), handler(geometry))
         h.widget(QtWidgets.QPushButton, "recordPreference").click()
         self.assertEqual(study.Participants, 1)
         self.assertIn("Recorded Steven", h.widget(QtWidgets.QLabel, "studyMessage").text())
+        # nothing felt changed: the session is not told of an edit (it said "Surface edited: you feel the change now")
+        h.wait(0.3)
+        self.assertEqual(edits, [])
+        self.assertIn("Pressing the neck.", h.widget(QtWidgets.QLabel, "feelMessage").text())
         # h = 8 mm: 4.44 N/mm, beyond the simulated hand's 3 N/mm: said beside the slider, and kept with the record
         slider.setValue(200)
         h.wait(0.3)
