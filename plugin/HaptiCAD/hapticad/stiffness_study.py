@@ -798,39 +798,22 @@ def typed_value(name, text, label=None):
     "1500 MPa" 1.5 GPa, "4,5" 4.5 (a decimal comma), a number alone in the property's
     unit; "150 gf" is 1.47 N. Raises ValueError with a sentence when it is not a value of
     that kind or is outside the property's range: nothing is to be set then."""
+    from .quantity_text import read_quantity
+
     unit = UNITS[name]
     label = label or name
-    typed = " ".join(text.split())
-    if not typed:
-        raise ValueError(f"{label}: give a value{' in ' + unit if unit else ''}")
-    if re.search(r"\d,\d{3}(?!\d)", typed):  # 1,000: a decimal comma, or thousands?
-        plain = typed.replace(",", "")
-        raise ValueError(f"{label}: is {typed!r} {plain} or {typed.replace(',', '.')}? give it without the comma "
-                         f"({plain}) or with a decimal point")
-    parsed = typed
-    if unit == "N":
+
+    def force_units(typed):  # units FreeCAD does not know, for a force
         for pattern, replacement in _FORCE_UNITS:
-            parsed = pattern.sub(replacement, parsed)
-    try:
-        quantity = App.Units.Quantity(parsed)
-    except (ValueError, OverflowError):
-        raise ValueError(f"{label}: {typed!r} is not a value FreeCAD reads"
-                         + (f" (a number, or one with a unit, like 6 {unit})" if unit else " (a number)")) from None
-    expected = App.Units.Quantity(f"1 {unit}") if unit else App.Units.Quantity(1.0)
-    if quantity.Unit == App.Units.Quantity(1.0).Unit:  # a number alone: in the property's unit
-        value = quantity.Value
-    elif quantity.Unit != expected.Unit:
-        kind = str(quantity.Unit).rpartition("[")[2].rstrip("]").lower() or "quantity"
-        want = str(expected.Unit).rpartition("[")[2].rstrip("]").lower() if unit else "plain number"
-        raise ValueError(f"{label}: {typed!r} is a {kind}, not a {want}")
-    else:
-        value = quantity.Value / expected.Value
-    if not math.isfinite(value):
-        raise ValueError(f"{label}: {typed!r} is not a finite value")
+            typed = pattern.sub(replacement, typed)
+        return typed
+
+    value = read_quantity(text, unit, label, rewrite=force_units if unit == "N" else None)
     low, high = next(p[5][:2] for p in PROPERTIES if p[0] == name)
     if not low <= value <= high:
         hint = ""
-        if name == "YoungsModulus" and low <= value / 1000 <= high and quantity.Unit != expected.Unit:
+        alone = App.Units.Quantity(" ".join(text.split())).Unit == App.Units.Quantity(1.0).Unit
+        if name == "YoungsModulus" and low <= value / 1000 <= high and alone:
             hint = f": in MPa? give {value:g} MPa"  # a number alone is in GPa
         raise ValueError(f"{label}: {value:g}{' ' + unit if unit else ''} is outside {low:g}..{high:g}"
                          f"{' ' + unit if unit else ''}{hint}")

@@ -18,7 +18,8 @@ from PySide2 import QtWidgets
 
 from .. import accuracy as accuracy_presets
 from .. import preferences
-from .quantity_spin import QuantitySpin, read_quantity
+from ..quantity_text import read_quantity
+from .quantity_spin import QuantitySpin
 
 
 def hid_devices():

@@ -39,6 +39,31 @@ def wait_for(condition, what="", dead_after_s=20.0):
         time.sleep(0.005)
 
 
+def wait_settled(chart, what, dead_after_s=20.0):
+    """Until the Feel panel's simulated hand has landed on the part and the normal force on
+    ``chart`` (its strip chart) has settled (the mean of the last 100 samples within 2 % of
+    the 100 before), all 300 samples since the call: the hand comes down in a fixed number
+    of display ticks, which a slow host stretches in wall time, and a force changed by the
+    wheel or an edit takes a moment to settle."""
+    import numpy as np
+
+    from hapticad.gui import task_panel_feel
+
+    since = chart.sample_count
+
+    def settled():
+        normal = np.asarray(chart.values["normal_force_n"], float)
+        panel = task_panel_feel.active_panel()
+        if panel is None or panel.steering is None or not panel.steering.hand.landed:
+            return False
+        if chart.sample_count < since + 300 or len(normal) < 200:
+            return False
+        last, before = float(normal[-100:].mean()), float(normal[-200:-100].mean())
+        return abs(last - before) <= 0.02 * abs(before)
+
+    wait_for(settled, f"{what}: the hand landed and the normal force settled", dead_after_s)
+
+
 def show_workbench():
     """Switches to the HaptiCAD workbench and shows the active document isometric, fitted."""
     Gui.activateWorkbench("HaptiCADWorkbench")

@@ -62,7 +62,7 @@ class FeelGuiTest(unittest.TestCase):
         face: a loaded host draws that later), has landed and presses steadily."""
         label = h.widget(QtWidgets.QLabel, "feelFace")
         h.wait_for(lambda: face in label.text(), f"touching {face}: {label.text()}")
-        wait_settled(h.widget(QtWidgets.QWidget, "stripChart"), f"resting on {face}")
+        h.wait_settled(h.widget(QtWidgets.QWidget, "stripChart"), f"resting on {face}")
 
     def test_closing_the_document_while_feeling_stops_the_session_and_closes_the_panel(self):
         from hapticad.gui import task_panel_feel
@@ -244,9 +244,9 @@ class FeelGuiTest(unittest.TestCase):
         self.assertTrue(stop.isEnabled(), h.widget(QtWidgets.QLabel, "feelMessage").text())
         chart = h.widget(QtWidgets.QWidget, "stripChart")
         h.mouse("move", h.screen_pos(np.array([20.0, 15.0, 20.0])))
-        wait_settled(chart, "landed on the top")
+        h.wait_settled(chart, "landed on the top")
         h.wheel(h.screen_pos(np.array([20.0, 15.0, 20.0])), 4)
-        wait_settled(chart, "pressing 2 mm in")
+        h.wait_settled(chart, "pressing 2 mm in")
         return stop, chart
 
     def test_a_vibration_the_servo_rate_cannot_render_is_said_when_feeling_starts(self):
@@ -307,7 +307,7 @@ class FeelGuiTest(unittest.TestCase):
         self.open_feel()
         chart = h.widget(QtWidgets.QWidget, "stripChart")
         h.mouse("move", h.screen_pos(np.array([20.0, 15.0, 20.0])))
-        wait_settled(chart, "landed")
+        h.wait_settled(chart, "landed")
         self.assertIn("Box.Face6", h.widget(QtWidgets.QLabel, "feelFace").text())
         normal = np.asarray(chart.values["normal_force_n"], float)
         pressed = float(normal[-200:].mean())
@@ -353,7 +353,7 @@ class FeelGuiTest(unittest.TestCase):
         h.mouse("move", point)
         h.wheel(point, 6)  # 1 -> 2.5 mm before it has landed
         self.assertFalse(panel.steering.hand.landed)
-        wait_settled(chart, "landed")
+        h.wait_settled(chart, "landed")
         self.assertEqual(panel.depth_mm(), 2.5)
         # grip (0.4 N/mm) in series with the face (0.8 N/mm): 0.67 N at 2.5 mm, 0.27 at 1
         self.assertGreater(float(np.asarray(chart.values["normal_force_n"][-200:]).mean()), 0.55)
@@ -385,7 +385,7 @@ class FeelGuiTest(unittest.TestCase):
         h.mouse("move", h.screen_pos(np.array([10.0, 15.0, 10.0])))  # one move, across the block
         h.wait_for(lambda: abs(probe_mm("proxy_m")[0] - 10.0) < 1.0 and abs(probe_mm("proxy_m")[2] - 10.0) < 0.1,
                    f"the proxy on the base at x 10: {probe_mm('proxy_m')}")
-        wait_settled(h.widget(QtWidgets.QWidget, "stripChart"), "landed on the base")
+        h.wait_settled(h.widget(QtWidgets.QWidget, "stripChart"), "landed on the base")
         self.assertIn("Base.Face6", h.widget(QtWidgets.QLabel, "feelFace").text())
         apart = np.linalg.norm(probe_mm("proxy_m") - probe_mm())
         self.assertLess(apart, 2.0)  # pressing 1 mm, not held anywhere else
@@ -411,7 +411,7 @@ class FeelGuiTest(unittest.TestCase):
         chart = h.widget(QtWidgets.QWidget, "stripChart")
         pressed = float(chart.values["normal_force_n"][-200:].mean())
         h.wheel(h.screen_pos(np.array([40.0, 15.0, 15.0])), 6)
-        wait_settled(chart, "pressing 2.5 mm in")
+        h.wait_settled(chart, "pressing 2.5 mm in")
         self.assertEqual(panel.depth_mm(), 2.5)
         self.assertGreater(float(chart.values["normal_force_n"][-200:].mean()), 1.8 * pressed)
         # aimed 2.5 mm in, the probe goes in less: the panel says how far, 0.67 N / 0.8 N/mm
@@ -722,28 +722,6 @@ def task_panel_feel_scene():
     from hapticad.gui import task_panel_feel
 
     return task_panel_feel.active_panel().session.doc_scene
-
-
-def wait_settled(chart, what, dead_after_s=20.0):
-    """Until the simulated hand has landed on the part and the normal force has settled
-    (the mean of the last 100 samples within 2 % of the 100 before), all 300 samples since
-    the call: the hand comes down in a fixed number of display ticks, which a slow host
-    stretches in wall time, and a force changed by the wheel takes a moment to settle."""
-    from hapticad.gui import task_panel_feel
-
-    since = chart.sample_count
-
-    def settled():
-        normal = np.asarray(chart.values["normal_force_n"], float)
-        panel = task_panel_feel.active_panel()
-        if panel is None or panel.steering is None or not panel.steering.hand.landed:
-            return False
-        if chart.sample_count < since + 300 or len(normal) < 200:
-            return False
-        last, before = float(normal[-100:].mean()), float(normal[-200:-100].mean())
-        return abs(last - before) <= 0.02 * abs(before)
-
-    h.wait_for(settled, f"{what}: the hand landed and the normal force settled", dead_after_s)
 
 
 def wait_probe(condition, what, dead_after_s=20.0):

@@ -25,26 +25,6 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gui_helpers as h  # noqa: E402
 
 
-def wait_settled(chart, what, dead_after_s=20.0):
-    """Until the simulated hand has landed on the part and the normal force has settled
-    (the mean of the last 100 samples within 2 % of the 100 before), all 300 samples since
-    the call: the hand comes down in a fixed number of display ticks, which a slow host
-    stretches in wall time, and a force changed by an edit takes a moment to settle."""
-    since = chart.sample_count
-
-    def settled():
-        normal = np.asarray(chart.values["normal_force_n"], float)
-        panel = task_panel_feel.active_panel()
-        if panel is None or panel.steering is None or not panel.steering.hand.landed:
-            return False
-        if chart.sample_count < since + 300 or len(normal) < 200:
-            return False
-        last, before = float(normal[-100:].mean()), float(normal[-200:-100].mean())
-        return abs(last - before) <= 0.02 * abs(before)
-
-    h.wait_for(settled, f"{what}: the hand landed and the normal force settled", dead_after_s)
-
-
 def fill_participant(name, gender="M", age="26-40", weight=70.0, height=1700.0):
     h.widget(QtWidgets.QLineEdit, "participantName").setText(name)
     h.widget(QtWidgets.QComboBox, "participantGender").setCurrentText(gender)
@@ -400,12 +380,12 @@ class StudyGuiTest(unittest.TestCase):
         slider = h.widget(QtWidgets.QSlider, "studySlider")
         top = np.array([20.0, 15.0, 20.0])
         h.mouse("move", h.screen_pos(top))
-        wait_settled(chart, "landed")
+        h.wait_settled(chart, "landed")
         h.wheel(h.screen_pos(top), 2)  # the hand presses harder
         felt = {}
         for position, thickness in ((0, 2.0), (100, 5.0)):  # 0.07 and 1.09 N/mm
             slider.setValue(position)
-            wait_settled(chart, f"pressing the {thickness} mm neck")
+            h.wait_settled(chart, f"pressing the {thickness} mm neck")
             self.assertAlmostEqual(study.BeamThickness, thickness)
             # the live session felt the new neck: force over the depth pressed is its k
             sample = task_panel_feel.active_panel().last_sample
