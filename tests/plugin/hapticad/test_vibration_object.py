@@ -146,7 +146,8 @@ class VibrationTest(unittest.TestCase):
         def felt(rate_hz):
             """(strongest frequency, its amplitude) of the normal force while sliding."""
             scene = build_document_scene(self.doc)
-            result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, Stroke((10, 20, 20), (70, 20, 20), 50, 1.0, rate_hz=rate_hz)), _core.FLAG_FAULT_WATCHDOG)
+            stroke = Stroke((10, 20, 20), (70, 20, 20), 50, 1.0, rate_hz=rate_hz)
+            result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
             t = result.trace
             sliding = (t["time_s"] > result.plan.slide_start_s) & (t["time_s"] < result.plan.slide_end_s)
             fz = np.asarray(t["force_n"])[sliding, 2]
@@ -179,7 +180,8 @@ class VibrationTest(unittest.TestCase):
             """The smallest of the largest shake in each cycle's samples, as a share of
             the amplitude: 1 when every cycle's peak is felt."""
             scene = build_document_scene(self.doc)
-            result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, Stroke((10, 20, 20), (40, 20, 20), 50, 1.0, rate_hz=rate_hz)), _core.FLAG_FAULT_WATCHDOG)
+            stroke = Stroke((10, 20, 20), (40, 20, 20), 50, 1.0, rate_hz=rate_hz)
+            result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
             t = result.trace
             sliding = (t["time_s"] > result.plan.slide_start_s) & (t["time_s"] < result.plan.slide_end_s)
             shake = np.abs(np.asarray(t["vibration_force_n"])[sliding])
