@@ -64,6 +64,30 @@ def wait_settled(chart, what, dead_after_s=20.0):
     wait_for(settled, f"{what}: the hand landed and the normal force settled", dead_after_s)
 
 
+def type_into(spin, text, finish="return"):
+    """Types ``text`` into a spin box as a user does (its text selected, key by key), then
+    presses Return ("return"), leaves the field with Tab ("leave"; its focus cleared too,
+    where Tab found no other widget to move to) or neither (None: still being typed)."""
+    from PySide2 import QtCore, QtGui, QtWidgets
+
+    def key(code, char=""):
+        for kind in (QtCore.QEvent.KeyPress, QtCore.QEvent.KeyRelease):
+            QtWidgets.QApplication.sendEvent(line, QtGui.QKeyEvent(kind, code, QtCore.Qt.NoModifier, char))
+
+    spin.setFocus()
+    process_events()
+    line = spin.lineEdit()
+    line.selectAll()
+    for char in text:
+        key(0, char)
+    if finish == "return":
+        key(QtCore.Qt.Key_Return)
+    elif finish == "leave":
+        key(QtCore.Qt.Key_Tab)
+        spin.clearFocus()
+    process_events()
+
+
 def show_workbench():
     """Switches to the HaptiCAD workbench and shows the active document isometric, fitted."""
     Gui.activateWorkbench("HaptiCADWorkbench")

@@ -608,11 +608,9 @@ class FeelGuiTest(unittest.TestCase):
         h.process_events()
         h.press_task_button("Close")
 
-    def test_a_part_moved_up_over_the_resting_probe_lets_it_come_back_onto_its_top(self):
-        # a 10 mm box moved 7 mm up under the probe resting on its top: the proxy restarts on
-        # its bottom face (2 mm away, the top 8), and every way the hand took to the new top,
-        # or off the part, went up through it: held under it at the force limit, "the probe
-        # 10.38 mm in", until Stop and Start
+    def move_the_part_up_under_the_resting_probe(self, before_the_move=None):
+        """A 10 mm box felt resting on its top, then moved 7 mm up under the probe (after
+        ``before_the_move(panel)``), the swap done: (the panel, its face label)."""
         self.box.Height = 10
         self.doc.recompute()
         h.show_workbench()
@@ -620,9 +618,19 @@ class FeelGuiTest(unittest.TestCase):
         label = h.widget(QtWidgets.QLabel, "feelFace")
         h.mouse("move", h.screen_pos(np.array([20.0, 15.0, 10.0])))
         self.wait_touching("Box.Face6")
+        if before_the_move:
+            before_the_move(panel)
         self.box.Placement.Base = App.Vector(0, 0, 7)
         self.doc.recompute()
         h.wait_for(lambda: "Geometry edited" in h.widget(QtWidgets.QLabel, "feelMessage").text(), "the swap")
+        return panel, label
+
+    def test_a_part_moved_up_over_the_resting_probe_lets_it_come_back_onto_its_top(self):
+        # a 10 mm box moved 7 mm up under the probe resting on its top: the proxy restarts on
+        # its bottom face (2 mm away, the top 8), and every way the hand took to the new top,
+        # or off the part, went up through it: held under it at the force limit, "the probe
+        # 10.38 mm in", until Stop and Start
+        panel, label = self.move_the_part_up_under_the_resting_probe()
 
         def on_the_top():
             return abs(probe_mm("proxy_m")[2] - 17.0) < 0.1 and "Box.Face6" in label.text()
@@ -642,17 +650,8 @@ class FeelGuiTest(unittest.TestCase):
     def test_a_proxy_left_under_the_part_is_freed_by_moving_off_it(self):
         # the same trap, the hand aimed at the new top before the panel could tell (a
         # steering that does not re-land at the swap): off the part it lifts off all the same
-        self.box.Height = 10
-        self.doc.recompute()
-        h.show_workbench()
-        panel = self.open_feel()
-        label = h.widget(QtWidgets.QLabel, "feelFace")
-        h.mouse("move", h.screen_pos(np.array([20.0, 15.0, 10.0])))
-        self.wait_touching("Box.Face6")
-        panel.steering.hand.scene_changed = lambda surface, top_mm=None: None  # no re-landing at the swap
-        self.box.Placement.Base = App.Vector(0, 0, 7)
-        self.doc.recompute()
-        h.wait_for(lambda: "Geometry edited" in h.widget(QtWidgets.QLabel, "feelMessage").text(), "the swap")
+        panel, label = self.move_the_part_up_under_the_resting_probe(
+            lambda panel: setattr(panel.steering.hand, "scene_changed", lambda surface, top_mm=None: None))
         wait_probe(lambda: "Box.Face5" in label.text(), "the proxy under the bottom face")
         h.mouse("move", h.screen_pos(np.array([90.0, -60.0, 0.0])))
         wait_probe(lambda: "not touching" in label.text(), "lifted off")

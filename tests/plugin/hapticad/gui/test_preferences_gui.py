@@ -7,7 +7,7 @@ import unittest
 
 import FreeCAD as App
 import FreeCADGui as Gui
-from PySide2 import QtCore, QtGui, QtWidgets
+from PySide2 import QtCore, QtWidgets
 
 from hapticad import preferences
 
@@ -32,23 +32,6 @@ def when_open(use):
     timer.timeout.connect(poll)
     timer.start()
     return timer
-
-
-def type_into(spin, text, finish="leave"):
-    """Types ``text`` into a spin box as a user does (its text selected, key by key), then
-    leaves the field with Tab ("leave") or stays in it (None: OK is pressed next)."""
-    spin.setFocus()
-    h.process_events()
-    line = spin.lineEdit()
-    line.selectAll()
-    for char in text:
-        for kind in (QtCore.QEvent.KeyPress, QtCore.QEvent.KeyRelease):
-            QtWidgets.QApplication.sendEvent(line, QtGui.QKeyEvent(kind, 0, QtCore.Qt.NoModifier, char))
-    if finish == "leave":
-        for kind in (QtCore.QEvent.KeyPress, QtCore.QEvent.KeyRelease):
-            QtWidgets.QApplication.sendEvent(line, QtGui.QKeyEvent(kind, QtCore.Qt.Key_Tab, QtCore.Qt.NoModifier))
-        spin.clearFocus()  # where Tab found no focus to move (the dialog not the active window)
-    h.process_events()
 
 
 class PreferencesPageTest(unittest.TestCase):
@@ -126,7 +109,7 @@ class PreferencesPageTest(unittest.TestCase):
 
         def typed(dialog, seen, name, text, finish="leave"):
             spin = dialog.findChild(QtWidgets.QAbstractSpinBox, name)
-            type_into(spin, text, finish)
+            h.type_into(spin, text, finish)
             message = dialog.findChild(QtWidgets.QLabel, "preferencesMessage")
             seen[name, text] = (spin.lineEdit().text(), message.text() if message is not None else "")
 

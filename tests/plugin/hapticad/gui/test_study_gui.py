@@ -15,7 +15,7 @@ import numpy as np
 
 import FreeCAD as App
 import FreeCADGui as Gui
-from PySide2 import QtCore, QtGui, QtWidgets
+from PySide2 import QtWidgets
 
 import HaptiCAD
 from hapticad import preferences, stiffness_study, study_journal
@@ -31,27 +31,6 @@ def fill_participant(name, gender="M", age="26-40", weight=70.0, height=1700.0):
     h.widget(QtWidgets.QComboBox, "participantAge").setCurrentText(age)
     h.widget(QtWidgets.QDoubleSpinBox, "participantWeight").setValue(weight)
     h.widget(QtWidgets.QDoubleSpinBox, "participantHeight").setValue(height)
-
-
-def type_into(spin, text, finish="return"):
-    """Types ``text`` into a spin box as a user does (its text selected, key by key), then
-    presses Return, leaves the field ("leave") or neither (None)."""
-    spin.setFocus()
-    h.process_events()
-    line = spin.lineEdit()
-    line.selectAll()
-    for char in text:
-        for kind in (QtCore.QEvent.KeyPress, QtCore.QEvent.KeyRelease):
-            QtWidgets.QApplication.sendEvent(line, QtGui.QKeyEvent(kind, 0, QtCore.Qt.NoModifier, char))
-    if finish is None:  # still being typed
-        pass
-    elif finish == "return":
-        for kind in (QtCore.QEvent.KeyPress, QtCore.QEvent.KeyRelease):
-            QtWidgets.QApplication.sendEvent(line, QtGui.QKeyEvent(kind, QtCore.Qt.Key_Return, QtCore.Qt.NoModifier))
-    else:
-        Gui.getMainWindow().setFocus()
-        spin.clearFocus()
-    h.process_events()
 
 
 class StudyGuiTest(unittest.TestCase):
@@ -429,8 +408,8 @@ class StudyGuiTest(unittest.TestCase):
         h.widget(QtWidgets.QLineEdit, "participantName").setText("Steven")
         weight = h.widget(QtWidgets.QDoubleSpinBox, "participantWeight")
         height = h.widget(QtWidgets.QDoubleSpinBox, "participantHeight")
-        type_into(weight, "5", finish="leave")  # below the range (a 2-year-old's 10 kg)
-        type_into(height, "170", finish="leave")  # Table 3's height, in cm
+        h.type_into(weight, "5", finish="leave")  # below the range (a 2-year-old's 10 kg)
+        h.type_into(height, "170", finish="leave")  # Table 3's height, in cm
         # leaving the field keeps what was typed: it used to read "not given", and the record lost it unsaid
         self.assertEqual((weight.text(), height.text()), ("5.0 kg", "170 mm"))
         h.widget(QtWidgets.QPushButton, "recordPreference").click()
@@ -439,12 +418,12 @@ class StudyGuiTest(unittest.TestCase):
                       "in centimetres? give 1700", message)
         self.assertEqual(study.Participants, 0)
         self.assertEqual((weight.text(), height.text()), ("5.0 kg", "170 mm"))  # still there to correct
-        type_into(weight, "15", finish="leave")  # a child's weight: kept (20 kg was the floor)
-        type_into(height, "69", finish="leave")  # 69 in
+        h.type_into(weight, "15", finish="leave")  # a child's weight: kept (20 kg was the floor)
+        h.type_into(height, "69", finish="leave")  # 69 in
         h.widget(QtWidgets.QPushButton, "recordPreference").click()
         self.assertIn("height 69.0 mm is outside 500..2500 mm: in centimetres? give 690, or in inches? give 1753",
                       h.widget(QtWidgets.QLabel, "studyMessage").text())
-        type_into(height, "1700", finish="leave")
+        h.type_into(height, "1700", finish="leave")
         h.widget(QtWidgets.QPushButton, "recordPreference").click()
         (steven,) = stiffness_study.records(study)
         self.assertEqual((steven.weight_kg, steven.height_mm), (15.0, 1700.0))
@@ -461,35 +440,35 @@ class StudyGuiTest(unittest.TestCase):
         study = self.open_study()
         status = h.widget(QtWidgets.QLabel, "studyStatus")
         length = h.widget(QtWidgets.QDoubleSpinBox, "BeamLength")
-        type_into(length, "8 cm")
+        h.type_into(length, "8 cm")
         self.assertEqual(study.BeamLength, 80.0)  # not 8 mm
         self.assertEqual(length.text(), "80 mm")
-        type_into(h.widget(QtWidgets.QDoubleSpinBox, "BeamThickness"), "4,5")
+        h.type_into(h.widget(QtWidgets.QDoubleSpinBox, "BeamThickness"), "4,5")
         self.assertEqual(study.BeamThickness, 4.5)  # a decimal comma, not 45 mm
         modulus = h.widget(QtWidgets.QDoubleSpinBox, "YoungsModulus")
-        type_into(modulus, "1500")  # MPa meant: every digit kept, and refused with what to give
+        h.type_into(modulus, "1500")  # MPa meant: every digit kept, and refused with what to give
         self.assertEqual(study.YoungsModulus, 1.5)
         self.assertIn("Not set: Young's modulus E: 1500 GPa is outside 0.001..1000 GPa: in MPa? give 1500 MPa",
                       status.text())
-        type_into(modulus, "2300 MPa")
+        h.type_into(modulus, "2300 MPa")
         self.assertAlmostEqual(study.YoungsModulus, 2.3)
         self.assertNotIn("Not set", status.text())
-        type_into(length, "3 m", finish="leave")
+        h.type_into(length, "3 m", finish="leave")
         self.assertEqual(study.BeamLength, 80.0)
         self.assertIn("Not set: Length L: 3000 mm is outside 1..2000 mm", status.text())
-        type_into(length, "5 kg")
+        h.type_into(length, "5 kg")
         self.assertIn("Not set: Length L: '5 kg' is a mass, not a length", status.text())
         # the slider's range is in the unit of what it moves
-        type_into(h.widget(QtWidgets.QDoubleSpinBox, "AdjustMax"), "1 cm")
+        h.type_into(h.widget(QtWidgets.QDoubleSpinBox, "AdjustMax"), "1 cm")
         self.assertEqual(study.AdjustMax, 10.0)
         h.widget(QtWidgets.QComboBox, "Model").setCurrentText("Push button")
         h.process_events()
-        type_into(h.widget(QtWidgets.QDoubleSpinBox, "OperatingForce"), "150 gf")  # a switch datasheet's unit
+        h.type_into(h.widget(QtWidgets.QDoubleSpinBox, "OperatingForce"), "150 gf")  # a switch datasheet's unit
         self.assertAlmostEqual(study.OperatingForce, 1.471, places=3)
-        type_into(h.widget(QtWidgets.QDoubleSpinBox, "SnapRatio"), "1.5")
+        h.type_into(h.widget(QtWidgets.QDoubleSpinBox, "SnapRatio"), "1.5")
         self.assertEqual(study.SnapRatio, 0.5)
         self.assertIn("Not set: Snap ratio: 1.5 is outside 0.01..0.99", status.text())
-        type_into(h.widget(QtWidgets.QDoubleSpinBox, "AdjustMax"), "60 N")
+        h.type_into(h.widget(QtWidgets.QDoubleSpinBox, "AdjustMax"), "60 N")
         self.assertEqual(study.AdjustMax, 5.0)
         self.assertIn("Not set: The slider's high end: 60 N is outside 0.05..50 N", status.text())
 
@@ -775,7 +754,7 @@ class StudyGuiTest(unittest.TestCase):
 
     def test_undoing_the_studys_creation_with_its_panel_open_leaves_no_traceback(self):
         self.open_study()
-        type_into(h.widget(QtWidgets.QDoubleSpinBox, "BeamLength"), "7 cm", finish=None)  # left as it closes
+        h.type_into(h.widget(QtWidgets.QDoubleSpinBox, "BeamLength"), "7 cm", finish=None)  # left as it closes
         with h.uncaught_errors() as errors:
             Gui.runCommand("Std_Undo")
             h.wait(0.5)
