@@ -389,20 +389,40 @@ class Figures:
 
     def stick_slip(self):
         np, plt = self.np, self.plt
+        from hapticad import _core
+
         fig, ax = plt.subplots(figsize=(8, 4), constrained_layout=True)
         for model in ("Velocity (seed 000)", "Friction cone (stick-slip)"):
             scene = self.scene(material="Rubber", static_friction=1.0, dynamic_friction=0.6,
                                FrictionModel=model, FeelRoughness=False)
-            result, trace, sliding, x = self.stroke(scene, (30, 50, 20), (70, 50, 20), speed=10.0)
-            slide = (trace["time_s"] > result.plan.slide_start_s - 0.05) & (trace["time_s"] < result.plan.slide_end_s)
-            ax.plot(trace["time_s"][slide] - result.plan.slide_start_s,
+            # slide 20 mm at 10 mm/s, rest 1 s, slide on 20 mm: the plan of a stroke, cut in two
+            plan = self.feel.plan_stroke(scene, self.feel.Stroke((30, 50, 20), (70, 50, 20), 10.0, 1.0))
+            t, p = list(plan.times_s), list(plan.positions_m)
+            middle = 0.5 * (p[3] + p[4])
+            half = 0.5 * (t[4] - t[3])
+            times = t[:4] + [t[3] + half, t[3] + half + 1.0] + [x + 1.0 for x in t[4:]]
+            positions = np.array(p[:4] + [middle, middle] + p[4:])
+            probe = _core.simulated_probe_limits()
+            device = _core.SimulatedDevice(times, positions, probe)
+            limits = _core.RenderLimits()
+            limits.max_force_n = probe.max_force_n
+            limits.max_stiffness_n_per_m = probe.max_stiffness_n_per_m
+            renderer = _core.ForceRenderer(scene.scene, scene.surfaces, limits, scene.contact_options())
+            loop = _core.ServoLoop(device, renderer, 1000.0, trace_capacity=int(1000 * (times[-1] + 1)))
+            trace = loop.run_for(times[-1])
+            start, end = times[3], times[-3]
+            slide = (trace["time_s"] > start - 0.05) & (trace["time_s"] < end)
+            slide &= (trace["flags"] & _core.FLAG_DEVICE_FAULT) == 0  # a host stall's tick renders nothing
+            ax.plot(trace["time_s"][slide] - start,
                     trace["tangential_force_n"][slide] / np.maximum(trace["normal_force_n"][slide], 1e-9),
                     lw=1.2, label=model)
+        ax.axvspan(half, half + 1.0, color="gray", alpha=0.12, lw=0, label="at rest")
         ax.axhline(1.0, color="gray", ls=":", lw=1, label="$\\mu_s$")
         ax.axhline(0.6, color="gray", ls="--", lw=1, label="$\\mu_d$")
         ax.set_xlabel("time from the start of the slide (s)")
         ax.set_ylabel("$F_t/F_n$")
-        ax.set_title("Starting to slide at 10 mm/s: the paper's model is smooth; the friction cone breaks away")
+        ax.set_title("Sliding at 10 mm/s, a rest, sliding on: the paper's model is smooth;\n"
+                     "the friction cone breaks away at $\\mu_s$, sticks at rest, and breaks away again")
         ax.legend(fontsize=8)
         ax.grid(alpha=0.3)
         self.save(fig, "friction_stick_slip.png")

@@ -31,8 +31,12 @@ ProxyConfig MakeProxyConfig(const HapticScene& scene, const ContactOptions& opti
 }
 
 // Cone re-entry: a sliding proxy sticks again once the device is back inside this
-// share of the dynamic cone (CHAI3D uses 0.6 of the dynamic angle).
+// share of the dynamic cone (CHAI3D uses 0.6 of the dynamic angle), or once it comes to
+// rest (ApplyFrictionCone).
 constexpr double kStickReentry = 0.6;
+// A lag "within" the dynamic cone: the slide set it to the cone's radius, give or take
+// the rounding of a few operations.
+constexpr double kOnTheCone = 1.0 + 1e-9;
 
 // Shading normals of the triangles holding the proxy that agree this well (2 degrees)
 // belong to one smooth CAD surface: the edge between them is the tessellation's (a
@@ -99,7 +103,7 @@ double ForceRenderer::EditBlendScale(double time_s) {
 
 Vec3 ForceRenderer::ApplyFrictionCone(const SurfaceProperties& surface, double friction_scale,
                                       const Vec3& normal, double depth_m, const StripeFrame& stripe,
-                                      RenderOutput* out) {
+                                      double speed_mps, RenderOutput* out) {
   const Vec3& proxy = proxy_.position();
   // the cone lives on one plane: edges, corners and a new face restart it
   if (proxy_.constraints().count() != 1 || !anchored_ || anchor_face_ != out->cad_face) {
@@ -121,7 +125,15 @@ Vec3 ForceRenderer::ApplyFrictionCone(const SurfaceProperties& surface, double f
   const double static_radius = friction_scale * mu.static_coefficient * depth_m;
   const double dynamic_radius = friction_scale * mu.dynamic_coefficient * depth_m;
   if (sticking_ && lag > static_radius) sticking_ = false;
-  if (!sticking_ && lag < kStickReentry * dynamic_radius) sticking_ = true;
+  // Static friction holds again once the sliding stops: a hand come to rest (slower than
+  // the face's stick speed) whose anchor no longer trails it (the lag within the dynamic
+  // cone) sticks, so setting off again breaks away at mu_s. With the re-entry alone a
+  // slide went on through a stop and every restart slid at mu_d.
+  if (!sticking_ &&
+      (lag < kStickReentry * dynamic_radius ||
+       (lag <= kOnTheCone * dynamic_radius && speed_mps < surface.friction.stick_speed_mps))) {
+    sticking_ = true;
+  }
   if (!sticking_ && lag > dynamic_radius) {
     // slide: the anchor trails the proxy on the dynamic cone
     anchor_l_ = proxy + offset * (dynamic_radius / lag);
@@ -320,8 +332,8 @@ void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
     force += texture;
     anchored_ = false;
   } else if (effects & kEffectCone) {
-    const Vec3 anchor =
-        ApplyFrictionCone(surface, friction_scale, normal, normal_force / k_w, stripe, out);
+    const Vec3 anchor = ApplyFrictionCone(surface, friction_scale, normal, normal_force / k_w,
+                                          stripe, v_t.norm(), out);
     const Vec3 pull = k_w * (anchor - proxy_.position());
     out->friction_force_n = pull.norm();
     force += pull;

@@ -369,6 +369,42 @@ TEST_F(EffectsOnBox, FrictionConeSticksThenSlips) {
   EXPECT_TRUE(out.flags & kSticking);
 }
 
+TEST_F(EffectsOnBox, AFrictionConeSlideThatStopsSticksAndBreaksAwayAgainAtMuS) {
+  top_.friction_mode = FrictionMode::kCone;
+  auto r = Make();
+  RenderOutput out;
+  r.Render({Vec3(0, 0, 0.06), Vec3::Zero(), 0}, &out);
+  double t = 0.0;
+  // slides 5 mm along +x at 20 mm/s, 2 mm deep (F_n = 1 N; cones 0.8 and 0.6 mm)
+  double x = 0.0;
+  const auto move = [&](double speed, int ticks, double* peak) {
+    for (int i = 0; i < ticks; ++i) {
+      x += speed * 1e-3;
+      t += 1e-3;
+      r.Render({Vec3(x, 0, 0.048), Vec3(speed, 0, 0), t}, &out);
+      if (peak) *peak = std::max(*peak, -out.force_w.x() / out.force_w.z());
+    }
+  };
+  double first = 0.0;
+  move(0.02, 250, &first);
+  EXPECT_NEAR(first, 0.4, 1e-3);  // broke away at mu_s
+  EXPECT_FALSE(out.flags & kSticking);
+  EXPECT_NEAR(-out.force_w.x() / out.force_w.z(), 0.3, 1e-6);
+  // the hand stops where it is, still pulled back at mu_d: it sticks there
+  move(0.0, 100, nullptr);
+  EXPECT_TRUE(out.flags & kSticking);
+  EXPECT_NEAR(-out.force_w.x() / out.force_w.z(), 0.3, 1e-6);
+  // and setting off again in the same direction breaks away at mu_s again, not mu_d
+  double second = 0.0;
+  move(0.02, 250, &second);
+  EXPECT_NEAR(second, 0.4, 1e-3);
+  EXPECT_FALSE(out.flags & kSticking);
+  EXPECT_NEAR(-out.force_w.x() / out.force_w.z(), 0.3, 1e-6);
+  // a hand that only slows (above the stick speed) slides on
+  move(0.004, 100, nullptr);
+  EXPECT_FALSE(out.flags & kSticking);
+}
+
 TEST_F(EffectsOnBox, VelocitySignFlipsEveryTickStayBoundedAndFinite) {
   auto r = Make();
   RenderOutput out;

@@ -20,7 +20,9 @@
 //                face's mu (anisotropic along a pattern, scaled by roughness);
 //                the friction cone (FrictionMode::kCone): the proxy sticks to an anchor
 //                until the device leaves the static cone, then slides on the dynamic
-//                one (stick-slip, which the paper's model cannot render);
+//                one until it falls back well inside it or comes to rest (slower than
+//                the face's stick speed, its anchor no longer dragged), where it sticks
+//                again (stick-slip, which the paper's model cannot render);
 //                a viscous grating (seed 001 eq. 2) in place of Coulomb friction
 //   vibration  the touched part's, while powered, added to the force along its axis; a
 //              face only pushes, so the force's component along the contact normal is
@@ -189,9 +191,10 @@ class ForceRenderer {
   double EditBlendScale(double time_s);
 
   // Friction cone: returns the point the spring pulls toward (the anchor while sticking).
+  // `speed_mps`: the device's speed across the face (a slide that stops sticks again).
   Vec3 ApplyFrictionCone(const SurfaceProperties& surface, double friction_scale,
                          const Vec3& normal, double depth_m, const StripeFrame& stripe,
-                         RenderOutput* out);
+                         double speed_mps, RenderOutput* out);
 
   std::shared_ptr<const HapticScene> scene_;
   Handoff<const SurfaceTable> surfaces_handoff_;
