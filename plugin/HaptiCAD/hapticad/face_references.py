@@ -31,13 +31,16 @@ Pocket sketched on it): else nothing tells the tagged face from one of them, and
 is broken. Without them, removing the tagged hole moved its tag onto the other hole
 and called that "ok". So each surface keeps the signatures of its parts' faces at the
 last match (tables(); one list per part, not per reference). A document written
-before has them taken when it opens.
+before has them taken when it opens. When no face is left at a level at all (a
+pattern's keys made taller: every top left their plane together), the next level
+decides, with its own, wider, rivals.
 
 Moved rivals that area does not tell apart are told apart by place, but only when the
 tagged face clearly stayed put (Previous.stayed_near): a Fillet on four edges made
 larger changes four equal faces, and the tagged one moved 1 mm while the others are at
 the other corners, 28 mm and more away. Its centre must have moved less than NEAR of the
-way to its nearest rival, every other candidate must be CLEAR of that way off, and its
+way to its nearest moved rival (one still there unchanged is that face now, no other's),
+every other candidate must be CLEAR of that way off, and its
 area must be no nearer a moved rival's than its own. Anything less is left broken: a
 step whose two tops both rose 1 mm with their centres 5.4 mm apart, two holes of
 different sizes that moved past each other (the one now nearest is the other hole), a
@@ -54,7 +57,7 @@ STATUSES = (OK, REMATCHED, BROKEN)
 ANGLE_TOLERANCE = 1e-7  # 1 - cos of the angle two directions may differ by (about 0.03 degrees)
 RELATIVE_TOLERANCE = 1e-6  # of the shape's size, for lengths; of the area, for areas
 # a face whose rivals moved too is followed by place (Previous.stayed_near) when its centre moved
-# less than NEAR of the distance to its nearest rival, and every other candidate is at least CLEAR
+# less than NEAR of the distance to its nearest moved rival, and every other candidate is at least CLEAR
 # of that distance off: the face taken is then wrong only if a rival moved 9 times as far as the
 # tagged face seems to have, and the tagged face itself moved half the distance. A step whose two
 # tops both rose 1 mm, 5.4 mm apart (a fifth), stays broken
@@ -226,7 +229,7 @@ class Previous:
         moved rivals. A Pad made longer lifts its top face and the floor of a Pocket
         sketched on it alike; their areas tell them apart. Anything less clear (a face
         come or gone, a rival of the same area, the area changed): None."""
-        now = self._candidates(signature, level, excluded)
+        now = self.candidates(signature, level, excluded)
         if len(now) != 1 + len(moved):
             return None  # a face came or went: not a move
 
@@ -239,20 +242,22 @@ class Previous:
         found = [i for i in now if tagged(self.signatures[i]["area"])]
         return found[0] if len(found) == 1 else None
 
-    def stayed_near(self, signature, rivals, moved, level, excluded):
+    def stayed_near(self, signature, moved, level, excluded):
         """The face now (its index) the tagged face (``signature``) became when it moved
         with rivals that its area does not tell it from (four equal fillets made larger):
         the one candidate (the faces now that match at ``level``, less ``excluded``; as
         many as the moved old faces, as in moved_together) whose centre is within NEAR of
         ``spacing`` of the tagged face's, every other candidate at least CLEAR of it away,
         and whose area is no nearer a moved rival's than the tagged face's. ``spacing``
-        is the distance (mm) from the tagged face's centre to the nearest of its
-        ``rivals``' (old faces, moved or not). Anything less clear: None."""
-        now = self._candidates(signature, level, excluded)
+        is the distance (mm) from the tagged face's centre to the nearest of the
+        ``moved`` rivals' (old faces): a rival still there unchanged is no candidate, so
+        it cannot be taken for the tagged face however near (a plate's top 9.8 mm from a
+        key's). Anything less clear: None."""
+        now = self.candidates(signature, level, excluded)
         if len(now) != 1 + len(moved):
             return None  # a face came or went: not a move
         centre = signature["centre"]
-        spacing = min(math.dist(centre, self.old[j]["centre"]) for j in rivals)
+        spacing = min(math.dist(centre, self.old[j]["centre"]) for j in moved)
         if spacing <= RELATIVE_TOLERANCE * self.size:
             return None  # a rival where the tagged face was: place tells nothing
         distances = sorted((math.dist(centre, self.signatures[i]["centre"]), i) for i in now)
@@ -265,7 +270,7 @@ class Previous:
             return None  # it looks more like a rival that moved here (two holes that passed)
         return found
 
-    def _candidates(self, signature, level, excluded):
+    def candidates(self, signature, level, excluded):
         """Faces now (indices) that ``signature`` matches at ``level``, less ``excluded``."""
         return [i for i, s in enumerate(self.signatures) if i not in excluded and level(signature, s, self.size)]
 
@@ -281,7 +286,8 @@ def match_face(signature, name, signatures, size, previous=None, loose=True):
     face's rivals at that level still there unchanged are no candidates, and rivals
     that changed must have moved with it, told apart by area (Previous.moved_together)
     or, failing that, by having clearly stayed near (Previous.stayed_near), else nothing
-    tells it from one of them: broken. Without ``loose`` only the first level is tried (a
+    tells it from one of them: broken; when no face fits the level at all, they all left
+    it together and the next level decides. Without ``loose`` only the first level is tried (a
     broken reference comes back only as the very face it was)."""
     index = _face_index(name)
     excluded = set()
@@ -294,9 +300,11 @@ def match_face(signature, name, signatures, size, previous=None, loose=True):
             if moved:
                 if not 0 <= index < len(previous.old):
                     return None, BROKEN
+                if not previous.candidates(signature, level, excluded):
+                    continue  # it left this surface with its rivals (a pattern's keys made taller)
                 found = previous.moved_together(index, signature, moved, level, excluded)
                 if found is None:
-                    found = previous.stayed_near(signature, rivals, moved, level, excluded)
+                    found = previous.stayed_near(signature, moved, level, excluded)
                 if found is None:
                     return None, BROKEN
                 return f"Face{found + 1}", OK if found == index else REMATCHED

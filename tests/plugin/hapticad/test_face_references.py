@@ -602,6 +602,101 @@ class FilletedBodyTest(unittest.TestCase):
         self.assertEqual(len(build_document_scene(self.doc).face_material), 4)
 
 
+class PatternedFeaturesTest(unittest.TestCase):
+    """Faces of a pattern, alike but for place: a remote's keys (a PartDesign Body: a
+    100 x 30 x 5 mm plate, a 10 x 10 mm key Pad 2 mm high on it, a LinearPattern of 4
+    keys 25 mm apart) and a Draft ortho array of three boxes 20 mm apart."""
+
+    def setUp(self):
+        self.doc = App.newDocument("Patterned")
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def keys(self):
+        self.body = self.doc.addObject("PartDesign::Body", "Body")
+        plate = self.body.newObject("PartDesign::Pad", "Plate")
+        plate.Profile = self.rectangle("PlateSketch", (self.doc.getObject("XY_Plane"), [""]), 0, 0, 100, 30)
+        plate.Length = 5
+        self.key = self.body.newObject("PartDesign::Pad", "Key")
+        sketch = self.rectangle("KeySketch", (self.doc.getObject("XY_Plane"), [""]), 5, 10, 15, 20)
+        sketch.AttachmentOffset = App.Placement(App.Vector(0, 0, 5), App.Rotation())
+        self.key.Profile = sketch
+        self.key.Length = 2
+        self.doc.recompute()
+        self.pattern = self.body.newObject("PartDesign::LinearPattern", "Keys")
+        self.pattern.Originals = [self.key]
+        self.pattern.Direction = (self.doc.getObject("X_Axis"), [""])
+        self.pattern.Length, self.pattern.Occurrences = 75, 4
+        self.body.Tip = self.pattern
+        self.doc.recompute()
+        self.assertTrue(all(o.isValid() for o in self.doc.Objects), [o.Name for o in self.doc.Objects])
+
+    rectangle = PartDesignBodyTest.rectangle
+
+    def tops(self, shape, z):
+        """{x of the centre: name} of the faces facing +z at height z."""
+        return {round(shape.getElement(n).CenterOfMass.x, 6): n
+                for n in faces_where(shape, "Plane", lambda c: abs(c.z - z) < 1e-6)
+                if shape.getElement(n).normalAt(0, 0).z > 0.5}
+
+    def test_the_keys_of_a_pattern_made_taller_keep_each_its_tag(self):
+        # the four tops left their plane together, so the level that looks for the tagged
+        # face in its own plane found nothing, and said broken instead of looking further;
+        # the fourth key then broke too, its nearest rival being the plate's top (9.8 mm
+        # off), which stayed as it was and so can be no other key's top
+        self.keys()
+        tops = self.tops(self.body.Shape, 7)
+        self.assertEqual(sorted(tops), [10, 35, 60, 85])
+        surface = HaptiCAD.make_surface(self.doc, [(self.body, tops[x]) for x in sorted(tops)], material="Rubber")
+        self.doc.recompute()
+        for length in (3, 2, 3.5):
+            self.key.Length = length
+            self.doc.recompute()
+            now = self.tops(self.body.Shape, 5 + length)
+            status = HaptiCAD.reference_status(surface)
+            # each key's tag on its own key's top: never two on one, nor one on the plate
+            self.assertEqual([(f, s != "broken") for _, f, s in status], [(now[x], True) for x in sorted(now)], length)
+            self.assertEqual(surface_object_problems(surface), [])
+            self.assertEqual(sorted(build_document_scene(self.doc).face_material),
+                             sorted(f"Body.{now[x]}" for x in now))
+
+    def test_a_key_added_to_the_pattern_breaks_the_tags_of_the_keys_that_moved(self):
+        # five keys over the same 75 mm: the end keys stay where they were, the two
+        # between move and a key comes, so nothing says which key a moved tag is on
+        self.keys()
+        tops = self.tops(self.body.Shape, 7)
+        surface = HaptiCAD.make_surface(self.doc, [(self.body, tops[x]) for x in sorted(tops)])
+        self.doc.recompute()
+        self.pattern.Occurrences = 5
+        self.doc.recompute()
+        now = self.tops(self.body.Shape, 7)
+        self.assertEqual(sorted(now), [10, 28.75, 47.5, 66.25, 85])
+        status = HaptiCAD.reference_status(surface)
+        self.assertEqual([s == "broken" for _, _, s in status], [False, True, True, False])
+        self.assertEqual([status[0][1], status[3][1]], [now[10], now[85]])
+
+    def test_the_boxes_of_a_draft_array_made_taller_keep_their_tags(self):
+        import Draft
+
+        base = self.doc.addObject("Part::Box", "Base")
+        self.doc.recompute()
+        array = Draft.make_ortho_array(base, App.Vector(20, 0, 0), App.Vector(0, 20, 0), App.Vector(0, 0, 20),
+                                       3, 1, 1, use_link=False)
+        self.doc.recompute()
+        tops = self.tops(array.Shape, 10)
+        self.assertEqual(sorted(tops), [5, 25, 45])
+        middle = HaptiCAD.make_surface(self.doc, [(array, tops[25])], material="Steel")
+        ends = HaptiCAD.make_surface(self.doc, [(array, tops[5]), (array, tops[45])], material="ABS")
+        self.doc.recompute()
+        base.Height = 11
+        self.doc.recompute()
+        now = self.tops(array.Shape, 11)
+        self.assertEqual([(f, s != "broken") for _, f, s in HaptiCAD.reference_status(middle)], [(now[25], True)])
+        self.assertEqual([(f, s != "broken") for _, f, s in HaptiCAD.reference_status(ends)],
+                         [(now[5], True), (now[45], True)])
+
+
 class AppPartTest(unittest.TestCase):
     def test_a_box_in_a_moved_app_part_keeps_its_tag_and_scene_position(self):
         doc = App.newDocument("AppPart")
@@ -728,6 +823,38 @@ class MatchFaceUnitTest(unittest.TestCase):
         old = [*self.rounds(3)[:2], self.fillet(40, 0, 4, 1, -1), tagged]
         passed = [*old[:2], self.fillet(40, 30, 4, 1, 1), self.fillet(40, 0, 5, 1, -1)]
         self.assertEqual(match(passed, old), (None, "broken"))
+
+    def test_faces_of_a_pattern_that_left_their_plane_together_are_followed_each_to_its_own(self):
+        m = face_references.match_face
+        # a plate's top (z 5, the keys' footprints left out) and four key tops, 25 mm apart
+        plate = self.sig(5, area=2600.0, centre=(50.38, 15.0, 5.0))
+        keys = [self.sig(7, centre=(x, 15.0, 7)) for x in (10.0, 35.0, 60.0, 85.0)]
+        old = [plate, *keys]
+
+        def match(now, key, old=old):
+            return m(old[key], f"Face{key + 1}", now, 100, face_references.Previous(list(old), now, 100))
+
+        # the keys 1 mm taller, renumbered: no face is left in their old plane, and each
+        # key's tag goes to its own key (the key at x 60 too, though the plate top is
+        # 9.8 mm off: it stayed as it was, so it is no other face now)
+        raised = [self.sig(8, centre=(x, 15.0, 8)) for x in (10.0, 35.0, 60.0, 85.0)]
+        now = [raised[2], plate, raised[0], raised[3], raised[1]]
+        self.assertEqual([match(now, k)[0] for k in range(1, 5)], ["Face3", "Face5", "Face1", "Face4"])
+        # still broken: a key more or fewer, keys so close (8 mm) that 1 mm is an eighth
+        # of the way to the next one
+        extra = [*now, self.sig(8, centre=(110.0, 15.0, 8))]
+        self.assertEqual([match(extra, k) for k in range(1, 5)], [(None, "broken")] * 4)
+        self.assertEqual(match(now[:4], 1), (None, "broken"))
+        close = [self.sig(7, centre=(x, 15.0, 7)) for x in (10.0, 18.0, 26.0, 34.0)]
+        close_now = [self.sig(8, centre=(x, 15.0, 8)) for x in (10.0, 18.0, 26.0, 34.0)]
+        self.assertEqual(match([plate, *close_now], 2, [plate, *close]), (None, "broken"))
+        # keys 2 mm taller: the key at x 60 is followed beside the plate as it was, not
+        # beside a plate that changed too (a moved face 9.8 mm off: it might be the key's)
+        raised = [self.sig(9, centre=(x, 15.0, 9)) for x in (10.0, 35.0, 60.0, 85.0)]
+        self.assertEqual(match([plate, *raised], 3), ("Face4", "ok"))
+        wider = self.sig(5, area=2700.0, centre=(50.5, 15.0, 5.0))
+        self.assertEqual(match([wider, *raised], 3), (None, "broken"))
+        self.assertEqual(match([wider, *raised], 1), ("Face2", "ok"))  # 40 mm from the plate's top
 
 
 if __name__ == "__main__":
