@@ -311,9 +311,13 @@ void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
   // the friction coefficients at this point and in the direction of sliding
   FrictionParams mu = surface.friction;
   StripeFrame stripe{Vec3::Zero(), 0.0};
+  double directional = 1.0;  // the pattern's mu in the direction of sliding over the face's own
   if (effects & kEffectPattern) {
     stripe = EvaluateStripe(surface, contact_w, normal);
     mu = DirectionalFriction(mu, surface.anisotropy, stripe.stripe, stripe.weight, v_t);
+    if (surface.friction.static_coefficient > 0.0) {
+      directional = mu.static_coefficient / surface.friction.static_coefficient;
+    }
   }
   mu.static_coefficient *= friction_scale;
   mu.dynamic_coefficient *= friction_scale;
@@ -321,10 +325,13 @@ void ForceRenderer::RenderContact(const RenderInput& input, RenderOutput* out) {
   Vec3 force = normal_force * normal_direction;
   if (effects & kEffectTexture) {
     const ViscousGrating& grating = *surface.texture;
+    // in place of the face's friction, so a pattern's anisotropy scales it as it scales
+    // friction (a grating across stripes of twice the friction drags twice as hard)
     const double full_range =
         grating.scale == TextureScale::kFrictionLevel
-            ? surface.friction.static_coefficient * friction_scale * normal_force
-            : (grating.full_range_n > 0.0 ? grating.full_range_n : limits_.max_force_n);
+            ? mu.static_coefficient * normal_force
+            : directional *
+                  (grating.full_range_n > 0.0 ? grating.full_range_n : limits_.max_force_n);
     const Vec3 texture = CalcViscousTextureForce(surface.texture->params, full_range,
                                                  GratingCoordinate(surface, contact_w), v_t,
                                                  surface.friction.stick_speed_mps);

@@ -335,6 +335,32 @@ TEST_F(EffectsOnBox, AViscousGratingAsAFrictionLevelDragsInProportionToThePress)
   }
 }
 
+TEST_F(EffectsOnBox, APatternScalesAViscousGratingAsItScalesFriction) {
+  // stripes along x with twice the friction across them, and a grating stroked across its
+  // bars along x, then (turned) along y: across the stripes it drags twice as hard as
+  // along them, as a force and as a friction level alike (it ignored the pattern)
+  top_.pattern = LinearPattern{Vec3::UnitX()};
+  top_.anisotropy.across_factor = 2.0;
+  for (const TextureScale scale : {TextureScale::kDeviceForce, TextureScale::kFrictionLevel}) {
+    double drag[2] = {};
+    for (int across = 0; across < 2; ++across) {
+      const Vec3 direction = across ? Vec3::UnitY() : Vec3::UnitX();
+      // the grating's coordinate (its frame's e2) along the stroke, the frame's normal +z
+      ViscousGrating grating{
+          PaperPreset(1, 1),
+          SurfaceFrame{Vec3(0, 0, 0.05), direction.cross(Vec3::UnitZ()), direction}};
+      grating.scale = scale;
+      grating.full_range_n = 2.0;
+      top_.texture = grating;
+      auto r = Make();
+      const auto trace = Stroke(r, direction, 0.08, 200, 1000.0, 0.0);
+      for (int i = 20; i < 200; ++i) drag[across] += trace[i].texture_force_n;
+    }
+    ASSERT_GT(drag[0], 0.0);
+    EXPECT_NEAR(drag[1] / drag[0], 2.0, 1e-9) << static_cast<int>(scale);
+  }
+}
+
 TEST_F(EffectsOnBox, VibrationShakesOnlyWhileTouched) {
   top_.vibration = 0;
   auto r = Make({Vibration{100.0, 0.25, Vec3::UnitZ(), true}});
