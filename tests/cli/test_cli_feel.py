@@ -162,6 +162,29 @@ class FeelCommandTest(unittest.TestCase):
                 self.assertTrue(note.startswith(said), note)
                 self.assertEqual("it is above the 3 N/mm the device renders stably" in note, law > felt, note)
 
+    def test_a_study_whose_law_is_not_felt_is_said(self):
+        # the study duplicated: exit 0, notes [], felt at the surface's 0.5 N/mm, while before
+        # the duplicate it said the neck's law replaced it
+        path = os.path.join(self.tmp.name, "two-studies.FCStd")
+        doc = App.openDocument(self.doc_path)
+        study = HaptiCAD.make_study(doc, doc.getObject("HapticSurface"))
+        study.Label = "Neck"
+        copy = doc.copyObject(study, False)
+        doc.recompute()
+        copy_label = copy.Label
+        doc.saveAs(path)
+        App.closeDocument(doc.Name)
+        proc = run_cli("feel", path, "--stroke", "10,20,20:30,20,20", "--out", os.path.join(self.tmp.name, "two"))
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        summary = json.loads(proc.stdout)
+        self.assertEqual(summary["faces"]["Box.Face6"]["stiffness_study"], None)
+        for label, other in (("Neck", copy_label), (copy_label, "Neck")):
+            said = (f"{label} is not felt (HapticSurface is felt at its own stiffness): HapticSurface is also "
+                    f"studied by {other}: a face gives one way; link another surface")
+            with self.subTest(study=label):
+                self.assertIn(f"hapticad feel: {said}\n", proc.stderr)
+                self.assertIn(said, summary["notes"])
+
     def test_what_the_feel_panel_says_is_said_a_hidden_part_and_a_clipped_texture(self):
         # the stroke crossed a hole the Cut shows and the tagged Box, hidden, does not have;
         # and a texture at level 1e6 was felt clipped at the full range: notes [] both times

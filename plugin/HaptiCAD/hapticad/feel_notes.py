@@ -2,9 +2,10 @@
 """What a document's parts and surfaces are felt as, otherwise than set, said before
 feeling them: the notes the Feel panel shows as its session starts (session_notes), and
 what ``hapticad feel`` and ``hapticad demo --headless`` say before their strokes
-(stroke_notes: those, and what the surface panel would have said of a texture, which
-they do not show). Gathered here, in one place, so the panel and the command line say
-the same. Sentences without a closing full stop. App-only (no GUI).
+(stroke_notes: those, and what the surface panel would have said of a texture and the
+study controls of a study not felt, which they do not show). Gathered here, in one
+place, so the panels and the command line say the same. Sentences without a closing full
+stop. App-only (no GUI).
 """
 
 
@@ -44,12 +45,34 @@ def texture_notes(doc):
     return notes
 
 
+def study_notes(doc):
+    """A sentence for each stiffness study of ``doc`` whose law is not felt, led by its
+    Label, with stiffness_study.law_problems, the words the Feel panel's study controls
+    show after "Not felt:" (two studies of one surface, none linked, values that make no
+    law); when its surface is still felt, it says so, at its own stiffness. A duplicated
+    study left its surface felt at 0.8 N/mm in place of its 0.556 N/mm neck, unsaid."""
+    from .stiffness_study import law_problems, studies_of
+    from .surface_object import active_reference_pairs, is_haptic_surface
+
+    notes = []
+    for study in studies_of(doc):
+        problems = law_problems(study)
+        if not problems:
+            continue
+        surface = study.Surface
+        instead = (f" ({surface.Label} is felt at its own stiffness)" if surface is not None
+                   and is_haptic_surface(surface) and active_reference_pairs(surface) else "")
+        notes.append(f"{study.Label} is not felt{instead}: {'; '.join(problems)}")
+    return notes
+
+
 def stroke_notes(doc, rate_hz, force_limit_n, where, broken=True):
     """What ``hapticad feel`` and the headless demo say of ``doc`` before their strokes, as
     sentences: session_notes (as the Feel panel), texture_notes (as the surface panel, which
-    they do not show) and the surfaces not felt at all (feel.skipped_surface_notes; without
-    the broken face references unless ``broken``: the demo says each as its skipped stroke)."""
+    they do not show), study_notes (as the Feel panel's study controls, which they do not
+    show either) and the surfaces not felt at all (feel.skipped_surface_notes; without the
+    broken face references unless ``broken``: the demo says each as its skipped stroke)."""
     from .feel import skipped_surface_notes
 
-    return (session_notes(doc, rate_hz, force_limit_n, where) + texture_notes(doc)
+    return (session_notes(doc, rate_hz, force_limit_n, where) + texture_notes(doc) + study_notes(doc)
             + skipped_surface_notes(doc, broken))

@@ -158,6 +158,36 @@ class HeadlessDemoTest(unittest.TestCase):
             self.assertEqual(len(stroke["notes"]), 1)
             self.assertIn("Neck study's bending beam (4.44 N/mm) replaces the surface's", stroke["notes"][0])
 
+    def test_a_study_whose_law_is_not_felt_is_said(self):
+        # a duplicated study: the demo stroked the surface at its own 0.8 N/mm and said
+        # nothing of the 0.556 N/mm neck it had before
+        import FreeCAD as App
+
+        import HaptiCAD
+
+        with tempfile.TemporaryDirectory() as tmp:
+            doc = App.newDocument("DemoStudyNotFelt")
+            box = doc.addObject("Part::Box", "Box")
+            box.Length, box.Width, box.Height = 40, 20, 10
+            doc.recompute()
+            surface = HaptiCAD.make_surface(doc, [(box, "Face6")], material="PP", stiffness_n_per_mm=0.8,
+                                            FeelRoughness=False)
+            surface.Label = "Head"
+            study = HaptiCAD.make_study(doc, surface)
+            study.Label = "Neck"
+            copy = doc.copyObject(study, False)
+            doc.recompute()
+            path = os.path.join(tmp, "studies.FCStd")
+            doc.saveAs(path)
+            copy_label = copy.Label
+            App.closeDocument(doc.Name)
+            result = demo.run_headless(os.path.join(tmp, "out"), document=path)
+            self.assertIn(f"Neck is not felt (Head is felt at its own stiffness): Head is also studied by "
+                          f"{copy_label}: a face gives one way; link another surface", result["notes"])
+            (stroke,) = result["strokes"]
+            face = stroke["faces"]["Box.Face6"]
+            self.assertEqual((face["stiffness_n_per_mm"], face["stiffness_study"]), (0.8, None))
+
 
 if __name__ == "__main__":
     unittest.main()

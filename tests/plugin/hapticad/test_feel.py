@@ -237,6 +237,42 @@ class FeelTest(unittest.TestCase):
         finally:
             App.closeDocument(doc.Name)
 
+    def test_a_study_whose_law_is_not_felt_is_said_as_its_controls_say_it(self):
+        # a duplicated study (two on one surface) dropped the neck's 0.556 N/mm for the
+        # surface's 0.8 N/mm: `hapticad feel` said nothing, the study controls "Not felt: ..."
+        from hapticad import feel_notes, stiffness_study
+
+        doc = App.newDocument("FeelStudyNotFelt")
+        try:
+            box = doc.addObject("Part::Box", "Box")
+            box.Length, box.Width, box.Height = 40, 20, 10
+            doc.recompute()
+            surface = HaptiCAD.make_surface(doc, [(box, "Face6")], material="PP", stiffness_n_per_mm=0.8,
+                                            FeelRoughness=False)
+            surface.Label = "Head"
+            study = HaptiCAD.make_study(doc, surface, YoungsModulus=1.5, BeamWidth=5, BeamThickness=4,
+                                        BeamLength=60)
+            study.Label = "Neck"
+            doc.recompute()
+            self.assertEqual(feel_notes.stroke_notes(doc, 1000.0, 3.0, "with --rate"), [])
+            copy = doc.copyObject(study, False)  # Edit > Duplicate selection
+            doc.recompute()
+            self.assertIsNone(stiffness_study.force_travel_of(surface))  # felt at the surface's 0.8 N/mm
+            said = [f"{s.Label} is not felt (Head is felt at its own stiffness): "
+                    f"{'; '.join(stiffness_study.law_problems(s))}" for s in (study, copy)]
+            self.assertEqual(said[0], "Neck is not felt (Head is felt at its own stiffness): Head is also studied by "
+                                      f"{copy.Label}: a face gives one way; link another surface")
+            self.assertEqual(feel_notes.study_notes(doc), said)
+            self.assertEqual(feel_notes.stroke_notes(doc, 1000.0, 3.0, "with --rate"), said)
+            self.assertEqual(feel_notes.session_notes(doc, 1000.0, 3.0), [])  # the panel's study controls say it
+            doc.removeObject(copy.Name)
+            study.Surface = None  # nothing pressed: no surface is felt in its place
+            doc.recompute()
+            self.assertEqual(feel_notes.study_notes(doc), [
+                "Neck is not felt: no surface: link the haptic surface whose faces the participants press"])
+        finally:
+            App.closeDocument(doc.Name)
+
     def test_a_surface_whose_part_was_deleted_is_named_with_why(self):
         doc = App.newDocument("FeelDeleted")
         try:
