@@ -124,9 +124,34 @@ void DefinePatterns(py::module_& m) {
       .def_readonly("stripe", &StripeFrame::stripe)
       .def_readonly("weight", &StripeFrame::weight);
   py::class_<LinearPattern>(m, "LinearPattern")
-      .def(py::init([](const Vec3& d) { return LinearPattern{d}; }), py::arg("direction_w"))
-      .def_readwrite("direction_w", &LinearPattern::direction_w);
-  m.def("evaluate_linear", &EvaluateLinear, py::arg("pattern"), py::arg("normal"));
+      .def(py::init([](const Vec3& d, double radius, const Vec3& origin, const Vec3& axis_point,
+                       const Vec3& axis) {
+             return LinearPattern{d, radius, origin, axis_point, axis};
+           }),
+           py::arg("direction_w"), py::arg("radius_m") = 0.0, py::arg("origin_w") = Vec3::Zero(),
+           py::arg("axis_point_w") = Vec3::Zero(), py::arg("axis_w") = Vec3::UnitZ())
+      .def_readwrite("direction_w", &LinearPattern::direction_w)
+      .def_readwrite("radius_m", &LinearPattern::radius_m)
+      .def_readwrite("origin_w", &LinearPattern::origin_w)
+      .def_readwrite("axis_point_w", &LinearPattern::axis_point_w)
+      .def_readwrite("axis_w", &LinearPattern::axis_w);
+  m.def(
+      "frame_coordinates",
+      [](const SurfaceFrame& frame, const RowsD& points_w) {
+        RequireShape(points_w, 3, "points_w");
+        const auto p = points_w.unchecked<2>();
+        py::array_t<double> out({p.shape(0), static_cast<py::ssize_t>(2)});
+        auto o = out.mutable_unchecked<2>();
+        for (py::ssize_t i = 0; i < p.shape(0); ++i) {
+          const FrameCoordinates c = CalcFrameCoordinates(frame, Vec3(p(i, 0), p(i, 1), p(i, 2)));
+          o(i, 0) = c.x;
+          o(i, 1) = c.y;
+        }
+        return out;
+      },
+      py::arg("frame"), py::arg("points_w"));
+  m.def("evaluate_linear", &EvaluateLinear, py::arg("pattern"), py::arg("point_w"),
+        py::arg("normal"));
   py::class_<CircularPattern>(m, "CircularPattern")
       .def(py::init([](const Vec3& c, const Vec3& a, double r) {
              return CircularPattern{c, a, r};

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <memory>
+#include <vector>
 
 #include "hapticad/core/surfaces/anisotropy.h"
 #include "hapticad/core/surfaces/curve_pattern.h"
@@ -66,9 +67,25 @@ BENCHMARK(BM_DirectionalFriction)->Arg(0)->Arg(1);
 void BM_EvaluateLinear(benchmark::State& state) {
   const LinearPattern p{Vec3(1, 0, 0)};
   int i = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(EvaluateLinear(p, Normal(++i)));
+  for (auto _ : state) benchmark::DoNotOptimize(EvaluateLinear(p, Vec3::Zero(), Normal(++i)));
 }
 BENCHMARK(BM_EvaluateLinear);
+
+void BM_EvaluateLinearOnACylinder(benchmark::State& state) {
+  // round a 20 mm handle: the points made before the loop, so only the pattern is timed
+  const LinearPattern p{Vec3(0, 1, 0), 0.02, Vec3(0.02, 0, 0), Vec3::Zero(), Vec3::UnitZ()};
+  std::vector<Vec3> points;
+  for (int k = 0; k < 1024; ++k) {
+    const double a = 2 * M_PI * k / 1024;
+    points.emplace_back(0.02 * std::cos(a), 0.02 * std::sin(a), 0.01);
+  }
+  int i = 0;
+  for (auto _ : state) {
+    const Vec3& point = points[++i & 1023];
+    benchmark::DoNotOptimize(EvaluateLinear(p, point, Vec3(point.x(), point.y(), 0) / 0.02));
+  }
+}
+BENCHMARK(BM_EvaluateLinearOnACylinder);
 
 void BM_EvaluateCircular(benchmark::State& state) {
   const CircularPattern p{Vec3::Zero(), Vec3::UnitZ(), 1e-3};

@@ -35,6 +35,8 @@ bool Positive(double x) { return std::isfinite(x) && x > 0.0; }
 void ValidatePattern(const SurfaceProperties& s) {
   if (const auto* linear = std::get_if<LinearPattern>(&s.pattern)) {
     RequireUnit(linear->direction_w, "linear pattern direction");
+    const std::string problem = DescribeLinearCylinderProblem(*linear);
+    if (!problem.empty()) throw std::invalid_argument("surface: linear pattern " + problem);
   } else if (const auto* circular = std::get_if<CircularPattern>(&s.pattern)) {
     if (!circular->centre_w.allFinite())
       throw std::invalid_argument("surface: circular pattern centre is not finite");
@@ -55,7 +57,7 @@ void ValidatePattern(const SurfaceProperties& s) {
 StripeFrame EvaluateStripe(const SurfaceProperties& s, const Vec3& point_w, const Vec3& normal) {
   switch (s.pattern.index()) {
     case 1:
-      return EvaluateLinear(std::get<LinearPattern>(s.pattern), normal);
+      return EvaluateLinear(std::get<LinearPattern>(s.pattern), point_w, normal);
     case 2:
       return EvaluateCircular(std::get<CircularPattern>(s.pattern), point_w, normal);
     case 3:

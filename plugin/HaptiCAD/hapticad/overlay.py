@@ -24,7 +24,7 @@ import numpy as np
 
 from . import _core, materials
 from .roughness_text import ra_band
-from .surface_compile import curve_pattern, face_frame, global_shape
+from .surface_compile import curve_pattern, face_frame, global_shape, laid_frame
 from .surface_object import circular_centre_axis
 
 MM = 1e-3
@@ -215,9 +215,10 @@ def stripe_coordinates(surface, face, points_mm):
     origin_m, e1, e2, n = face_frame(face, float(surface.PatternAngle))
     origin = np.asarray(origin_m) / MM
     along_first = _stripe_direction_is_e1(surface)
-    if pattern == "Linear":
-        across = e2 if along_first else e1
-        return (points_mm - origin) @ np.asarray(across), "length"
+    if pattern == "Linear":  # laid as it is felt: round a cylinder, not on its tangent plane
+        laid, _ = laid_frame(face, (origin_m, e1, e2, n))
+        xy = np.asarray(_core.frame_coordinates(laid, np.asarray(points_mm, float) * MM)) / MM
+        return xy[:, 1] if along_first else xy[:, 0], "length"
     if pattern == "Circular":
         centre, axis = circular_centre_axis(surface)
         centre, axis = np.array([centre.x, centre.y, centre.z]), np.array([axis.x, axis.y, axis.z])

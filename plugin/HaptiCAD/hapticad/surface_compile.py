@@ -303,6 +303,18 @@ def _cylinder_of(face):
     return cylinder.Radius * MM, _vec(cylinder.Center, MM), axis / np.linalg.norm(axis)
 
 
+def laid_frame(face, frame):
+    """(_core.SurfaceFrame, the face's cylinder or None) in which the roughness grid, the
+    grating and the linear pattern lie on ``face``: the face_frame ``frame``, rolled round
+    the face's cylinder when it has one (surface_frame.h), not on a tangent plane."""
+    origin, e1, e2, _ = frame
+    laid = _core.SurfaceFrame(origin, e1, e2)
+    cylinder = _cylinder_of(face)
+    if cylinder is not None:
+        laid.radius_m, laid.axis_point_w, laid.axis_w = cylinder
+    return laid, cylinder
+
+
 def compile_surface(surface, face, uv=None):
     """_core.SurfaceProperties of HapticSurface ``surface`` on B-rep ``face`` (global);
     ``uv``: point_on_face(face), when known (face_frame)."""
@@ -324,10 +336,7 @@ def compile_surface(surface, face, uv=None):
 
     frame = face_frame(face, float(surface.PatternAngle), uv)
     origin, e1, e2, n = frame
-    surface_frame = _core.SurfaceFrame(origin, e1, e2)
-    cylinder = _cylinder_of(face)
-    if cylinder is not None:  # the grid and the grating laid round it, not on a tangent plane
-        surface_frame.radius_m, surface_frame.axis_point_w, surface_frame.axis_w = cylinder
+    surface_frame, cylinder = laid_frame(face, frame)
     anisotropy = props.anisotropy
     anisotropy.across_factor = surface.AcrossFriction
     anisotropy.backward_factor = surface.BackwardFriction
@@ -335,7 +344,9 @@ def compile_surface(surface, face, uv=None):
                                 else _core.AnisotropyInterpolation.LINEAR)
     props.anisotropy = anisotropy
     if surface.Pattern == "Linear":
-        props.pattern = _core.LinearPattern(e1)
+        # on a cylinder rolled round it as the grid is: stripes round a handle stay round it
+        props.pattern = (_core.LinearPattern(e1) if cylinder is None else
+                         _core.LinearPattern(e1, cylinder[0], origin, cylinder[1], cylinder[2]))
     elif surface.Pattern == "Circular":
         centre, axis = circular_centre_axis(surface)
         axis = _vec(axis)

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -10,23 +11,61 @@ namespace hapticad {
 namespace {
 
 TEST(LinearPattern, ProjectsTheDirectionOntoTheTangentPlane) {
-  const StripeFrame flat = EvaluateLinear({Vec3(1, 0, 0)}, Vec3::UnitZ());
+  const StripeFrame flat = EvaluateLinear({Vec3(1, 0, 0)}, Vec3::Zero(), Vec3::UnitZ());
   EXPECT_NEAR((flat.stripe - Vec3::UnitX()).norm(), 0, 1e-15);
   EXPECT_EQ(flat.weight, 1.0);
   // a face tilted 30 degrees about y: the stripe follows the slope
   const Vec3 n(-0.5, 0, std::sqrt(0.75));
-  const StripeFrame tilted = EvaluateLinear({Vec3(1, 0, 0)}, n);
+  const StripeFrame tilted = EvaluateLinear({Vec3(1, 0, 0)}, Vec3::Zero(), n);
   EXPECT_NEAR(tilted.stripe.dot(n), 0.0, 1e-15);
   EXPECT_NEAR((tilted.stripe - Vec3(std::sqrt(0.75), 0, 0.5)).norm(), 0, 1e-15);
 }
 
 TEST(LinearPattern, FadesWhereTheDirectionTurnsNormalToTheFace) {
-  const StripeFrame along_normal = EvaluateLinear({Vec3(0, 0, 1)}, Vec3::UnitZ());
+  const StripeFrame along_normal = EvaluateLinear({Vec3(0, 0, 1)}, Vec3::Zero(), Vec3::UnitZ());
   EXPECT_EQ(along_normal.weight, 0.0);
   EXPECT_NEAR(along_normal.stripe.dot(Vec3::UnitZ()), 0.0, 1e-15);
   EXPECT_NEAR(along_normal.stripe.norm(), 1.0, 1e-15);
   const double s = 0.05;  // half the blend: half the weight
-  EXPECT_NEAR(EvaluateLinear({Vec3(s, 0, std::sqrt(1 - s * s))}, Vec3::UnitZ()).weight, 0.5, 1e-12);
+  EXPECT_NEAR(
+      EvaluateLinear({Vec3(s, 0, std::sqrt(1 - s * s))}, Vec3::Zero(), Vec3::UnitZ()).weight, 0.5,
+      1e-12);
+}
+
+TEST(LinearPattern, OnACylinderIsRolledRoundTheAxisAllTheWay) {
+  // a handle of radius 20 mm along z; at its origin (+x) the stripes run round it (+y) or,
+  // turned 30 degrees, along a helix. Projected, the round stripes faded to isotropic a
+  // quarter turn away (their direction normal to the face) and reversed beyond it.
+  const double radius = 0.02;
+  for (const double turn : {0.0, M_PI / 6}) {
+    const Vec3 d(0, std::cos(turn), std::sin(turn));
+    const LinearPattern p{d, radius, Vec3(radius, 0, 0.005), Vec3(0, 0, 0.005), Vec3::UnitZ()};
+    for (int k = 0; k < 24; ++k) {
+      const double a = 2 * M_PI * k / 24;
+      const Vec3 outward(std::cos(a), std::sin(a), 0);
+      const Vec3 round = Vec3::UnitZ().cross(outward);
+      const StripeFrame f = EvaluateLinear(p, radius * outward + Vec3(0, 0, 0.03), outward);
+      EXPECT_EQ(f.weight, 1.0) << turn << " " << k;
+      // the same parts round and along at every angle, the same way round (not reversed)
+      EXPECT_NEAR((f.stripe - (std::cos(turn) * round + std::sin(turn) * Vec3::UnitZ())).norm(),
+                  0.0, 1e-12)
+          << turn << " " << k;
+    }
+  }
+  // on the axis (no round direction there) the origin's
+  const LinearPattern p{Vec3::UnitY(), radius, Vec3(radius, 0, 0), Vec3::Zero(), Vec3::UnitZ()};
+  const StripeFrame on_axis = EvaluateLinear(p, Vec3(0, 0, 0.01), Vec3::UnitX());
+  EXPECT_TRUE(on_axis.stripe.allFinite());
+  EXPECT_NEAR((on_axis.stripe - Vec3::UnitY()).norm(), 0.0, 1e-12);
+  // a cylinder that does not hold its origin, or a direction not tangent there, is said
+  EXPECT_STREQ(DescribeLinearCylinderProblem(p), "");
+  EXPECT_STREQ(DescribeLinearCylinderProblem(LinearPattern{Vec3::UnitY()}), "");
+  LinearPattern off = p;
+  off.origin_w = Vec3(0.03, 0, 0);
+  EXPECT_NE(std::string(DescribeLinearCylinderProblem(off)).find("origin"), std::string::npos);
+  LinearPattern radial = p;
+  radial.direction_w = Vec3::UnitX();
+  EXPECT_NE(std::string(DescribeLinearCylinderProblem(radial)).find("tangent"), std::string::npos);
 }
 
 TEST(CircularPattern, StripesAreTangentToCirclesAtSeveralPoints) {

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """What the overlay draws, computed without the GUI: stripe coordinates constant along
 the direction of lowest friction, colours, legend, broken faces left out. freecadcmd."""
+import math
 import unittest
 
 import numpy as np
@@ -44,6 +45,37 @@ class OverlayGeometryTest(unittest.TestCase):
         values, _ = overlay.stripe_coordinates(s, top, face.points)
         gradient, *_ = np.linalg.lstsq(np.c_[face.points, np.ones(len(face.points))], values, rcond=None)
         self.assertAlmostEqual(abs(np.dot(gradient[:3], e1)), 1.0, places=9)
+
+    def test_linear_stripes_run_round_a_cylinder_as_they_are_felt(self):
+        # angle 0 on a handle: rings round it, so the stripe coordinate is the length along
+        # the axis wherever the point is round it; turned 45 degrees, helices: constant along
+        # the line that winds round at 45 degrees (on the tangent plane they were ellipses)
+        handle = self.doc.addObject("Part::Cylinder", "Handle")
+        handle.Radius, handle.Height = 20, 80
+        self.doc.recompute()
+        face = handle.Shape.getElement("Face1")
+        s = HaptiCAD.make_surface(self.doc, [(handle, "Face1")], pattern="Linear", AcrossFriction=2.0,
+                                  FeelRoughness=False)
+        angles = np.radians(np.arange(0, 360, 10.0))
+        ring = np.c_[20 * np.cos(angles), 20 * np.sin(angles), np.full(len(angles), 30.0)]
+        values, kind = overlay.stripe_coordinates(s, face, ring)
+        self.assertEqual(kind, "length")
+        np.testing.assert_allclose(values, values[0], atol=1e-9)  # one ring round the handle
+        higher, _ = overlay.stripe_coordinates(s, face, ring + [0, 0, 5])
+        np.testing.assert_allclose(np.abs(higher - values), 5.0, atol=1e-9)
+        s.PatternAngle = 45
+        self.doc.recompute()
+        start = math.atan2(*reversed(face_frame(face, 45.0)[0][:2]))  # round from the face's centre
+        turn = np.radians(np.arange(-150, 151, 10.0))
+        along = 20 * turn  # as far along the axis as round it: the 45 degree helix
+        # (which way it winds is the face's: try both, one must hold the coordinate)
+        spreads = []
+        for hand in (1, -1):
+            helix = np.c_[20 * np.cos(start + turn), 20 * np.sin(start + turn), 40 + hand * along]
+            values, _ = overlay.stripe_coordinates(s, face, helix)
+            spreads.append(np.ptp(values))
+        self.assertLess(min(spreads), 1e-6, spreads)
+        self.assertGreater(max(spreads), 100.0, spreads)
 
     def test_circular_rings_are_distances_from_the_axis(self):
         s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], pattern="Circular",

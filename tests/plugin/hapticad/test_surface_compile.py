@@ -14,7 +14,7 @@ import HaptiCAD
 from hapticad import _core
 from hapticad.document_scene import build_document_scene
 from hapticad.surface_compile import (_as_bspline, compile_surface, curved_face_notes, face_frame, friction_notes,
-                                     texture_notes)
+                                     global_shape, texture_notes)
 
 V = App.Vector
 
@@ -296,6 +296,38 @@ class CompileTest(unittest.TestCase):
         self.assertEqual(curved_face_notes(knob), [])
         flat = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], Texture="Paper f_DC 0.325 f_vis -0.2")
         self.assertEqual(curved_face_notes(flat), [])
+
+    def test_a_linear_pattern_runs_round_a_handle_all_the_way_and_the_same_way_round(self):
+        # stripes round a 20 mm handle (angle 0: the face's u, round it), twice the friction
+        # along it, backward half of forward: all round it the stripes run round it, in the
+        # same sense. Projected from the face's centre they faded to isotropic a quarter turn
+        # away and reversed on the far side (mu 0.6 at 90 degrees; backward 0.40 then 0.20)
+        handle = self.doc.addObject("Part::Cylinder", "Handle")
+        handle.Radius, handle.Height = 20, 80
+        handle.Placement = App.Placement(V(100, 50, 7), App.Rotation(V(1, 0, 0), 30))
+        self.doc.recompute()
+        s = HaptiCAD.make_surface(self.doc, [(handle, "Face1")], material="ABS", pattern="Linear",
+                                  AcrossFriction=2.0, BackwardFriction=0.5, FeelRoughness=False)
+        face = global_shape(handle).Faces[0]
+        p = compile_surface(s, face)
+        pattern = p.pattern
+        self.assertAlmostEqual(pattern.radius_m, 0.02)
+        axis = np.asarray(pattern.axis_w)
+        centre = np.asarray(pattern.axis_point_w)
+        origin = np.asarray(pattern.origin_w)
+        b1 = (origin - centre) - np.dot(origin - centre, axis) * axis
+        b1 /= np.linalg.norm(b1)
+        b2 = np.cross(axis, b1)
+        sense = np.sign(np.dot(np.asarray(pattern.direction_w), b2))
+        self.assertNotEqual(sense, 0.0)
+        for degrees in range(0, 360, 15):
+            a = math.radians(degrees)
+            outward = math.cos(a) * b1 + math.sin(a) * b2
+            point = centre + 0.04 * axis + 0.02 * outward
+            frame = _core.evaluate_linear(pattern, point, outward)
+            self.assertEqual(frame.weight, 1.0, degrees)
+            np.testing.assert_allclose(np.asarray(frame.stripe), sense * np.cross(axis, outward), atol=1e-9,
+                                       err_msg=f"{degrees} degrees round")
 
     def test_a_category_3_grid_is_felt_every_0_6_mm_all_round_a_handle(self):
         # seed 000 Table 2: category 3 is a 0.6 mm grid. Stroked through the renderer round a
