@@ -15,7 +15,7 @@ import numbers
 import FreeCAD as App
 
 from .proxy_state import SchemaState, add_hidden_state, add_type_tag, is_restoring
-from . import curve_references, face_references, materials, textures
+from . import curve_references, face_picking, face_references, materials, textures
 
 TYPE = "HaptiCAD::HapticSurface"
 # 3: ReferenceState (face signatures and re-match status per reference)
@@ -614,10 +614,13 @@ def hidden_part_notes(surface):
     for obj in dict.fromkeys(o for o, _ in reference_pairs(surface)):
         if getattr(obj, "Visibility", True):
             continue
-        users = [o.Label for o in obj.InList if hasattr(o, "Shape") and getattr(o, "Visibility", False)]
-        by = f", used by {', '.join(users)}" if users else ""
-        notes.append(f"{obj.Label} is hidden{by}: you feel {obj.Label}'s shape, not what is shown"
-                     + (f"; tag the faces of {users[0]} instead" if users else ""))
+        users = [o for o in obj.InList if hasattr(o, "Shape") and getattr(o, "Visibility", False)]
+        by = f", used by {', '.join(o.Label for o in users)}" if users else ""
+        instead = ""
+        if users:  # a click on a Draft array made with links picks the hidden part's face again
+            instead = (f"; {face_picking.link_refusal(users[0])}" if face_picking.is_link(users[0])
+                       else f"; tag the faces of {users[0].Label} instead")
+        notes.append(f"{obj.Label} is hidden{by}: you feel {obj.Label}'s shape, not what is shown" + instead)
     return notes
 
 
@@ -859,10 +862,9 @@ def untaggable(obj):
     placed by the link, which the scene does not follow."""
     if obj.isDerivedFrom("App::GeoFeature") and not obj.isDerivedFrom("App::Link"):
         return ""
-    linked = obj.getLinkedObject(True) if hasattr(obj, "getLinkedObject") else None
-    if linked is not None and linked is not obj:
-        return (f"{obj.Label} is a link to {linked.Label}: a link's faces cannot be tagged yet; tag "
-                f"{linked.Label}'s faces")
+    if face_picking.is_link(obj) and face_picking.linked_original(obj) is not None:
+        # the same sentence as a click through a link (face_picking): a link array too
+        return face_picking.link_refusal(obj)
     return f"{obj.Label} is not a placed part: its faces cannot be tagged"
 
 

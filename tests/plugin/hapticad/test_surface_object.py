@@ -259,6 +259,25 @@ class MakeSurfaceTest(unittest.TestCase):
                                                 f"{self.box.Label}'s shape, not what is shown; tag the faces of "
                                                 f"Refined instead"])
 
+    def test_a_tagged_part_hidden_by_a_draft_array_made_with_links_says_to_make_it_without(self):
+        # it said "tag the faces of Array instead", which no click can do: a click on such
+        # an array picks the hidden part's face again
+        import Draft
+        from hapticad.surface_object import hidden_part_notes
+
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], material="ABS")
+        array = Draft.make_ortho_array(self.box, App.Vector(20, 0, 0), App.Vector(0, 20, 0), App.Vector(0, 0, 20),
+                                       3, 1, 1, use_link=True)
+        self.doc.recompute()
+        self.box.Visibility = False
+        (note,) = hidden_part_notes(s)
+        self.assertNotIn(f"tag the faces of {array.Label} instead", note)
+        self.assertEqual(note, f"{self.box.Label} is hidden, used by {array.Label}: you feel {self.box.Label}'s "
+                               f"shape, not what is shown; {array.Label} is an array made with links to "
+                               f"{self.box.Label}: its faces are {self.box.Label}'s, shown where the array places "
+                               "them, and cannot be tagged there; make the array without links (Draft's Link array "
+                               "option off) and tag its faces")
+
     def test_a_deleted_part_is_named_until_faces_are_picked_again(self):
         # deleting a part empties the surface's links before the part goes; it used to
         # say "no faces: pick at least one face", as if nothing had ever been tagged

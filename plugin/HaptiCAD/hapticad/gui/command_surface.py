@@ -6,7 +6,7 @@ import FreeCADGui as Gui
 
 from .. import icon
 from ..surface_object import is_haptic_surface, surface_tagging, untaggable
-from .selection import selected_faces
+from .selection import face_picks
 
 NAME = "HaptiCAD_Surface"
 EDIT_NAME = "HaptiCAD_EditSurface"
@@ -26,17 +26,19 @@ class CommandHapticSurface:
         }
 
     def IsActive(self):
-        return App.ActiveDocument is not None and _no_dialog() and bool(selected_faces())
+        # a face shown through a link too: pressed, it says why it cannot be tagged
+        return App.ActiveDocument is not None and _no_dialog() and bool(face_picks())
 
     def Activated(self):
-        refused = list(dict.fromkeys(r for r in (untaggable(o) for o, _ in selected_faces()) if r))
+        picks = face_picks()
+        refused = list(dict.fromkeys(r for r in (why or untaggable(o) for o, _, why in picks) if r))
         if refused:  # before any transaction: nothing is made, nothing to undo
             from PySide2 import QtWidgets
 
             QtWidgets.QMessageBox.warning(Gui.getMainWindow(), "Haptic surface", "\n".join(refused))
             return
         faces = []
-        for obj, sub in selected_faces():
+        for obj, sub, _ in picks:
             other = surface_tagging(obj, sub)
             if other is None:
                 faces.append((obj, sub))
@@ -47,6 +49,8 @@ class CommandHapticSurface:
         if not faces:  # every selected face is tagged already: edit (the last) one of them
             Gui.doCommand(f"Gui.ActiveDocument.setEdit({tagged_by.Name!r}, 0)")
             return
+        # by name in the active document: face_picks refused a face of another one (shown
+        # through a link), whose name could be a part of this one's
         refs = ", ".join(f"(App.ActiveDocument.{obj.Name}, {sub!r})" for obj, sub in faces)
         doc = App.ActiveDocument
         # one transaction for the creation and the whole edit: the panel's OK commits it,

@@ -2,20 +2,29 @@
 """What is selected in the 3D view, as HaptiCAD wants it."""
 import FreeCADGui as Gui
 
-from ..face_references import owner_face
+from ..face_picking import element, picked_face
+
+
+def face_picks():
+    """Every selected face, in selection order, as face_picking.picked_face gives it:
+    (object, "FaceN", "") for a face of the part under the cursor (a PartDesign feature's as
+    its Body's), (None, "", why) for a face shown through a link. Read from the unresolved
+    selection: the resolved one names a link's original, shown elsewhere or in another
+    document, as if it had been clicked."""
+    picks = []
+    for sel in Gui.Selection.getSelectionEx("", 0):
+        for path in sel.SubElementNames:
+            if element(path).startswith("Face"):
+                pick = picked_face(sel.Object, path)
+                if pick not in picks:
+                    picks.append(pick)
+    return picks
 
 
 def selected_faces():
-    """[(object, "FaceN"), ...] for every selected face, in selection order; a face of a
-    PartDesign feature is given as the Body's face (face_references.owner_face)."""
-    faces = []
-    for sel in Gui.Selection.getSelectionEx():
-        for sub in sel.SubElementNames:
-            if sub.startswith("Face"):
-                pair = owner_face(sel.Object, sub)
-                if pair not in faces:
-                    faces.append(pair)
-    return faces
+    """[(object, "FaceN"), ...] for every selected face that can be tagged where it is
+    shown (face_picks without those shown through a link), in selection order."""
+    return [(obj, face) for obj, face, why in face_picks() if not why]
 
 
 def selected_curve():

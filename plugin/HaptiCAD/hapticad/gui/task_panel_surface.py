@@ -22,8 +22,8 @@ import FreeCAD as App
 import FreeCADGui as Gui
 from PySide2 import QtCore, QtGui, QtWidgets
 
-from .. import (_core, face_references, icon, materials, preferences, similarity_study, surface_compile,
-               surface_object, texture_fit, vibration_object)
+from .. import (_core, face_picking, face_references, icon, materials, preferences, similarity_study,
+               surface_compile, surface_object, texture_fit, vibration_object)
 from ..other_edits import OtherEdits
 from ..proxy_state import is_alive
 from ..roughness_text import ra_band
@@ -97,7 +97,9 @@ def _with_component(vector, axis, value):
 
 
 class _Picker:
-    """Selection observer: a click in the 3D view adds a face or picks the centre."""
+    """Selection observer: a click in the 3D view adds a face or picks the centre. Added
+    unresolved (Gui.Selection.addObserver(picker, 0)): it is told the top-level object and
+    the path to the face, so a face shown through a link is known for one."""
 
     def __init__(self, panel):
         self.panel = panel
@@ -131,7 +133,7 @@ class SurfaceTaskPanel:
             self.form.append(self._group_box(group, title))
         self.form.append(self._vibration_box())
         self.picker = _Picker(self)
-        Gui.Selection.addObserver(self.picker)
+        Gui.Selection.addObserver(self.picker, 0)
         # the document closing under the open panel: stop listening to clicks (it went on
         # asking the deleted surface for its name at every later click) and close
         self.closing = DocumentClosingObserver(self.doc, self.document_closing)
@@ -795,19 +797,30 @@ class SurfaceTaskPanel:
         self.set_mode("faces" if on else None)
 
     def picked(self, doc_name, obj_name, sub, point):
-        """A click in the 3D view (from the selection observer)."""
-        if doc_name != self.doc.Name or self.mode is None:
+        """A click in the 3D view (from the selection observer): ``obj_name`` is the
+        top-level object clicked, ``sub`` the path from it to the element."""
+        if self.mode is None:
             return
-        obj, element = _resolve(self.doc.getObject(obj_name), sub)
-        if obj is None:
+        if doc_name != self.doc.Name:  # another document's view: said, not silently ignored
+            other = App.getDocument(doc_name) if doc_name in App.listDocuments() else None
+            self.show_problems([f"that click was in {face_picking.document_file(other) if other else doc_name}: "
+                                f"{self.obj.Label} tags faces of {face_picking.document_file(self.doc)}; click in "
+                                "its view"])
+            return
+        root = self.doc.getObject(obj_name)
+        if root is None:
             return
         if self.mode == "centre":
             self._in_transaction()
             self.obj.PatternCenter = App.Vector(*point)
             self.set_mode(None)
             self.load()
-        elif self.mode == "faces" and element.startswith("Face"):
-            self.add_face(obj, element)
+        elif self.mode == "faces" and face_picking.element(sub).startswith("Face"):
+            obj, face, why = face_picking.picked_face(root, sub)
+            if why:  # shown through a link: its original, elsewhere, would be tagged
+                self.show_problems([why])
+                return
+            self.add_face(obj, face)
 
     def add_face(self, obj, face):
         obj, face = face_references.owner_face(obj, face)
@@ -996,19 +1009,6 @@ class SurfaceTaskPanel:
             gui_doc.resetEdit()
 
 
-
-
-def _resolve(obj, sub):
-    """(deepest object, element) of a selection path like "Part.Box.Face6"."""
-    if obj is None:
-        return None, ""
-    parts = sub.split(".") if sub else [""]
-    element = parts[-1]
-    if len(parts) > 1:
-        inner = obj.Document.getObject(parts[-2])
-        if inner is not None:
-            obj = inner
-    return obj, element
 
 
 def _set_widget(widget, value, index=False):

@@ -524,6 +524,57 @@ class TaskPanelTest(unittest.TestCase):
         h.press_task_button("OK")
         self.assertEqual(HaptiCAD.reference_pairs(first), [(self.box, "Face6")])
 
+    def test_a_face_clicked_through_any_link_is_not_added_and_the_panel_says_why(self):
+        # Add took a Draft link array's element as its hidden base ArrBase (felt 35 mm from
+        # the click), a link to an App::Part's cylinder as the original, and ignored a knob
+        # shown by a link to another file without a word
+        from link_scenes import LinkedAssembly
+
+        scene = LinkedAssembly()
+        try:
+            side = [f"Face{i + 1}" for i, f in enumerate(scene.plate.Shape.Faces) if abs(f.CenterOfMass.y) < 1e-6][0]
+            surface = HaptiCAD.make_surface(scene.doc, [(scene.plate, side)])
+            Gui.ActiveDocument.setEdit(surface.Name, 0)
+            h.process_events()
+            h.widget(QtWidgets.QPushButton, "addFaces").setChecked(True)
+            h.widen_panel()
+            Gui.SendMsgToActiveView("ViewFit")
+            status = h.widget(QtWidgets.QLabel, "status")
+            for what, point, refusal in scene.clicks:
+                with self.subTest(what):
+                    Gui.Selection.clearSelection()
+                    h.click_at(point)
+                    self.assertTrue(Gui.Selection.getSelectionEx("", 0), f"the click missed {what}")
+                    added = HaptiCAD.reference_pairs(surface)
+                    if added != [(scene.plate, side)]:  # taken back, for the next click
+                        surface.References = [(scene.plate, (side,))]
+                    self.assertEqual(added, [(scene.plate, side)])
+                    self.assertIn(refusal, status.text())
+                    self.assertIn("cannot be tagged", status.text())
+                    if what == scene.clicks[0][0]:
+                        h.grab_screen("panel_link_refused.png")
+            # the plate's own top is added, as the assembly's plate
+            Gui.Selection.clearSelection()
+            h.click_at((20, 20, 4))
+            ((part, top),) = [p for p in HaptiCAD.reference_pairs(surface) if p != (scene.plate, side)]
+            self.assertEqual((part.Document.Name, part.Name), ("Assembly", "Body"))
+            self.assertAlmostEqual(part.Shape.getElement(top).CenterOfMass.z, 4.0)
+            # a click in another document's view is said too, and adds nothing
+            Gui.getDocument(scene.knob_doc.Name).ActiveView.viewTop()  # in a window of its own
+            Gui.ActiveDocument = Gui.getDocument(scene.knob_doc.Name)
+            Gui.SendMsgToActiveView("ViewFit")
+            h.process_events()
+            h.click_at((5, 5, 6))
+            self.assertEqual(len(HaptiCAD.reference_pairs(surface)), 2)
+            self.assertIn(f"that click was in knob.FCStd: {surface.Label} tags faces of assembly.FCStd", status.text())
+            h.press_task_button("OK")
+            self.assertEqual([s.Document.Name for s in scene.surfaces()], ["Assembly"])
+        finally:
+            if Gui.Control.activeDialog():
+                h.press_task_button("Cancel")
+            Gui.Selection.clearSelection()
+            scene.close()
+
     def test_labels_with_angle_brackets_are_shown_as_typed(self):
         # "Lid <rev B>" lost "<rev B>": the panel read the label as markup
         self.box.Label = "Lid <rev B>"

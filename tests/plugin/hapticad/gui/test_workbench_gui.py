@@ -112,6 +112,52 @@ class WorkbenchGuiTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "BoxLink is a link to Box"):
             HaptiCAD.make_surface(self.doc, [(link, "Face6")])
 
+    def test_a_face_clicked_through_any_link_is_refused_and_no_other_part_is_tagged(self):
+        # the command read the resolved selection: a click on a knob shown by a link to
+        # another file tagged this file's own "Body" (the plate's top, no warning); through
+        # a link to an App::Part or on a Draft link array it tagged the original, felt 38
+        # and 35 mm from the click
+        from unittest import mock
+
+        from link_scenes import LinkedAssembly
+
+        scene = LinkedAssembly()
+        told = {}
+        try:
+            for what, point, refusal in scene.clicks:
+                with self.subTest(what):
+                    Gui.Selection.clearSelection()
+                    h.click_at(point)
+                    self.assertTrue(Gui.Selection.getSelectionEx("", 0), f"the click missed {what}")
+                    self.assertTrue(Gui.Command.get("HaptiCAD_Surface").isActive())  # pressed, it says why
+                    with mock.patch.object(QtWidgets.QMessageBox, "warning") as warned:
+                        Gui.runCommand("HaptiCAD_Surface")
+                        h.process_events()
+                    made = scene.surfaces()
+                    if Gui.Control.activeDialog():  # a surface made: taken back, for the next click
+                        h.press_task_button("Cancel")
+                    self.assertEqual(warned.call_count, 1)
+                    said = told[what] = warned.call_args[0][2]
+                    self.assertIn(refusal, said)
+                    self.assertIn("cannot be tagged", said)
+                    self.assertEqual(made, [])
+                    self.assertFalse(scene.doc.HasPendingTransaction)
+            # the knob's says where to tag it instead: in its own file
+            self.assertIn("tag Body's faces in knob.FCStd itself", told.get(scene.clicks[0][0], ""))
+            h.save_view("gui_link_refused.png")
+            # the plate's own top, next to the knob, is tagged as the assembly's plate
+            Gui.Selection.clearSelection()
+            h.click_at((20, 20, 4))
+            Gui.runCommand("HaptiCAD_Surface")
+            h.press_task_button("OK")
+            (surface,) = scene.surfaces()
+            ((part, face),) = HaptiCAD.reference_pairs(surface)
+            self.assertEqual((part.Document.Name, part.Name), ("Assembly", "Body"))
+            self.assertAlmostEqual(part.Shape.getElement(face).CenterOfMass.z, 4.0)
+        finally:
+            Gui.Selection.clearSelection()
+            scene.close()
+
     def test_deleting_a_vibrating_part_names_it_in_its_vibration_and_undo_mends_it(self):
         # the vibration said only "no part to vibrate", for good, after Std_Delete of its part
         HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])
