@@ -374,13 +374,15 @@ def compile_surface(surface, face, uv=None):
 
 
 def compile_vibration(vibration):
-    """The core's Vibration of a HapticVibration. Raises ValueError naming it when its
-    values cannot be felt (the core would say only "vibration 0")."""
-    from .vibration_object import validate
+    """The core's Vibration of a HapticVibration, along its axis where its part stands
+    now (turned with it, also when a Body or App::Part turned it and nothing recomputed
+    the vibration since). Raises ValueError naming it when its values cannot be felt (the
+    core would say only "vibration 0")."""
+    from .vibration_object import axis_where_felt, validate
 
     problems = validate(vibration)
     if problems:
         raise ValueError(f"{vibration.Label}: {'; '.join(problems)}")
-    axis = _vec(vibration.Axis)
+    axis = _vec(axis_where_felt(vibration))
     return _core.Vibration(vibration.Frequency, vibration.Amplitude, axis / np.linalg.norm(axis),
                            vibration.Powered)

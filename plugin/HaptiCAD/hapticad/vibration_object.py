@@ -7,6 +7,12 @@ A HapticVibration links one part (``App::PropertyLinkGlobal``) and holds its
 any face of that part, the force carries amplitude * sin(2 pi f t) along the axis.
 Created with :func:`make_vibration`. App-only.
 
+The axis belongs to the part, as a circular pattern's centre does to its surface's part
+(surface_object.record_pattern_anchor): ``Axis`` is shown in global coordinates, and the
+hidden ``AxisAnchor`` keeps it in the part's own frame, so that it turns with the part
+(its own placement, or that of a Body or App::Part holding it). A razor head shaking
+along its blade shakes along it wherever the assembly turns it.
+
 Deleting the part empties ``Part`` before the part goes (FreeCAD breaks the links to
 it); the hidden ``DeletedPart`` keeps its name and label, so the vibration can say which
 part it lost and how to mend it (undo the deletion, link another part, or delete it),
@@ -23,13 +29,17 @@ from .proxy_state import SchemaState, add_hidden_state, add_type_tag, is_restori
 
 TYPE = "HaptiCAD::HapticVibration"
 # 2: DeletedPart (added empty when an older document opens)
-SCHEMA_VERSION = 2
+# 3: AxisAnchor (recorded from the Axis as saved when an older document opens: felt as
+#    before, and from then on turning with the part)
+SCHEMA_VERSION = 3
 FREQUENCY_RANGE_HZ = (1.0, 1000.0)  # what a servo loop up to 10 kHz can render
 AMPLITUDE_RANGE_N = (0.0, 10.0)  # up to what a strong device renders: force_note says what a weaker one does
 # How hard a hand feeling a part presses it, N: a firm touch. The vibration rides on this
 # push, and the two together must stay within the session's force limit (force_note).
 TYPICAL_PUSH_N = 1.0
 ZERO_AXIS = "the vibration axis cannot be zero; kept +Z"
+AXIS_TIP = ("Direction of the vibration, in global coordinates where the part stands now: it turns with the "
+            "part (its placement, its Body's or App::Part's)")
 
 
 class HapticVibration(SchemaState):
@@ -49,15 +59,17 @@ class HapticVibration(SchemaState):
             return False
 
         add_type_tag(obj, TYPE)
-        add_hidden_state(obj, [("DeletedPart", "The part that vibrated and was deleted, name and label (JSON)")])
+        add_hidden_state(obj, [("DeletedPart", "The part that vibrated and was deleted, name and label (JSON)"),
+                               ("AxisAnchor", "The axis in the frame of the part it turns with, and its name (JSON)")])
         add("App::PropertyLinkGlobal", "Part", "Vibration", "The part that vibrates")
         add("App::PropertyBool", "Powered", "Vibration", "Whether the part is switched on")
         if add("App::PropertyFloatConstraint", "Frequency", "Vibration", "Vibration frequency, Hz"):
             obj.Frequency = 100.0
         if add("App::PropertyFloatConstraint", "Amplitude", "Vibration", "Force amplitude, N"):
             obj.Amplitude = 0.3
-        if add("App::PropertyVector", "Axis", "Vibration", "Direction of the vibration (global)"):
+        if add("App::PropertyVector", "Axis", "Vibration", AXIS_TIP):
             obj.Axis = App.Vector(0, 0, 1)
+        obj.setDocumentationOfProperty("Axis", AXIS_TIP)  # a document keeps the tooltip it was saved with
         if new:
             obj.Powered = True
         obj.Frequency = (obj.Frequency, *FREQUENCY_RANGE_HZ, 10.0)
@@ -77,26 +89,115 @@ class HapticVibration(SchemaState):
                 text = ""  # linked to a part again (or never linked): nothing lost
             if text != obj.DeletedPart:
                 obj.DeletedPart = text
+        if prop == "Part" and "AxisAnchor" in obj.PropertiesList and not is_restoring(obj):
+            # another part (or none): the axis stays where it was felt, then turns with this one
+            follow_axis_anchor(obj)
+            record_axis_anchor(obj)
         if prop == "Axis" and "Restore" not in obj.State and obj.Axis.Length == 0:
             App.Console.PrintError(f"{obj.Label}: {ZERO_AXIS}\n")
             obj.Axis = App.Vector(0, 0, 1)
+        elif (prop == "Axis" and "AxisAnchor" in obj.PropertiesList and not is_restoring(obj)
+              and _differs(obj.Axis, axis_where_felt(obj))):
+            record_axis_anchor(obj)  # an axis given, not the one the part's turn gave it
 
     def onDocumentRestored(self, obj):
         self.setup(obj)
+        if not obj.AxisAnchor:
+            # saved before the axis turned with its part: anchored as saved, so felt as before
+            record_axis_anchor(obj)
+        else:
+            reanchor_copy(obj)
         from .surface_object import attach_view_provider
 
         attach_view_provider(obj)
         obj.purgeTouched()
 
+    def mustExecute(self, obj):
+        # a Body or App::Part that turned the part recomputes only itself: run to follow it
+        try:
+            return _differs(axis_where_felt(obj), obj.Axis)
+        except Exception:  # noqa: BLE001 (an object half deleted or restored: nothing to follow)
+            return False
+
     def execute(self, obj):
+        follow_axis_anchor(obj)
         problems = validate(obj)
         if problems:
             App.Console.PrintError(f"{obj.Label}: {'; '.join(problems)}\n")
 
 
+def _differs(a, b):
+    """Two axes apart by more than rounding (of any length: the property editor takes any)."""
+    return (a - b).Length > 1e-12 * max(1.0, b.Length)
+
+
+def _anchor(obj):
+    """(part, axis in its frame) that ``obj``'s AxisAnchor names, or None (no anchor, or
+    its part is gone)."""
+    try:
+        state = json.loads(obj.AxisAnchor) if getattr(obj, "AxisAnchor", "") else None
+        part = obj.Document.getObject(state["object"]) if state else None
+        axis = App.Vector(*(float(a) for a in state["axis"])) if part is not None else None
+    except (ValueError, KeyError, TypeError):
+        return None
+    return (part, axis) if part is not None else None
+
+
+def record_axis_anchor(obj):
+    """Keeps ``obj``'s Axis in its part's frame, so that it turns with the part."""
+    from .surface_object import _global_placement
+
+    state = ""
+    if obj.Part is not None:
+        local = _global_placement(obj.Part).Rotation.inverted().multVec(obj.Axis)
+        state = json.dumps({"object": obj.Part.Name, "axis": [local.x, local.y, local.z]}, sort_keys=True)
+    if state != obj.AxisAnchor:
+        obj.AxisAnchor = state
+
+
+def axis_where_felt(obj):
+    """``obj``'s axis, global, where its part stands now: what the probe feels (Axis
+    when it has no anchor). Axis lags behind it while nothing recomputes the vibration."""
+    from .surface_object import _global_placement
+
+    anchored = _anchor(obj)
+    if anchored is None:
+        return App.Vector(obj.Axis)
+    part, local = anchored
+    return _global_placement(part).Rotation.multVec(local)
+
+
+def follow_axis_anchor(obj):
+    """Turns Axis with the part it is anchored to."""
+    axis = axis_where_felt(obj)
+    if _differs(axis, obj.Axis):
+        obj.Axis = axis
+
+
+def reanchor_copy(obj):
+    """A vibration copied with its part (Edit > Duplicate selection) shakes the copy but
+    was anchored to the original, and turned with it. The copy's frame is the original's:
+    the same axis in it is anchored to the copy."""
+    try:
+        state = json.loads(obj.AxisAnchor)
+        named = state["object"]
+    except (ValueError, KeyError, TypeError):
+        return
+    if obj.Part is None or named == obj.Part.Name:
+        return
+    state["object"] = obj.Part.Name
+    obj.AxisAnchor = json.dumps(state, sort_keys=True)
+    follow_axis_anchor(obj)
+
 
 def faceless_note(part):
-    """"" when ``part`` has faces, else why a vibration on it is felt nowhere."""
+    """"" when ``part`` has faces the scene feels, else why a vibration on it is felt
+    nowhere: it has no faces, or it is a link (the scene holds the parts themselves, not
+    links to them; a surface cannot tag a link's faces either)."""
+    linked = part.getLinkedObject(True) if part.isDerivedFrom("App::Link") else None
+    if linked is not None and linked is not part:
+        return (f"{part.Label} is a link to {linked.Label}: a link cannot vibrate yet (Feel holds the parts "
+                f"themselves, not links to them); make {linked.Label} vibrate")
     if part.Shape.Faces:
         return ""
     return (f"{part.Label} has no faces, so the probe touches nothing of it: make a solid or a surface "

@@ -120,6 +120,27 @@ class CompileTest(unittest.TestCase):
         np.testing.assert_allclose(compile_surface(s, moved.Faces[5]).pattern.centre_w, [0.001, 0.002, 0.003],
                                    atol=1e-12)
 
+    def test_a_vibration_is_compiled_along_its_axis_where_its_part_stands(self):
+        # the axis stayed fixed in the world: a part turned in its App::Part shook across
+        # the direction it was given along
+        from hapticad.surface_compile import compile_vibration
+
+        container = self.doc.addObject("App::Part", "Assembly")
+        container.addObject(self.box)
+        v = HaptiCAD.make_vibration(self.doc, self.box, frequency_hz=120.0, amplitude_n=0.4, axis=(1, 0, 0),
+                                    powered=False)
+        self.doc.recompute()
+        container.Placement = App.Placement(V(0, 0, 100), App.Rotation(V(0, 0, 1), 90))  # no recompute since
+        self.box.Placement = App.Placement(V(), App.Rotation(V(1, 0, 0), 90))
+        vibration = compile_vibration(v)
+        np.testing.assert_allclose(vibration.axis_w, [0, 1, 0], atol=1e-12)
+        self.assertEqual((vibration.frequency_hz, vibration.amplitude_n, vibration.powered), (120.0, 0.4, False))
+        # an axis of any length given in the property editor: felt as its direction
+        v.Axis = V(3, 0, 0)
+        np.testing.assert_allclose(compile_vibration(v).axis_w, [1, 0, 0], atol=1e-12)
+        container.Placement = App.Placement()  # and from there it turns with the part (the box's x to -y)
+        np.testing.assert_allclose(compile_vibration(v).axis_w, [0, -1, 0], atol=1e-12)
+
     def test_dynamic_friction_above_static_gets_a_note(self):
         s = self.surface(static_friction=0.6, dynamic_friction=0.5)
         self.assertEqual(friction_notes(s), [])

@@ -12,7 +12,21 @@ from hapticad import _core, vibration_object
 from hapticad.document_scene import build_document_scene
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from host_stalls import run_without_host_stall  # noqa: E402
+from host_stalls import rerun_after_host_stall, run_without_host_stall  # noqa: E402
+from test_feel_session import drain_ticks  # noqa: E402
+
+MM = 1e-3
+TURN_Z = App.Rotation(App.Vector(0, 0, 1), 90)
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data")
+
+
+def shake_amplitudes(trace, frequency_hz):
+    """Amplitude, N, of the force at ``frequency_hz`` along x, y and z over ``trace``."""
+    import numpy as np
+
+    phase = np.exp(-2j * np.pi * frequency_hz * np.asarray(trace["time_s"]))
+    force = np.asarray(trace["force_n"])
+    return 2 * np.abs(((force - force.mean(axis=0)) * phase[:, None]).mean(axis=0))
 
 
 class VibrationTest(unittest.TestCase):
@@ -292,6 +306,183 @@ class VibrationTest(unittest.TestCase):
             v.Frequency = 5000.0  # constraint restored on reopening
             self.assertEqual(v.Frequency, 1000.0)
             self.doc = doc
+
+
+    def assertAxis(self, axis, expected, msg=None):
+        self.assertLess((App.Vector(axis) - App.Vector(*expected)).Length, 1e-9, msg or f"{axis} != {expected}")
+
+    def head_in_an_assembly(self):
+        """The razor's head, 60 mm long in x, in an App::Part, shaking at 120 Hz along
+        its blade (x), and the App::Part."""
+        assembly = self.doc.addObject("App::Part", "Assembly")
+        self.razor.Length, self.razor.Width, self.razor.Height = 60, 10, 10
+        assembly.addObject(self.razor)
+        self.doc.recompute()
+        v = HaptiCAD.make_vibration(self.doc, self.razor, frequency_hz=120.0, amplitude_n=0.3, axis=(1, 0, 0))
+        self.doc.recompute()
+        self.assertNotIn("Touched", v.State)
+        return v, assembly
+
+    def test_the_axis_turns_with_its_part_and_is_shown_where_it_is_felt(self):
+        # the App::Part turned 90 degrees about Z: the head's blade runs along +Y, and the
+        # shake stayed along X, across the blade
+        from hapticad.surface_compile import compile_vibration
+
+        v, assembly = self.head_in_an_assembly()
+        assembly.Placement = App.Placement(App.Vector(5, 0, 0), TURN_Z)
+        # felt turned at once, before anything recomputes the vibration
+        self.assertAxis(App.Vector(*compile_vibration(v).axis_w), (0, 1, 0))
+        # and shown: the App::Part's recompute alone runs the vibration, which follows
+        self.doc.recompute()
+        self.assertAxis(v.Axis, (0, 1, 0))
+        self.assertNotIn("Touched", v.State)
+        self.assertIn("turns with the part", v.getDocumentationOfProperty("Axis"))
+        # the head turned itself too (its own placement, 90 degrees about Y): x to -z
+        self.razor.Placement = App.Placement(App.Vector(), App.Rotation(App.Vector(0, 1, 0), 90))
+        self.doc.recompute()
+        self.assertAxis(v.Axis, (0, 0, -1))
+        self.assertAxis(App.Vector(*compile_vibration(v).axis_w), (0, 0, -1))
+        # an axis given while turned is felt as given, and turns from there on
+        v.Axis = App.Vector(0, 1, 0)
+        self.assertAxis(App.Vector(*compile_vibration(v).axis_w), (0, 1, 0))
+        assembly.Placement = App.Placement()
+        self.doc.recompute()
+        self.assertAxis(v.Axis, (1, 0, 0))
+        # linked to another part: the axis stays where it was felt, then turns with that part
+        other = self.doc.addObject("Part::Box", "Other")
+        self.doc.recompute()
+        v.Part = other
+        self.assertAxis(v.Axis, (1, 0, 0))
+        self.razor.Placement = App.Placement()
+        other.Placement = App.Placement(App.Vector(), TURN_Z)
+        self.doc.recompute()
+        self.assertAxis(v.Axis, (0, 1, 0))
+        self.assertEqual(vibration_object.validate(v), [])
+
+    def test_the_axis_turns_with_a_body_that_holds_its_part(self):
+        # a feature of a PartDesign Body: turning the Body recomputes the Body only
+        body = self.doc.addObject("PartDesign::Body", "Body")
+        handle = body.newObject("PartDesign::AdditiveBox", "Handle")
+        handle.Length, handle.Width, handle.Height = 60, 10, 10
+        self.doc.recompute()
+        v = HaptiCAD.make_vibration(self.doc, handle, axis=(1, 0, 0))
+        self.doc.recompute()
+        body.Placement = App.Placement(App.Vector(0, 0, 20), TURN_Z)
+        self.doc.recompute()
+        self.assertAxis(v.Axis, (0, 1, 0))
+        scene = build_document_scene(self.doc)  # the handle's faces where the Body put them
+        self.assertEqual(scene.surfaces.surface(scene.face_id("Handle.Face1")).vibration, 0)
+        # the Body itself vibrating turns with it as well
+        self.doc.removeObject(v.Name)
+        w = HaptiCAD.make_vibration(self.doc, body, axis=(0, 1, 0))
+        self.doc.recompute()
+        body.Placement = App.Placement()
+        self.doc.recompute()
+        self.assertAxis(w.Axis, (1, 0, 0))
+
+    def test_a_document_saved_before_the_axis_turned_with_its_part_is_felt_as_saved(self):
+        # written by HaptiCAD with vibration schema 2: the head in an App::Part turned 90
+        # degrees about Z, its vibration's Axis (0, 1, 0) global, along the turned blade
+        from hapticad.surface_compile import compile_vibration
+
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "razor.FCStd")
+            with open(os.path.join(DATA, "schema2_razor.FCStd"), "rb") as src, open(path, "wb") as dst:
+                dst.write(src.read())
+            App.closeDocument(self.doc.Name)
+            self.doc = App.openDocument(path)
+        v = self.doc.getObject("HapticVibration")
+        self.assertEqual(v.Proxy.schema, 2)
+        self.assertAxis(v.Axis, (0, 1, 0))  # felt as saved while nothing moved
+        self.assertAxis(App.Vector(*compile_vibration(v).axis_w), (0, 1, 0))
+        self.assertNotIn("Touched", v.State)
+        self.assertIn("turns with the part", v.getDocumentationOfProperty("Axis"))
+        # and from now on along the blade: the assembly turned back, the blade along x
+        self.doc.getObject("Razor").Placement = App.Placement()
+        self.doc.recompute()
+        self.assertAxis(v.Axis, (1, 0, 0))
+        self.assertAxis(App.Vector(*compile_vibration(v).axis_w), (1, 0, 0))
+
+    def test_the_anchor_is_saved_and_a_copy_with_its_part_turns_with_the_copy(self):
+        v, assembly = self.head_in_an_assembly()
+        assembly.Placement = App.Placement(App.Vector(), TURN_Z)
+        self.doc.recompute()
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "razor.FCStd")
+            self.doc.saveAs(path)
+            App.closeDocument(self.doc.Name)
+            self.doc = App.openDocument(path)
+        v, assembly = self.doc.getObject("HapticVibration"), self.doc.getObject("Assembly")
+        self.assertAxis(v.Axis, (0, 1, 0))
+        assembly.Placement = App.Placement()
+        self.doc.recompute()
+        self.assertAxis(v.Axis, (1, 0, 0))
+        # Edit > Duplicate selection with the part: the copy's shake turned with the original
+        copy = next(o for o in self.doc.copyObject([v], True) if HaptiCAD.is_haptic_vibration(o))
+        self.doc.recompute()
+        self.assertIsNot(copy.Part, v.Part)
+        copy.Part.Placement = App.Placement(App.Vector(0, 50, 0), TURN_Z)
+        self.doc.recompute()
+        self.assertAxis(copy.Axis, (0, 1, 0))
+        self.assertAxis(v.Axis, (1, 0, 0))
+        v.Part.Placement = App.Placement(App.Vector(), App.Rotation(App.Vector(0, 1, 0), 90))
+        self.doc.recompute()
+        self.assertAxis(copy.Axis, (0, 1, 0))  # not turned by the original
+        self.assertAxis(v.Axis, (0, 0, -1))
+
+    def test_a_link_is_refused_by_name(self):
+        # a vibration on an App::Link was made, and Feel then failed with "'App.DocumentObject'
+        # object has no attribute 'getGlobalPlacement'"
+        link = self.doc.addObject("App::Link", "Link")
+        link.LinkedObject = self.razor
+        self.doc.recompute()
+        said = "Link is a link to Razor: a link cannot vibrate yet"
+        with self.assertRaisesRegex(ValueError, f"make_vibration: {said}"):
+            HaptiCAD.make_vibration(self.doc, link)
+        self.assertEqual(vibration_object.vibrations_of(self.doc), [])
+        v = HaptiCAD.make_vibration(self.doc, self.razor)
+        v.Part = link  # the property editor takes one
+        self.assertIn(said, " ".join(vibration_object.validate(v)))
+        with self.assertRaisesRegex(ValueError, f"{v.Label}: {said}.*make Razor vibrate"):
+            build_document_scene(self.doc)
+
+    @rerun_after_host_stall
+    def test_a_running_session_feels_the_shake_turn_with_its_part(self):
+        # the Feel panel's live path: SessionEditObserver gives geometry=True for a
+        # placement of a part in the scene or of a container holding it, a property edit
+        # geometry=False; LiveSession.apply_edit hands the loop what they change
+        import numpy as np
+        from hapticad import feel_session, preferences
+
+        v, assembly = self.head_in_an_assembly()
+        session = feel_session.LiveSession(build_document_scene(self.doc),
+                                           prefs=preferences.Preferences(servo_rate_hz=1000, force_limit_n=3.0))
+        session.start(np.array([30, 5, 30]) * MM)  # over the head's centre, which the turn keeps
+
+        def felt(settle):
+            """The shake's amplitude along x, y, z over 30 of its cycles, after ``settle`` ticks."""
+            trace = drain_ticks(session, settle + 250)[-250:]
+            self.assertTrue((trace["flags"] & _core.FLAG_CONTACT).all())
+            return shake_amplitudes(trace, v.Frequency)
+
+        try:
+            drain_ticks(session, 300)
+            session.set_target(np.array([30, 5, 8]) * MM)  # 2 mm into the top, held there
+            along_x = felt(300)
+            assembly.Placement = App.Placement(App.Vector(), TURN_Z, App.Vector(30, 5, 0))
+            self.doc.recompute()
+            self.assertEqual(session.apply_edit(self.doc, geometry=True), "scene")
+            along_y = felt(250)  # the new scene's force ramps in over 0.2 s
+            v.Axis = App.Vector(0, 0, 1)  # typed in the property editor: the surfaces are compiled again
+            self.assertEqual(session.apply_edit(self.doc, geometry=False), "surfaces")
+            along_z = felt(50)
+            running = session.running
+        finally:
+            session.stop()
+        self.assertTrue(running)
+        for felt, axis in ((along_x, 0), (along_y, 1), (along_z, 2)):
+            self.assertGreater(felt[axis], 0.25, (axis, felt))
+            self.assertLess(np.delete(felt, axis).max(), 0.03, (axis, felt))
 
 
 if __name__ == "__main__":
