@@ -74,9 +74,18 @@ class DocumentScene:
 
 def tessellate(shape, accuracy):
     """(vertices #Vx3 mm, triangles #Tx3, face index #T, corner normals #Tx9) of a
-    shape; face i is Face(i+1); corner normals are the B-rep face's exact normals."""
+    shape; face i is Face(i+1); corner normals are the B-rep face's exact normals.
+
+    FreeCAD's meshes hold their points in single precision: a part placed 1 km from the
+    origin came out on a 1/16 mm grid (a closed cylinder left with open edges, a 1 mm ball
+    with a quarter of its triangles). So the shape is meshed about its own centre (a move
+    of its placement, exact) and its points put back where it lies in doubles: rounded
+    alike wherever the part is."""
+    centre = shape.BoundBox.Center
+    local = shape.copy()
+    local.translate(-centre)
     mesh = MeshPart.meshFromShape(
-        Shape=shape,
+        Shape=local,
         LinearDeflection=accuracy.linear_deflection_mm,
         AngularDeflection=accuracy.angular_deflection_rad,
         Relative=False,
@@ -87,7 +96,7 @@ def tessellate(shape, accuracy):
             f"tessellation gave {mesh.countSegments()} segments for {len(shape.Faces)} faces"
         )
     points, facets = mesh.Topology
-    vertices = np.array([(p.x, p.y, p.z) for p in points], dtype=float)
+    vertices = np.array([(p.x, p.y, p.z) for p in points], dtype=float) + (centre.x, centre.y, centre.z)
     triangles = np.array(facets, dtype=np.int32).reshape(-1, 3)
     face_of = np.full(len(triangles), -1, dtype=np.int32)
     for i in range(mesh.countSegments()):

@@ -19,11 +19,19 @@ MM = 1e-3
 
 
 def point_on_face(face):
-    """(u, v) of a point on the face near its centre (not in a hole)."""
-    u, v = face.Surface.parameter(face.CenterOfMass)
+    """(u, v) of a point on the face near its centre (not in a hole): the point nearest
+    its centre of mass, or where that is no point (a whole cylinder's centre lies on its
+    axis, a sphere's at its centre: every point is as near, and which one the projection
+    gave was rounding, another 1 km off the origin) the middle of its parameters."""
+    centre = face.CenterOfMass
+    u0, u1, v0, v1 = face.ParameterRange
+    u, v = face.Surface.parameter(centre)
+    middle = 0.5 * (u0 + u1), 0.5 * (v0 + v1)
+    nearest = face.valueAt(u, v).distanceToPoint(centre)
+    if face.valueAt(*middle).distanceToPoint(centre) <= nearest + 1e-9 * max(face.BoundBox.DiagonalLength, 1e-300):
+        u, v = middle
     if face.isInside(face.valueAt(u, v), 1e-6, True):
         return u, v
-    u0, u1, v0, v1 = face.ParameterRange
     grid = sorted(((i, j) for i in range(1, 10) for j in range(1, 10)),
                   key=lambda ij: abs(ij[0] - 5) + abs(ij[1] - 5))
     for i, j in grid:

@@ -168,6 +168,46 @@ class DocumentSceneTest(unittest.TestCase):
             self.assertIn("closed", ds.repair)
             self.assertIs(ds.accuracy, accuracy.PRESETS[name])
 
+    def test_a_part_far_from_the_origin_is_felt_as_at_the_origin(self):
+        # FreeCAD's meshes are single precision: 1 km off (1e6 mm) the cylinder came out on
+        # a 1/16 mm grid, with 24 open edges, its forces 3.75 % off, and a 1 mm ball lost
+        # three quarters of its triangles. Meshed about its centre, the same to 1e-9
+        forces, counts = {}, {}
+        for offset in (0.0, 1e3, 1e6):
+            doc = App.newDocument("Far")
+            try:
+                can = doc.addObject("Part::Cylinder", "Can")
+                can.Radius, can.Height = 15, 40
+                ball = doc.addObject("Part::Sphere", "Bead")
+                ball.Radius = 0.5
+                can.Placement.Base = App.Vector(offset, offset, offset)
+                ball.Placement.Base = App.Vector(offset + 40, offset, offset)
+                doc.recompute()
+                HaptiCAD.make_surface(doc, [(can, "Face1"), (ball, "Face1")], material="ABS")
+                ds = build_document_scene(doc, accuracy.preset("Fine"))
+                self.assertTrue(ds.watertight, f"{offset}: {ds.repair}")
+                counts[offset] = ds.scene.num_triangles
+                # round the can, 1 mm deep, rising and falling; then pressed into the bead off its pole
+                # (a press straight over a vertex is a tie that any rounding decides)
+                t = np.arange(2000) * 1e-3
+                turn = 75 * t / 15
+                out = np.stack([np.cos(turn), np.sin(turn), 0 * turn], 1)
+                path = out * 14 + np.stack([0 * t, 0 * t, 20 + 12 * np.sin(0.5 * turn)], 1)
+                bead = np.tile([40.13, 0.07, 0.7], (300, 1)) - np.linspace(0, 0.4, 300)[:, None] * [0, 0, 1]
+                path = np.vstack([out[0] * 17 + [0, 0, 20], path, [40, 0, 2], bead]) + offset
+                renderer = _core.ForceRenderer(ds.scene, ds.surfaces, _core.RenderLimits(), ds.contact_options())
+                trace = _core.run_stroke(renderer, path * MM, np.zeros_like(path), list(np.arange(len(path)) * 1e-3))
+                self.assertTrue((np.asarray(trace["flags"])[-100:] & _core.FLAG_CONTACT).all())  # on the bead
+                forces[offset] = np.asarray(trace["force_w"])
+            finally:
+                App.closeDocument(doc.Name)
+        largest = np.abs(forces[0.0]).max()
+        self.assertGreater(largest, 0.3)
+        for offset in (1e3, 1e6):
+            self.assertEqual(counts[offset], counts[0.0])
+            np.testing.assert_allclose(forces[offset], forces[0.0], rtol=0, atol=1e-9 * largest,
+                                       err_msg=f"{offset:g} mm off")
+
     def test_corner_normals_are_the_exact_normals_of_each_face(self):
         # on the cylinder's wall the normal at a vertex is radial, whatever the facets do
         HaptiCAD.make_surface(self.doc, [(self.part, "Face1")])

@@ -365,7 +365,9 @@ class CompileTest(unittest.TestCase):
         limits.max_force_n, limits.max_stiffness_n_per_m = 100.0, 1000.0
         for turned in (0.0, 60.0, 80.0):
             start = math.atan2(centre[1], centre[0]) + math.radians(turned)
-            arc = np.linspace(0.0, 0.006, 12000)  # 6 mm round the handle, 0.3 mm deep
+            # 6 mm round the handle, 0.3 mm deep, from half a row past where one lies (the
+            # frame's origin, and every 0.6 mm from it): ten rows, none at either end
+            arc = np.linspace(0.0003, 0.0063, 12000)
             angle = start + arc / 0.015
             radial = np.c_[np.cos(angle), np.sin(angle), np.zeros(len(arc))]
             path = np.vstack([[0.02 * math.cos(start), 0.02 * math.sin(start), 0.05],
