@@ -249,6 +249,14 @@ class HapticSurface(SchemaState):
         # re-applying constraints is not an edit: the object stays up to date
         obj.purgeTouched()
 
+    def mustExecute(self, obj):
+        # a Body or App::Part that moved the first tagged part recomputes only itself: run
+        # to follow it (as a vibration's axis does), so PatternCenter shows what is felt
+        try:
+            return pattern_anchor_moved(obj)
+        except Exception:  # noqa: BLE001 (an object half deleted or restored: nothing to follow)
+            return False
+
     def execute(self, obj):
         # runs after every recompute of a referenced part (References links them)
         self._applying = True
@@ -816,11 +824,17 @@ def centre_circles_on_faces(obj):
     record_pattern_anchor(obj)
 
 
+def pattern_anchor_moved(obj):
+    """Whether the part the pattern is anchored to took its centre or axis away from
+    PatternCenter and PatternAxis (moved, and nothing followed it since)."""
+    centre, axis = circular_centre_axis(obj)
+    return (centre - obj.PatternCenter).Length > 1e-9 or (axis - obj.PatternAxis).Length > 1e-12
+
+
 def follow_pattern_anchor(obj):
     """Moves PatternCenter and PatternAxis with the part they are anchored to."""
-    centre, axis = circular_centre_axis(obj)
-    if (centre - obj.PatternCenter).Length > 1e-9 or (axis - obj.PatternAxis).Length > 1e-12:
-        obj.PatternCenter, obj.PatternAxis = centre, axis
+    if pattern_anchor_moved(obj):
+        obj.PatternCenter, obj.PatternAxis = circular_centre_axis(obj)
 
 
 def _write_curve_state(obj, state):

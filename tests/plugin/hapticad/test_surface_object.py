@@ -484,6 +484,49 @@ class MakeSurfaceTest(unittest.TestCase):
         on.Pattern = "Circular"
         self.assertEqual(tuple(on.PatternCenter), (0, 0, 0))
 
+    def test_a_circular_pattern_is_shown_where_a_container_turning_its_part_took_it(self):
+        # reviewer: the App::Part holding the part turned 90 degrees about Y, and PatternCenter
+        # still read (10, 5, 10) where (10, 5, -10) was felt: the App::Part recomputes only itself
+        from hapticad.surface_object import circular_centre_axis
+
+        def assertVector(vector, expected):
+            self.assertLess((App.Vector(vector) - App.Vector(*expected)).Length, 1e-9, f"{vector} != {expected}")
+
+        assembly = self.doc.addObject("App::Part", "Assembly")
+        self.box.Length, self.box.Width, self.box.Height = 60, 10, 10
+        assembly.addObject(self.box)
+        self.doc.recompute()
+        s = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], pattern="Circular", pattern_center_mm=(10, 5, 10))
+        self.doc.recompute()
+        turn = App.Rotation(App.Vector(0, 1, 0), 90)
+        assembly.Placement = App.Placement(App.Vector(), turn)
+        self.doc.recompute()
+        assertVector(s.PatternCenter, (10, 5, -10))
+        assertVector(s.PatternAxis, (1, 0, 0))  # the top's normal, turned with it
+        self.assertEqual(circular_centre_axis(s), (s.PatternCenter, s.PatternAxis))  # shown is felt
+        self.assertNotIn("Touched", s.State)
+        # a Body in an App::Part: the surface links the Body, which nothing recomputes either
+        body = self.doc.addObject("PartDesign::Body", "Body")
+        knob = body.newObject("PartDesign::AdditiveBox", "Knob")
+        assembly.addObject(body)
+        self.doc.recompute()
+        on_body = HaptiCAD.make_surface(self.doc, [(knob, "Face6")], pattern="Circular",
+                                        pattern_center_mm=(5, 5, 10))
+        self.doc.recompute()
+        assembly.Placement = App.Placement(App.Vector(0, 0, 20), turn)  # lifted 20 mm
+        self.doc.recompute()
+        assertVector(on_body.PatternCenter, (5, 5, 30))
+        assertVector(s.PatternCenter, (10, 5, 10))
+        # and saved as shown
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "turned.FCStd")
+            self.doc.saveCopy(path)
+            reopened = App.openDocument(path)
+            try:
+                assertVector(reopened.getObject(s.Name).PatternCenter, (10, 5, 10))
+            finally:
+                App.closeDocument(reopened.Name)
+
     def test_a_face_from_another_document_is_refused(self):
         other = App.newDocument("Other")
         try:

@@ -118,9 +118,6 @@ class SurfaceTaskPanel:
             self.doc.openTransaction("Edit haptic surface")
         # Cancel restores these values; what was up to date with them is up to date again
         self.up_to_date = [o.Name for o in self.doc.Objects if "Touched" not in o.State]
-        # a circular centre whose part moved in its App::Part (no recompute since) is
-        # shown, and edited, where the part took it
-        surface_object.follow_pattern_anchor(surface)
         # similarity runs felt on this surface as it was: an edit that stops pooling them is said
         self.pooled_at_open = similarity_study.pooled_runs(self.doc)
         self.widgets = {}  # property (or "Prop.x") -> widget
@@ -460,6 +457,9 @@ class SurfaceTaskPanel:
 
     def _load(self):
         obj = self.obj
+        # a circular centre whose part moved in its App::Part (no recompute since) is
+        # shown, and edited, where the part took it
+        surface_object.follow_pattern_anchor(obj)
         self.name_label.setText(f"<b>{html.escape(obj.Label)}</b>")
         self._load_faces()
         names = obj.getEnumerationsOfProperty("Material")
@@ -588,6 +588,8 @@ class SurfaceTaskPanel:
                          if part is not None else "Tag a face first: a vibration belongs to a part")
         combo.blockSignals(False)
         vib = self.vibration()
+        if vib is not None:  # its axis too, as the pattern's centre (_load)
+            vibration_object.follow_axis_anchor(vib)
         self.vibrates.setEnabled(part is not None)
         _set_widget(self.vibrates, vib is not None)
         for name, widget in self.vibration_widgets.items():
@@ -619,6 +621,9 @@ class SurfaceTaskPanel:
         as the boxes round them)."""
         if self._loading:
             return
+        self._in_transaction()
+        # the others where the part stands now: its App::Part may have moved since the load
+        surface_object.follow_pattern_anchor(self.obj)
         self.set_property(name, _with_component(getattr(self.obj, name), axis,
                                                 self.widgets[f"{name}.{axis}"].value()))
 
@@ -743,8 +748,9 @@ class SurfaceTaskPanel:
         vib = self.vibration()
         if self._loading or vib is None:
             return
-        axis = _with_component(vib.Axis, component, self.vibration_widgets[f"Axis.{component}"].value())
         self._in_transaction()
+        vibration_object.follow_axis_anchor(vib)  # the others where the part stands now, as set_vector
+        axis = _with_component(vib.Axis, component, self.vibration_widgets[f"Axis.{component}"].value())
         vib.Axis = axis
         self.load()
         if axis.Length == 0:

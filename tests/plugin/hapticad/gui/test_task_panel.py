@@ -611,6 +611,56 @@ class TaskPanelTest(unittest.TestCase):
         self.assertEqual((centre.x, centre.y, centre.z), (60.0, 15.0, 20.0))
         h.press_task_button("OK")
 
+    def test_a_vibration_axis_is_shown_and_edited_where_its_turned_app_part_took_it(self):
+        # the boxes showed Axis, (1, 0, 0), after the App::Part turned the blade 90 degrees
+        # about Z, and editing z saved (1, 0, 0.5): across the blade
+        container = self.doc.addObject("App::Part", "Assembly")
+        container.addObject(self.box)
+        self.doc.recompute()
+        surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")])
+        vibration = HaptiCAD.make_vibration(self.doc, self.box, axis=(1, 0, 0))
+        self.doc.recompute()
+        container.Placement = App.Placement(App.Vector(), App.Rotation(App.Vector(0, 0, 1), 90))  # no recompute
+        Gui.ActiveDocument.setEdit(surface.Name, 0)
+        h.process_events()
+        boxes = [h.widget(QtWidgets.QDoubleSpinBox, f"VibrationAxis.{a}") for a in "xyz"]
+        self.assertEqual([b.value() for b in boxes], [0.0, 1.0, 0.0])
+        boxes[2].setValue(0.5)
+        h.process_events()
+        self.assertLess((vibration.Axis - App.Vector(0, 1, 0.5)).Length, 1e-9, vibration.Axis)
+        h.press_task_button("OK")
+
+    def test_a_pattern_and_a_vibration_turned_while_the_panel_is_open_are_edited_where_they_are_felt(self):
+        # the App::Part turned in the property editor with the panel open: an edit of one box
+        # kept the others as they were before the turn
+        from hapticad.surface_object import circular_centre_axis
+        from hapticad.vibration_object import axis_where_felt
+
+        container = self.doc.addObject("App::Part", "Assembly")
+        container.addObject(self.box)
+        self.doc.recompute()
+        surface = HaptiCAD.make_surface(self.doc, [(self.box, "Face6")], pattern="Circular",
+                                        pattern_center_mm=(10, 10, 20))
+        vibration = HaptiCAD.make_vibration(self.doc, self.box, axis=(1, 0, 0))
+        self.doc.recompute()
+        Gui.ActiveDocument.setEdit(surface.Name, 0)
+        h.process_events()
+        container.Placement = App.Placement(App.Vector(), App.Rotation(App.Vector(0, 0, 1), 90))
+        h.widget(QtWidgets.QDoubleSpinBox, "PatternCenter.z").setValue(25.0)
+        h.process_events()
+        centre, axis = circular_centre_axis(surface)
+        self.assertLess((centre - App.Vector(-10, 10, 25)).Length, 1e-9, centre)
+        self.assertLess((axis - App.Vector(0, 0, 1)).Length, 1e-9, axis)
+        self.assertEqual([round(h.widget(QtWidgets.QDoubleSpinBox, f"PatternCenter.{a}").value(), 3) for a in "xyz"],
+                         [-10.0, 10.0, 25.0])
+        container.Placement = App.Placement()
+        h.widget(QtWidgets.QDoubleSpinBox, "VibrationAxis.z").setValue(0.5)
+        h.process_events()
+        self.assertLess((axis_where_felt(vibration) - App.Vector(1, 0, 0.5)).Length, 1e-9, vibration.Axis)
+        self.assertEqual([round(h.widget(QtWidgets.QDoubleSpinBox, f"PatternCenter.{a}").value(), 3) for a in "xyz"],
+                         [10.0, 10.0, 25.0])  # the load after the edit shows the pattern turned back too
+        h.press_task_button("OK")
+
     def test_closing_the_document_under_the_panel_closes_it_and_stops_its_picking(self):
         from hapticad.gui.task_panel_surface import SurfaceTaskPanel
 
