@@ -155,6 +155,97 @@ class PickedFaceTest(unittest.TestCase):
             App.closeDocument(other.Name)
 
 
+class PickedCurveTest(unittest.TestCase):
+    """A curve pattern's edges, as the unresolved selection names them: through a link they
+    were the original sketch's, shown elsewhere, and the pattern followed those."""
+
+    def setUp(self):
+        self.doc = App.newDocument("Curves")
+        self.sketch = self.doc.addObject("Sketcher::SketchObject", "Guide")
+        self.sketch.addGeometry(Part.LineSegment(App.Vector(0, 5, 0), App.Vector(40, 25, 0)))
+        self.sketch.addGeometry(Part.LineSegment(App.Vector(40, 25, 0), App.Vector(60, 25, 0)))
+        self.box = self.doc.addObject("Part::Box", "Box")
+        self.doc.recompute()
+
+    def tearDown(self):
+        App.closeDocument(self.doc.Name)
+
+    def test_a_sketchs_own_edges_or_the_whole_sketch_are_picked(self):
+        self.assertEqual(face_picking.picked_curve([(self.sketch, ["Edge2", "Edge1", "Edge2"])]),
+                         ((self.sketch, ["Edge2", "Edge1"]), ""))
+        self.assertEqual(face_picking.picked_curve([(self.sketch, [])]), ((self.sketch, []), ""))
+        # in an App::Part, as the view names it; a box's faces and a box whole are no curve
+        container = self.doc.addObject("App::Part", "Assembly")
+        container.addObject(self.sketch)
+        self.doc.recompute()
+        self.assertEqual(face_picking.picked_curve([(self.box, ["Face6"]), (container, ["Guide.Edge1"])]),
+                         ((self.sketch, ["Edge1"]), ""))
+        self.assertEqual(face_picking.picked_curve([(container, ["Guide."])]), ((self.sketch, []), ""))
+        self.assertEqual(face_picking.picked_curve([(self.box, [])]), (None, ""))
+        # the edges of one object: a second one's are left out
+        self.assertEqual(face_picking.picked_curve([(self.box, ["Edge1"]), (container, ["Guide.Edge1"])]),
+                         ((self.box, ["Edge1"]), ""))
+
+    def test_edges_through_any_link_are_refused_in_the_words_faces_are(self):
+        link = self.doc.addObject("App::Link", "GuideLink")
+        link.LinkedObject = self.sketch
+        link.Placement.Base = App.Vector(0, 40, 0)
+        holder = self.doc.addObject("App::Part", "Holder")
+        holder.addObject(self.sketch)
+        part_link = self.doc.addObject("App::Link", "PartLink")
+        part_link.LinkedObject = holder
+        array = self.doc.addObject("App::Link", "LinkArr")
+        array.LinkedObject = self.sketch
+        array.ElementCount = 2
+        self.doc.recompute()
+        said = "a link's edges cannot be followed by a curve pattern yet"
+        for selection, expected in [
+                ([(link, ["Edge1"])], f"GuideLink is a link to Guide: {said}; pick Guide's edges"),
+                ([(link, [])], f"GuideLink is a link to Guide: {said}; pick Guide's edges"),  # whole, in the tree
+                ([(part_link, ["Guide.Edge2"])], f"PartLink is a link to Holder: {said}; pick Guide's edges in Holder"),
+                ([(array, ["1.Edge1"])], f"LinkArr is a link array of Guide: {said}; pick Guide's edges"),
+                # one of the edges through a link: refused, not followed in part
+                ([(holder, ["Guide.Edge1"]), (link, ["Edge2"])], f"GuideLink is a link to Guide: {said}")]:
+            with self.subTest(selection=[(o.Name, p) for o, p in selection]):
+                curve, why = face_picking.picked_curve(selection)
+                self.assertIsNone(curve)
+                self.assertTrue(why.startswith(expected), why)
+        # a link to a box, whole, is no curve to refuse
+        box_link = self.doc.addObject("App::Link", "BoxLink")
+        box_link.LinkedObject = self.box
+        self.doc.recompute()
+        self.assertEqual(face_picking.picked_curve([(box_link, [])]), (None, ""))
+        # the face's words stay as they were
+        self.assertEqual(face_picking.link_refusal(link),
+                         "GuideLink is a link to Guide: a link's faces cannot be tagged yet; tag Guide's faces")
+
+    def test_a_draft_array_made_with_links_is_refused_for_its_edges(self):
+        import Draft
+
+        array = Draft.make_ortho_array(self.box, App.Vector(20, 0, 0), App.Vector(0, 20, 0),
+                                       App.Vector(0, 0, 20), 2, 1, 1, use_link=True)
+        self.doc.recompute()
+        curve, why = face_picking.picked_curve([(array, ["1.Edge1"])])
+        self.assertIsNone(curve)
+        self.assertEqual(why, f"{array.Label} is an array made with links to Box: its edges are Box's, shown where "
+                              "the array places them, and cannot be followed by a curve pattern there; make the "
+                              "array without links (Draft's Link array option off) and pick its edges")
+
+    def test_a_centre_clicked_on_a_link_is_refused_naming_the_link_and_the_parts(self):
+        link = self.doc.addObject("App::Link", "BoxLink")
+        link.LinkedObject = self.box
+        container = self.doc.addObject("App::Part", "Assembly")
+        container.addObject(link)
+        self.doc.recompute()
+        self.assertIsNone(face_picking.link_on_path(self.box, "Face6"))
+        self.assertEqual(face_picking.link_on_path(container, "BoxLink.Face6"), link)
+        self.assertEqual(face_picking.centre_refusal(link, ["Box"]),
+                         "BoxLink is a link to Box: the point clicked lies where it shows Box, away from the faces "
+                         "the circles are felt on; click the centre on Box itself")
+        self.assertTrue(face_picking.centre_refusal(link, ["Box", "Lid", "Cap"]).endswith(
+            "click the centre on Box, Lid or Cap itself"))
+
+
 class CrossDocumentLinkTest(unittest.TestCase):
     """An assembly with its own Body "Body" and an App::Link to a knob's Body "Body" in
     another file: a click on the knob's top tagged the assembly's plate top."""
@@ -188,6 +279,14 @@ class CrossDocumentLinkTest(unittest.TestCase):
         obj, face, why = picked_face(self.plate, f"{self.plate.Tip.Name}.{top_face(self.plate.Shape, 4)}")
         self.assertEqual((obj, why), (self.plate, ""))
         self.assertEqual(face_picking.document_file(self.knob_doc), "knob.FCStd")
+
+    def test_the_knobs_edges_are_refused_naming_its_file(self):
+        # a curve pattern in the assembly followed the knob's sketch where knob.FCStd has it
+        curve, why = face_picking.picked_curve([(self.link, ["Sketch.Edge1"])])
+        self.assertIsNone(curve)
+        self.assertEqual(why, "KnobLink is a link to Body in knob.FCStd: a link's edges cannot be followed by a "
+                              "curve pattern yet; pick Sketch's edges in Body in knob.FCStd itself, and feel them "
+                              "there")
 
 
 if __name__ == "__main__":

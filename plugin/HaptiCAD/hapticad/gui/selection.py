@@ -2,7 +2,7 @@
 """What is selected in the 3D view, as HaptiCAD wants it."""
 import FreeCADGui as Gui
 
-from ..face_picking import element, picked_face
+from ..face_picking import element, picked_curve, picked_face
 
 
 def face_picks():
@@ -28,16 +28,11 @@ def selected_faces():
 
 
 def selected_curve():
-    """(object, [edge names]) for a curve pattern: selected edges of one object, or a
-    whole selected sketch ([] = all its edges); None if nothing fits."""
-    for sel in Gui.Selection.getSelectionEx():
-        edges = [s for s in sel.SubElementNames if s.startswith("Edge")]
-        if edges:
-            return sel.Object, edges
-        if not sel.SubElementNames and hasattr(sel.Object, "Shape") and sel.Object.Shape.Edges \
-                and not sel.Object.Shape.Faces:
-            return sel.Object, []
-    return None
+    """((object, [edge names]), "") for a curve pattern: selected edges of one object, or a
+    whole selected sketch ([] = all its edges); (None, why) for edges shown through a link
+    (face_picking.picked_curve), (None, "") if nothing fits. Read from the unresolved
+    selection, as face_picks: the resolved one names the link's original, elsewhere."""
+    return picked_curve([(sel.Object, list(sel.SubElementNames)) for sel in Gui.Selection.getSelectionEx("", 0)])
 
 
 def selected_parts():

@@ -717,9 +717,9 @@ class SurfaceTaskPanel:
         return f" With {', '.join(said)}." if said else ""
 
     def use_selected_curve(self):
-        curve = selected_curve()
+        curve, why = selected_curve()
         if curve is None:
-            self.show_problems(["select a sketch, or edges, for the curve pattern first"])
+            self.show_problems([why or "select a sketch, or edges, for the curve pattern first"])
             return
         self._in_transaction()
         self.obj.PatternCurve = curve
@@ -817,6 +817,10 @@ class SurfaceTaskPanel:
         if root is None:
             return
         if self.mode == "centre":
+            link = face_picking.link_on_path(root, sub)
+            if link is not None:  # the point lies on the link's copy, away from the faces felt
+                self.show_problems([face_picking.centre_refusal(link, [p.Label for p in self.parts()])])
+                return
             self._in_transaction()
             self.obj.PatternCenter = App.Vector(*point)
             self.set_mode(None)

@@ -762,6 +762,62 @@ class TaskPanelTest(unittest.TestCase):
         self.assertEqual(len(HaptiCAD.reference_pairs(surface)), 1)
         h.press_task_button("OK")
 
+    def test_a_curve_and_a_centre_picked_through_a_link_are_refused_and_the_panel_says_why(self):
+        # Use selection took a link's edges as the original's, shown 30 mm away, and Pick took
+        # a point on a link's copy of the box, 60 mm from the faces the circles are felt on
+        import Part
+
+        guide = self.doc.addObject("Part::Feature", "Guide")
+        guide.Shape = Part.makeLine(App.Vector(0, 5, 20), App.Vector(40, 25, 20))
+        guide_link = self.doc.addObject("App::Link", "GuideLink")
+        guide_link.LinkedObject = guide
+        guide_link.Placement.Base = App.Vector(0, 0, 30)
+        box_link = self.doc.addObject("App::Link", "BoxLink")
+        box_link.LinkedObject = self.box
+        box_link.Placement.Base = App.Vector(60, 0, 0)
+        self.doc.recompute()
+        surface = self.open_new_surface()
+        h.widget(QtWidgets.QComboBox, "Pattern").setCurrentText("Curve")
+        status = h.widget(QtWidgets.QLabel, "status")
+        refused = ("GuideLink is a link to Guide: a link's edges cannot be followed by a curve pattern yet; pick "
+                   "Guide's edges")
+        for what, select in [("its edge in the 3D view", lambda: Gui.Selection.addSelection(
+                                  self.doc.Name, guide_link.Name, "Edge1")),
+                             ("the link in the tree", lambda: Gui.Selection.addSelection(guide_link))]:
+            with self.subTest(what):
+                Gui.Selection.clearSelection()
+                select()
+                h.widget(QtWidgets.QPushButton, "useCurve").click()
+                self.assertIsNone(surface.PatternCurve)
+                self.assertIn(refused, status.text())
+        h.widen_panel()
+        h.scroll_to(status)
+        h.grab_screen("panel_link_curve_refused.png")
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(guide, "Edge1")
+        h.widget(QtWidgets.QPushButton, "useCurve").click()
+        self.assertEqual(surface.PatternCurve, (guide, ["Edge1"]))
+        # the centre: a click on BoxLink's top is refused and Pick waits for another click
+        h.widget(QtWidgets.QComboBox, "Pattern").setCurrentText("Circular")
+        before = App.Vector(surface.PatternCenter)
+        Gui.ActiveDocument.ActiveView.viewTop()
+        Gui.SendMsgToActiveView("ViewFit")
+        h.process_events()
+        h.widget(QtWidgets.QPushButton, "pickCenter").click()
+        Gui.Selection.clearSelection()
+        h.click_at((80, 15, 20))
+        self.assertTrue(Gui.Selection.getSelectionEx("", 0), "the click missed BoxLink")
+        self.assertEqual(surface.PatternCenter, before)
+        self.assertIn("BoxLink is a link to Box: the point clicked lies where it shows Box, away from the faces the "
+                      "circles are felt on; click the centre on Box itself", status.text())
+        h.scroll_to(status)
+        h.grab_screen("panel_link_centre_refused.png")
+        Gui.Selection.clearSelection()
+        h.click_at((30, 5, 20))  # the box's own top, off the guide and its link above it
+        c = surface.PatternCenter
+        self.assertLess(abs(c.x - 30) + abs(c.y - 5) + abs(c.z - 20), 1.0, c)
+        h.press_task_button("OK")
+
     def test_faces_of_a_partdesign_body_and_of_a_part_in_an_app_part(self):
         import Part
         import Sketcher
