@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -488,12 +489,267 @@ std::size_t TurnInsideOutShells(const std::vector<Point>& points, const EdgeCoun
       std::count_if(turn.begin(), turn.end(), [](char t) { return t != 0; }));
 }
 
-bool Degenerate(const std::vector<Point>& points, const Polygon& p, double needle_tolerance) {
-  if (p[0] == p[1] || p[1] == p[2] || p[0] == p[2]) return true;
+// What a triangle is, for step 3: sound, or which kind of degenerate, which says how
+// it is mended. A needle: its shortest edge, too, is below the tolerance (two vertices
+// nearly one); a cap: a vertex lies on the longest edge, away from its ends.
+enum class Shape { kSound, kRepeated, kNeedle, kCap };
+
+// For a degenerate triangle, `shortest` and `longest` say which of its edges k (corner k
+// to corner k + 1) are.
+Shape ShapeOf(const std::vector<Point>& points, const Polygon& p, double needle_tolerance,
+              int* shortest = nullptr, int* longest = nullptr) {
+  if (p[0] == p[1] || p[1] == p[2] || p[0] == p[2]) return Shape::kRepeated;
   const Vec3 a = ToVec(points[p[0]]), b = ToVec(points[p[1]]), c = ToVec(points[p[2]]);
-  const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-  const double height = (b - a).cross(c - a).norm() / longest;  // to the longest edge
-  return !(height > needle_tolerance * longest);
+  const double length[3] = {(b - a).norm(), (c - b).norm(), (a - c).norm()};
+  const double most = std::max({length[0], length[1], length[2]});
+  const double height = (b - a).cross(c - a).norm() / most;  // to the longest edge
+  if (height > needle_tolerance * most) return Shape::kSound;
+  const int low = static_cast<int>(std::min_element(length, length + 3) - length);
+  const int high = static_cast<int>(std::max_element(length, length + 3) - length);
+  if (shortest != nullptr) *shortest = low;
+  if (longest != nullptr) *longest = high;
+  return length[low] > needle_tolerance * most ? Shape::kCap : Shape::kNeedle;
+}
+
+bool Has(const Polygon& p, std::size_t v) { return p[0] == v || p[1] == v || p[2] == v; }
+
+// The live triangles round each of a few vertices (those of degenerate triangles), kept
+// up to date as step 3 edits triangles: how it finds a triangle's neighbours, in O(n)
+// to build and O(fan) to ask, where a map of every edge would cost the whole soup.
+class FewFans {
+ public:
+  FewFans(std::size_t num_points, const std::vector<std::size_t>& vertices,
+          const std::vector<Polygon>& polygons, const std::vector<char>& keep)
+      : polygons_(polygons), keep_(keep), slot_(num_points, kNone) {
+    for (const std::size_t v : vertices) {
+      if (slot_[v] != kNone) continue;
+      slot_[v] = fans_.size();
+      fans_.emplace_back();
+    }
+    for (std::size_t t = 0; t < polygons.size(); ++t) {
+      if (!keep[t]) continue;
+      for (const std::size_t v : polygons[t]) Add(v, t);
+    }
+  }
+
+  // Triangle t now has vertex v (ignored for a vertex not in the set).
+  void Add(std::size_t v, std::size_t t) {
+    if (slot_[v] != kNone) fans_[slot_[v]].push_back(t);
+  }
+  void Remove(std::size_t v, std::size_t t) {
+    if (slot_[v] == kNone) return;
+    std::vector<std::size_t>& fan = fans_[slot_[v]];
+    fan.erase(std::remove(fan.begin(), fan.end(), t), fan.end());
+  }
+  // The live triangles at v, which must be in the set (some may have died since).
+  std::vector<std::size_t>& at(std::size_t v) { return fans_[slot_[v]]; }
+  // The live triangles other than `except` with both u (in the set) and v.
+  std::vector<std::size_t> With(std::size_t u, std::size_t v, std::size_t except) {
+    std::vector<std::size_t> out;
+    for (const std::size_t t : at(u)) {
+      if (t != except && keep_[t] && Has(polygons_[t], v)) out.push_back(t);
+    }
+    return out;
+  }
+  // The vertices other than v of the live triangles at v, sorted, each once.
+  std::vector<std::size_t> Neighbours(std::size_t v) {
+    std::vector<std::size_t> out;
+    for (const std::size_t t : at(v)) {
+      if (!keep_[t]) continue;
+      for (const std::size_t w : polygons_[t]) {
+        if (w != v) out.push_back(w);
+      }
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
+  static constexpr std::size_t kNone = ~std::size_t{0};
+
+ private:
+  const std::vector<Polygon>& polygons_;
+  const std::vector<char>& keep_;
+  std::vector<std::size_t> slot_;  // a vertex's fan in fans_, or kNone
+  std::vector<std::vector<std::size_t>> fans_;
+};
+
+// Step 3's degenerate triangles, removed (keep 0) and mended where that keeps the soup
+// as closed as it was: a needle's short edge is collapsed (its second end welded into
+// its first, which removes the triangle across it too), if the edge has two triangles and
+// the ends share no neighbour but those triangles' third vertices (else the weld would
+// pinch the surface); a cap's vertex splits the one triangle across its longest edge
+// (each half keeps its CAD face, the new corner's normal is interpolated along the
+// edge), so the cap's two short edges find that triangle's halves where the cap had
+// been. What cannot be mended is removed as it is, and step 6 reports what it opens.
+// O(n) when nothing is degenerate; else one more O(n) pass per kind, and each mend
+// O(fans round it); a cap whose long edge has another cap across waits for it.
+void MendDegenerate(const std::vector<Point>& points, double needle_tolerance,
+                    std::vector<Polygon>* polygons, std::vector<std::int32_t>* faces,
+                    std::vector<std::array<Vec3, 3>>* corner_normals, std::vector<char>* keep,
+                    RepairReport* r) {
+  std::vector<Polygon>& tri = *polygons;
+  const auto remove = [&](std::size_t t) {
+    (*keep)[t] = 0;
+    ++r->removed_degenerate;
+  };
+  std::vector<std::size_t> needles, caps;
+  for (std::size_t t = 0; t < tri.size(); ++t) {
+    switch (ShapeOf(points, tri[t], needle_tolerance)) {
+      case Shape::kSound:
+        break;
+      case Shape::kRepeated:
+        remove(t);
+        break;
+      case Shape::kNeedle:
+        needles.push_back(t);
+        break;
+      case Shape::kCap:
+        caps.push_back(t);
+        break;
+    }
+  }
+
+  // needles: their short edges collapsed, one after another
+  std::vector<std::size_t> changed;  // triangles a weld moved: looked at again below
+  if (!needles.empty()) {
+    std::vector<std::size_t> corners;
+    for (const std::size_t t : needles) corners.insert(corners.end(), tri[t].begin(), tri[t].end());
+    FewFans fans(points.size(), corners, tri, *keep);
+    for (const std::size_t t : needles) {
+      int shortest = 0;
+      if (!(*keep)[t] || ShapeOf(points, tri[t], needle_tolerance, &shortest) != Shape::kNeedle) {
+        continue;  // gone with an earlier weld, or changed by one: looked at again below
+      }
+      const std::size_t stays = tri[t][shortest], goes = tri[t][(shortest + 1) % 3];
+      const std::vector<std::size_t> on = fans.With(stays, goes, FewFans::kNone);
+      if (on.size() != 2) continue;
+      std::vector<std::size_t> third;
+      for (const std::size_t s : on) {
+        for (const std::size_t w : tri[s]) {
+          if (w != stays && w != goes) third.push_back(w);
+        }
+      }
+      std::sort(third.begin(), third.end());
+      std::vector<std::size_t> shared;
+      const std::vector<std::size_t> a = fans.Neighbours(stays), b = fans.Neighbours(goes);
+      std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(shared));
+      shared.erase(std::remove_if(shared.begin(), shared.end(),
+                                  [&](std::size_t w) { return w == stays || w == goes; }),
+                   shared.end());
+      if (shared != third) continue;
+      for (const std::size_t s : fans.at(goes)) {
+        if (!(*keep)[s]) continue;
+        for (std::size_t& w : tri[s]) w = w == goes ? stays : w;
+        if (ShapeOf(points, tri[s], needle_tolerance) == Shape::kRepeated) {
+          remove(s);
+        } else {
+          fans.Add(stays, s);
+          changed.push_back(s);
+        }
+      }
+      fans.at(goes).clear();
+      ++r->collapsed_needles;
+    }
+  }
+
+  // what is left degenerate is a cap, or a needle that could not be collapsed
+  caps.insert(caps.end(), needles.begin(), needles.end());
+  caps.insert(caps.end(), changed.begin(), changed.end());
+  std::sort(caps.begin(), caps.end());
+  caps.erase(std::unique(caps.begin(), caps.end()), caps.end());
+  std::vector<std::size_t> open_caps;
+  for (const std::size_t t : caps) {
+    if (!(*keep)[t]) continue;
+    switch (ShapeOf(points, tri[t], needle_tolerance)) {
+      case Shape::kSound:
+        break;
+      case Shape::kCap:
+        open_caps.push_back(t);
+        break;
+      default:
+        remove(t);
+        break;
+    }
+  }
+  if (open_caps.empty()) return;
+
+  // caps: each splits the triangle across its longest edge at its vertex
+  std::vector<std::size_t> corners;
+  for (const std::size_t t : open_caps) corners.insert(corners.end(), tri[t].begin(), tri[t].end());
+  FewFans fans(points.size(), corners, tri, *keep);
+  std::vector<char> is_cap(tri.size(), 0);
+  for (const std::size_t t : open_caps) is_cap[t] = 1;
+  std::unordered_map<std::size_t, std::vector<std::size_t>> waiting;  // cap -> caps on it
+  std::vector<std::size_t> todo(open_caps.rbegin(), open_caps.rend());
+  const auto settle = [&](std::size_t cap) {  // removed: mended or not
+    is_cap[cap] = 0;
+    remove(cap);
+    const auto found = waiting.find(cap);
+    if (found == waiting.end()) return;
+    todo.insert(todo.end(), found->second.begin(), found->second.end());
+    waiting.erase(found);
+  };
+  while (!todo.empty()) {
+    const std::size_t cap = todo.back();
+    todo.pop_back();
+    if (!(*keep)[cap] || !is_cap[cap]) continue;
+    int longest = 0;
+    ShapeOf(points, tri[cap], needle_tolerance, nullptr, &longest);
+    const std::size_t u = tri[cap][longest], v = tri[cap][(longest + 1) % 3];
+    const std::size_t tip = tri[cap][(longest + 2) % 3];
+    const std::vector<std::size_t> across = fans.With(u, v, cap);
+    const auto other_cap =
+        std::find_if(across.begin(), across.end(), [&](std::size_t t) { return is_cap[t] != 0; });
+    if (other_cap != across.end()) {
+      if (across.size() <= 2) {  // a cap of the chain: mended, or not, before this one
+        waiting[*other_cap].push_back(cap);
+        continue;
+      }
+    } else if (across.size() == 1) {
+      const std::size_t n = across[0];
+      const Polygon whole = tri[n];
+      const int i = whole[0] != u && whole[0] != v ? 1 : (whole[1] != u && whole[1] != v ? 2 : 0);
+      // the long edge is whole[i] -> whole[i + 1]; the halves keep whole's winding
+      Polygon first = whole, second = whole;
+      first[(i + 1) % 3] = tip;
+      second[i] = tip;
+      if (!Has(whole, tip) && ShapeOf(points, first, needle_tolerance) == Shape::kSound &&
+          ShapeOf(points, second, needle_tolerance) == Shape::kSound) {
+        const std::size_t half = tri.size();
+        tri[n] = first;
+        tri.push_back(second);
+        faces->push_back((*faces)[n]);
+        keep->push_back(1);
+        is_cap.push_back(0);
+        if (!corner_normals->empty()) {
+          // the CAD surface's normal at the tip, from those at the edge's ends: exact on
+          // a sphere or a cylinder
+          const std::array<Vec3, 3> old = (*corner_normals)[n];
+          const Vec3 a = ToVec(points[whole[i]]), b = ToVec(points[whole[(i + 1) % 3]]);
+          const double s =
+              std::clamp((ToVec(points[tip]) - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+          const Vec3 blend = (1.0 - s) * old[i] + s * old[(i + 1) % 3];
+          const double length = blend.norm();
+          const Vec3 normal = std::isfinite(length) && length > 1e-6
+                                  ? Vec3(blend / length)
+                                  : old[s < 0.5 ? i : (i + 1) % 3];  // opposite: the nearer end's
+          (*corner_normals)[n][(i + 1) % 3] = normal;
+          std::array<Vec3, 3> halved = old;
+          halved[i] = normal;
+          corner_normals->push_back(halved);
+        }
+        fans.Remove(whole[(i + 1) % 3], n);
+        fans.Add(tip, n);
+        for (const std::size_t w : second) fans.Add(w, half);
+        ++r->split_caps;
+      }
+    }
+    settle(cap);
+  }
+  for (const std::size_t t : open_caps) {  // caps that waited on each other
+    if ((*keep)[t] && is_cap[t]) remove(t);
+  }
 }
 
 }  // namespace
@@ -508,6 +764,8 @@ std::string RepairReport::Describe() const {
   item(merged_vertices, "duplicate vertices merged");
   item(welded_vertices, "of them welded across open edges");
   item(removed_degenerate, "degenerate or needle triangles removed");
+  item(collapsed_needles, "needles collapsed (the two ends of the short edge welded)");
+  item(split_caps, "caps mended (the triangle across the long edge split at the tip)");
   item(removed_duplicates, "duplicate triangles removed");
   item(reoriented, "triangles reoriented");
   item(inside_out_shells, "closed shells wound inside out turned round");
@@ -597,12 +855,7 @@ TriangleSoup RepairSoup(const TriangleSoup& soup, const RepairOptions& options,
 
   // 3. degenerate and duplicate triangles
   std::vector<char> keep(polygons.size(), 1);
-  for (std::size_t t = 0; t < polygons.size(); ++t) {
-    if (Degenerate(points, polygons[t], options.needle_tolerance)) {
-      keep[t] = 0;
-      ++r.removed_degenerate;
-    }
-  }
+  MendDegenerate(points, options.needle_tolerance, &polygons, &faces, &corner_normals, &keep, &r);
   {
     std::vector<std::pair<std::array<std::size_t, 3>, std::size_t>> keys;
     for (std::size_t t = 0; t < polygons.size(); ++t) {

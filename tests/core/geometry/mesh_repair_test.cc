@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <map>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -120,6 +121,180 @@ TEST(MeshRepair, RemovesDegenerateNeedleAndDuplicateTriangles) {
   EXPECT_EQ(r.removed_duplicates, 2u);
   EXPECT_EQ(out.triangles.size(), 12u);
   EXPECT_TRUE(r.watertight()) << r.Describe();
+}
+
+// The unit box with its top (CAD face 5) tessellated again with more vertices on its
+// front edge 4-5, (0, 0, 1)-(1, 0, 1), for a filler to close: as FreeCAD's mesher leaves
+// T-junctions. The box's own front triangle 0-5-4 keeps the whole edge.
+TriangleSoup BoxWithANewTop(const std::vector<Vec3>& more,
+                            const std::vector<std::array<std::int32_t, 3>>& top) {
+  TriangleSoup s = testing::MakeBoxSoup(Vec3(0, 0, 0), Vec3(1, 1, 1));
+  s.triangles.resize(10);  // the top's two triangles go
+  s.cad_faces.resize(10);
+  s.vertices.insert(s.vertices.end(), more.begin(), more.end());
+  for (const auto& t : top) {
+    s.triangles.push_back(t);
+    s.cad_faces.push_back(5);
+  }
+  return s;
+}
+
+TEST(MeshRepair, ACollinearCapAtATJunctionIsMendedSoAClosedSoupStaysClosed) {
+  // the top fanned from 8, the middle of the front edge, and a cap 4-5-8 (zero area)
+  // filling the T-junction between the top's edges 4-8, 8-5 and the front's 5-4: every
+  // edge has two triangles. Removed, the cap would leave three open edges
+  TriangleSoup s = BoxWithANewTop({Vec3(0.5, 0, 1)}, {{4, 8, 6}, {8, 5, 7}, {8, 7, 6}, {4, 5, 8}});
+  // corner normals of a ball round the box's centre: what the split's new corner gets,
+  // interpolated between the front edge's ends, is the ball's own there
+  const auto ball = [](const Vec3& v) { return Vec3((v - Vec3::Constant(0.5)).normalized()); };
+  for (const auto& t : s.triangles) {
+    s.corner_normals.push_back(
+        {ball(s.vertices[t[0]]), ball(s.vertices[t[1]]), ball(s.vertices[t[2]])});
+  }
+  for (const double shift : {0.0, 1e6}) {
+    TriangleSoup moved = s;
+    for (Vec3& v : moved.vertices) v += Vec3::Constant(shift);
+    TriangleSoup out;
+    const RepairReport r = Repair(moved, &out);
+    const std::string where = "shift " + std::to_string(shift) + ": " + r.Describe();
+    EXPECT_TRUE(r.watertight()) << where;
+    EXPECT_EQ(r.boundary_edges, 0u) << where;
+    EXPECT_EQ(r.removed_degenerate, 1u) << where;
+    EXPECT_EQ(r.split_caps, 1u) << where;
+    EXPECT_EQ(r.output_triangles, 14u) << where;  // 14 in: the cap out, the front's 0-5-4 in two
+    EXPECT_NE(r.Describe().find("1 caps mended"), std::string::npos) << where;
+    // the front (CAD face 2) is now 0-1-5, 0-5-8 and 0-8-4; every corner keeps the
+    // ball's normal at its vertex
+    int front = 0;
+    for (std::size_t t = 0; t < out.triangles.size(); ++t) {
+      front += out.cad_faces[t] == 2;
+      for (int k = 0; k < 3; ++k) {
+        const Vec3 at = out.vertices[out.triangles[t][k]] - Vec3::Constant(shift);
+        EXPECT_LT((out.corner_normals[t][k] - ball(at)).norm(), 1e-12) << where << ", " << t;
+      }
+    }
+    EXPECT_EQ(front, 3) << where;
+    EXPECT_NO_THROW(
+        TriangleMesh::Build(out.vertices, out.triangles, out.cad_faces, out.corner_normals));
+  }
+}
+
+TEST(MeshRepair, AChainOfCapsIsMendedCapByCap) {
+  // two vertices on the front edge, 8 at x = 0.25 and 9 at 0.5, and two caps: 4-5-9
+  // across the front's edge 4-5, and 4-9-8 across the first cap's edge 4-9. Listed
+  // first, the second waits for the first's split to give it a triangle across
+  TriangleSoup s =
+      BoxWithANewTop({Vec3(0.25, 0, 1), Vec3(0.5, 0, 1)},
+                     {{6, 4, 8}, {6, 8, 9}, {6, 9, 5}, {6, 5, 7}, {4, 9, 8}, {4, 5, 9}});
+  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+    s.corner_normals.push_back({Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()});
+  }
+  TriangleSoup out;
+  const RepairReport r = Repair(s, &out);
+  EXPECT_TRUE(r.watertight()) << r.Describe();
+  EXPECT_EQ(r.split_caps, 2u) << r.Describe();
+  EXPECT_EQ(r.removed_degenerate, 2u) << r.Describe();
+  EXPECT_EQ(r.output_triangles, 16u) << r.Describe();
+  EXPECT_EQ(std::count(out.cad_faces.begin(), out.cad_faces.end(), 2), 4);  // the front, in four
+  // the split corners' normals are unit (interpolated) and the mesh takes them
+  EXPECT_NO_THROW(
+      TriangleMesh::Build(out.vertices, out.triangles, out.cad_faces, out.corner_normals));
+}
+
+TEST(MeshRepair, TJunctionCapsAllOverASphereAreAllMendedWithTheSpheresNormals) {
+  // an icosphere where each triangle a-b-c not yet taken, whose neighbour b-a-d across
+  // its first edge is not either, is cut in two at that edge's middle m (a T-junction:
+  // a-m-c, m-b-c) and a cap a-b-m fills it against b-a-d. Every corner normal is the
+  // sphere's own at its vertex (m/|m| at m): so must be the ones the splits add
+  const TriangleSoup sphere = MakeIcosphere(6, 10.0);
+  const auto radial = [](const Vec3& v) { return Vec3(v.normalized()); };
+  std::map<std::pair<std::int32_t, std::int32_t>, std::size_t> by_edge;
+  for (std::size_t t = 0; t < sphere.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      by_edge[{sphere.triangles[t][k], sphere.triangles[t][(k + 1) % 3]}] = t;
+    }
+  }
+  std::vector<char> taken(sphere.triangles.size(), 0);
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;  // a-b-c and its neighbour b-a-d
+  for (std::size_t t = 0; t < sphere.triangles.size(); ++t) {
+    const std::size_t across = by_edge.at({sphere.triangles[t][1], sphere.triangles[t][0]});
+    if (taken[t] || taken[across]) continue;
+    taken[t] = taken[across] = 1;
+    pairs.emplace_back(t, across);
+  }
+  TriangleSoup soup;
+  soup.vertices = sphere.vertices;
+  for (std::size_t t = 0; t < sphere.triangles.size(); ++t) {
+    if (!taken[t]) soup.triangles.push_back(sphere.triangles[t]);
+  }
+  for (const auto& [t, across] : pairs) {
+    const auto [a, b, c] = sphere.triangles[t];
+    const auto m = static_cast<std::int32_t>(soup.vertices.size());
+    soup.vertices.push_back(0.5 * (sphere.vertices[a] + sphere.vertices[b]));
+    soup.triangles.push_back({a, m, c});
+    soup.triangles.push_back({m, b, c});
+    soup.triangles.push_back({a, b, m});
+    soup.triangles.push_back(sphere.triangles[across]);
+  }
+  const std::size_t caps = pairs.size();
+  for (const auto& t : soup.triangles) {
+    soup.cad_faces.push_back(0);
+    soup.corner_normals.push_back(
+        {radial(soup.vertices[t[0]]), radial(soup.vertices[t[1]]), radial(soup.vertices[t[2]])});
+  }
+  ASSERT_GT(caps, sphere.triangles.size() / 4);
+  TriangleSoup out;
+  const RepairReport r = Repair(soup, &out);
+  EXPECT_TRUE(r.watertight()) << r.Describe();
+  EXPECT_EQ(r.split_caps, caps) << r.Describe();
+  EXPECT_EQ(r.removed_degenerate, caps) << r.Describe();
+  EXPECT_EQ(r.output_triangles, sphere.triangles.size() + 2 * caps) << r.Describe();
+  EXPECT_EQ(r.reoriented, 0u) << r.Describe();
+  for (std::size_t t = 0; t < out.triangles.size(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LT((out.corner_normals[t][k] - radial(out.vertices[out.triangles[t][k]])).norm(),
+                1e-12)
+          << t;
+    }
+  }
+  EXPECT_NO_THROW(
+      TriangleMesh::Build(out.vertices, out.triangles, out.cad_faces, out.corner_normals));
+}
+
+TEST(MeshRepair, ANeedleIsCollapsedSoAClosedSoupStaysClosed) {
+  // the top fanned from two vertices 1e-12 apart in its middle, 8 and 9, and two needles
+  // 8-5-9 and 9-6-8 between the fans: every edge has two triangles. Removed, the needles
+  // would leave four open edges; collapsed, 8 and 9 are one vertex and the top one fan
+  const Vec3 middle(0.5, 0.5, 1);
+  TriangleSoup s =
+      BoxWithANewTop({middle, middle + Vec3(1e-12, 0, 0)},
+                     {{4, 5, 8}, {5, 7, 9}, {7, 6, 9}, {6, 4, 8}, {8, 5, 9}, {9, 6, 8}});
+  TriangleSoup out;
+  const RepairReport r = Repair(s, &out);
+  EXPECT_TRUE(r.watertight()) << r.Describe();
+  EXPECT_EQ(r.collapsed_needles, 1u) << r.Describe();
+  EXPECT_EQ(r.removed_degenerate, 2u) << r.Describe();
+  EXPECT_EQ(r.output_triangles, 14u) << r.Describe();
+  EXPECT_EQ(out.vertices.size(), 9u);
+  EXPECT_NE(r.Describe().find("1 needles collapsed"), std::string::npos) << r.Describe();
+  EXPECT_NO_THROW(
+      TriangleMesh::Build(out.vertices, out.triangles, out.cad_faces, out.corner_normals));
+}
+
+TEST(MeshRepair, ANeedleWhoseCollapseWouldPinchTheSurfaceIsRemovedAsBefore) {
+  // as above, with a fin 4-9-10 standing on the top: 4 is a neighbour of both 8 and 9
+  // without a triangle 8-9-4, so welding them would give edge 4-8 three triangles. The
+  // needles are removed, and what that opens is reported: their four outer edges and
+  // the fin's three
+  const Vec3 middle(0.5, 0.5, 1);
+  TriangleSoup s = BoxWithANewTop(
+      {middle, middle + Vec3(1e-12, 0, 0), Vec3(0.5, -1, 2)},
+      {{4, 5, 8}, {5, 7, 9}, {7, 6, 9}, {6, 4, 8}, {8, 5, 9}, {9, 6, 8}, {4, 9, 10}});
+  const RepairReport r = Repair(s);
+  EXPECT_EQ(r.collapsed_needles, 0u) << r.Describe();
+  EXPECT_EQ(r.removed_degenerate, 2u) << r.Describe();
+  EXPECT_EQ(r.non_manifold_edges, 0u) << r.Describe();
+  EXPECT_EQ(r.boundary_edges, 7u) << r.Describe();
 }
 
 TEST(MeshRepair, OrientsConsistentlyAndFlipsTheCornerNormalsWithTheTriangle) {

@@ -10,8 +10,19 @@
 //      within `weld_tolerance` of each other, which stitches the tessellations of
 //      neighbouring CAD faces so no crack is left between them;
 //   3. degenerate triangles (a repeated vertex, or thinner than `needle_tolerance` of
-//      their longest edge: needles and caps narrower than the proxy's edge tolerance,
-//      which covers the slit they leave) and duplicate triangles are removed;
+//      their longest edge: needles and caps narrower than the proxy's edge tolerance)
+//      and duplicate triangles are removed. Removing one must not open a closed
+//      surface (a T-junction's collinear filler is as much part of it as any other), so
+//      first it is mended: a needle (its shortest edge too below the tolerance: two
+//      vertices nearly one) has that edge collapsed, its two ends welded, which removes
+//      the triangle across it too; a cap (a vertex on its longest edge) has the one
+//      triangle across that edge split at the vertex, the halves keeping its CAD face,
+//      the new corner's normal interpolated along the edge (on a sphere or a cylinder,
+//      the surface's own). What cannot be mended (the edge open or of more than two
+//      triangles, a collapse that would pinch the surface, a split that would leave a
+//      degenerate half, two caps back to back) is removed, and step 6 reports what
+//      that leaves open. O(n) when nothing is degenerate, as in a CAD tessellation;
+//      else an O(n) pass more for each kind;
 //   4. orientation is made consistent (CGAL's orient_polygon_soup); a non-manifold
 //      edge or vertex is split by duplicating its vertex, as CGAL does, and counted;
 //   5. a closed piece wound inward with a vertex outside every other closed piece (a
@@ -53,6 +64,10 @@ struct RepairReport {
   std::size_t merged_vertices = 0;     // vertices folded into another (duplicates, welds)
   std::size_t welded_vertices = 0;     // of those, merged across an open edge within tolerance
   std::size_t removed_degenerate = 0;  // repeated vertex, zero area, needles and caps
+  std::size_t collapsed_needles = 0;   // needles whose short edge was welded (it and the
+                                       // triangle across are among those removed)
+  std::size_t split_caps = 0;          // of those removed, caps mended: the triangle across
+                                       // the long edge split in two at the cap's vertex
   std::size_t removed_duplicates = 0;  // same three vertices as another triangle
   std::size_t reoriented = 0;          // triangles flipped to agree with their neighbours
   std::size_t inside_out_shells = 0;   // closed pieces turned round (step 5)
