@@ -382,6 +382,8 @@ void DefineScene(py::module_& m) {
       .def_readonly("merged_vertices", &RepairReport::merged_vertices)
       .def_readonly("welded_vertices", &RepairReport::welded_vertices)
       .def_readonly("removed_degenerate", &RepairReport::removed_degenerate)
+      .def_readonly("collapsed_needles", &RepairReport::collapsed_needles)
+      .def_readonly("split_caps", &RepairReport::split_caps)
       .def_readonly("removed_duplicates", &RepairReport::removed_duplicates)
       .def_readonly("reoriented", &RepairReport::reoriented)
       .def_readonly("non_manifold_edges", &RepairReport::non_manifold_edges)
