@@ -526,19 +526,49 @@ def reference_status(surface):
 # seed 001's fastest stroke (§III: 50 to 270 mm/s); a grid a servo rate cannot follow
 # that fast is said
 FASTEST_STROKE_MM_S = 270.0
+# The harmonics of 1/g a roughness grid's force carries, by the balls' height (RoughnessHeight,
+# a share of the spacing g): along a row the balls' 1/g and, from the tilt of their normals
+# (strong in the normal force for categories 1-3) and the friction they modulate, 2/g; taller
+# balls tilt further and add more. Across the grid, a stroke meets rows and columns at once:
+# on its diagonal every line is sqrt(2) times as fine (2 sqrt(2) / g at the default height).
+# Measured (strokes at 20 kHz, 0, 30 and 45 degrees to the rows, lines of 3 % of the largest
+# or more): up to 2.83 / g for heights up to 0.1, 4.47 / g up to 0.3, 6 / g at 0.5; without
+# height (friction alone) 1.41 / g.
+GRID_HARMONICS_BY_HEIGHT = ((0.0, 1), (0.1, 2), (0.3, 4), (0.5, 6))
+# A line is felt as it is when it stays this share of half the servo rate or under: at half
+# the rate its strength is what the sampling's phase leaves of it (category 1 at 1 kHz and
+# 50 mm/s: a 0.041 or 0.155 N ripple for 0.161 N), and just under it, it beats with its image
+# more slowly than a stroke lasts (category 3 at 106 mm/s: its diagonal's 499.7 Hz line, 96 %
+# off); a tenth under it every category measured is felt as at 20 kHz, in every phase.
+GRID_NYQUIST_SHARE = 0.9
+
+
+def _grid_harmonics(height):
+    """How many harmonics of a row a grid with balls ``height`` (share of the spacing) tall
+    carries (GRID_HARMONICS_BY_HEIGHT)."""
+    return next((n for top, n in GRID_HARMONICS_BY_HEIGHT if height <= top + 1e-9), GRID_HARMONICS_BY_HEIGHT[-1][1])
+
+
+def _grid_fastest_mm_s(grid_mm, harmonics, rate_hz):
+    """The fastest stroke (mm/s, rounded down) at which a grid of ``grid_mm`` carrying
+    ``harmonics`` is felt as it is at ``rate_hz``: its finest line, harmonics sqrt(2) v / g
+    across the diagonal, at GRID_NYQUIST_SHARE of half the rate."""
+    fastest = GRID_NYQUIST_SHARE * grid_mm * float(rate_hz) / (2 * harmonics * math.sqrt(2))
+    return math.floor(fastest) if fastest >= 10 else math.floor(10 * fastest) / 10
 
 
 def _grid_beyond_rate(surface, rate_hz):
-    """(category, grid mm, fastest stroke felt as it is in mm/s) of a surface's roughness
-    grid that a loop at ``rate_hz`` cannot follow at FASTEST_STROKE_MM_S, else None."""
+    """(category, grid mm, fastest stroke felt as it is in mm/s, harmonics) of a surface's
+    roughness grid that a loop at ``rate_hz`` cannot follow at FASTEST_STROKE_MM_S, else None."""
     from . import _core
 
     if not surface.FeelRoughness or (surface.RoughnessHeight <= 0 and surface.RoughnessFrictionModulation <= 0):
         return None
     category = int(surface.RoughnessCategory)
     grid_mm = _core.roughness_category(category).grid_size_mm
-    fastest = grid_mm * float(rate_hz) / 2
-    return (category, grid_mm, fastest) if fastest < FASTEST_STROKE_MM_S else None
+    harmonics = _grid_harmonics(float(surface.RoughnessHeight))
+    fastest = _grid_fastest_mm_s(grid_mm, harmonics, rate_hz)
+    return (category, grid_mm, fastest, harmonics) if fastest < FASTEST_STROKE_MM_S else None
 
 
 def _raise_rate(where):
@@ -546,12 +576,13 @@ def _raise_rate(where):
 
 
 def rate_note(surface, rate_hz, where="in Preferences"):
-    """What a servo loop at ``rate_hz`` makes of ``surface``'s roughness grid: "" when a
-    stroke at FASTEST_STROKE_MM_S samples each ball of it at least twice, else up to what
-    speed it is felt as it is. Faster, the grid's v / g Hz passes half the rate and is felt
-    as a coarser ripple than the part has (category 1 at 1 kHz and 120 mm/s: 200 Hz, not
-    1200). Then texture_rate_note's sentence for its grating, if any. ``where`` says where
-    the rate is set."""
+    """What a servo loop at ``rate_hz`` makes of ``surface``'s roughness grid: "" when it is
+    felt as it is up to FASTEST_STROKE_MM_S, else up to what speed: while every harmonic it
+    carries stays under GRID_NYQUIST_SHARE of half the rate on every stroke direction
+    (_grid_beyond_rate). Faster, a harmonic passes half the rate and is felt as a coarser
+    ripple than the part has (category 1 at 1 kHz and 40 mm/s: its 800 Hz second harmonic,
+    the bumps' tilt, at 200 Hz). Then texture_rate_note's sentence for its grating, if any.
+    ``where`` says where the rate is set."""
     beyond = _grid_beyond_rate(surface, rate_hz)
     notes = [_grid_note(surface, beyond, rate_hz, where) if beyond else "",
              texture_rate_note(surface, rate_hz, where)]
@@ -559,10 +590,21 @@ def rate_note(surface, rate_hz, where="in Preferences"):
 
 
 def _grid_note(surface, beyond, rate_hz, where):
-    category, grid_mm, fastest = beyond
+    from .preferences import SERVO_RATE_RANGE_HZ
+
+    category, grid_mm, fastest, harmonics = beyond
+    most = SERVO_RATE_RANGE_HZ[1]
+    needed = math.ceil(2 * harmonics * math.sqrt(2) * FASTEST_STROKE_MM_S / (GRID_NYQUIST_SHARE * grid_mm))
+    if float(rate_hz) >= most:
+        remedy = f"Stroke slower: no servo rate up to {most} Hz follows it to {FASTEST_STROKE_MM_S:.0f} mm/s"
+    else:
+        remedy = (f"Stroke slower, or raise the servo rate {where} "
+                  + (f"({needed} Hz follows it to {FASTEST_STROKE_MM_S:.0f} mm/s)" if needed <= most else
+                     f"(at {most} Hz it is felt as it is up to {_grid_fastest_mm_s(grid_mm, harmonics, most):g} mm/s)"))
     return (f"{surface.Label}: roughness category {category}'s {grid_mm:g} mm grid is felt as it is up to "
-            f"{fastest:.0f} mm/s at the {float(rate_hz):g} Hz servo rate; stroked faster it is felt as a coarser "
-            f"ripple than the part has. {_raise_rate(where)}")
+            f"{fastest:g} mm/s at the {float(rate_hz):g} Hz servo rate (there its {_ordinal(harmonics)} harmonic, "
+            f"stroked across the grid's diagonal, comes within {100 * (1 - GRID_NYQUIST_SHARE):.0f} % of half the "
+            f"rate); stroked faster it is felt as a coarser ripple than the part has. {remedy}")
 
 
 def texture_rate_note(surface, rate_hz, where="in Preferences"):
@@ -608,7 +650,7 @@ def rate_notes(doc, rate_hz, where="in Preferences"):
     textures = [n for n in (texture_rate_note(s, rate_hz, where) for s in surfaces_of(doc)) if n]
     if len(beyond) <= 1:
         return [_grid_note(s, b, rate_hz, where) for s, b in beyond] + textures
-    each = ", ".join(f"{s.Label} (category {c}, {g:g} mm) up to {v:.0f} mm/s" for s, (c, g, v) in beyond)
+    each = ", ".join(f"{s.Label} (category {c}, {g:g} mm) up to {v:g} mm/s" for s, (c, g, v, _) in beyond)
     return [f"At the {float(rate_hz):g} Hz servo rate these roughness grids are felt as they are only when "
             f"stroked slowly: {each}; faster, they are felt as a coarser ripple than the part has. "
             f"{_raise_rate(where)}"] + textures
