@@ -240,6 +240,40 @@ def stiffness_note(doc_scene, face, limits, depth_mm, study=""):
             f"{k_most * depth_mm:.3g} N, not {k_set * depth_mm:.3g} N)")
 
 
+CLAMPED_NOTE_SHARE = 0.01  # of a textured face's slide held to the force limit: said
+
+
+def texture_clip_note(result, doc_scene, face):
+    """A sentence when the stroke's slide over textured ``face`` was held to the force limit
+    (FLAG_FORCE_CLAMPED) on CLAMPED_NOTE_SHARE of its ticks or more while the press alone
+    fits under it: the texture's drag and the press passed the limit together and the
+    renderer scaled the whole force down (the press felt lighter, eq. 2's ridges cut). It
+    says how much, how light the press fell, and the press that fits with the strongest drag
+    felt (the trace's texture force, before the scaling); "" otherwise."""
+    props = doc_scene.surface_properties(face)
+    limit = float(result.limits.max_force_n)
+    depth = result.stroke.depth_mm
+    pressed = expected_normal_force_n(doc_scene, face, result.limits, depth)
+    if props.texture is None or pressed >= limit:  # a press past the limit is said as such
+        return ""
+    trace = result.trace
+    slide = (_contact(trace) & (trace["cad_face"] == face) & (trace["time_s"] > result.plan.slide_start_s)
+             & (trace["time_s"] < result.plan.slide_end_s) & (trace["texture_force_n"] > 0))
+    held = slide & ((trace["flags"] & _core.FLAG_FORCE_CLAMPED) != 0)
+    if not slide.any() or held.sum() < CLAMPED_NOTE_SHARE * slide.sum():
+        return ""
+    if props.texture.scale == _core.TextureScale.FRICTION_LEVEL:  # the drag grows with the press
+        ratio = float((trace["tangential_force_n"][held] / np.maximum(trace["normal_force_n"][held], 1e-12)).max())
+        fits = limit / math.sqrt(1.0 + ratio ** 2)
+    else:
+        fits = math.sqrt(max(limit ** 2 - float(trace["texture_force_n"][slide].max()) ** 2, 0.0))
+    return (f"{_face_named(doc_scene, face)}: {100 * held.sum() / slide.sum():.0f} % of the slide was held to the "
+            f"{limit:g} N force limit: the texture's drag (up to {float(trace['texture_force_n'][slide].max()):.2f} "
+            f"N) and the {pressed:.2f} N press passed it together and the whole force was scaled down, the press to "
+            f"as little as {float(trace['normal_force_n'][held].min()):.2f} N and the grating's ridges with it; "
+            f"pressed at most {fits:.2f} N it fits (or give the texture a smaller Full range)")
+
+
 def expected_normal_force_n(doc_scene, face, limits, depth_mm):
     """What the face pushes back with at ``depth_mm`` on this device: its stiffness
     study's law (stretched to the device as the renderer does), else k x depth."""
@@ -269,7 +303,8 @@ def summarize(result, doc_scene, studies=None):
     study governing it (``studies``: study_labels; its law's steepest slope as
     study_stiffness_n_per_mm, null for none); the device's limits; and ``notes``, sentences
     on what was felt otherwise than set (a study's law in place of the surface's stiffness,
-    a face stiffer than the device renders stably: stiffness_note)."""
+    a face stiffer than the device renders stably: stiffness_note; a texture whose drag with
+    the press passed the force limit: texture_clip_note)."""
     studies = studies or {}
     trace = result.trace
     contact = _contact(trace)
@@ -317,9 +352,10 @@ def summarize(result, doc_scene, studies=None):
         "force_limit_n": float(result.limits.max_force_n),
         "max_stiffness_n_per_mm": float(result.limits.max_stiffness_n_per_m * MM),  # the device's, stable
         # what the stroke felt otherwise than the document sets it, as sentences (`hapticad feel` says them)
-        "notes": [note for note in (stiffness_note(doc_scene, face, result.limits, result.stroke.depth_mm,
-                                                   studies.get(doc_scene.face_names[face], ""))
-                                    for face in sorted(set(int(f) for f in trace["cad_face"][contact]))) if note],
+        "notes": [note for face in sorted(set(int(f) for f in trace["cad_face"][contact]))
+                  for note in (stiffness_note(doc_scene, face, result.limits, result.stroke.depth_mm,
+                                              studies.get(doc_scene.face_names[face], "")),
+                               texture_clip_note(result, doc_scene, face)) if note],
         "accuracy": _accuracy_summary(doc_scene),
         "overruns": int(result.stats.overruns),
         "skipped_ticks": int(result.stats.skipped_ticks),

@@ -13,7 +13,8 @@ def session_notes(doc, rate_hz, force_limit_n, where="in Preferences"):
     """The Feel panel's notes on ``doc`` for a session at ``rate_hz`` (Hz) held to
     ``force_limit_n`` (N), as sentences, in this order: vibrations felt nowhere (their part
     deleted); what the servo rate and the force limit keep a vibration from being felt as
-    set; the roughness grids and gratings the rate cannot follow at a brisk stroke; tagged
+    set; the roughness grids and gratings the rate cannot follow at a brisk stroke; the
+    textures that leave the press too little of the force limit (texture_force_notes); tagged
     parts hidden behind what is shown (a Cut or a Fillet made after tagging: the hidden
     shape is felt), each part once. ``where`` says where the rate is set."""
     from . import surface_object, vibration_object
@@ -25,24 +26,41 @@ def session_notes(doc, rate_hz, force_limit_n, where="in Preferences"):
                 if v.Part is None]
     return (partless + vibration_object.rate_notes(doc, rate_hz, where)
             + vibration_object.force_notes(doc, force_limit_n)
-            + surface_object.rate_notes(doc, rate_hz, where) + hidden)
+            + surface_object.rate_notes(doc, rate_hz, where) + texture_force_notes(doc, force_limit_n) + hidden)
 
 
-def texture_notes(doc):
-    """surface_compile.texture_notes of each surface of ``doc`` (a grating clipped at its
-    full range, or one whose harmonics grow), each led by the surface's Label, as the
-    surface panel shows them. A surface whose texture cannot be compiled says nothing here:
-    building the scene names it."""
-    from .surface_compile import texture_notes as surface_texture_notes
+def _each_surface(doc, notes_of):
+    """``notes_of(surface)`` of each surface of ``doc``, each led by the surface's Label; a
+    surface whose texture cannot be compiled says nothing here: building the scene names it."""
     from .surface_object import surfaces_of
 
     notes = []
     for surface in surfaces_of(doc):
         try:
-            notes += [f"{surface.Label}: {note}" for note in surface_texture_notes(surface)]
+            notes += [f"{surface.Label}: {note}" for note in notes_of(surface) if note]
         except ValueError:
             continue
     return notes
+
+
+def texture_force_notes(doc, force_limit_n):
+    """surface_compile.texture_force_note of each surface of ``doc`` held to
+    ``force_limit_n`` (N): a texture whose drag, with the press, passes the force limit, so
+    the renderer scales the whole force down (the press felt lighter, the ridges cut), with
+    the press that fits; as the surface panel says it at the limit in use."""
+    from .surface_compile import texture_force_note
+
+    return _each_surface(doc, lambda surface: [texture_force_note(surface, force_limit_n)])
+
+
+def texture_notes(doc):
+    """surface_compile.texture_shape_notes of each surface of ``doc`` (a grating clipped at
+    its full range, one whose harmonics grow, one finer across a Curve pattern's ridges than
+    its period), each led by the surface's Label, as the surface panel shows them (its note on
+    the force limit is session_notes')."""
+    from .surface_compile import texture_shape_notes
+
+    return _each_surface(doc, texture_shape_notes)
 
 
 def study_notes(doc):

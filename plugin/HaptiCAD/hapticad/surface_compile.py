@@ -181,10 +181,7 @@ def curve_notes(surface):
         except ValueError:
             return []
         ends = [(_vec(curve.value(t), MM) - frame[0]).dot(y) for t in (curve.FirstParameter, curve.LastParameter)]
-        # a face's extent along a direction: its boundary, sampled (its edges bound it)
-        points = [_vec(p, MM) for edge in face.Edges for p in edge.discretize(Number=33)]
-        heights = [(p - frame[0]).dot(y) for p in points]
-        lo, hi = min(heights), max(heights)
+        lo, hi = _extent_along(face, frame[0], y)
         if hi - lo < 1e-9:
             continue
         beyond = (max(0.0, min(ends) - lo) + max(0.0, hi - max(ends))) / (hi - lo)
@@ -193,6 +190,68 @@ def curve_notes(surface):
             notes.append(f"{obj.Label}.{sub}: {where} lies beyond the ends of {surface.PatternCurve[0].Label} "
                          f"(along the curve), where the stripes run straight on in its end directions: "
                          f"draw the curve across the face to feel its shape there")
+    return notes
+
+
+def _extent_along(face, origin, direction):
+    """(lowest, highest) m of ``face`` along the unit ``direction`` from ``origin``: its
+    boundary, sampled (its edges bound it)."""
+    heights = [(_vec(p, MM) - origin).dot(direction) for edge in face.Edges for p in edge.discretize(Number=33)]
+    return min(heights), max(heights)
+
+
+CURVE_PERIOD_NOTE = 0.95  # a grating felt this much finer across a Curve pattern's ridges, or more, is said
+CURVE_PERIOD_SAMPLES = 257  # heights over a face at which the curve's lean is read
+
+
+def curve_grating_periods(surface):
+    """[(Object.FaceN, finest period felt mm, largest lean deg)] over the tagged faces of a
+    Curve pattern that carries a texture. The ridges are the curve slid along the family's
+    translation axis x (seed 000 Fig. 7; the grating's coordinate is the member's offset
+    along x, CurvePattern::MemberOffset), so where the curve leans by an angle a from the
+    lookup axis y, along its chord, neighbouring ridges lie lambda cos a apart across them:
+    on a 90 degree arc 1.77 mm for 2.5 mm at its ends. Inherent in a translated family (no
+    coordinate constant along every member has a constant gradient). Read from the core's
+    pattern at the heights the face spans (beyond the curve's ends its end directions run on,
+    as the renderer has them). [] for other patterns, no texture, or a curve that cannot be
+    built (validate() says why)."""
+    if surface.Pattern != "Curve" or surface.Texture == "None" or surface.PatternCurve is None:
+        return []
+    from .surface_object import active_reference_pairs
+
+    period = float(surface.TexturePeriod)
+    found = []
+    for obj, sub in active_reference_pairs(surface):
+        face = global_shape(obj).getElement(sub)
+        frame = face_frame(face, float(surface.PatternAngle))
+        try:
+            _, _, y = _pattern_curve_in_plane(surface, frame)
+            family = curve_pattern(surface, frame)
+        except ValueError:
+            return []
+        lo, hi = _extent_along(face, frame[0], y)
+        # the tangent's angle from x: |sin| of it is the cosine of its lean from y
+        across = min(abs(math.sin(family.exact_angle(h))) for h in np.linspace(lo, hi, CURVE_PERIOD_SAMPLES))
+        found.append((f"{obj.Label}.{sub}", period * across, math.degrees(math.acos(min(across, 1.0)))))
+    return found
+
+
+def curve_grating_notes(surface):
+    """A sentence for each face on which a Curve pattern's grating is felt CURVE_PERIOD_NOTE
+    finer across its ridges than its TexturePeriod, or more (curve_grating_periods), with why
+    and the period that gives TexturePeriod there."""
+    period = float(surface.TexturePeriod) if surface.Texture != "None" else 0.0
+    notes = []
+    for name, finest, lean in curve_grating_periods(surface):
+        if finest >= CURVE_PERIOD_NOTE * period:
+            continue
+        curve = surface.PatternCurve[0].Label
+        fits = (f"; a TexturePeriod of {period * period / finest:.3g} mm is felt {period:g} mm there (coarser where "
+                f"it leans less)" if finest > 1e-3 * period else "")
+        notes.append(f"{name}: the {period:g} mm texture grating is felt as fine as {finest:.3g} mm across its ridges, "
+                     f"where {curve} leans {lean:.0f}° from the line between its ends: the ridges are copies of "
+                     f"{curve} slid across that line (seed 000 Fig. 7), so where it leans by an angle a they lie "
+                     f"{period:g} mm × cos a apart{fits}")
     return notes
 
 
@@ -242,18 +301,40 @@ def _degenerate_ellipse_notes(surface):
             f"give {name} above 0" for name, what in zero]
 
 
-def texture_notes(surface):
-    """What a designer should know about a surface's texture that is not an error, as
-    sentences: eq. 2 gives levels the renderer clips (it renders 0..1 of the full range)
-    at the paper's stroking speeds, or harmonics that grow with their order."""
+def _texture_values(surface):
+    """{property: value} of a surface's own texture (eq. 2's values and its period), or None
+    without one or with values that are not finite (validate() says so)."""
     if surface.Texture == "None":
-        return []
+        return None
     texture = {k: getattr(surface, k) for k in (*TEXTURE_VALUES, "TexturePeriod")}
-    if not all(math.isfinite(v) for v in texture.values()):
-        return []  # validate() says so
+    return texture if all(math.isfinite(v) for v in texture.values()) else None
+
+
+def _texture_levels(texture):
+    """Eq. 2's levels (unclipped) over a period at TYPICAL_SPEEDS_MPS."""
     params = viscous_params(texture)
     xs = np.arange(LEVEL_SAMPLES) * params.period_m / LEVEL_SAMPLES
-    levels = np.array([_core.viscous_texture_level(params, x, v) for v in TYPICAL_SPEEDS_MPS for x in xs])
+    return np.array([_core.viscous_texture_level(params, x, v) for v in TYPICAL_SPEEDS_MPS for x in xs])
+
+
+def texture_notes(surface, force_limit_n=None):
+    """What a designer should know about a surface's texture that is not an error, as
+    sentences, as the surface panel shows them: texture_shape_notes, and texture_force_note's
+    at the force limit ``force_limit_n`` (N; None: the one a Feel session would render with,
+    force_limit_in_use)."""
+    force = texture_force_note(surface, force_limit_n)
+    return texture_shape_notes(surface) + ([force] if force else [])
+
+
+def texture_shape_notes(surface):
+    """What a texture is felt as other than its values say, whatever the force limit, as
+    sentences: eq. 2 gives levels the renderer clips (it renders 0..1 of the full range) at
+    the paper's stroking speeds, harmonics that grow with their order, or, on a Curve
+    pattern, a grating finer across its ridges than its period (curve_grating_notes)."""
+    texture = _texture_values(surface)
+    if texture is None:
+        return []
+    levels = _texture_levels(texture)
     notes = []
     if (levels >= 1).all():
         notes.append("the texture is at level 1 or more all over at 50-270 mm/s: felt as a flat drag at the full "
@@ -266,7 +347,81 @@ def texture_notes(surface):
     if texture["TextureAlpha"] < 0:
         notes.append(f"alpha_h {texture['TextureAlpha']:g} makes each harmonic stronger than the one before "
                      "(the paper's decay is 2.5)")
-    return notes
+    return notes + curve_grating_notes(surface)
+
+
+# A texture that leaves less than this share of the force limit for the press is said: at the
+# default 3 N, a press of 1.5 N (about 2 mm into ABS) and the paper's strongest preset at its
+# fastest stroke already pass it
+TEXTURE_PRESS_SHARE = 0.5
+
+
+def force_limit_in_use(doc):
+    """The force limit (N) a Feel session on ``doc`` would render with now: the Preferences'
+    under the chosen device's own (stiffness_study.rendered_force_limit_n)."""
+    from . import preferences, stiffness_study
+
+    return stiffness_study.rendered_force_limit_n(stiffness_study.device_render_limits(doc),
+                                                  preferences.load().force_limit_n)
+
+
+def _pattern_friction_factor(surface):
+    """(largest factor, where) by which a surface's friction pattern scales its friction in
+    some stroke direction, as the renderer scales the texture by it (1 and "" without a
+    pattern): AcrossFriction across the stripes, BackwardFriction against them."""
+    if surface.Pattern == "None" or float(surface.StaticFriction) <= 0:
+        return 1.0, ""
+    across, backward = float(surface.AcrossFriction), float(surface.BackwardFriction)
+    if max(across, backward) <= 1.0:
+        return 1.0, ""
+    return (across, "across the stripes") if across >= backward else (backward, "against the stripes' direction")
+
+
+def texture_force_note(surface, force_limit_n=None):
+    """A sentence when a surface's texture, at its strongest at the paper's speeds (and
+    where a friction pattern gives more friction, which it takes as friction does), leaves
+    less than TEXTURE_PRESS_SHARE of the force limit ``force_limit_n`` (N; None:
+    force_limit_in_use) for the press, else "". The renderer holds the whole force, press and
+    drag, to the limit by scaling both down: the paper's f_DC 0.675 f_vis +0.2 at 270 mm/s
+    (level 1 the 3 N limit, its drag up to 2.80 N) pressed 1.6 N had 41 % of its ticks held,
+    the press down to 1.49 N, eq. 2's first harmonic 24 % weaker and its third 35 % stronger.
+    It says the press that fits and a Full range that lets half the limit be pressed."""
+    texture = _texture_values(surface)
+    if texture is None:
+        return ""
+    level = float(np.clip(_texture_levels(texture), 0.0, 1.0).max())
+    limit = force_limit_in_use(surface.Document) if force_limit_n is None else float(force_limit_n)
+    if level <= 0 or not limit > 0:
+        return ""
+    factor, where = _pattern_friction_factor(surface)
+    where = f" {where}, where the pattern gives {factor:g} × the friction" if where else ""
+    press = TEXTURE_PRESS_SHARE * limit
+    scaled = ("the press and the drag pass the limit together and the renderer scales the whole force down to "
+              "it: the press is felt lighter and the grating's ridges are cut")
+    if surface.TextureScale == "Friction level":  # a drag that grows with the press, as friction does
+        ratio = level * float(surface.StaticFriction) * factor
+        room = limit / math.sqrt(1.0 + ratio ** 2)
+        if room >= press:
+            return ""
+        return (f"the texture drags up to {ratio:.2f} × the press at 50-270 mm/s{where} (level {level:.2f} of μs "
+                f"{float(surface.StaticFriction):g} × the press): pressed harder than {room:.2f} N, {scaled}; "
+                f"press lighter, or lower its levels")
+    full = float(surface.TextureFullRange)
+    level_one = f"its {full:g} N Full range" if full > 0 else f"the device's full range, the {limit:g} N force limit"
+    drag = level * (full if full > 0 else limit) * factor
+    room = math.sqrt(max(limit ** 2 - drag ** 2, 0.0))
+    if room >= press:
+        return ""
+    fits = math.floor(100 * math.sqrt(limit ** 2 - press ** 2) / (level * factor)) / 100
+    remedy = f"give Full range {fits:.2f} N or less to press up to {press:g} N"
+    said = f"the texture drags up to {drag:.2f} N at 50-270 mm/s{where} (level {level:.2f} of {level_one})"
+    if drag >= limit:
+        return f"{said}, as much as the {limit:g} N force limit or more: under any press {scaled}; {remedy}"
+    deep = ""
+    if force_travel_of(surface) is None and float(surface.Stiffness) > 0:
+        deep = f" ({room / float(surface.Stiffness):.2g} mm into its {float(surface.Stiffness):g} N/mm)"
+    return (f"{said}, which leaves {room:.2f} N of the {limit:g} N force limit for the press: pressed harder{deep}, "
+            f"{scaled}; press lighter, or {remedy}")
 
 
 def curved_face_notes(surface):

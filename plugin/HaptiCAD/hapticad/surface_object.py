@@ -613,30 +613,50 @@ def texture_rate_note(surface, rate_hz, where="in Preferences"):
     the rate up to FASTEST_STROKE_MM_S, else up to what speed it is felt as designed.
     Faster, the harmonics (and past lambda rate / 2, the grating itself) are sampled too
     rarely and felt at a lower, wrong pitch: a 1 mm grating at 1 kHz is felt as designed
-    up to 125 mm/s, and its fundamental aliases past 500 mm/s."""
+    up to 125 mm/s, and its fundamental aliases past 500 mm/s. lambda is the finest period
+    felt: on a Curve pattern, across its ridges where they lie closest (_finest_period_mm)."""
     from . import _core
     from .preferences import SERVO_RATE_RANGE_HZ
 
     if surface.Texture == "None":
         return ""
     period_mm = float(surface.TexturePeriod)
+    felt_mm = _finest_period_mm(surface)
     harmonics = _core.VISCOUS_HARMONICS
-    fastest = period_mm * float(rate_hz) / (2 * harmonics)
+    fastest = felt_mm * float(rate_hz) / (2 * harmonics)
     if fastest >= FASTEST_STROKE_MM_S:
         return ""
-    fundamental = period_mm * float(rate_hz) / 2
+    fundamental = felt_mm * float(rate_hz) / 2
     itself = (f", and beyond {fundamental:.0f} mm/s the grating itself," if fundamental < FASTEST_STROKE_MM_S
               else "")
-    needed = math.ceil(2 * harmonics * FASTEST_STROKE_MM_S / period_mm)
+    needed = math.ceil(2 * harmonics * FASTEST_STROKE_MM_S / felt_mm)
     raise_to = (f"raise the servo rate {where} ({needed} Hz follows it to {FASTEST_STROKE_MM_S:.0f} mm/s)"
                 if needed <= SERVO_RATE_RANGE_HZ[1] else
                 f"lengthen the period (at {SERVO_RATE_RANGE_HZ[1]} Hz, "
-                f"{2 * harmonics * FASTEST_STROKE_MM_S / SERVO_RATE_RANGE_HZ[1]:.3g} mm follows it to "
-                f"{FASTEST_STROKE_MM_S:.0f} mm/s)")
-    return (f"{surface.Label}: its {period_mm:g} mm texture grating is felt as designed up to {fastest:.0f} mm/s at "
-            f"the {float(rate_hz):g} Hz servo rate (there its {_ordinal(harmonics)} harmonic reaches half the "
+                f"{2 * harmonics * FASTEST_STROKE_MM_S / SERVO_RATE_RANGE_HZ[1] * period_mm / felt_mm:.3g} mm "
+                f"follows it to {FASTEST_STROKE_MM_S:.0f} mm/s)")
+    across = (f", {felt_mm:.3g} mm across the Curve pattern's ridges where they lie closest," if felt_mm < period_mm
+              else "")
+    return (f"{surface.Label}: its {period_mm:g} mm texture grating{across} is felt as designed up to {fastest:.0f} "
+            f"mm/s at the {float(rate_hz):g} Hz servo rate (there its {_ordinal(harmonics)} harmonic reaches half the "
             f"rate); stroked faster its harmonics{itself} are felt at a lower, wrong pitch. Stroke slower, or "
             f"{raise_to}")
+
+
+def _finest_period_mm(surface):
+    """The finest period (mm) ``surface``'s grating is felt at: its TexturePeriod, or, on a
+    Curve pattern, that across its ridges where they lie closest, lambda times the cosine of
+    the curve's largest lean over the tagged faces (surface_compile.curve_grating_periods)."""
+    period = float(surface.TexturePeriod)
+    if surface.Pattern != "Curve":
+        return period
+    from .surface_compile import curve_grating_periods
+
+    try:
+        found = [finest for _, finest, _ in curve_grating_periods(surface)]
+    except ValueError:  # a curve that cannot be built: validate() says why
+        return period
+    return max(min([period] + found), 1e-3 * period)  # (a curve along x: ridges that all but touch)
 
 
 def _ordinal(n):

@@ -1,5 +1,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Strokes: planning (approach, depth, slide, retreat) and clear errors."""
+import os
+import re
+import sys
 import unittest
 
 import numpy as np
@@ -10,6 +13,9 @@ import HaptiCAD
 from hapticad.document_scene import build_document_scene
 from hapticad import _core, feel
 from hapticad.feel import Stroke, plan_stroke, run_stroke_in_servo_loop, summarize
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from host_stalls import check_host_stall, rerun_after_host_stall  # noqa: E402
 
 
 class FeelTest(unittest.TestCase):
@@ -229,13 +235,70 @@ class FeelTest(unittest.TestCase):
             box.Visibility = hole.Visibility = False  # as FreeCAD's Cut leaves them
             surface.Texture, surface.TextureDC = "Custom", 1e6
             hidden = "Box is hidden, used by Cut: you feel Box's shape, not what is shown; tag the faces of Cut instead"
-            self.assertEqual(feel_notes.session_notes(doc, 1000.0, 3.0), [hidden])  # the Feel panel's
+            # the Feel panel's: and a texture at its full range all over leaves no force to press with
+            limited = (f"{surface.Label}: the texture drags up to 3.00 N at 50-270 mm/s (level 1.00 of the device's "
+                       "full range, the 3 N force limit), as much as the 3 N force limit or more")
+            session = feel_notes.session_notes(doc, 1000.0, 3.0)
+            self.assertEqual(session[1:], [hidden])
+            self.assertTrue(session[0].startswith(limited), session[0])
             notes = feel_notes.stroke_notes(doc, 1000.0, 3.0, "with --rate")
-            self.assertEqual(notes[0], hidden)
+            self.assertEqual(notes[:2], session)  # said once
+            self.assertEqual(sum(n.startswith(limited) for n in notes), 1)
             self.assertIn(f"{surface.Label}: the texture is at level 1 or more all over at 50-270 mm/s: felt as a "
                           "flat drag at the full range, its ridges clipped", notes)
         finally:
             App.closeDocument(doc.Name)
+
+    def grating_document(self):
+        """A 300 mm box whose top carries the paper's f_DC 0.675 f_vis +0.2 on ABS (0.8 N/mm),
+        its level 1 the force limit; its scene and the probe's limits under the default 3 N."""
+        doc = App.newDocument("FeelTextureHeld")
+        self.addCleanup(App.closeDocument, doc.Name)
+        box = doc.addObject("Part::Box", "Box")
+        box.Length, box.Width, box.Height = 300, 300, 10
+        doc.recompute()
+        surface = HaptiCAD.make_surface(doc, [(box, "Face6")], material="ABS", FeelRoughness=False,
+                                        Texture="Paper f_DC 0.675 f_vis +0.2")
+        surface.Label = "Grating"
+        limits = _core.simulated_probe_limits()
+        limits.max_force_n = 3.0  # the Preferences' default, as `hapticad feel` holds it (feel.probe_limits)
+        return doc, build_document_scene(doc), limits
+
+    @rerun_after_host_stall
+    def test_a_texture_whose_drag_with_the_press_passed_the_force_limit_is_said_with_what_fits(self):
+        # reviewer (make_texture_doc.py, hapticad feel, analyze_cli_grating.py): the paper's f_DC 0.675 f_vis +0.2
+        # on ABS under the 3 N limit, pressed 2 mm at 270 mm/s: 41 % of the ticks held to 3 N, the press down to
+        # 1.49 N from 1.6, eq. 2's ridges distorted, and "notes": []
+        from hapticad import feel_notes
+
+        doc, scene, limits = self.grating_document()
+        # said before feeling it, by the Feel panel and `hapticad feel` alike, at the session's limit
+        (said,) = feel_notes.session_notes(doc, 1000.0, 3.0)
+        self.assertTrue(said.startswith("Grating: the texture drags up to 2.80 N at 50-270 mm/s (level 0.93 of the "
+                                        "device's full range, the 3 N force limit), which leaves 1.07 N"), said)
+        self.assertEqual([n for n in feel_notes.stroke_notes(doc, 1000.0, 3.0, "with --rate") if "drags" in n],
+                         [said])
+        result = run_stroke_in_servo_loop(scene, Stroke((150, 20, 10), (150, 100, 10), speed_mm_s=270.0,
+                                                        depth_mm=2.0), limits)
+        check_host_stall(result.trace, _core.FLAG_FAULT_WATCHDOG)
+        (note,) = summarize(result, scene)["notes"]
+        held = re.match(r"Box\.Face6 \(Grating\): (\d+) % of the slide was held to the 3 N force limit: the "
+                        r"texture's drag \(up to 2\.80 N\) and the 1\.60 N press passed it together and the whole "
+                        r"force was scaled down, the press to as little as 1\.(\d\d) N and the grating's ridges "
+                        r"with it; pressed at most 1\.07 N it fits \(or give the texture a smaller Full range\)$",
+                        note)
+        self.assertIsNotNone(held, note)
+        self.assertAlmostEqual(int(held.group(1)), 41, delta=3)
+        self.assertAlmostEqual(int(held.group(2)), 49, delta=2)
+
+    @rerun_after_host_stall
+    def test_a_texture_whose_drag_with_the_press_fits_the_force_limit_says_nothing_of_it(self):
+        _, scene, limits = self.grating_document()
+        # pressed 1 mm (0.8 N, under the 1.07 N said) it fits: nothing held, nothing said
+        result = run_stroke_in_servo_loop(scene, Stroke((150, 20, 10), (150, 100, 10), speed_mm_s=270.0,
+                                                        depth_mm=1.0), limits)
+        check_host_stall(result.trace, _core.FLAG_FAULT_WATCHDOG)
+        self.assertEqual(summarize(result, scene)["notes"], [])
 
     def test_a_study_whose_law_is_not_felt_is_said_as_its_controls_say_it(self):
         # a duplicated study (two on one surface) dropped the neck's 0.556 N/mm for the

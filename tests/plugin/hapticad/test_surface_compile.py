@@ -293,6 +293,146 @@ class CompileTest(unittest.TestCase):
         s.TextureBeta, s.TextureAlpha = 0.125, -50.0
         self.assertTrue(any("alpha_h -50 makes each harmonic stronger" in n for n in texture_notes(s)))
 
+    def stroke(self, start_mm, end_mm, speed_mm_s, depth_mm, max_force_n):
+        """The renderer's output ({"force_w", "flags", ...}) of a stroke over the top of this
+        test's box at 1 kHz, ``depth_mm`` into it from ``start_mm`` to ``end_mm`` (x, y), the
+        probe set down at the start first; and the slide's ticks (a mask)."""
+        scene = build_document_scene(self.doc)
+        limits = _core.RenderLimits()
+        limits.max_force_n, limits.max_stiffness_n_per_m = max_force_n, 3000.0
+        top = float(self.box.Height)
+        start, end = (np.array([*p, top - depth_mm]) * 1e-3 for p in (start_mm, end_mm))
+        ticks = int(round(np.linalg.norm(end - start) / (speed_mm_s * 1e-3) * 1000))
+        path = np.vstack([start + [0, 0, (2 + depth_mm) * 1e-3], np.tile(start, (200, 1)),
+                          start + np.outer(np.arange(1, ticks + 1) / ticks, end - start)])
+        velocity = np.zeros_like(path)
+        velocity[-ticks:] = (end - start) / np.linalg.norm(end - start) * speed_mm_s * 1e-3
+        renderer = _core.ForceRenderer(scene.scene, scene.surfaces, limits, scene.contact_options())
+        out = _core.run_stroke(renderer, path, velocity, list(np.arange(len(path)) * 1e-3))
+        slide = np.zeros(len(path), bool)
+        slide[-ticks + 10:] = True
+        return out, slide
+
+    def test_a_texture_whose_drag_with_the_press_passes_the_force_limit_is_told(self):
+        # reviewer (texture_force_clip.py): the paper's f_DC 0.675 f_vis +0.2 on ABS (0.8 N/mm), its level 1 the
+        # 3 N force limit, pressed 2 mm at 270 mm/s: 40.8 % of the ticks held to 3 N by scaling the whole force
+        # down, the press 1.487 N for 1.6, eq. 2's first harmonic 24 % weaker, its third 35 % stronger; unsaid
+        from hapticad.surface_compile import texture_force_note
+
+        self.box.Length, self.box.Width = 300, 300
+        self.doc.recompute()
+        s = self.surface(FeelRoughness=False, Texture="Paper f_DC 0.675 f_vis +0.2")
+        note = texture_force_note(s, 3.0)
+        self.assertEqual(note, "the texture drags up to 2.80 N at 50-270 mm/s (level 0.93 of the device's full "
+                               "range, the 3 N force limit), which leaves 1.07 N of the 3 N force limit for the press: "
+                               "pressed harder (1.3 mm into its 0.8 N/mm), the press and the drag pass the limit "
+                               "together and the renderer scales the whole force down to it: the press is felt lighter "
+                               "and the grating's ridges are cut; press lighter, or give Full range 2.78 N or less to "
+                               "press up to 1.5 N")
+        # the surface panel's notes hold it at the limit a session would render with: the Preferences' 3 N
+        self.assertIn(note, texture_notes(s))
+
+        def held(depth_mm):
+            """The share of a 270 mm/s slide across the grating held to the 3 N limit."""
+            out, slide = self.stroke((150, 20), (150, 280), 270.0, depth_mm, 3.0)
+            return ((np.asarray(out["flags"])[slide] & _core.FLAG_FORCE_CLAMPED) != 0).mean()
+
+        self.assertAlmostEqual(held(2.0), 0.408, delta=0.01)  # the reviewer's stroke
+        self.assertEqual(held(1.3), 0.0)  # 1.04 N: fits, as said
+        self.assertGreater(held(1.4), 0.0)  # 1.12 N: more than the 1.07 N said
+        s.TextureFullRange = 2.78  # the Full range said: a 1.5 N press fits
+        self.assertEqual(held(1.5 / 0.8), 0.0)
+        s.TextureFullRange = 2.7
+        self.assertEqual(texture_force_note(s, 3.0), "")  # leaves 1.63 N: more than half the limit
+        s.TextureFullRange = 0.0
+        # level 1 is the limit: under a 6 N one, its drag grows with it, and so does what is left to press
+        self.assertTrue(texture_force_note(s, 6.0).startswith("the texture drags up to 5.61 N at 50-270 mm/s (level "
+                                                              "0.93 of the device's full range, the 6 N force limit), "
+                                                              "which leaves 2.14 N"))
+        # a pattern scales the texture as friction: across stripes of twice the friction it drags twice as hard
+        s.Pattern, s.AcrossFriction = "Linear", 2.0
+        self.assertEqual(texture_force_note(s, 3.0),
+                         "the texture drags up to 5.61 N at 50-270 mm/s across the stripes, where the pattern gives "
+                         "2 × the friction (level 0.93 of the device's full range, the 3 N force limit), as much as "
+                         "the 3 N force limit or more: under any press the press and the drag pass the limit together "
+                         "and the renderer scales the whole force down to it: the press is felt lighter and the "
+                         "grating's ridges are cut; give Full range 1.39 N or less to press up to 1.5 N")
+        self.assertGreater(held(1.0), 0.9)
+        s.AcrossFriction, s.BackwardFriction = 1.0, 1.5
+        self.assertIn("against the stripes' direction, where the pattern gives 1.5 × the friction",
+                      texture_force_note(s, 3.0))
+        # level 1 the face's friction: the drag grows with the press, which fits while friction would
+        s.Pattern, s.TextureScale = "None", "Friction level"
+        self.assertEqual(texture_force_note(s, 3.0), "")
+        s.Pattern, s.AcrossFriction, s.BackwardFriction, s.StaticFriction = "Linear", 2.0, 1.0, 1.2
+        self.assertEqual(texture_force_note(s, 3.0),
+                         "the texture drags up to 2.24 × the press at 50-270 mm/s across the stripes, where the "
+                         "pattern gives 2 × the friction (level 0.93 of μs 1.2 × the press): pressed harder than 1.22 "
+                         "N, the press and the drag pass the limit together and the renderer scales the whole force "
+                         "down to it: the press is felt lighter and the grating's ridges are cut; press lighter, or "
+                         "lower its levels")
+        s.Texture = "Paper f_DC 0.325 f_vis -0.2"
+        self.assertEqual(texture_force_note(s, 3.0), "")
+
+    def test_a_curve_patterns_grating_is_said_finer_across_its_ridges_where_the_curve_leans(self):
+        # reviewer (curve_grating_period.py): the ridges are the curve slid along x, so where a 90 degree arc
+        # leans 45 degrees the 2.5 mm grating was felt 1.77 mm across them (2.50 on a Linear pattern), unsaid
+        from hapticad import surface_object
+        from hapticad.surface_compile import curve_grating_periods
+
+        self.box.Length, self.box.Width = 100, 100
+        self.doc.recompute()
+        arc = self.sketch([Part.ArcOfCircle(Part.Circle(V(10, 50, 0), V(0, 0, 1), 40), -math.pi / 4, math.pi / 4)])
+        arc.Label = "Arc"
+        s = self.surface(FeelRoughness=False, Pattern="Curve", CurveEvaluation="Exact", AcrossFriction=1.0,
+                         Texture="Paper f_DC 0.500 f_vis +0.0", Stiffness=0.5)
+        s.PatternCurve = (arc, [])
+        self.doc.recompute()
+        ((face, finest, lean),) = curve_grating_periods(s)
+        self.assertEqual(face, "Box.Face6")
+        self.assertAlmostEqual(finest, 2.5 * math.cos(math.pi / 4), places=6)
+        self.assertAlmostEqual(lean, 45.0, places=6)
+        note = ("Box.Face6: the 2.5 mm texture grating is felt as fine as 1.77 mm across its ridges, where Arc leans "
+                "45° from the line between its ends: the ridges are copies of Arc slid across that line (seed 000 "
+                "Fig. 7), so where it leans by an angle a they lie 2.5 mm × cos a apart; a TexturePeriod of 3.54 mm "
+                "is felt 2.5 mm there (coarser where it leans less)")
+        self.assertIn(note, texture_notes(s))
+
+        def felt_period():
+            """The period (mm) of the texture force on a stroke across the ridges at 45 degrees, past
+            the arc's lower end, where its members run on straight along its end."""
+            across = np.array([1.0, -1.0]) / math.sqrt(2)
+            out, slide = self.stroke((22, 12), np.array([22, 12]) + 14 * across, 50.0, 1.0, 8.9)
+            force = -(np.asarray(out["force_w"])[slide][:, :2] @ across)
+            force -= force.mean()
+            spectrum = np.abs(np.fft.rfft(force * np.hanning(len(force)), 64 * len(force)))
+            return 1.0 / np.fft.rfftfreq(64 * len(force), 0.05)[np.argmax(spectrum[1:]) + 1]  # 0.05 mm a tick
+
+        self.assertAlmostEqual(felt_period(), 1.768, delta=0.01)
+        s.TexturePeriod = 3.54  # the period said
+        self.assertAlmostEqual(felt_period(), 2.5, delta=0.01)
+        self.assertTrue([n for n in texture_notes(s) if "across its ridges" in n][0].startswith(
+            "Box.Face6: the 3.54 mm texture grating is felt as fine as 2.5 mm across"))
+        # the servo rate's note reads the finest period felt: a 1 mm grating is 0.707 mm there
+        s.TexturePeriod = 1.0
+        self.assertIn("its 1 mm texture grating, 0.707 mm across the Curve pattern's ridges where "
+                      "they lie closest, is felt as designed up to 88 mm/s at the 1000 Hz servo rate",
+                      surface_object.rate_note(s, 1000))
+        # over the arc's middle alone it leans 7 degrees at most: 2.48 mm, not said
+        s.TexturePeriod = 2.5
+        middle = self.doc.addObject("Part::Box", "Middle")
+        middle.Length, middle.Width, middle.Height = 30, 10, 10
+        middle.Placement.Base = V(120, 45, 0)
+        self.doc.recompute()
+        s.References = [(middle, "Face6")]
+        self.doc.recompute()
+        ((_, finest, lean),) = curve_grating_periods(s)
+        self.assertAlmostEqual(lean, math.degrees(math.asin(5 / 40)), places=4)
+        self.assertEqual([n for n in texture_notes(s) if "ridges" in n], [])
+        # a Linear pattern's ridges lie as the period says
+        s.Pattern = "Linear"
+        self.assertEqual(curve_grating_periods(s), [])
+
     def test_the_grid_and_grating_are_laid_round_a_cylinder_and_said_flat_on_other_curved_faces(self):
         cylinder = self.doc.addObject("Part::Cylinder", "Handle")
         cylinder.Radius = 10

@@ -348,6 +348,40 @@ class TaskPanelTest(unittest.TestCase):
         self.assertNotIn("texture grating", status.text())
         h.press_task_button("Cancel")
 
+    def test_a_texture_past_the_force_limit_and_a_grating_finer_across_a_curves_ridges_are_noted(self):
+        # reviewer: the paper's strongest preset, level 1 the default 3 N force limit, was clipped under a 1.6 N
+        # press, and a grating on a leaning Curve pattern felt finer across its ridges: the panel said neither
+        import math
+
+        import Part
+
+        arc = self.doc.addObject("Part::Feature", "Arc")
+        arc.Shape = Part.ArcOfCircle(Part.Circle(App.Vector(0, 15, 20), App.Vector(0, 0, 1), 30),
+                                     -math.pi / 4, math.pi / 4).toShape()
+        self.doc.recompute()
+        self.open_new_surface()
+        h.widget(QtWidgets.QCheckBox, "FeelRoughness").setChecked(False)
+        h.widget(QtWidgets.QComboBox, "Material").setCurrentText("ABS")
+        h.widget(QtWidgets.QComboBox, "Texture").setCurrentText("Paper f_DC 0.675 f_vis +0.2")
+        h.process_events()
+        status = h.widget(QtWidgets.QLabel, "status")
+        self.assertIn("Note: the texture drags up to 2.80 N at 50-270 mm/s (level 0.93 of the device's full range, "
+                      "the 3 N force limit), which leaves 1.07 N of the 3 N force limit for the press", status.text())
+        self.assertIn("give Full range 2.78 N or less to press up to 1.5 N.", status.text())
+        h.widget(QtWidgets.QComboBox, "Pattern").setCurrentText("Curve")
+        Gui.Selection.clearSelection()
+        Gui.Selection.addSelection(arc, "Edge1")
+        h.widget(QtWidgets.QPushButton, "useCurve").click()
+        h.process_events()
+        # the face spans the arc where it leans 30 degrees at most (45 at its ends, beyond the face)
+        self.assertIn("Note: Box.Face6: the 2.5 mm texture grating is felt as fine as 2.17 mm across its ridges, "
+                      "where Arc leans 30° from the line between its ends", status.text())
+        self.assertNotIn("⚠", status.text())
+        h.widen_panel()
+        h.scroll_to(status)
+        h.grab_screen("task_panel_texture_notes.png")
+        h.press_task_button("Cancel")
+
     def test_cancel_on_a_new_surface_removes_it(self):
         self.open_new_surface()
         h.press_task_button("Cancel")
