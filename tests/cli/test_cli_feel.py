@@ -10,6 +10,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 import zipfile
 
@@ -30,8 +31,8 @@ K_N_PER_MM = 0.5
 MU_D = 0.45
 
 
-def run_cli(*args):
-    return subprocess.run([CLI, *args], capture_output=True, text=True, timeout=120)
+def run_cli(*args, timeout=120):
+    return subprocess.run([CLI, *args], capture_output=True, text=True, timeout=timeout)
 
 
 class FeelCommandTest(unittest.TestCase):
@@ -325,6 +326,44 @@ class FeelCommandTest(unittest.TestCase):
         proc = run_cli("feel", "--stroke", "-10,0,30:10,0,30", "--out", os.path.join(self.tmp.name, "x"), "--", "-5")
         self.assertEqual(proc.returncode, 2)
         self.assertIn("-5: no such file", proc.stderr)
+
+    def test_a_part_that_would_make_too_many_triangles_is_refused_before_it_is_meshed(self):
+        # a 1 m ball: at Fine 251,048 triangles in one face (19 s and 1.15 GB), at the
+        # smallest angle 805,416; said with what to give instead, in 2 s, nothing written
+        # (the demo: the designer's copy of the example, a ball added to it and saved)
+        path = os.path.join(self.tmp.name, "globe.FCStd")
+        demo_out = os.path.join(self.tmp.name, "demo-globe")
+        os.makedirs(demo_out)
+        from hapticad.demo import EXAMPLE
+        for target, source in ((path, None), (os.path.join(demo_out, os.path.basename(EXAMPLE)), EXAMPLE)):
+            doc = App.openDocument(source) if source else App.newDocument("CliGlobe")
+            globe = doc.addObject("Part::Sphere", "Globe")
+            globe.Radius = 500
+            doc.recompute()
+            HaptiCAD.make_surface(doc, [(globe, "Face1")], material="PMMA", FeelRoughness=False)
+            doc.saveAs(target)
+            App.closeDocument(doc.Name)
+        out = os.path.join(self.tmp.name, "globe")
+        stroke = ("--stroke", "-10,0,510:10,0,510", "--out", out)
+        for args, said in (
+                (("feel", path, *stroke), ("hapticad feel: Globe: about 252,000 triangles in its Face1 at a linear "
+                                           "deflection of 0.02 mm and an angular deflection of 5.7296 degrees (Fine)",
+                                           "hapticad feel --linear-deflection 0.026")),
+                (("feel", path, *stroke, "--angular-deflection", "0.573"),
+                 ("at a linear deflection of 0.02 mm and an angular deflection of 0.573 degrees (Custom)",
+                  "a linear deflection of 0.026 mm with an angular one of 1.2 degrees fits",
+                  "hapticad feel --linear-deflection 0.026 --angular-deflection 1.2")),
+                (("demo", "--headless", "--out", demo_out), ("hapticad demo: Globe: about 252,000 triangles",))):
+            with self.subTest(args=args):
+                start = time.monotonic()
+                proc = run_cli(*args, timeout=40)  # meshed, they take 19 s and 8 minutes
+                self.assertLess(time.monotonic() - start, 20.0)  # FreeCAD starting, not meshing
+                self.assertEqual(proc.returncode, 2, proc.stderr)
+                for text in said:
+                    self.assertIn(text, proc.stderr)
+                self.assertIn("Nothing was built.", proc.stderr)
+                self.assertEqual(proc.stdout, "")
+        self.assertFalse(os.path.exists(out))
 
     def test_bad_input_gets_a_clear_error(self):
         out = os.path.join(self.tmp.name, "bad")

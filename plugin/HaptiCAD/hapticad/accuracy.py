@@ -48,6 +48,12 @@ class Accuracy:
             found.append(f"force shading {self.force_shading!r} is neither True nor False")
         return found
 
+    def deflections(self):
+        """Its deflections as the Preferences page and `hapticad feel` take them: "a linear
+        deflection of 0.02 mm and an angular deflection of 5.73 degrees (Fine)"."""
+        return (f"a linear deflection of {self.linear_deflection_mm:g} mm and an angular deflection of "
+                f"{round(math.degrees(self.angular_deflection_rad), 4):g} degrees ({self.name})")
+
 
 PRESETS = {
     "Draft": Accuracy("Draft", 0.5, 0.5),

@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Scenes built from documents: every face of every referenced solid, face ids that
 match FreeCAD's face names, per-face properties, global placement."""
+import math
 import unittest
 
 import FreeCAD as App
@@ -11,7 +12,9 @@ import numpy as np
 
 from hapticad import _core
 from hapticad import accuracy
+from hapticad import document_scene
 from hapticad.document_scene import MM, build_document_scene
+from hapticad.tessellation_size import TooManyTriangles
 
 
 def point_on(face):
@@ -249,6 +252,42 @@ class DocumentSceneTest(unittest.TestCase):
         refined = build_document_scene(self.doc, accuracy.custom(0.5, 0.5, refine_edge_mm=2.0))
         self.assertGreater(refined.scene.num_triangles, 2 * coarse.scene.num_triangles)
         self.assertTrue(refined.watertight, refined.repair)
+
+    def test_parts_that_would_make_too_many_triangles_are_refused_before_anything_is_meshed(self):
+        # a 1 m ball at Fine (251,048 triangles in one face: 19 s and 1.15 GB on the GUI
+        # thread), a 1 mm bead at the smallest angle the Preferences page shows (805,416:
+        # 508 s), next to the part of the other tests, which alone is built as before
+        HaptiCAD.make_surface(self.doc, [(self.part, self.top_face())])
+        ball = self.doc.addObject("Part::Sphere", "Globe")
+        ball.Radius = 500
+        bead = self.doc.addObject("Part::Sphere", "Bead")
+        bead.Radius = 0.5
+        self.doc.recompute()
+        meshed = []
+        mesher = document_scene.MeshPart.meshFromShape
+
+        def counted(**kwargs):
+            meshed.append(kwargs["Shape"])
+            if kwargs["Shape"].BoundBox.DiagonalLength > 1000 or kwargs["Shape"].BoundBox.DiagonalLength < 2:
+                raise AssertionError("the globe or the bead was meshed")  # for seconds to minutes
+            return mesher(**kwargs)
+
+        document_scene.MeshPart.meshFromShape = counted
+        try:
+            for part, acc, said in ((ball, accuracy.preset("Fine"), "Globe: about 252,000 triangles in its Face1"),
+                                    (bead, accuracy.custom(0.02, math.radians(0.573)),
+                                     "Bead: about 807,000 triangles in its Face1")):
+                with self.subTest(part=part.Label):
+                    surface = HaptiCAD.make_surface(self.doc, [(part, "Face1")])
+                    with self.assertRaises(TooManyTriangles) as caught:
+                        build_document_scene(self.doc, acc)
+                    self.assertIn(said, str(caught.exception))
+                    self.assertEqual(meshed, [])
+                    self.doc.removeObject(surface.Name)
+            self.assertEqual(build_document_scene(self.doc, accuracy.preset("Fine")).face_names[0], "Part.Face1")
+            self.assertEqual(len(meshed), 1)
+        finally:
+            document_scene.MeshPart.meshFromShape = mesher
 
     def test_a_device_starting_inside_parts_that_touch_is_pushed_out_of_both(self):
         # an assembly: a button against its housing's side, then sunk 3 mm into it. The
