@@ -11,7 +11,8 @@
 // backend over the hidapi emulator (tests/devices/hid/emulator), whose firmware
 // measures the round trip: from sending an input report to receiving the force computed
 // from it. Prints the loop's statistics (achieved rate, period jitter, wake-up latency,
-// tick time, overruns, faults) and, for the emulator, the round trip.
+// tick time, overruns, late ticks: those over the watchdog's gap, faults) and, for the
+// emulator, the round trip.
 //
 // --load runs work on another thread of the same process for the whole time, as a
 // designer's edits do in FreeCAD: `rebuild` builds a scene of an icosphere, repair
@@ -214,7 +215,13 @@ int Main(int argc, char** argv) {
   if (load.joinable()) load.join();  // a build under way finishes first
   const ServoStats s = loop.CalcStats();
   std::size_t contact = 0;
-  for (const TraceSample& t : trace) contact += (t.flags & kContact) ? 1 : 0;
+  // ticks that started over the watchdog after the one before: faults for a device in
+  // real time; the simulated hand waits for them (Device::runs_on_loop_time)
+  std::size_t late = 0;
+  for (const TraceSample& t : trace) {
+    contact += (t.flags & kContact) ? 1 : 0;
+    late += t.period_us > config.safety.watchdog_s * 1e6 ? 1 : 0;
+  }
 
   std::printf("{\n");
   std::printf("  \"device\": \"%s\",\n  \"rate_hz\": %g,\n  \"seconds\": %g,\n", o.device.c_str(),
@@ -228,9 +235,9 @@ int Main(int argc, char** argv) {
   std::printf("  \"session_end\": \"%s\",\n", SessionEndName(loop.session_end()));
   std::printf("  \"ticks\": %llu,\n  \"achieved_rate_hz\": %.3f,\n",
               static_cast<unsigned long long>(s.ticks), s.achieved_rate_hz);
-  std::printf("  \"overruns\": %llu,\n  \"skipped_ticks\": %llu,\n",
+  std::printf("  \"overruns\": %llu,\n  \"skipped_ticks\": %llu,\n  \"late_ticks\": %zu,\n",
               static_cast<unsigned long long>(s.overruns),
-              static_cast<unsigned long long>(s.skipped_ticks));
+              static_cast<unsigned long long>(s.skipped_ticks), late);
   std::printf("  \"period_jitter_us\": {\"p50\": %.2f, \"p99\": %.2f, \"max\": %.1f},\n",
               s.period_jitter_p50_us, s.period_jitter_p99_us, s.period_jitter_max_us);
   std::printf("  \"wake_latency_us\": {\"p50\": %.2f, \"p99\": %.2f, \"max\": %.1f},\n",

@@ -250,16 +250,16 @@ void ServoLoop::AdoptUpdates() {
   }
 }
 
-void ServoLoop::Tick(double loop_time_s, double gap_s) {
+void ServoLoop::Tick(double loop_time_s, double watchdog_gap_s, double wall_gap_s) {
   const auto start = Clock::now();
   AdoptUpdates();
 
   TraceSample sample{};
   sample.time_s = loop_time_s;
-  sample.period_us = gap_s * 1e6;
+  sample.period_us = wall_gap_s * 1e6;
   sample.cad_face = -1;
   const ReadStatus status = device_.ReadState(loop_time_s, &state_);
-  std::uint32_t faults = safety_.CheckReading(status, state_, gap_s);
+  std::uint32_t faults = safety_.CheckReading(status, state_, watchdog_gap_s);
 
   RenderOutput out;
   std::uint32_t flags = 0;
@@ -378,6 +378,9 @@ void ServoLoop::Run(double stop_at_s) {
   // compare in integer nanoseconds: 300 * 1e6 * 1e-9 is 0.30000000000000004 > 0.3
   const std::int64_t stop_at_ns =
       stop_at_s >= 9e9 ? std::numeric_limits<std::int64_t>::max() : std::llround(stop_at_s * 1e9);
+  // a simulation waits for a late tick (Device::runs_on_loop_time): its clock goes a
+  // period a tick, and the watchdog judges that clock's gap, not the host's
+  const bool on_loop_time = device_.runs_on_loop_time();
   std::uint64_t tick = 0;
   SessionEnd end = SessionEnd::kStopped;
   double last_loop_time_s = 0.0;
@@ -401,7 +404,8 @@ void ServoLoop::Run(double stop_at_s) {
     }
     previous_start = now;
     last_loop_time_s = static_cast<double>(loop_time_ns) * 1e-9;
-    Tick(last_loop_time_s, gap_s);
+    Tick(last_loop_time_s, on_loop_time && tick > 0 ? static_cast<double>(period_ns) * 1e-9 : gap_s,
+         gap_s);
     if (end_requested_ != SessionEnd::kRunning) {
       end = end_requested_;
       break;
@@ -410,12 +414,15 @@ void ServoLoop::Run(double stop_at_s) {
     deadline += period_ns;
     const std::int64_t after = MonotonicNs();
     if (after > deadline + period_ns) {
-      // more than a period behind: count it and skip the lost ticks rather than burst
+      // more than a period behind: count it and go on from now rather than burst; a
+      // device in real time skips the lost ticks, a simulation's world waited for them
       Bump(overruns_);
       const std::int64_t behind = (after - deadline) / period_ns;
       deadline += behind * period_ns;
-      tick += static_cast<std::uint64_t>(behind);
-      skipped_ticks_.fetch_add(static_cast<std::uint64_t>(behind), std::memory_order_relaxed);
+      if (!on_loop_time) {
+        tick += static_cast<std::uint64_t>(behind);
+        skipped_ticks_.fetch_add(static_cast<std::uint64_t>(behind), std::memory_order_relaxed);
+      }
     }
     const timespec ts = ToTimespec(deadline);
     while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {

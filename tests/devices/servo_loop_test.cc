@@ -58,63 +58,30 @@ class ServoOnBox : public ::testing::Test {
   std::shared_ptr<ForceRenderer> renderer_;
 };
 
-// Every fact below is of the loop's own clock and counters, and holds however the host
-// schedules the thread: a host that holds the thread off its core makes the loop skip
-// ticks (counted) and, past the 5 ms watchdog, cut the force for one tick (flagged) and
-// ramp it in again over 0.2 s, all of which the trace shows and the checks follow. On a
-// host that keeps up, nothing is skipped or cut, and every tick from 0 to 300 ms is
-// checked at the full force.
+// A simulated device lives on the loop's clock (Device::runs_on_loop_time): however the
+// host schedules the thread, a late tick is waited for, never skipped or cut. So every
+// tick from 0 to 300 ms runs at its whole period, none faults, and each is checked at
+// the full force. (A real device's late tick: ALateTickIsWaitedForByASimulation...)
 TEST_F(ServoOnBox, RunsAtItsRateAndRecordsEveryTick) {
   ServoLoop loop(*device_, *renderer_, Config(1000.0, 4096));
   const std::vector<TraceSample> trace = loop.RunFor(0.3);
   const ServoStats stats = loop.CalcStats();
-  ASSERT_FALSE(trace.empty());
-  EXPECT_EQ(trace.size(), stats.ticks);
-  EXPECT_EQ(stats.trace_dropped, 0u);
-  // at its rate: every traced tick at a whole period, the first at 0, and the periods
-  // between traced ticks are ticks the loop counted as skipped (how many it skipped is
-  // the host's doing)
-  EXPECT_EQ(trace.front().time_s, 0.0);
-  std::uint64_t skipped_in_trace = 0;
-  for (std::size_t i = 0; i < trace.size(); ++i) {
-    const double periods = trace[i].time_s * 1000.0;
-    ASSERT_NEAR(periods, std::round(periods), 1e-6) << i;
-    if (i == 0) continue;
-    const long step = std::lround((trace[i].time_s - trace[i - 1].time_s) * 1000.0);
-    ASSERT_GE(step, 1) << trace[i].time_s;
-    skipped_in_trace += static_cast<std::uint64_t>(step - 1);
-  }
   // ticks at 0, 1, ..., 300 ms (0.3 is not a multiple of 1e-3 in binary: the loop must
-  // still include 300 ms): every one either ran or was skipped, none ran after 300 ms,
-  // and the last to run is at 300 ms unless an overrun after it skipped past the end
-  ASSERT_GE(stats.skipped_ticks, skipped_in_trace);
-  const std::uint64_t skipped_at_end = stats.skipped_ticks - skipped_in_trace;
-  const long last = std::lround(trace.back().time_s * 1000.0);
-  EXPECT_LE(last, 300);
-  EXPECT_GE(trace.size() + stats.skipped_ticks, 301u);
-  if (skipped_at_end == 0) {
-    EXPECT_EQ(trace.size() + stats.skipped_ticks, 301u);
-    EXPECT_NEAR(trace.back().time_s, 0.3, 1e-12);
+  // still include 300 ms), none after
+  ASSERT_EQ(trace.size(), 301u);
+  EXPECT_EQ(stats.ticks, 301u);
+  EXPECT_EQ(stats.skipped_ticks, 0u);
+  EXPECT_EQ(stats.trace_dropped, 0u);
+  for (std::size_t i = 0; i < trace.size(); ++i) {
+    ASSERT_NEAR(trace[i].time_s, static_cast<double>(i) * 1e-3, 1e-12) << i;
   }
+  EXPECT_NEAR(trace.back().time_s, 0.3, 1e-12);
   // it touched the top face where the path goes under it, pressed 1 mm at the default
-  // 0.4 N/mm, and sent that force ramped in from the session's start (0.2 s) or from the
-  // first tick after a fault. The only fault a simulated device can meet is the host's:
-  // a tick that started past the watchdog, whose force is cut
-  double ramp_start = 0.0;
-  bool faulted_before = false;
+  // 0.4 N/mm, and sent that force ramped in from the session's start (0.2 s)
   int contact = 0;
   for (const TraceSample& s : trace) {
     const double t = s.time_s;
-    if (s.flags & kDeviceFault) {
-      EXPECT_EQ(s.flags & kFaultMask, kFaultWatchdog) << t;
-      EXPECT_EQ(s.force_n[0], 0.0) << t;
-      EXPECT_EQ(s.force_n[1], 0.0) << t;
-      EXPECT_EQ(s.force_n[2], 0.0) << t;
-      faulted_before = true;
-      continue;
-    }
-    if (faulted_before) ramp_start = t;  // ForceSafety::Shape: the ramp restarts here
-    faulted_before = false;
+    EXPECT_EQ(s.flags & kDeviceFault, 0u) << t;
     // the tool where the path has it at the tick's loop time (identity mapping)
     const Vec3 tool = PathCursor(&device_->path()).Sample(t).position;
     EXPECT_NEAR((Vec3(s.device_m[0], s.device_m[1], s.device_m[2]) - tool).norm(), 0.0, 1e-12) << t;
@@ -124,17 +91,12 @@ TEST_F(ServoOnBox, RunsAtItsRateAndRecordsEveryTick) {
     EXPECT_EQ(s.cad_face, 5);
     if (t > 0.2 && t < 0.29) {
       EXPECT_NEAR(s.normal_force_n, 0.4, 1e-6) << t;  // the renderer's, before the ramp
-      const double ramp = (t - ramp_start) / 0.2;
-      EXPECT_EQ((s.flags & kRamping) != 0, ramp < 1.0) << t << " ramp from " << ramp_start;
-      EXPECT_NEAR(s.force_n[2], 0.4 * std::min(1.0, ramp), 1e-6) << t;
+      EXPECT_EQ(s.flags & kRamping, 0u) << t;
+      EXPECT_NEAR(s.force_n[2], 0.4, 1e-6) << t;
     }
   }
-  // ticks ran in contact: the path is under the face from 46 ms on, 255 ticks to 300 ms
-  // when none is skipped
-  EXPECT_GT(contact, 0);
-  if (stats.skipped_ticks == 0) {
-    EXPECT_EQ(contact, 255);
-  }
+  // the path is under the face from 46 ms on: 255 ticks to 300 ms
+  EXPECT_EQ(contact, 255);
   EXPECT_FALSE(loop.running());
   EXPECT_EQ(loop.session_end(), SessionEnd::kFinished);
   EXPECT_EQ(loop.fault_message(), "");
@@ -145,15 +107,13 @@ TEST_F(ServoOnBox, StatisticsAreConsistentAndTheSchedulingIsReported) {
   ServoLoop loop(*device_, *renderer_, Config(1000.0, 4096));
   loop.RunFor(0.2);
   const ServoStats s = loop.CalcStats();
-  // facts of the loop's clock, however slow the host: every tick of 0..200 ms ran or
-  // was skipped (a skip at the end may step past 200 ms), those that ran at distinct
-  // whole periods, the last no later than 200 ms; and the host clock is never behind
-  // the loop's (tick n starts n periods after the first at the earliest)
-  ASSERT_GE(s.ticks, 2u);
+  // facts of the loop's clock, however slow the host: every tick of 0..200 ms ran (a
+  // simulation waits for a late one), the last at 200 ms; and the host clock is never
+  // behind the loop's (tick n starts n periods after the first at the earliest)
+  EXPECT_EQ(s.ticks, 201u);
   EXPECT_EQ(s.ticks, loop.ticks());
-  EXPECT_GE(s.ticks + s.skipped_ticks, 201u);
-  EXPECT_GE(s.elapsed_s, static_cast<double>(s.ticks - 1) * 1e-3 - 1e-12);
-  EXPECT_LE(s.elapsed_s, 0.2 + 1e-12);
+  EXPECT_EQ(s.skipped_ticks, 0u);
+  EXPECT_NEAR(s.elapsed_s, 0.2, 1e-12);
   EXPECT_GE(s.wall_s, s.elapsed_s);
   EXPECT_GT(s.achieved_rate_hz, 0.0);
   EXPECT_DOUBLE_EQ(s.achieved_rate_hz, static_cast<double>(s.ticks - 1) / s.wall_s);
@@ -487,6 +447,56 @@ class ScriptedDevice : public Device {
  private:
   DeviceInfo info_{"sim", "scripted", "sim:scripted", DeviceLimits{}};
 };
+
+// A scripted device whose 50th reading holds the servo thread 8 ms, as a host that takes
+// the thread off its core does (the watchdog is 5 ms); on the loop's clock or in real time.
+class StallingDevice final : public ScriptedDevice {
+ public:
+  explicit StallingDevice(bool on_loop_time) : on_loop_time_(on_loop_time) {}
+  ReadStatus ReadState(double loop_time_s, DeviceState* state) override {
+    if (++reads_ == 50) std::this_thread::sleep_for(std::chrono::milliseconds(8));
+    return ScriptedDevice::ReadState(loop_time_s, state);
+  }
+  bool runs_on_loop_time() const override { return on_loop_time_; }
+
+ private:
+  bool on_loop_time_;
+  int reads_ = 0;
+};
+
+// A simulation's world waits for a late tick: nothing skipped, nothing cut. A real
+// device went on pushing through the gap: the watchdog cuts the force, the lost ticks
+// are skipped. The trace shows the host's gap either way.
+TEST(ServoLoopClock, ALateTickIsWaitedForByASimulationAndCutForARealDevice) {
+  for (const bool on_loop_time : {true, false}) {
+    SCOPED_TRACE(on_loop_time ? "on the loop's clock" : "in real time");
+    StallingDevice device(on_loop_time);
+    device.position = Vec3(0, 0, 0.0495);  // 0.5 mm into the box's top face
+    ServoLoop loop(device, BoxRenderer(device.info().limits), Config(1000.0, 1 << 12));
+    const std::vector<TraceSample> trace = loop.RunFor(0.1);
+    const ServoStats stats = loop.CalcStats();
+    ASSERT_GE(trace.size(), 51u);
+    // trace[49] read for 8 ms; trace[50] is the next tick that ran
+    EXPECT_GE(trace[50].period_us, 8000.0);
+    EXPECT_EQ(trace[49].flags & kDeviceFault, 0u);
+    EXPECT_GT(trace[49].force_n[2], 0.0);
+    if (on_loop_time) {
+      EXPECT_EQ(trace.size(), 101u);
+      EXPECT_EQ(stats.skipped_ticks, 0u);
+      EXPECT_EQ(stats.faults.watchdog, 0u);
+      EXPECT_NEAR(trace[50].time_s, 0.050, 1e-12);
+      for (const TraceSample& s : trace) EXPECT_EQ(s.flags & kDeviceFault, 0u) << s.time_s;
+      EXPECT_GT(trace[50].force_n[2], trace[49].force_n[2]);  // still ramping in
+    } else {
+      EXPECT_GE(stats.skipped_ticks, 7u);
+      EXPECT_GE(stats.faults.watchdog, 1u);
+      EXPECT_GE(trace[50].time_s, 0.057 - 1e-12);
+      EXPECT_TRUE(trace[50].flags & kFaultWatchdog);
+      EXPECT_EQ(trace[50].force_n[2], 0.0);
+    }
+    EXPECT_GE(stats.overruns, 1u);
+  }
+}
 
 // Moves the scripted device in a straight line to `to`, 0.5 mm a tick, then holds it
 // there for `hold` ticks; checks nothing.

@@ -32,6 +32,7 @@ class FaultyDevice final : public Device {
   const DeviceInfo& info() const override { return inner_->info(); }
   void BeginSession() override { inner_->BeginSession(); }
   void EndSession() override { inner_->EndSession(); }
+  bool runs_on_loop_time() const override { return inner_->runs_on_loop_time(); }
   void WriteForce(const Vec3& f) override {
     last_force_d_ = f;
     inner_->WriteForce(f);

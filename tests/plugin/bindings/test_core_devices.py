@@ -3,8 +3,8 @@
 a SimulatedHand whose target another thread sets, a ServoLoop started and stopped
 with its trace drained while it runs, its statistics, the end of a session and why,
 the device list and HID devices (through the hidapi emulator preloaded in front of
-libhidapi, configured by HAPTICAD_HIDEMU). No FreeCAD needed. A live loop's trace that
-shows the host stalling the loop past its watchdog runs the test again (../host_stalls.py).
+libhidapi, configured by HAPTICAD_HIDEMU). No FreeCAD needed. The simulated hand waits for a late tick (it lives on
+the loop's clock): no live trace here may show the watchdog's fault, whatever the host does.
 
 Environment: HAPTICAD_MOD (the staged Mod folder). Runs under /usr/bin/python3."""
 import os
@@ -16,9 +16,7 @@ import unittest
 import numpy as np
 
 sys.path.insert(0, os.environ["HAPTICAD_MOD"])
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from hapticad import _core  # noqa: E402
-from host_stalls import check_host_stall, rerun_after_host_stall  # noqa: E402
 
 # a box [-50, 50] mm, top face at z = 50 mm, one CAD face per side
 V = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
@@ -52,7 +50,6 @@ def wait_until(predicate, timeout=3.0):
 
 
 class SimulatedHandSession(unittest.TestCase):
-    @rerun_after_host_stall
     def test_a_mouse_thread_presses_the_hand_onto_the_part(self):
         limits = hand_limits()
         hand = _core.SimulatedHand(limits=limits, model=_core.HandModel())
@@ -81,7 +78,7 @@ class SimulatedHandSession(unittest.TestCase):
         stats = loop.calc_stats()  # after the stop: the trace below holds every tick it counted
         chunks.append(loop.drain_trace())
         trace = np.concatenate(chunks)
-        check_host_stall(trace, _core.FLAG_FAULT_WATCHDOG)
+        self.assertFalse((trace["flags"] & _core.FLAG_FAULT_WATCHDOG).any())
         self.assertFalse(loop.running)
         self.assertEqual(loop.session_end, _core.SessionEnd.STOPPED)
         self.assertEqual(loop.fault_message, "")
@@ -122,19 +119,18 @@ class SimulatedHandSession(unittest.TestCase):
         self.assertGreaterEqual(stats.ticks, after)
         self.assertGreaterEqual(stats.elapsed_s, (stats.ticks - 1) * 1e-3 - 1e-9)
 
-    @rerun_after_host_stall
     def test_follows_a_path_and_a_recorded_trajectory(self):
         hand = _core.SimulatedHand(limits=hand_limits())
         hand.follow_path([0.0, 0.2, 0.4], np.array([[0, 0, 0.07], [0.02, 0, 0.07], [0.02, 0.02, 0.07]]))
         loop = _core.ServoLoop(hand, box_renderer(hand_limits()))
         first = loop.run_for(0.6)
-        check_host_stall(first, _core.FLAG_FAULT_WATCHDOG)
+        self.assertFalse((first["flags"] & _core.FLAG_FAULT_WATCHDOG).any())
         self.assertTrue(hand.following_path)
         self.assertAlmostEqual(first[-1]["handle_d_m"][0], 0.02, delta=3e-4)
         # replay what the handle did as a recording
         hand.follow_path(first["time_s"], first["handle_d_m"])
         second = loop.run_for(0.6)
-        check_host_stall(second, _core.FLAG_FAULT_WATCHDOG)
+        self.assertFalse((second["flags"] & _core.FLAG_FAULT_WATCHDOG).any())
         self.assertAlmostEqual(second[-1]["handle_d_m"][1], first[-1]["handle_d_m"][1], delta=3e-4)
         hand.follow_target()
         self.assertFalse(hand.following_path)
@@ -155,7 +151,6 @@ class SimulatedHandSession(unittest.TestCase):
             with self.assertRaisesRegex(ValueError, "not finite, or more than a million"):
                 scene.calc_closest_point(far)
 
-    @rerun_after_host_stall
     def test_mapping_clutch_and_scene_swap_reach_the_running_loop(self):
         limits = hand_limits()
         hand = _core.SimulatedHand(limits=limits)
@@ -178,7 +173,7 @@ class SimulatedHandSession(unittest.TestCase):
                         "the new scene never reached the loop")
         after = loop.latest()
         loop.stop()
-        check_host_stall(loop.drain_trace(), _core.FLAG_FAULT_WATCHDOG)
+        self.assertFalse((loop.drain_trace()["flags"] & _core.FLAG_FAULT_WATCHDOG).any())
         self.assertAlmostEqual(world[2], 0.09, delta=2e-4)
         self.assertEqual(after["cad_face"], 5)
         self.assertAlmostEqual(after["proxy_m"][2], 0.095, delta=1e-6)  # on the new top

@@ -1,8 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Strokes: planning (approach, depth, slide, retreat) and clear errors."""
-import os
 import re
-import sys
 import unittest
 
 import numpy as np
@@ -14,8 +12,6 @@ from hapticad.document_scene import build_document_scene
 from hapticad import _core, feel
 from hapticad.feel import Stroke, plan_stroke, run_stroke_in_servo_loop, summarize
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from host_stalls import check_host_stall, rerun_after_host_stall  # noqa: E402
 
 
 class FeelTest(unittest.TestCase):
@@ -57,10 +53,9 @@ class FeelTest(unittest.TestCase):
                     radial = np.array([math.cos(a), math.sin(a), 0.0])
                     start, end = 20 * radial + [0, 0, 8], 20 * radial + [0, 0, 22]
                     trace = run_stroke_in_servo_loop(scene, Stroke(start, end, speed_mm_s=60, depth_mm=1)).trace
-                    # a host stall trips the loop's 5 ms watchdog: zero force sent, then a ramp
-                    # up from zero; a force the safety layer zeroed has no direction to check
-                    shaped = (trace["flags"] & (_core.FLAG_DEVICE_FAULT | _core.FLAG_RAMPING)) != 0
-                    contact = (np.asarray(trace["normal_force_n"]) > 0.05) & ~shaped
+                    # the simulated hand waits for a late tick: no force is zeroed by a stall
+                    self.assertFalse((trace["flags"] & _core.FLAG_DEVICE_FAULT).any())
+                    contact = np.asarray(trace["normal_force_n"]) > 0.05
                     force = np.asarray(trace["force_n"])[contact]
                     self.assertGreater(len(force), 100)
                     horizontal = force[:, :2] / np.linalg.norm(force[:, :2], axis=1)[:, None]
@@ -264,7 +259,6 @@ class FeelTest(unittest.TestCase):
         limits.max_force_n = 3.0  # the Preferences' default, as `hapticad feel` holds it (feel.probe_limits)
         return doc, build_document_scene(doc), limits
 
-    @rerun_after_host_stall
     def test_a_texture_whose_drag_with_the_press_passed_the_force_limit_is_said_with_what_fits(self):
         # reviewer (make_texture_doc.py, hapticad feel, analyze_cli_grating.py): the paper's f_DC 0.675 f_vis +0.2
         # on ABS under the 3 N limit, pressed 2 mm at 270 mm/s: 41 % of the ticks held to 3 N, the press down to
@@ -280,7 +274,6 @@ class FeelTest(unittest.TestCase):
                          [said])
         result = run_stroke_in_servo_loop(scene, Stroke((150, 20, 10), (150, 100, 10), speed_mm_s=270.0,
                                                         depth_mm=2.0), limits)
-        check_host_stall(result.trace, _core.FLAG_FAULT_WATCHDOG)
         (note,) = summarize(result, scene)["notes"]
         held = re.match(r"Box\.Face6 \(Grating\): (\d+) % of the slide was held to the 3 N force limit: the "
                         r"texture's drag \(up to 2\.80 N\) and the 1\.60 N press passed it together and the whole "
@@ -291,13 +284,11 @@ class FeelTest(unittest.TestCase):
         self.assertAlmostEqual(int(held.group(1)), 41, delta=3)
         self.assertAlmostEqual(int(held.group(2)), 49, delta=2)
 
-    @rerun_after_host_stall
     def test_a_texture_whose_drag_with_the_press_fits_the_force_limit_says_nothing_of_it(self):
         _, scene, limits = self.grating_document()
         # pressed 1 mm (0.8 N, under the 1.07 N said) it fits: nothing held, nothing said
         result = run_stroke_in_servo_loop(scene, Stroke((150, 20, 10), (150, 100, 10), speed_mm_s=270.0,
                                                         depth_mm=1.0), limits)
-        check_host_stall(result.trace, _core.FLAG_FAULT_WATCHDOG)
         self.assertEqual(summarize(result, scene)["notes"], [])
 
     def test_a_study_whose_law_is_not_felt_is_said_as_its_controls_say_it(self):

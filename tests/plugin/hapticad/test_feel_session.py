@@ -2,10 +2,8 @@
 """The live Feel session adapter, headless: with the device layer's live bindings it
 runs the real C++ servo loop with the simulated hand (the hand aims into the top face
 and is held at its surface); without them it refuses to start, naming what is missing.
-A live session's trace that shows the host stalling the loop past its watchdog runs the
-test again (../host_stalls.py). Run by freecadcmd."""
-import os
-import sys
+The simulated hand waits for a late tick (it lives on the loop's clock), so no trace
+here may show the watchdog's fault, whatever the host does. Run by freecadcmd."""
 import time
 import unittest
 
@@ -18,22 +16,21 @@ import HaptiCAD
 from hapticad import _core, feel_session, preferences
 from hapticad.document_scene import NeedsNewScene, build_document_scene
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from host_stalls import check_host_stall, rerun_after_host_stall  # noqa: E402
 
 MM = 1e-3
 
 
 def drain(session):
-    """All the session's samples since the last drain; HostStall if the host stalled it."""
+    """All the session's samples since the last drain; none may show a watchdog fault."""
     trace = session.drain()
-    check_host_stall(trace, _core.FLAG_FAULT_WATCHDOG)
+    if (trace["flags"] & _core.FLAG_FAULT_WATCHDOG).any():
+        raise AssertionError("a watchdog fault in a simulated session: its clock must wait for the host")
     return trace
 
 
 def drain_ticks(session, count, dead_after_s=20.0):
     """The session's next ``count`` or more samples, however long the host takes to tick
-    them (the limit is only for a loop that died); HostStall as drain."""
+    them (the limit is only for a loop that died); checked as drain."""
     parts, got = [], 0
     end = time.monotonic() + dead_after_s
     while got < count:
@@ -163,7 +160,6 @@ class FeelSessionTest(unittest.TestCase):
             finally:
                 session.stop()
 
-    @rerun_after_host_stall
     def test_the_hand_is_held_at_the_surface(self):
         prefs = preferences.Preferences(servo_rate_hz=1000, force_limit_n=3.0)
         session = feel_session.LiveSession(self.scene, prefs=prefs)
@@ -191,7 +187,6 @@ class FeelSessionTest(unittest.TestCase):
         self.assertIn("Box.Face6", session.describe_face(int(last["cad_face"][-1])))
         self.assertIn("Steel", session.describe_face(int(last["cad_face"][-1])))
 
-    @rerun_after_host_stall
     def test_a_property_edit_is_felt_in_the_running_session_without_a_rebuild(self):
         surface = self.doc.getObject("HapticSurface")
         session, steel = self.press_on_the_top()
@@ -232,7 +227,6 @@ class FeelSessionTest(unittest.TestCase):
         self.assertAlmostEqual(session.doc_scene.surfaces.surface(self.scene.face_id("Box.Face6")).stiffness_n_per_m,
                                50.0)
 
-    @rerun_after_host_stall
     def test_a_geometry_edit_is_felt_in_the_running_session(self):
         session, before = self.press_on_the_top()
         scene_before = session.doc_scene.scene
@@ -260,7 +254,6 @@ class FeelSessionTest(unittest.TestCase):
         self.assertGreater(f_after, 2.0 * f_before)
         self.assertLessEqual(float(np.linalg.norm(after["force_n"], axis=1).max()), 3.0 + 1e-9)
 
-    @rerun_after_host_stall
     def test_a_hand_let_go_of_its_proxy_caught_under_the_part_takes_hold_again_in_the_open(self):
         # the box moved 14 mm up over the resting hand: the proxy restarts on its bottom
         # (6 mm away, the top 14), and pulls the hand aiming up through the part back down

@@ -7,7 +7,6 @@ import json
 import math
 import os
 import random
-import sys
 import tempfile
 import unittest
 
@@ -16,14 +15,12 @@ import numpy as np
 import FreeCAD as App
 
 import HaptiCAD
-from hapticad import _core, similarity_study as ss
+from hapticad import similarity_study as ss
 from hapticad.document_scene import build_document_scene, recompile_surfaces
 from hapticad.feel import Stroke, run_stroke_in_servo_loop, sliding_mask
 from hapticad.surface_compile import compile_surface
 from hapticad.trace_path import slid_mm
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from host_stalls import run_without_host_stall  # noqa: E402
 
 FULL_RANGE_N = 2.0
 
@@ -134,7 +131,7 @@ class StudyTest(unittest.TestCase):
 
         def resisting_force_n():
             stroke = Stroke((20, 10, 10), (20, 90, 10), speed_mm_s=100.0, depth_mm=1.0, rate_hz=1000)
-            result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
+            result = run_stroke_in_servo_loop(scene, stroke)
             sliding = sliding_mask(result, scene)
             self.assertGreater(sliding.sum(), 300)
             return float(np.mean(result.trace["tangential_force_n"][sliding]))
@@ -654,7 +651,7 @@ class StudyTest(unittest.TestCase):
 
         def stroke_over(p0, p1):
             stroke = Stroke(p0, p1, speed_mm_s=80.0, depth_mm=1.0, rate_hz=1000)
-            result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
+            result = run_stroke_in_servo_loop(scene, stroke)
             anywhere = slid_mm(result.trace, range(len(scene.face_names)))
             return slid_mm(result.trace, plate_faces), anywhere
 

@@ -6,7 +6,6 @@ import dataclasses
 import json
 import os
 import re
-import sys
 import tempfile
 import unittest
 
@@ -20,8 +19,6 @@ from hapticad.document_scene import build_document_scene, recompile_surfaces
 from hapticad import _core
 from hapticad.feel import Stroke, expected_normal_force_n, run_stroke_in_servo_loop
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from host_stalls import run_without_host_stall  # noqa: E402
 
 PARTICIPANT = ("Steven", "M", "26-40", 70, 1700)
 
@@ -31,7 +28,7 @@ def pressed_normal_force(doc, depth_mm, start=(20, 20, 10)):
     scene = build_document_scene(doc)
     p0 = np.asarray(start, float)
     stroke = Stroke(tuple(p0), tuple(p0 + [0.01, 0, 0]), speed_mm_s=25.0, depth_mm=depth_mm, rate_hz=1000)
-    result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
+    result = run_stroke_in_servo_loop(scene, stroke)
     trace, plan = result.trace, result.plan
     held = (trace["time_s"] > plan.slide_start_s - 0.05) & (trace["time_s"] < plan.slide_start_s)
     return float(np.mean(trace["normal_force_n"][held]))
@@ -103,7 +100,7 @@ class StudyTest(unittest.TestCase):
         self.assertAlmostEqual(law.stretch_slope(), 2000.0)  # what a soft device stretches: the click
         # on the way down to 1.5 mm, the probe felt the operating force, then the snap
         stroke = Stroke((20, 20, 10), (20.01, 20, 10), speed_mm_s=5.0, depth_mm=1.5)
-        result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
+        result = run_stroke_in_servo_loop(scene, stroke)
         fn = result.trace["normal_force_n"][result.trace["time_s"] < result.plan.slide_start_s]
         highest = np.maximum.accumulate(fn)
         snap = int(np.argmax(highest - fn > 0.2))  # the first tick 0.2 N below the highest so far
@@ -115,7 +112,7 @@ class StudyTest(unittest.TestCase):
         self.assertEqual(stiffness_study.device_note(study, 3000.0), "")  # the housing stretches nothing
         study.HousingStiffness = 0.8  # a soft housing is felt as soft as it is
         scene = build_document_scene(self.doc)
-        result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
+        result = run_stroke_in_servo_loop(scene, stroke)
         self.assertAlmostEqual(result.trace["normal_force_n"][result.trace["time_s"] < result.plan.slide_start_s][-1],
                                0.8 + 0.8 * 0.5, delta=0.03)
         study.OperatingForce = 1.47  # Omron B3F's: 5.9 N/mm to the operating point
@@ -668,7 +665,7 @@ class StudyTest(unittest.TestCase):
                 loop.set_mapping(mapping)
                 return SimpleNamespace(trace=loop.run_for(0.8))
 
-            trace = run_without_host_stall(run, _core.FLAG_FAULT_WATCHDOG).trace
+            trace = run().trace
             held = trace["time_s"] > 0.6  # down at 0.4 s, the mapping's ramp-in long over
             self.assertTrue((trace["flags"][held] & _core.FLAG_CONTACT).all())
             return float(np.mean(trace["normal_force_n"][held]))

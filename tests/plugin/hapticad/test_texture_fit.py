@@ -17,8 +17,6 @@ from hapticad.feel import Stroke, run_stroke_in_servo_loop, write_trace_csv
 from hapticad.surface_object import validate
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from host_stalls import run_without_host_stall  # noqa: E402
 from texture_recordings import write_rig_csv as _write_rig_csv  # noqa: E402
 
 
@@ -56,7 +54,7 @@ class RoundTripTest(unittest.TestCase):
         for speed in SPEEDS:
             # across the grating: its coordinate runs along the face frame's e2, +y on this face
             stroke = Stroke((20, 10, 10), (20, 90, 10), speed_mm_s=speed, depth_mm=1.0, rate_hz=5000)
-            result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
+            result = run_stroke_in_servo_loop(scene, stroke)
             path = os.path.join(cls.tmp.name, f"trace_{speed:.0f}.csv")
             write_trace_csv(path, result, scene)
             cls.paths.append(path)
@@ -145,7 +143,7 @@ class RoundTripTest(unittest.TestCase):
             # stroked as the source was (same material, same press), it drags as the source did
             scene = build_document_scene(doc)
             stroke = Stroke((20, 10, 10), (20, 90, 10), speed_mm_s=120.0, depth_mm=1.0, rate_hz=5000)
-            result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
+            result = run_stroke_in_servo_loop(scene, stroke)
             path = os.path.join(self.tmp.name, "friction_level.csv")
             write_trace_csv(path, result, scene)
             again = texture_fit.fit_files([path], 2.5, (120,), lowpass_hz=0).fit.speeds[0]

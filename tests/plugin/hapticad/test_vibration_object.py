@@ -1,7 +1,6 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """HapticVibration: a part that vibrates when powered; validation and persistence."""
 import os
-import sys
 import tempfile
 import unittest
 
@@ -11,8 +10,6 @@ import HaptiCAD
 from hapticad import _core, vibration_object
 from hapticad.document_scene import build_document_scene
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from host_stalls import rerun_after_host_stall, run_without_host_stall  # noqa: E402
 from test_feel_session import drain_ticks  # noqa: E402
 
 MM = 1e-3
@@ -161,7 +158,7 @@ class VibrationTest(unittest.TestCase):
             """(strongest frequency, its amplitude) of the normal force while sliding."""
             scene = build_document_scene(self.doc)
             stroke = Stroke((10, 20, 20), (70, 20, 20), 50, 1.0, rate_hz=rate_hz)
-            result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
+            result = run_stroke_in_servo_loop(scene, stroke)
             t = result.trace
             sliding = (t["time_s"] > result.plan.slide_start_s) & (t["time_s"] < result.plan.slide_end_s)
             fz = np.asarray(t["force_n"])[sliding, 2]
@@ -195,7 +192,7 @@ class VibrationTest(unittest.TestCase):
             the amplitude: 1 when every cycle's peak is felt."""
             scene = build_document_scene(self.doc)
             stroke = Stroke((10, 20, 20), (40, 20, 20), 50, 1.0, rate_hz=rate_hz)
-            result = run_without_host_stall(lambda: run_stroke_in_servo_loop(scene, stroke), _core.FLAG_FAULT_WATCHDOG)
+            result = run_stroke_in_servo_loop(scene, stroke)
             t = result.trace
             sliding = (t["time_s"] > result.plan.slide_start_s) & (t["time_s"] < result.plan.slide_end_s)
             shake = np.abs(np.asarray(t["vibration_force_n"])[sliding])
@@ -223,9 +220,7 @@ class VibrationTest(unittest.TestCase):
         # a phone's buzz, 0.3 N, on a touch of 0.25 mm (0.1 N): more than the push
         v = HaptiCAD.make_vibration(self.doc, self.razor, frequency_hz=200.0, amplitude_n=0.3, axis=(0, 0, 1))
         scene = build_document_scene(self.doc)
-        result = run_without_host_stall(
-            lambda: run_stroke_in_servo_loop(scene, Stroke((10, 20, 20), (70, 20, 20), 50, 0.25, rate_hz=1000)),
-            _core.FLAG_FAULT_WATCHDOG)
+        result = run_stroke_in_servo_loop(scene, Stroke((10, 20, 20), (70, 20, 20), 50, 0.25, rate_hz=1000))
         t = result.trace
         sliding = (t["time_s"] > result.plan.slide_start_s) & (t["time_s"] < result.plan.slide_end_s)
         fz = np.asarray(t["force_n"])[sliding, 2]
@@ -446,7 +441,6 @@ class VibrationTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, f"{v.Label}: {said}.*make Razor vibrate"):
             build_document_scene(self.doc)
 
-    @rerun_after_host_stall
     def test_a_running_session_feels_the_shake_turn_with_its_part(self):
         # the Feel panel's live path: SessionEditObserver gives geometry=True for a
         # placement of a part in the scene or of a container holding it, a property edit

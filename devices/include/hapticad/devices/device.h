@@ -91,6 +91,14 @@ class Device {
   // wrong); empty when there was none. Allocates: call it off the servo tick.
   virtual std::string DescribeFault() const { return {}; }
 
+  // True for a device whose world advances only with the loop's clock (a simulation,
+  // read at `loop_time_s`): when the host holds the servo thread off its core, that
+  // world waits with it, and no command acts on its handle for longer than a tick. For
+  // such a device the loop's clock goes a period a tick (no ticks skipped after a late
+  // one) and its watchdog sees that clock's gap; a real device (false) goes on pushing
+  // with its last command in real time, so a late tick is a fault.
+  virtual bool runs_on_loop_time() const { return false; }
+
   // True when a kUnplugged read means the device is still attached but stopped taking
   // commands (the session ends the same way; the words for the user differ). Off the tick.
   virtual bool stopped_answering() const { return false; }

@@ -13,6 +13,12 @@
 // (ForceRenderer::Reset: up to 102 point sweeps across the scene, 198 where parts touch,
 // and a few closest-point walks for a sphere, where a normal tick sweeps a few times).
 //
+// A late tick (the host held the thread off its core). A real device went on pushing
+// with its last command through the gap: past SafetyConfig::watchdog_s the tick's force
+// is cut (kFaultWatchdog) and ramps in again, and the lost ticks are skipped rather than
+// run in a burst. A simulation (Device::runs_on_loop_time) waited with the loop: its
+// clock goes on a period a tick, and nothing is cut or skipped.
+//
 // Threads. One control thread owns the loop: it calls Start(), Stop(), SetRenderer(),
 // SetMapping(), SetClutch() and reads mapping() and latest(). Updates reach the servo
 // thread lock-free (an atomic pointer hand-over for renderers, wait-free mailboxes for
@@ -90,7 +96,9 @@ struct FaultCounts {  // ticks with each reason for zero force (one tick may hav
 struct ServoStats {
   std::uint64_t ticks = 0;
   std::uint64_t overruns = 0;       // times the loop fell more than a period behind
-  std::uint64_t skipped_ticks = 0;  // ticks skipped to catch up after an overrun
+  // ticks skipped to catch up after an overrun; none for a device on the loop's clock
+  // (Device::runs_on_loop_time: its world waited for the late tick)
+  std::uint64_t skipped_ticks = 0;
   std::uint64_t trace_dropped = 0;  // samples lost to a full ring
   double elapsed_s = 0.0;           // loop clock at the last tick
   double wall_s = 0.0;              // monotonic time from the first to the last tick start
@@ -182,13 +190,16 @@ class ServoLoop {
   // One tick at loop time `loop_time_s`, `gap_s` after the previous tick started.
   // Public so tests can run it on their own thread (allocation counting, deterministic
   // replays); the servo thread calls it. BeginTicks() prepares a session for that.
-  void Tick(double loop_time_s, double gap_s = 0.0);
+  void Tick(double loop_time_s, double gap_s = 0.0) { Tick(loop_time_s, gap_s, gap_s); }
   void BeginTicks();
 
   const ServoConfig& config() const { return config_; }
   Device& device() { return device_; }
 
  private:
+  // `watchdog_gap_s`: the gap the safety layer judges (the loop clock's for a device on
+  // it); `wall_gap_s`: the host's, traced as period_us.
+  void Tick(double loop_time_s, double watchdog_gap_s, double wall_gap_s);
   void Launch(double stop_at_s);
   void Run(double stop_at_s);
   void AdoptUpdates();

@@ -6,6 +6,7 @@
 //
 // Its workspace is the limits' box grown to hold the whole path (a script goes where
 // it says), so the safety layer never mistakes a scripted stroke for a bad reading.
+// It lives on the loop's clock (runs_on_loop_time): a host stall pauses the stroke.
 #pragma once
 
 #include "hapticad/devices/device.h"
@@ -33,6 +34,7 @@ class SimulatedDevice final : public Device {
   const DeviceInfo& info() const override { return info_; }
   ReadStatus ReadState(double loop_time_s, DeviceState* state) override;
   void WriteForce(const Vec3& force_d) override { last_force_d_ = force_d; }
+  bool runs_on_loop_time() const override { return true; }
 
   const Vec3& last_force_d() const { return last_force_d_; }
   const ScriptedPath& path() const { return path_; }

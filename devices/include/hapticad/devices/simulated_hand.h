@@ -74,6 +74,9 @@ class SimulatedHand final : public Device {
   ReadStatus ReadState(double loop_time_s, DeviceState* state) override;
   void WriteForce(const Vec3& force_d) override;
   void EndSession() override;
+  // The hand's physics advance with the loop's clock: a host that stalls the servo
+  // thread pauses it (no watchdog fault, no skipped ticks; the mouse's target waits).
+  bool runs_on_loop_time() const override { return true; }
 
   // Any one thread, any time: where the hand aims, device frame, m. Non-finite targets
   // are refused (std::invalid_argument). Ignored while following a path.

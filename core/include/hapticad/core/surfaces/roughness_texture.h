@@ -22,9 +22,11 @@
 // spatial period (at the default height, 5 % of the spacing, the bumps' steepest slope
 // is 0.157 at every category); a measured mu for a material and finish goes in the
 // surface's friction values.
-// A stroke at speed v therefore carries the spatial period g, i.e. v / g Hz: at 1 kHz
-// and 50 mm/s category 1 (0.1 mm) sits at the Nyquist limit; use 5-10 kHz for the
-// finest categories (field notes: textures want 5-10 kHz).
+// A stroke at speed v therefore carries the spatial period g, i.e. v / g Hz, and more:
+// the bumps' tilt doubles that frequency and a diagonal stroke meets lines sqrt(2)
+// finer, so at 1 kHz category 1 (0.1 mm) is felt as it is only up to 15 mm/s (the
+// plugin's rate note counts it); use 5-10 kHz for the finest categories (field notes:
+// textures want 5-10 kHz).
 //
 // Units: metres. Sampling is pure and servo-tick safe.
 #pragma once
