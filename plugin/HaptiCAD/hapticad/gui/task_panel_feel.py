@@ -512,6 +512,7 @@ class FeelTaskPanel:
         if self.session is not None:
             self.session.stop()
             self.update_display_final()
+            self.face_label.setText("Face: -")  # nothing is touched now
         self._tear_down()
         self.set_running(False)
         self.prefs_note.setText("")  # the next Start takes the preferences as they are

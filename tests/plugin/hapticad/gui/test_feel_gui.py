@@ -178,6 +178,8 @@ class FeelGuiTest(unittest.TestCase):
         h.process_events()
         self.assertFalse(stop.isEnabled())
         self.assertIn("stopped", h.widget(QtWidgets.QLabel, "feelRate").text())
+        # nothing is touched now: the face the probe was on is no longer said
+        self.assertEqual(h.widget(QtWidgets.QLabel, "feelFace").text(), "Face: -")
         graph = Gui.ActiveDocument.ActiveView.getSceneGraph()
         names = [graph.getChild(i).getName().getString() for i in range(graph.getNumChildren())]
         self.assertNotIn("HaptiCAD_Feel", names)
