@@ -95,7 +95,7 @@ struct FaultCounts {  // ticks with each reason for zero force (one tick may hav
 
 struct ServoStats {
   std::uint64_t ticks = 0;
-  std::uint64_t overruns = 0;       // times the loop fell more than a period behind
+  std::uint64_t overruns = 0;  // times the loop fell more than a period behind
   // ticks skipped to catch up after an overrun; none for a device on the loop's clock
   // (Device::runs_on_loop_time: its world waited for the late tick)
   std::uint64_t skipped_ticks = 0;
