@@ -13,7 +13,6 @@ from hapticad import _core, feel
 from hapticad.feel import Stroke, plan_stroke, run_stroke_in_servo_loop, summarize
 
 
-
 class FeelTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):

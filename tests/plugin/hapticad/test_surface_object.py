@@ -13,7 +13,6 @@ import HaptiCAD
 from hapticad import _core, materials, surface_object
 
 
-
 class MakeSurfaceTest(unittest.TestCase):
     def setUp(self):
         self.doc = App.newDocument("MakeSurfaceTest")
